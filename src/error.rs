@@ -1,0 +1,31 @@
+//! The crate's error type; the C layer maps it onto `sk_status`.
+
+use core::fmt;
+
+/// Why a constructor or checked call refused its input.
+///
+/// Rust returns `Result<_, Error>` where C returns `sk_status`: `Domain` is
+/// `SK_ERR_DOMAIN`, `Size` is `SK_ERR_SIZE`, `Method` is `SK_ERR_METHOD`
+/// (`SK_ERR_NULL` exists only in C).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Error {
+    /// A parameter is NaN, infinite, or outside the documented domain.
+    Domain,
+    /// A buffer is too small, a count is zero where it must not be, or two
+    /// slices that must have the same length do not.
+    Size,
+    /// An enum-valued input (sampling method, table kind, ...) is out of range.
+    Method,
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Error::Domain => "parameter outside its domain",
+            Error::Size => "buffer or count of the wrong size",
+            Error::Method => "unknown method or kind",
+        })
+    }
+}
+
+impl core::error::Error for Error {}

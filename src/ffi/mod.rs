@@ -1,0 +1,257 @@
+//! The `extern "C"` layer: argument checks, conversion, and a call into the
+//! core, nothing else. `include/scatterkit.h` is generated from these files by
+//! cbindgen (`SK_BLESS=1 cargo test --test header` rewrites it).
+//!
+//! # Safety (every function here)
+//! Pointer arguments are either NULL (checked, reported as `SK_ERR_NULL` or a
+//! NaN result) or valid for the reads and writes the function documents,
+//! for the element counts it is given. `sk_phase`, `sk_table` and friends
+//! must come from this library's constructors. The callback in `sk_rng` is
+//! called with its `state` and must not unwind.
+#![allow(non_camel_case_types, clippy::missing_safety_doc)]
+
+mod cbrt;
+mod geometry;
+mod phase;
+mod rayleigh;
+mod table;
+
+pub use cbrt::*;
+pub use geometry::*;
+pub use phase::*;
+pub use rayleigh::*;
+pub use table::*;
+
+use crate::error::Error;
+use crate::geometry::Vec3;
+use crate::real::Real;
+use core::convert::Infallible;
+use core::ffi::{c_char, c_void};
+
+/// Result of every fallible call. Out-pointers are written only on `SK_OK`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum sk_status {
+    /// Success.
+    SK_OK = 0,
+    /// A required pointer was NULL.
+    SK_ERR_NULL = 1,
+    /// A parameter was NaN, infinite or outside its domain.
+    SK_ERR_DOMAIN = 2,
+    /// A buffer was too small or a count out of range.
+    SK_ERR_SIZE = 3,
+    /// An enum-valued argument was out of range.
+    SK_ERR_METHOD = 4,
+}
+
+impl From<Error> for sk_status {
+    fn from(e: Error) -> Self {
+        match e {
+            Error::Domain => sk_status::SK_ERR_DOMAIN,
+            Error::Size => sk_status::SK_ERR_SIZE,
+            Error::Method => sk_status::SK_ERR_METHOD,
+        }
+    }
+}
+
+/// A 3-vector of floats (a unit propagation direction where one is expected).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct sk_vec3 {
+    /// x component.
+    pub x: f32,
+    /// y component.
+    pub y: f32,
+    /// z component.
+    pub z: f32,
+}
+
+/// A 3-vector of doubles.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct sk_vec3_f64 {
+    /// x component.
+    pub x: f64,
+    /// y component.
+    pub y: f64,
+    /// z component.
+    pub z: f64,
+}
+
+/// Conversions between the C vector types and [`Vec3`].
+pub(crate) trait CVec: Copy {
+    type T: Real;
+    fn to_vec(self) -> Vec3<Self::T>;
+    fn from_vec(v: Vec3<Self::T>) -> Self;
+}
+
+macro_rules! impl_cvec {
+    ($c:ty, $t:ty) => {
+        impl CVec for $c {
+            type T = $t;
+            #[inline(always)]
+            fn to_vec(self) -> Vec3<$t> {
+                Vec3::new(self.x, self.y, self.z)
+            }
+            #[inline(always)]
+            fn from_vec(v: Vec3<$t>) -> Self {
+                Self { x: v.x, y: v.y, z: v.z }
+            }
+        }
+    };
+}
+impl_cvec!(sk_vec3, f32);
+impl_cvec!(sk_vec3_f64, f64);
+
+/// The caller's random number generator: `next_u64(state)` returns 64
+/// uniformly random bits. Uniform floats are taken from the top 24 (float) or
+/// 53 (double) bits.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct sk_rng {
+    /// Passed to `next_u64` unchanged; may be NULL if the callback allows.
+    pub state: *mut c_void,
+    /// The generator. Must not be NULL.
+    pub next_u64: Option<unsafe extern "C" fn(state: *mut c_void) -> u64>,
+}
+
+/// [`sk_rng`] as a `rand_core` generator.
+pub(crate) struct CRng {
+    state: *mut c_void,
+    next: unsafe extern "C" fn(*mut c_void) -> u64,
+}
+
+impl CRng {
+    /// `None` if `rng` or its callback is NULL.
+    pub(crate) unsafe fn from_ptr(rng: *mut sk_rng) -> Option<CRng> {
+        // SAFETY: non-NULL `rng` points to an sk_rng (module contract).
+        let r = unsafe { rng.as_ref() }?;
+        Some(CRng { state: r.state, next: r.next_u64? })
+    }
+}
+
+impl rand_core::TryRng for CRng {
+    type Error = Infallible;
+    #[inline(always)]
+    fn try_next_u32(&mut self) -> Result<u32, Infallible> {
+        Ok((self.try_next_u64()? >> 32) as u32)
+    }
+    #[inline(always)]
+    fn try_next_u64(&mut self) -> Result<u64, Infallible> {
+        // SAFETY: the caller's callback, called with the caller's state.
+        Ok(unsafe { (self.next)(self.state) })
+    }
+    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Infallible> {
+        rand_core::utils::fill_bytes_via_next_word(dst, || self.try_next_u64())
+    }
+}
+
+/// Writes `r`'s value through `out` on success; the status either way.
+#[inline(always)]
+pub(crate) unsafe fn write_result<V>(out: *mut V, r: Result<V, Error>) -> sk_status {
+    if out.is_null() {
+        return sk_status::SK_ERR_NULL;
+    }
+    match r {
+        // SAFETY: non-NULL `out` is writable (module contract).
+        Ok(v) => unsafe {
+            out.write(v);
+            sk_status::SK_OK
+        },
+        Err(e) => e.into(),
+    }
+}
+
+/// A shared slice from a C array of `n` elements: `Ok(&[])` for `n = 0`
+/// (whatever the pointer), `SK_ERR_NULL` for NULL with `n > 0`, `SK_ERR_SIZE`
+/// if `n` elements cannot exist in one allocation.
+#[inline(always)]
+pub(crate) unsafe fn slice_in<'a, T>(p: *const T, n: usize) -> Result<&'a [T], sk_status> {
+    if n == 0 {
+        return Ok(&[]);
+    }
+    if p.is_null() {
+        return Err(sk_status::SK_ERR_NULL);
+    }
+    if n > isize::MAX as usize / core::mem::size_of::<T>() {
+        return Err(sk_status::SK_ERR_SIZE);
+    }
+    // SAFETY: non-NULL, valid for n elements (module contract), size checked.
+    Ok(unsafe { core::slice::from_raw_parts(p, n) })
+}
+
+/// The mutable twin of [`slice_in`].
+#[inline(always)]
+pub(crate) unsafe fn slice_out<'a, T>(p: *mut T, n: usize) -> Result<&'a mut [T], sk_status> {
+    if n == 0 {
+        return Ok(&mut []);
+    }
+    if p.is_null() {
+        return Err(sk_status::SK_ERR_NULL);
+    }
+    if n > isize::MAX as usize / core::mem::size_of::<T>() {
+        return Err(sk_status::SK_ERR_SIZE);
+    }
+    // SAFETY: as in slice_in, and the caller's array is writable.
+    Ok(unsafe { core::slice::from_raw_parts_mut(p, n) })
+}
+
+/// Runs `f(u, out)` over two C arrays of `n` elements that are either
+/// disjoint or the same array (in place); partial overlap is `SK_ERR_DOMAIN`.
+/// In place, the inputs are copied in chunks to the stack first, after `check`
+/// has seen all of them, so nothing is written unless every input is valid.
+pub(crate) unsafe fn map_arrays<T: Real>(
+    u: *const T,
+    out: *mut T,
+    n: usize,
+    check: impl Fn(&[T]) -> Result<(), Error>,
+    f: impl Fn(&[T], &mut [T]) -> Result<(), Error>,
+) -> sk_status {
+    // SAFETY (all blocks): pointers valid for n elements (module contract).
+    let u_s = match unsafe { slice_in(u, n) } {
+        Ok(s) => s,
+        Err(e) => return e,
+    };
+    if out.is_null() && n > 0 {
+        return sk_status::SK_ERR_NULL;
+    }
+    if let Err(e) = check(u_s) {
+        return e.into();
+    }
+    if n == 0 {
+        return sk_status::SK_OK;
+    }
+    let (a, b) = (u as usize, out as usize);
+    let bytes = n * core::mem::size_of::<T>();
+    if a == b {
+        const CHUNK: usize = 64;
+        let mut start = 0;
+        while start < n {
+            let len = CHUNK.min(n - start);
+            let mut tmp = [T::ZERO; CHUNK];
+            // SAFETY: in bounds; `u_s` is not used past this point in place.
+            unsafe { core::ptr::copy_nonoverlapping(u.add(start), tmp.as_mut_ptr(), len) };
+            let dst = unsafe { core::slice::from_raw_parts_mut(out.add(start), len) };
+            if let Err(e) = f(&tmp[..len], dst) {
+                return e.into();
+            }
+            start += len;
+        }
+        sk_status::SK_OK
+    } else if a < b + bytes && b < a + bytes {
+        sk_status::SK_ERR_DOMAIN
+    } else {
+        let out_s = unsafe { core::slice::from_raw_parts_mut(out, n) };
+        match f(u_s, out_s) {
+            Ok(()) => sk_status::SK_OK,
+            Err(e) => e.into(),
+        }
+    }
+}
+
+/// The library version, `"MAJOR.MINOR.PATCH"`, as a static NUL-terminated
+/// string; it agrees with the `SK_VERSION_*` macros of the header.
+#[unsafe(no_mangle)]
+pub extern "C" fn sk_version() -> *const c_char {
+    concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast()
+}

@@ -1,0 +1,293 @@
+//! Phase functions (API.md "Phase functions").
+//!
+//! `sk_phase` holds a [`Phase<f32>`] (`sk_phase_f64` a `Phase<f64>`) in
+//! private storage. Every call checks the stored tag before it reads the
+//! value, so a NULL, zeroed or never-constructed phase gives NaN or an error
+//! rather than undefined behaviour.
+
+use super::{CVec, map_arrays, sk_status, sk_vec3, sk_vec3_f64, write_result};
+use crate::error::Error;
+use crate::phase::{Phase, PhaseFunction, check_uniforms};
+use crate::real::Real;
+
+/// A phase function (float). A plain value with no pointers inside: build it
+/// with an `sk_phase_*` constructor, then copy it and share it freely across
+/// threads. Its contents are private.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct sk_phase {
+    /// Private storage; do not read or write.
+    pub opaque: [u32; 32],
+}
+
+/// A phase function (double); see `sk_phase`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct sk_phase_f64 {
+    /// Private storage; do not read or write.
+    pub opaque: [u64; 32],
+}
+
+/// Storage of a [`Phase<T>`] behind a C type.
+pub(crate) trait PhaseStore: Copy {
+    type T: Real;
+    const ZEROED: Self;
+}
+impl PhaseStore for sk_phase {
+    type T = f32;
+    const ZEROED: Self = sk_phase { opaque: [0; 32] };
+}
+impl PhaseStore for sk_phase_f64 {
+    type T = f64;
+    const ZEROED: Self = sk_phase_f64 { opaque: [0; 32] };
+}
+
+const _: () = {
+    use core::mem::{align_of, size_of};
+    assert!(size_of::<Phase<f32>>() <= size_of::<sk_phase>());
+    assert!(align_of::<Phase<f32>>() <= align_of::<sk_phase>());
+    assert!(size_of::<Phase<f64>>() <= size_of::<sk_phase_f64>());
+    assert!(align_of::<Phase<f64>>() <= align_of::<sk_phase_f64>());
+};
+
+/// Packs a phase into zeroed storage (so the bytes are deterministic).
+fn store<S: PhaseStore>(phase: Phase<S::T>) -> S {
+    let mut s = S::ZEROED;
+    // SAFETY: size and alignment checked above; S is plain bytes.
+    unsafe { (&mut s as *mut S).cast::<Phase<S::T>>().write(phase) };
+    s
+}
+
+/// The phase behind `p`, or `None` if `p` is NULL or its tag is not one
+/// `store` writes.
+#[inline(always)]
+pub(crate) unsafe fn load<'a, S: PhaseStore>(p: *const S) -> Option<&'a Phase<S::T>> {
+    if p.is_null() {
+        return None;
+    }
+    // SAFETY: p points to an S (module contract), which begins with the u32
+    // tag of the repr(C, u32) enum; the payload is floats, valid for any bits.
+    let tag = unsafe { p.cast::<u32>().read() };
+    if tag == 0 || tag > Phase::<S::T>::LAST_TAG {
+        return None;
+    }
+    Some(unsafe { &*p.cast::<Phase<S::T>>() })
+}
+
+unsafe fn construct<S: PhaseStore>(out: *mut S, r: Result<Phase<S::T>, Error>) -> sk_status {
+    unsafe { write_result(out, r.map(store)) }
+}
+
+unsafe fn pdf<S: PhaseStore>(p: *const S, cos_theta: S::T) -> S::T {
+    unsafe { load(p) }.map_or(S::T::NAN, |ph| ph.pdf(cos_theta))
+}
+
+unsafe fn cdf<S: PhaseStore>(p: *const S, cos_theta: S::T) -> S::T {
+    unsafe { load(p) }.map_or(S::T::NAN, |ph| ph.cdf(cos_theta))
+}
+
+unsafe fn mean_cosine<S: PhaseStore>(p: *const S) -> S::T {
+    unsafe { load(p) }.map_or(S::T::NAN, |ph| ph.mean_cosine())
+}
+
+unsafe fn sample_cos<S: PhaseStore>(p: *const S, u: S::T) -> S::T {
+    unsafe { load(p) }.map_or(S::T::NAN, |ph| ph.sample_cos(u))
+}
+
+unsafe fn sample_dir<S: PhaseStore, V: CVec<T = S::T>>(
+    p: *const S,
+    w_in: V,
+    u1: S::T,
+    u2: S::T,
+    pdf_out: *mut S::T,
+) -> V {
+    let nan = S::T::NAN;
+    let (dir, pdf) = match unsafe { load(p) } {
+        Some(ph) => ph.sample_dir(w_in.to_vec(), u1, u2),
+        None => (crate::Vec3::new(nan, nan, nan), nan),
+    };
+    // SAFETY: a non-NULL pdf_out is writable (module contract).
+    if let Some(out) = unsafe { pdf_out.as_mut() } {
+        *out = pdf;
+    }
+    V::from_vec(dir)
+}
+
+unsafe fn sample_cos_n<S: PhaseStore>(
+    p: *const S,
+    u: *const S::T,
+    cos_out: *mut S::T,
+    n: usize,
+) -> sk_status {
+    if p.is_null() {
+        return sk_status::SK_ERR_NULL;
+    }
+    let Some(ph) = (unsafe { load(p) }) else {
+        return sk_status::SK_ERR_DOMAIN;
+    };
+    unsafe {
+        map_arrays(u, cos_out, n, check_uniforms, |u, out| {
+            ph.sample_cos_each(u, out);
+            Ok(())
+        })
+    }
+}
+
+/// Isotropic scattering, p = 1/(4 pi).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_isotropic(out: *mut sk_phase) -> sk_status {
+    unsafe { construct(out, Ok(Phase::isotropic())) }
+}
+
+/// Double twin of `sk_phase_isotropic`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_isotropic_f64(out: *mut sk_phase_f64) -> sk_status {
+    unsafe { construct(out, Ok(Phase::isotropic())) }
+}
+
+/// Rayleigh scattering, p = 3/(16 pi) (1 + mu^2); sampled by exact inversion.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_rayleigh(out: *mut sk_phase) -> sk_status {
+    unsafe { construct(out, Ok(Phase::rayleigh())) }
+}
+
+/// Double twin of `sk_phase_rayleigh`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_rayleigh_f64(out: *mut sk_phase_f64) -> sk_status {
+    unsafe { construct(out, Ok(Phase::rayleigh())) }
+}
+
+/// Henyey-Greenstein with asymmetry -1 < g < 1 (g > 0 forward).
+/// SK_ERR_DOMAIN for |g| >= 1, NaN or inf; SK_ERR_NULL for a NULL `out`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_hg(g: f32, out: *mut sk_phase) -> sk_status {
+    unsafe { construct(out, Phase::henyey_greenstein(g)) }
+}
+
+/// Double twin of `sk_phase_hg`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_hg_f64(g: f64, out: *mut sk_phase_f64) -> sk_status {
+    unsafe { construct(out, Phase::henyey_greenstein(g)) }
+}
+
+/// Rayleigh scattering with depolarisation factor 0 <= rho < 1 (air: about
+/// 0.028); rho = 0 is plain Rayleigh. SK_ERR_DOMAIN outside [0, 1) or NaN.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_rayleigh_depolarized(
+    depolarization: f32,
+    out: *mut sk_phase,
+) -> sk_status {
+    unsafe { construct(out, Phase::rayleigh_depolarized(depolarization)) }
+}
+
+/// Double twin of `sk_phase_rayleigh_depolarized`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_rayleigh_depolarized_f64(
+    depolarization: f64,
+    out: *mut sk_phase_f64,
+) -> sk_status {
+    unsafe { construct(out, Phase::rayleigh_depolarized(depolarization)) }
+}
+
+/// Density per steradian at cos_theta. NaN for a NULL or unconstructed phase.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_pdf(p: *const sk_phase, cos_theta: f32) -> f32 {
+    unsafe { pdf(p, cos_theta) }
+}
+
+/// Double twin of `sk_phase_pdf`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_pdf_f64(p: *const sk_phase_f64, cos_theta: f64) -> f64 {
+    unsafe { pdf(p, cos_theta) }
+}
+
+/// Mean cosine (asymmetry parameter). NaN for a NULL or unconstructed phase.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_mean_cosine(p: *const sk_phase) -> f32 {
+    unsafe { mean_cosine(p) }
+}
+
+/// Double twin of `sk_phase_mean_cosine`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_mean_cosine_f64(p: *const sk_phase_f64) -> f64 {
+    unsafe { mean_cosine(p) }
+}
+
+/// Inverse CDF: maps u in [0, 1] monotonically to cos theta in [-1, 1]
+/// (u = 0 gives -1). u outside [0, 1] is clamped; NaN gives NaN, as does a
+/// NULL or unconstructed phase.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_sample_cos(p: *const sk_phase, u: f32) -> f32 {
+    unsafe { sample_cos(p, u) }
+}
+
+/// Double twin of `sk_phase_sample_cos`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_sample_cos_f64(p: *const sk_phase_f64, u: f64) -> f64 {
+    unsafe { sample_cos(p, u) }
+}
+
+/// CDF: P(cos theta <= cos_theta), the inverse map of `sk_phase_sample_cos`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_cdf(p: *const sk_phase, cos_theta: f32) -> f32 {
+    unsafe { cdf(p, cos_theta) }
+}
+
+/// Double twin of `sk_phase_cdf`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_cdf_f64(p: *const sk_phase_f64, cos_theta: f64) -> f64 {
+    unsafe { cdf(p, cos_theta) }
+}
+
+/// Scattered propagation direction about the unit vector w_in: cos theta =
+/// sk_phase_sample_cos(p, u1), azimuth 2 pi u2 in the basis sk_onb(w_in).
+/// Writes the direction's density per steradian to pdf_out unless it is NULL.
+/// A NULL or unconstructed phase gives NaN (direction and pdf).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_sample_dir(
+    p: *const sk_phase,
+    w_in: sk_vec3,
+    u1: f32,
+    u2: f32,
+    pdf_out: *mut f32,
+) -> sk_vec3 {
+    unsafe { sample_dir(p, w_in, u1, u2, pdf_out) }
+}
+
+/// Double twin of `sk_phase_sample_dir`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_sample_dir_f64(
+    p: *const sk_phase_f64,
+    w_in: sk_vec3_f64,
+    u1: f64,
+    u2: f64,
+    pdf_out: *mut f64,
+) -> sk_vec3_f64 {
+    unsafe { sample_dir(p, w_in, u1, u2, pdf_out) }
+}
+
+/// cos_out[i] = sk_phase_sample_cos(p, u[i]) for i < n. `u` and `cos_out` may
+/// be the same array; other overlaps give SK_ERR_DOMAIN. SK_ERR_DOMAIN if any
+/// u[i] is NaN or outside [0, 1], or p is unconstructed; SK_ERR_NULL for NULL
+/// p, or NULL arrays with n > 0; SK_ERR_SIZE if n floats cannot exist. On
+/// error nothing is written; n = 0 is SK_OK.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_sample_cos_n(
+    p: *const sk_phase,
+    u: *const f32,
+    cos_out: *mut f32,
+    n: usize,
+) -> sk_status {
+    unsafe { sample_cos_n(p, u, cos_out, n) }
+}
+
+/// Double twin of `sk_phase_sample_cos_n`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_sample_cos_n_f64(
+    p: *const sk_phase_f64,
+    u: *const f64,
+    cos_out: *mut f64,
+    n: usize,
+) -> sk_status {
+    unsafe { sample_cos_n(p, u, cos_out, n) }
+}

@@ -1,0 +1,134 @@
+//! Tables over caller-owned memory (API.md "Tables").
+
+use super::{sk_status, slice_in, slice_out, write_result};
+use crate::real::Real;
+use crate::table::{Table, TableKind};
+
+/// What a table holds (passed as uint32_t; other values give SK_ERR_METHOD).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug)]
+pub enum sk_table_kind {
+    /// Frisvad's tabulated Rayleigh CDF: n + 1 values at cos theta = -1 + 2i/n.
+    SK_TABLE_RAYLEIGH_CDF = 0,
+}
+
+/// A table sampler (float) over the caller's memory, which must outlive it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct sk_table {
+    /// The caller's buffer, filled by the constructor.
+    pub data: *const f32,
+    /// Resolution the table was built with.
+    pub n: usize,
+    /// An sk_table_kind.
+    pub kind: u32,
+}
+
+/// A table sampler (double); see `sk_table`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct sk_table_f64 {
+    /// The caller's buffer, filled by the constructor.
+    pub data: *const f64,
+    /// Resolution the table was built with.
+    pub n: usize,
+    /// An sk_table_kind.
+    pub kind: u32,
+}
+
+/// A C table type and its float.
+pub(crate) trait TableStore: Copy {
+    type T: Real;
+    fn new(data: *const Self::T, n: usize, kind: TableKind) -> Self;
+    fn parts(&self) -> (*const Self::T, usize, u32);
+}
+
+macro_rules! impl_table_store {
+    ($c:ty, $t:ty) => {
+        impl TableStore for $c {
+            type T = $t;
+            fn new(data: *const $t, n: usize, kind: TableKind) -> Self {
+                Self { data, n, kind: kind as u32 }
+            }
+            fn parts(&self) -> (*const $t, usize, u32) {
+                (self.data, self.n, self.kind)
+            }
+        }
+    };
+}
+impl_table_store!(sk_table, f32);
+impl_table_store!(sk_table_f64, f64);
+
+unsafe fn rayleigh_cdf<S: TableStore>(buf: *mut S::T, len: usize, n: usize, out: *mut S) -> sk_status {
+    if buf.is_null() || out.is_null() {
+        return sk_status::SK_ERR_NULL;
+    }
+    let slice = match unsafe { slice_out(buf, len) } {
+        Ok(s) => s,
+        Err(e) => return e,
+    };
+    let r = Table::rayleigh_cdf(slice, n).map(|t| S::new(buf, t.n(), t.kind()));
+    unsafe { write_result(out, r) }
+}
+
+unsafe fn sample_cos<S: TableStore>(t: *const S, u: S::T) -> S::T {
+    // SAFETY: a non-NULL t points to a table built by this library.
+    let Some(t) = (unsafe { t.as_ref() }) else {
+        return S::T::NAN;
+    };
+    let (data, n, kind) = t.parts();
+    let Ok(kind) = TableKind::try_from(kind) else {
+        return S::T::NAN;
+    };
+    let Some(len) = kind.len(n) else {
+        return S::T::NAN;
+    };
+    match unsafe { slice_in(data, len) }.map(|d| Table::from_data(d, n, kind)) {
+        Ok(Ok(table)) => table.sample_cos(u),
+        _ => S::T::NAN,
+    }
+}
+
+/// Number of floats (or doubles) a table of `kind` and resolution n needs;
+/// 0 for an unknown kind, n = 0, or a count that overflows size_t.
+#[unsafe(no_mangle)]
+pub extern "C" fn sk_table_len(kind: u32, n: usize) -> usize {
+    TableKind::try_from(kind).ok().and_then(|k| k.len(n)).unwrap_or(0)
+}
+
+/// Frisvad's (2011) tabulated Rayleigh CDF with n >= 1 intervals, written to
+/// buf (len floats, at least sk_table_len(SK_TABLE_RAYLEIGH_CDF, n) = n + 1).
+/// SK_ERR_NULL for NULL buf or out; SK_ERR_SIZE for n = 0 or len too small.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_rayleigh_cdf(
+    buf: *mut f32,
+    len: usize,
+    n: usize,
+    out: *mut sk_table,
+) -> sk_status {
+    unsafe { rayleigh_cdf(buf, len, n, out) }
+}
+
+/// Double twin of `sk_table_rayleigh_cdf`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_rayleigh_cdf_f64(
+    buf: *mut f64,
+    len: usize,
+    n: usize,
+    out: *mut sk_table_f64,
+) -> sk_status {
+    unsafe { rayleigh_cdf(buf, len, n, out) }
+}
+
+/// cos theta for u in [0, 1] (clamped; NaN gives NaN) from a table; NaN for a
+/// NULL or malformed table.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_sample_cos(t: *const sk_table, u: f32) -> f32 {
+    unsafe { sample_cos(t, u) }
+}
+
+/// Double twin of `sk_table_sample_cos`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_sample_cos_f64(t: *const sk_table_f64, u: f64) -> f64 {
+    unsafe { sample_cos(t, u) }
+}

@@ -1,0 +1,28 @@
+//! Isotropic scattering: `p(μ) = 1/(4π)`.
+
+use super::PhaseFunction;
+use crate::real::Real;
+
+/// Uniform scattering over the sphere. Mean cosine 0.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Isotropic;
+
+impl<T: Real> PhaseFunction<T> for Isotropic {
+    #[inline(always)]
+    fn pdf(&self, _cos_theta: T) -> T {
+        T::INV_4PI
+    }
+    #[inline(always)]
+    fn cdf(&self, cos_theta: T) -> T {
+        (T::ONE + cos_theta.clamp_unit()) * T::HALF
+    }
+    /// `μ = 2u − 1`.
+    #[inline(always)]
+    fn sample_cos(&self, u: T) -> T {
+        T::TWO * u.clamp01() - T::ONE
+    }
+    #[inline(always)]
+    fn mean_cosine(&self) -> T {
+        T::ZERO
+    }
+}

@@ -1,0 +1,160 @@
+//! Phase functions: densities of scattering directions per steradian.
+//!
+//! Conventions (SPEC §0): `cos θ = dot(w_in, w_out)` with both vectors
+//! propagation directions, so `+1` is forward. Every phase function `p`
+//! satisfies `2π ∫₋₁¹ p(μ) dμ = 1`. [`PhaseFunction::sample_cos`] is the
+//! inverse of [`PhaseFunction::cdf`] with `F(x) = P(cos θ ≤ x)`: `u = 0 → −1`,
+//! `u → 1 → +1`, monotone non-decreasing, so stratified and low-discrepancy
+//! uniforms stay stratified.
+//!
+//! [`Phase`] is the closed set of models behind one small `Copy` value; each
+//! model is also usable on its own.
+
+mod hg;
+mod isotropic;
+pub mod rayleigh;
+mod rayleigh_depolarized;
+
+pub use hg::HenyeyGreenstein;
+pub use isotropic::Isotropic;
+pub use rayleigh::{Rayleigh, RayleighMethod};
+pub use rayleigh_depolarized::RayleighDepolarized;
+
+use crate::error::Error;
+use crate::geometry::{Vec3, direction_about};
+use crate::real::Real;
+
+/// A phase function over the cosine of the scattering angle.
+pub trait PhaseFunction<T: Real> {
+    /// Density per steradian at `cos_theta` (domain `[-1, 1]`; outside it
+    /// the formula is evaluated as is).
+    fn pdf(&self, cos_theta: T) -> T;
+    /// `P(cos θ ≤ cos_theta)`, in `[0, 1]`; arguments outside `[-1, 1]` are
+    /// clamped.
+    fn cdf(&self, cos_theta: T) -> T;
+    /// The inverse of [`cdf`](Self::cdf): maps `u ∈ [0, 1]` to `cos θ`.
+    /// `u` outside `[0, 1]` is clamped, NaN gives NaN.
+    fn sample_cos(&self, u: T) -> T;
+    /// Mean cosine `⟨cos θ⟩ = 2π ∫ μ p(μ) dμ` (the asymmetry parameter).
+    fn mean_cosine(&self) -> T;
+
+    /// A direction scattered from the unit propagation direction `w_in`:
+    /// `cos θ = sample_cos(u1)`, azimuth `2π u2` in the basis
+    /// [`onb`](crate::geometry::onb)`(w_in)`. Returns the direction and its
+    /// density per steradian.
+    #[inline]
+    fn sample_dir(&self, w_in: Vec3<T>, u1: T, u2: T) -> (Vec3<T>, T) {
+        let mu = self.sample_cos(u1);
+        let dir = direction_about(w_in, mu, T::TAU * u2.clamp01());
+        (dir, self.pdf(mu))
+    }
+
+    /// Fills `cos_out[i] = sample_cos(u[i])` over the common length, without
+    /// checks (each `u` is clamped as in [`sample_cos`](Self::sample_cos)).
+    #[inline]
+    fn sample_cos_each(&self, u: &[T], cos_out: &mut [T]) {
+        for (c, &ui) in cos_out.iter_mut().zip(u) {
+            *c = self.sample_cos(ui);
+        }
+    }
+
+    /// Fills `cos_out[i] = sample_cos(u[i])`. Fails with [`Error::Size`] if
+    /// the slices differ in length and with [`Error::Domain`] if any `u` is NaN
+    /// or outside `[0, 1]`; on failure nothing is written.
+    fn sample_cos_n(&self, u: &[T], cos_out: &mut [T]) -> Result<(), Error> {
+        if u.len() != cos_out.len() {
+            return Err(Error::Size);
+        }
+        check_uniforms(u)?;
+        self.sample_cos_each(u, cos_out);
+        Ok(())
+    }
+}
+
+/// [`Error::Domain`] if any `u` is NaN or outside `[0, 1]`.
+#[inline]
+pub fn check_uniforms<T: Real>(u: &[T]) -> Result<(), Error> {
+    // `!(x >= 0 && x <= 1)` is true for NaN too; `fold` keeps this branch-free.
+    let bad = u.iter().fold(false, |bad, &x| bad | !(x >= T::ZERO && x <= T::ONE));
+    if bad { Err(Error::Domain) } else { Ok(()) }
+}
+
+/// One phase function, chosen at run time. A small `Copy` value with no
+/// pointers: build it once per medium, share it across threads.
+///
+/// `#[repr(C, u32)]` with discriminants from 1, so that the C layer can check
+/// the tag of a caller's `sk_phase` (an all-zero value is invalid) before it
+/// reads the payload.
+#[repr(C, u32)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Phase<T> {
+    /// Uniform over the sphere.
+    Isotropic(Isotropic) = 1,
+    /// Rayleigh, `3/(16π) (1 + μ²)`.
+    Rayleigh(Rayleigh) = 2,
+    /// Rayleigh with depolarisation.
+    RayleighDepolarized(RayleighDepolarized<T>) = 3,
+    /// Henyey–Greenstein.
+    HenyeyGreenstein(HenyeyGreenstein<T>) = 4,
+}
+
+impl<T: Real> Phase<T> {
+    /// The discriminant of the last variant (the C layer checks tags against
+    /// `1..=LAST_TAG`).
+    pub(crate) const LAST_TAG: u32 = 4;
+
+    /// Isotropic scattering.
+    pub fn isotropic() -> Self {
+        Phase::Isotropic(Isotropic)
+    }
+    /// Rayleigh scattering.
+    pub fn rayleigh() -> Self {
+        Phase::Rayleigh(Rayleigh)
+    }
+    /// Rayleigh scattering with depolarisation factor `rho ∈ [0, 1)`.
+    pub fn rayleigh_depolarized(rho: T) -> Result<Self, Error> {
+        RayleighDepolarized::new(rho).map(Phase::RayleighDepolarized)
+    }
+    /// Henyey–Greenstein with asymmetry `g ∈ (-1, 1)`.
+    pub fn henyey_greenstein(g: T) -> Result<Self, Error> {
+        HenyeyGreenstein::new(g).map(Phase::HenyeyGreenstein)
+    }
+}
+
+macro_rules! dispatch {
+    ($self:expr, $m:ident => $e:expr) => {
+        match $self {
+            Phase::Isotropic($m) => $e,
+            Phase::Rayleigh($m) => $e,
+            Phase::RayleighDepolarized($m) => $e,
+            Phase::HenyeyGreenstein($m) => $e,
+        }
+    };
+}
+
+impl<T: Real> PhaseFunction<T> for Phase<T> {
+    #[inline]
+    fn pdf(&self, cos_theta: T) -> T {
+        dispatch!(self, m => m.pdf(cos_theta))
+    }
+    #[inline]
+    fn cdf(&self, cos_theta: T) -> T {
+        dispatch!(self, m => m.cdf(cos_theta))
+    }
+    #[inline]
+    fn sample_cos(&self, u: T) -> T {
+        dispatch!(self, m => m.sample_cos(u))
+    }
+    #[inline]
+    fn mean_cosine(&self) -> T {
+        dispatch!(self, m => m.mean_cosine())
+    }
+    #[inline]
+    fn sample_dir(&self, w_in: Vec3<T>, u1: T, u2: T) -> (Vec3<T>, T) {
+        dispatch!(self, m => m.sample_dir(w_in, u1, u2))
+    }
+    /// Dispatches once, then runs the model's own loop.
+    fn sample_cos_each(&self, u: &[T], cos_out: &mut [T]) {
+        dispatch!(self, m => m.sample_cos_each(u, cos_out))
+    }
+}

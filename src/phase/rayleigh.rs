@@ -1,0 +1,285 @@
+//! Rayleigh scattering (SPEC §1; Frisvad, "Importance sampling the Rayleigh
+//! phase function", JOSA A 28(12), 2011).
+//!
+//! `p(μ) = 3/(16π) (1 + μ²)`, `F(x) = 1/2 + 3x/8 + x³/8`, mean cosine 0.
+//! Six samplers, every one of Frisvad's methods, named by [`RayleighMethod`].
+//! The rejection methods stop after [`MAX_TRIALS`] rejections and finish with
+//! the direct method on fresh uniforms: the first trials are independent of
+//! what follows, so the output distribution stays exact, and a broken RNG
+//! (one that returns a constant) cannot hang the caller.
+
+use super::PhaseFunction;
+use crate::error::Error;
+use crate::geometry::{Vec3, direction_about};
+use crate::real::Real;
+use rand_core::Rng;
+
+/// Rejection loops give up after this many trials (the cheapest acceptance,
+/// Baranoski's, is about 0.42: 64 straight rejections have probability < 10⁻¹⁵).
+pub const MAX_TRIALS: u32 = 64;
+
+/// Rayleigh scattering, `p(μ) = 3/(16π) (1 + μ²)`. `sample_cos` is the direct
+/// (Cardano) inverse with the full-precision cube root.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Rayleigh;
+
+/// The sampling methods of Frisvad (2011), with the C enum's values.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RayleighMethod {
+    /// Isotropic direction from the von Neumann cube (points in `[-1,1]³`
+    /// kept inside the unit ball, normalised), accepted with probability
+    /// `(1 + μ²)/2`. Overall acceptance π/6 · 2/3.
+    RejectCube = 0,
+    /// Isotropic direction from spherical coordinates, accepted with
+    /// probability `(1 + μ²)/2`.
+    RejectSpherical = 1,
+    /// Baranoski's `μ = cos(πξ)` with Frisvad's corrected acceptance
+    /// `(9/(4√6)) (1 + μ²) sqrt(1 − μ²)`.
+    Baranoski = 2,
+    /// `μ = 2ξ − 1` accepted with probability `(1 + μ²)/2`, then rotated into
+    /// the frame of `w_in`.
+    Simplified = 3,
+    /// Cardano inversion of the CDF with [`Real::cbrt`].
+    Direct = 4,
+    /// Cardano inversion with [`Real::cbrt_fast`] (one Lancaster step fewer).
+    DirectFast = 5,
+}
+
+impl RayleighMethod {
+    /// Every method, in the order of their values.
+    pub const ALL: [RayleighMethod; 6] = [
+        RayleighMethod::RejectCube,
+        RayleighMethod::RejectSpherical,
+        RayleighMethod::Baranoski,
+        RayleighMethod::Simplified,
+        RayleighMethod::Direct,
+        RayleighMethod::DirectFast,
+    ];
+    /// True for the methods that map one uniform to `cos θ` deterministically
+    /// (and so can be stratified).
+    pub fn is_inversion(self) -> bool {
+        matches!(self, RayleighMethod::Direct | RayleighMethod::DirectFast)
+    }
+}
+
+impl TryFrom<u32> for RayleighMethod {
+    type Error = Error;
+    fn try_from(v: u32) -> Result<Self, Error> {
+        RayleighMethod::ALL.get(v as usize).copied().ok_or(Error::Method)
+    }
+}
+
+/// The real root of the depressed cubic `x³ + 3a·x = 2b` for `a > 0`
+/// (Cardano; the only real root since the cubic is increasing).
+///
+/// Cardano's `x = w − a/w`, `w = cbrt(b + sqrt(b² + a³))`, loses digits twice:
+/// `b + sqrt(b² + a³)` cancels for `b < 0`, and `w − a/w` cancels for
+/// `|b| ≪ a^{3/2}` (near the median). We take `w` from `|b|` and use
+/// `x = 2b w² / (w⁴ + a w² + a²)`, which follows from `w³ + (−a/w)³ = 2b`,
+/// has only positive terms in the denominator, and carries `b`'s sign.
+#[inline(always)]
+pub(crate) fn depressed_cubic_root<T: Real, const FAST: bool>(a: T, a2: T, b: T) -> T {
+    let r = (b * b + a2 * a).sqrt();
+    let v = b.abs() + r;
+    let w = if FAST { v.cbrt_fast() } else { v.cbrt() };
+    let w2 = w * w;
+    T::TWO * b * w2 / (w2 * w2 + a * w2 + a2)
+}
+
+/// Rayleigh's inverse CDF, `F(μ) = u` ⇔ `μ³ + 3μ = 4(2u − 1)`.
+#[inline(always)]
+pub(crate) fn inverse_cdf<T: Real, const FAST: bool>(u: T) -> T {
+    let s = T::TWO * (T::TWO * u.clamp01() - T::ONE);
+    depressed_cubic_root::<T, FAST>(T::ONE, T::ONE, s).clamp_unit()
+}
+
+impl<T: Real> PhaseFunction<T> for Rayleigh {
+    #[inline(always)]
+    fn pdf(&self, cos_theta: T) -> T {
+        T::from_f64(3.0 / (16.0 * core::f64::consts::PI)) * (T::ONE + cos_theta * cos_theta)
+    }
+    /// `(1 + x)(x² − x + 4)/8`: SPEC's `1/2 + 3x/8 + x³/8` factored so it does
+    /// not cancel near `x = −1`.
+    #[inline(always)]
+    fn cdf(&self, cos_theta: T) -> T {
+        let x = cos_theta.clamp_unit();
+        (T::ONE + x) * (x * x - x + T::from_f64(4.0)) * T::from_f64(0.125)
+    }
+    #[inline(always)]
+    fn sample_cos(&self, u: T) -> T {
+        inverse_cdf::<T, false>(u)
+    }
+    #[inline(always)]
+    fn mean_cosine(&self) -> T {
+        T::ZERO
+    }
+}
+
+/// Acceptance `(1 + μ²)/2` of the Rayleigh density against the isotropic one.
+#[inline(always)]
+fn accept_isotropic<T: Real>(mu: T, xi: T) -> bool {
+    xi * T::TWO <= T::ONE + mu * mu
+}
+
+/// Frisvad's corrected acceptance for `μ = cos(πξ)`:
+/// `ξ ≤ (9/(4√6)) (1 + μ²) sqrt(1 − μ²)`.
+#[inline(always)]
+fn accept_baranoski<T: Real>(mu: T, xi: T) -> bool {
+    let c = T::from_f64(9.0 / (4.0 * 2.449_489_742_783_178));
+    let sin_theta = ((T::ONE - mu) * (T::ONE + mu)).max_of(T::ZERO).sqrt();
+    xi <= c * (T::ONE + mu * mu) * sin_theta
+}
+
+/// A cosine from the direct method on fresh uniforms: the tail of every
+/// rejection loop.
+#[inline(never)]
+fn fallback_cos<T: Real, R: Rng + ?Sized>(rng: &mut R) -> T {
+    inverse_cdf::<T, false>(T::uniform(rng))
+}
+
+/// An isotropic unit vector from the von Neumann cube, or `None` if the
+/// point fell outside the unit ball (or too near its centre to normalise).
+#[inline(always)]
+fn cube_point<T: Real, R: Rng + ?Sized>(rng: &mut R) -> Option<Vec3<T>> {
+    let mut c = || T::TWO * T::uniform(rng) - T::ONE;
+    let v = Vec3::new(c(), c(), c());
+    let l2 = v.dot(v);
+    // Rejecting a small ball about the centre keeps the directions uniform.
+    if l2 <= T::ONE && l2 > T::from_f64(1e-6) {
+        Some(v * (T::ONE / l2.sqrt()))
+    } else {
+        None
+    }
+}
+
+/// An isotropic unit vector from spherical coordinates, in world axes.
+#[inline(always)]
+fn spherical_point<T: Real, R: Rng + ?Sized>(rng: &mut R) -> Vec3<T> {
+    let mu = T::TWO * T::uniform(rng) - T::ONE;
+    direction_about(Vec3::unit_z(), mu, T::TAU * T::uniform(rng))
+}
+
+/// `cos θ` by Frisvad's simplified rejection.
+#[inline(always)]
+fn simplified_cos<T: Real, R: Rng + ?Sized>(rng: &mut R) -> T {
+    for _ in 0..MAX_TRIALS {
+        let mu = T::TWO * T::uniform(rng) - T::ONE;
+        if accept_isotropic(mu, T::uniform(rng)) {
+            return mu;
+        }
+    }
+    fallback_cos(rng)
+}
+
+/// `cos θ` by Baranoski's rejection with Frisvad's correction.
+#[inline(always)]
+fn baranoski_cos<T: Real, R: Rng + ?Sized>(rng: &mut R) -> T {
+    for _ in 0..MAX_TRIALS {
+        let mu = (T::PI * T::uniform(rng)).cos();
+        if accept_baranoski(mu, T::uniform(rng)) {
+            return mu;
+        }
+    }
+    fallback_cos(rng)
+}
+
+/// A whole direction from a rejection method that samples isotropic
+/// directions in world axes and accepts against `w_in`.
+#[inline(always)]
+fn reject_isotropic<T: Real, R: Rng + ?Sized>(
+    w_in: Vec3<T>,
+    rng: &mut R,
+    mut point: impl FnMut(&mut R) -> Option<Vec3<T>>,
+) -> Vec3<T> {
+    for _ in 0..MAX_TRIALS {
+        if let Some(w) = point(rng) {
+            if accept_isotropic(w.dot(w_in), T::uniform(rng)) {
+                return w;
+            }
+        }
+    }
+    let mu = fallback_cos(rng);
+    direction_about(w_in, mu, T::TAU * T::uniform(rng))
+}
+
+/// A Rayleigh-distributed propagation direction about the unit vector `w_in`
+/// by `method`, drawing uniforms from `rng` (SPEC §0 conversion).
+#[inline]
+pub fn sample_dir<T: Real, R: Rng + ?Sized>(
+    method: RayleighMethod,
+    w_in: Vec3<T>,
+    rng: &mut R,
+) -> Vec3<T> {
+    let mu = match method {
+        RayleighMethod::RejectCube => return reject_isotropic(w_in, rng, cube_point),
+        RayleighMethod::RejectSpherical => {
+            return reject_isotropic(w_in, rng, |r| Some(spherical_point(r)));
+        }
+        RayleighMethod::Baranoski => baranoski_cos(rng),
+        RayleighMethod::Simplified => simplified_cos(rng),
+        RayleighMethod::Direct => inverse_cdf::<T, false>(T::uniform(rng)),
+        RayleighMethod::DirectFast => inverse_cdf::<T, true>(T::uniform(rng)),
+    };
+    direction_about(w_in, mu, T::TAU * T::uniform(rng))
+}
+
+/// A Rayleigh-distributed `cos θ` by `method` (for the methods that produce
+/// whole directions, the z component of a direction about +z).
+#[inline]
+pub fn sample_cos<T: Real, R: Rng + ?Sized>(method: RayleighMethod, rng: &mut R) -> T {
+    match method {
+        RayleighMethod::RejectCube | RayleighMethod::RejectSpherical => {
+            sample_dir(method, Vec3::unit_z(), rng).z
+        }
+        RayleighMethod::Baranoski => baranoski_cos(rng),
+        RayleighMethod::Simplified => simplified_cos(rng),
+        RayleighMethod::Direct => inverse_cdf::<T, false>(T::uniform(rng)),
+        RayleighMethod::DirectFast => inverse_cdf::<T, true>(T::uniform(rng)),
+    }
+}
+
+/// Fills `cos_out` with Rayleigh cosines by `method`.
+pub fn sample_cos_fill<T: Real, R: Rng + ?Sized>(
+    method: RayleighMethod,
+    rng: &mut R,
+    cos_out: &mut [T],
+) {
+    for c in cos_out.iter_mut() {
+        *c = sample_cos(method, rng);
+    }
+}
+
+/// Rayleigh scattering cross section of one small sphere,
+/// `C_s = 128 π⁵ α² / (3 λ⁴)` with polarizability `α = a³ (n² − 1)/(n² + 2)`
+/// (SPEC §1). `wavelength` λ and `radius` a in one length unit L (result in
+/// L²); `rel_index` n is the particle's refractive index over the medium's.
+/// Valid for `a ≪ λ`. Fails with [`Error::Domain`] unless all three are
+/// finite and positive.
+pub fn cross_section(wavelength: f64, radius: f64, rel_index: f64) -> Result<f64, Error> {
+    let positive = |x: f64| x.is_finite() && x > 0.0;
+    if !(positive(wavelength) && positive(radius) && positive(rel_index)) {
+        return Err(Error::Domain);
+    }
+    let n2 = rel_index * rel_index;
+    let alpha = radius * radius * radius * ((n2 - 1.0) / (n2 + 2.0));
+    let pi = core::f64::consts::PI;
+    let l2 = wavelength * wavelength;
+    // λ⁴ as (λ²)² and the π⁵ factor split so neither overflows early.
+    Ok(128.0 * pi * pi * pi * pi * pi / 3.0 * (alpha / l2) * (alpha / l2))
+}
+
+/// Rayleigh scattering coefficient `σ_s = N C_s` (per unit length L) for
+/// `number_density` N particles per L³ (finite, ≥ 0) and the arguments of
+/// [`cross_section`].
+pub fn scattering_coeff(
+    number_density: f64,
+    wavelength: f64,
+    radius: f64,
+    rel_index: f64,
+) -> Result<f64, Error> {
+    if !(number_density.is_finite() && number_density >= 0.0) {
+        return Err(Error::Domain);
+    }
+    Ok(number_density * cross_section(wavelength, radius, rel_index)?)
+}

@@ -1,0 +1,277 @@
+//! The float trait every algorithm is written against once, and uniform floats
+//! from the caller's RNG (SPEC §0).
+//!
+//! [`Real`] is implemented for `f32` and `f64` only (it is sealed). Its math
+//! functions are `libm`'s, except [`Real::cbrt`] and [`Real::cbrt_fast`],
+//! which are this crate's own (see [`crate::cbrt`]).
+
+use core::fmt::Debug;
+use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
+use rand_core::Rng;
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for f32 {}
+    impl Sealed for f64 {}
+}
+
+/// A floating-point type the samplers run in: `f32` or `f64`.
+pub trait Real:
+    sealed::Sealed
+    + Copy
+    + Debug
+    + Default
+    + PartialEq
+    + PartialOrd
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+{
+    /// 0.
+    const ZERO: Self;
+    /// 1.
+    const ONE: Self;
+    /// 2.
+    const TWO: Self;
+    /// 1/2.
+    const HALF: Self;
+    /// π.
+    const PI: Self;
+    /// 2π.
+    const TAU: Self;
+    /// 1/(4π): the isotropic phase function, per steradian.
+    const INV_4PI: Self;
+    /// Machine epsilon (spacing of floats just above 1).
+    const EPSILON: Self;
+    /// Not a number.
+    const NAN: Self;
+    /// +∞.
+    const INFINITY: Self;
+
+    /// Converts an `f64` constant, rounding to nearest.
+    fn from_f64(x: f64) -> Self;
+    /// Widens (or copies) to `f64`.
+    fn to_f64(self) -> f64;
+    /// A uniform float in `[0, 1)` from one `next_u64` (SPEC §0):
+    /// f32 `(x >> 40)·2⁻²⁴`, f64 `(x >> 11)·2⁻⁵³`.
+    fn uniform<R: Rng + ?Sized>(rng: &mut R) -> Self;
+    /// The same conversion from a raw 64-bit word.
+    fn from_bits_uniform(x: u64) -> Self;
+
+    /// Square root (correctly rounded).
+    fn sqrt(self) -> Self;
+    /// Absolute value.
+    fn abs(self) -> Self;
+    /// `self` with the sign bit of `sign`.
+    fn copysign(self, sign: Self) -> Self;
+    /// Cube root, ≤ ~1 ULP on every input (this crate's Kahan + Lancaster).
+    fn cbrt(self) -> Self;
+    /// Cube root with one Lancaster step fewer (see [`crate::cbrt`]).
+    fn cbrt_fast(self) -> Self;
+    /// Sine and cosine of an angle in radians.
+    fn sin_cos(self) -> (Self, Self);
+    /// Cosine of an angle in radians.
+    fn cos(self) -> Self;
+    /// Natural logarithm.
+    fn ln(self) -> Self;
+    /// `ln(1 + self)`, accurate for small `self`.
+    fn ln_1p(self) -> Self;
+    /// `e^self`.
+    fn exp(self) -> Self;
+    /// `self^p`.
+    fn powf(self, p: Self) -> Self;
+    /// `atan2(self, x)`.
+    fn atan2(self, x: Self) -> Self;
+    /// True unless NaN or ±∞.
+    fn is_finite(self) -> bool;
+    /// True for NaN.
+    fn is_nan(self) -> bool;
+
+    /// Clamps to `[0, 1]`; NaN stays NaN (API.md rule 4).
+    #[inline(always)]
+    fn clamp01(self) -> Self {
+        if self < Self::ZERO {
+            Self::ZERO
+        } else if self > Self::ONE {
+            Self::ONE
+        } else {
+            self
+        }
+    }
+    /// Clamps to `[-1, 1]`; NaN stays NaN.
+    #[inline(always)]
+    fn clamp_unit(self) -> Self {
+        if self < -Self::ONE {
+            -Self::ONE
+        } else if self > Self::ONE {
+            Self::ONE
+        } else {
+            self
+        }
+    }
+    /// The larger of two values; `b` if `self` is NaN.
+    #[inline(always)]
+    fn max_of(self, b: Self) -> Self {
+        if self > b { self } else { b }
+    }
+}
+
+macro_rules! impl_real {
+    ($t:ty, $shift:expr, $scale:expr, $cbrt:path, $cbrt_fast:path,
+     $sqrt:ident, $sincos:ident, $cos:ident, $log:ident, $log1p:ident,
+     $exp:ident, $pow:ident, $atan2:ident, $copysign:ident, $fabs:ident) => {
+        impl Real for $t {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            const TWO: Self = 2.0;
+            const HALF: Self = 0.5;
+            const PI: Self = core::f64::consts::PI as $t;
+            const TAU: Self = core::f64::consts::TAU as $t;
+            const INV_4PI: Self = (0.25 * core::f64::consts::FRAC_1_PI) as $t;
+            const EPSILON: Self = <$t>::EPSILON;
+            const NAN: Self = <$t>::NAN;
+            const INFINITY: Self = <$t>::INFINITY;
+
+            #[inline(always)]
+            fn from_f64(x: f64) -> Self {
+                x as $t
+            }
+            #[inline(always)]
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+            #[inline(always)]
+            fn uniform<R: Rng + ?Sized>(rng: &mut R) -> Self {
+                Self::from_bits_uniform(rng.next_u64())
+            }
+            #[inline(always)]
+            fn from_bits_uniform(x: u64) -> Self {
+                (x >> $shift) as $t * $scale
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                libm::$sqrt(self)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                libm::$fabs(self)
+            }
+            #[inline(always)]
+            fn copysign(self, sign: Self) -> Self {
+                libm::$copysign(self, sign)
+            }
+            #[inline(always)]
+            fn cbrt(self) -> Self {
+                $cbrt(self)
+            }
+            #[inline(always)]
+            fn cbrt_fast(self) -> Self {
+                $cbrt_fast(self)
+            }
+            #[inline(always)]
+            fn sin_cos(self) -> (Self, Self) {
+                libm::$sincos(self)
+            }
+            #[inline(always)]
+            fn cos(self) -> Self {
+                libm::$cos(self)
+            }
+            #[inline(always)]
+            fn ln(self) -> Self {
+                libm::$log(self)
+            }
+            #[inline(always)]
+            fn ln_1p(self) -> Self {
+                libm::$log1p(self)
+            }
+            #[inline(always)]
+            fn exp(self) -> Self {
+                libm::$exp(self)
+            }
+            #[inline(always)]
+            fn powf(self, p: Self) -> Self {
+                libm::$pow(self, p)
+            }
+            #[inline(always)]
+            fn atan2(self, x: Self) -> Self {
+                libm::$atan2(self, x)
+            }
+            #[inline(always)]
+            fn is_finite(self) -> bool {
+                <$t>::is_finite(self)
+            }
+            #[inline(always)]
+            fn is_nan(self) -> bool {
+                <$t>::is_nan(self)
+            }
+        }
+    };
+}
+
+impl_real!(
+    f32,
+    40,
+    1.0 / (1u64 << 24) as f32,
+    crate::cbrt::cbrt_f32,
+    crate::cbrt::cbrt_fast_f32,
+    sqrtf,
+    sincosf,
+    cosf,
+    logf,
+    log1pf,
+    expf,
+    powf,
+    atan2f,
+    copysignf,
+    fabsf
+);
+impl_real!(
+    f64,
+    11,
+    1.0 / (1u64 << 53) as f64,
+    crate::cbrt::cbrt_f64,
+    crate::cbrt::cbrt_fast_f64,
+    sqrt,
+    sincos,
+    cos,
+    log,
+    log1p,
+    exp,
+    pow,
+    atan2,
+    copysign,
+    fabs
+);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uniform_conversion_matches_spec() {
+        assert_eq!(f32::from_bits_uniform(0), 0.0);
+        assert_eq!(f32::from_bits_uniform(u64::MAX), 1.0 - 2f32.powi(-24));
+        assert_eq!(f64::from_bits_uniform(u64::MAX), 1.0 - 2f64.powi(-53));
+        assert_eq!(f32::from_bits_uniform(1u64 << 63), 0.5);
+        // Only the top 24 / 53 bits matter.
+        assert_eq!(f32::from_bits_uniform((1u64 << 40) - 1), 0.0);
+        assert_eq!(f64::from_bits_uniform((1u64 << 11) - 1), 0.0);
+    }
+
+    #[test]
+    fn clamps_keep_nan() {
+        assert!(f32::NAN.clamp01().is_nan());
+        assert_eq!((-0.5f64).clamp01(), 0.0);
+        assert_eq!(1.5f32.clamp01(), 1.0);
+        assert_eq!((-2.0f64).clamp_unit(), -1.0);
+        assert!(f64::NAN.clamp_unit().is_nan());
+    }
+}

@@ -4,7 +4,8 @@
 //! The textbook inverse `μ = (1 + g² − s²)/(2g)`, `s = (1 − g²)/(1 − g + 2gu)`
 //! divides by `g` and cancels as `g → 0` (f32: 10⁻³ error at `g = 10⁻⁴`) and is
 //! 0/0 at `|g| → 1`. Factoring `1 ± μ` exactly gives two forms with only
-//! positive factors and no division by `g`, with `d = 1 − g + 2gu`:
+//! positive factors and no division by `g`, with `d = 1 − g + 2gu`
+//! (`= (1 + g) − 2g(1 − u)`, the form used for `g < 0`):
 //!
 //! * `1 + μ = 2u (1 + g)² (1 − g + gu) / d²`
 //! * `1 − μ = 2(1 − u) (1 − g)² (1 + gu) / d²`
@@ -71,12 +72,19 @@ impl<T: Real> PhaseFunction<T> for HenyeyGreenstein<T> {
     fn sample_cos(&self, u: T) -> T {
         let g = self.g;
         let u = u.clamp01();
-        let gu = g * u;
+        let v = T::ONE - u;
         let (omg, opg) = (T::ONE - g, T::ONE + g);
-        let d = omg + T::TWO * gu;
+        // d = 1 − g + 2gu, 1 − g + gu and 1 + gu, each written as a sum of
+        // non-negative terms for the sign of g: for g < 0, `1 − g + 2gu`
+        // cancels as u → 1 and g → −1, but `(1 + g) − 2g(1 − u)` does not.
+        let (d, a, b) = if g >= T::ZERO {
+            (omg + T::TWO * g * u, omg + g * u, T::ONE + g * u)
+        } else {
+            (opg - T::TWO * g * v, T::ONE - g * v, opg - g * v)
+        };
         let inv_d2 = T::ONE / (d * d);
-        let one_plus_mu = T::TWO * u * opg * opg * (omg + gu) * inv_d2;
-        let one_minus_mu = T::TWO * (T::ONE - u) * omg * omg * (T::ONE + gu) * inv_d2;
+        let one_plus_mu = T::TWO * u * opg * opg * a * inv_d2;
+        let one_minus_mu = T::TWO * v * omg * omg * b * inv_d2;
         if one_plus_mu < T::ONE {
             one_plus_mu - T::ONE
         } else {

@@ -101,6 +101,7 @@ pub enum Phase<T> {
 impl<T: Real> Phase<T> {
     /// The discriminant of the last variant (the C layer checks tags against
     /// `1..=LAST_TAG`).
+    #[cfg_attr(not(feature = "ffi"), allow(dead_code))]
     pub(crate) const LAST_TAG: u32 = 4;
 
     /// Isotropic scattering.

@@ -1,0 +1,200 @@
+//! Pearson's chi² test of a direction sampler against its pdf, in the style of
+//! Mitsuba 3's `chi2.py`: histogram samples over (cos θ, φ) about `w_in`,
+//! integrate the pdf over the same cells, pool cells with expected count < 5,
+//! and compare the p-value with a significance level corrected (Šidák) for
+//! the number of chi² tests in the suite.
+//!
+//! The azimuth frame here is built by Gram–Schmidt, independently of the
+//! crate's `onb`, so a frame bug in the crate cannot cancel against the test.
+
+/// Significance level of the whole suite, fixed before any result was seen.
+pub const SIGNIFICANCE: f64 = 0.01;
+/// An upper bound on the number of chi² tests in the suite, for the Šidák
+/// correction (each test is held to `1 − (1 − 0.01)^(1/1000) ≈ 1.0·10⁻⁵`).
+pub const TESTS_IN_SUITE: f64 = 1000.0;
+/// Cells in cos θ and in φ.
+pub const N_MU: usize = 50;
+pub const N_PHI: usize = 20;
+
+/// The per-test threshold on the p-value.
+pub fn threshold() -> f64 {
+    1.0 - (1.0 - SIGNIFICANCE).powf(1.0 / TESTS_IN_SUITE)
+}
+
+#[derive(Debug)]
+pub struct Chi2 {
+    pub stat: f64,
+    pub dof: usize,
+    pub p_value: f64,
+    /// Samples that fell in cells the pdf gives zero probability.
+    pub impossible: u64,
+}
+
+impl Chi2 {
+    pub fn passes(&self) -> bool {
+        self.impossible == 0 && self.p_value > threshold()
+    }
+}
+
+fn norm(v: [f64; 3]) -> [f64; 3] {
+    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    [v[0] / l, v[1] / l, v[2] / l]
+}
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+/// A frame about `w` by Gram–Schmidt against the least-aligned axis.
+fn frame(w: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+    let helper = if w[0].abs() < 0.6 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+    let d = dot(helper, w);
+    let b1 = norm([helper[0] - d * w[0], helper[1] - d * w[1], helper[2] - d * w[2]]);
+    (b1, cross(w, b1))
+}
+
+/// Adaptive Simpson integration of `f` over `[a, b]`.
+pub fn integrate(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
+    fn rec(f: &dyn Fn(f64) -> f64, a: f64, b: f64, fa: f64, fm: f64, fb: f64, whole: f64, tol: f64, depth: u32) -> f64 {
+        let m = 0.5 * (a + b);
+        let (lm, rm) = (0.5 * (a + m), 0.5 * (m + b));
+        let (flm, frm) = (f(lm), f(rm));
+        let left = (m - a) / 6.0 * (fa + 4.0 * flm + fm);
+        let right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
+        let delta = left + right - whole;
+        if depth == 0 || delta.abs() <= 15.0 * tol {
+            left + right + delta / 15.0
+        } else {
+            rec(f, a, m, fa, flm, fm, left, tol / 2.0, depth - 1)
+                + rec(f, m, b, fm, frm, fb, right, tol / 2.0, depth - 1)
+        }
+    }
+    let m = 0.5 * (a + b);
+    let (fa, fm, fb) = (f(a), f(m), f(b));
+    let whole = (b - a) / 6.0 * (fa + 4.0 * fm + fb);
+    rec(f, a, b, fa, fm, fb, whole, tol, 30)
+}
+
+/// Runs the test: `sample()` returns unit directions, `pdf(μ)` is the density
+/// per steradian as a function of `μ = dot(w, w_in)`.
+pub fn chi2_directions(
+    pdf: &dyn Fn(f64) -> f64,
+    w_in: [f64; 3],
+    n_samples: usize,
+    mut sample: impl FnMut() -> [f64; 3],
+) -> Chi2 {
+    let w_in = norm(w_in);
+    let (b1, b2) = frame(w_in);
+    let mut observed = vec![0u64; N_MU * N_PHI];
+    for _ in 0..n_samples {
+        let w = sample();
+        let mu = dot(w, w_in).clamp(-1.0, 1.0);
+        let phi = dot(w, b2).atan2(dot(w, b1)) + std::f64::consts::PI;
+        let i = (((mu + 1.0) * 0.5 * N_MU as f64) as usize).min(N_MU - 1);
+        let j = ((phi / std::f64::consts::TAU * N_PHI as f64) as usize).min(N_PHI - 1);
+        observed[i * N_PHI + j] += 1;
+    }
+    let mut expected = vec![0.0; N_MU * N_PHI];
+    for i in 0..N_MU {
+        let (lo, hi) = (-1.0 + 2.0 * i as f64 / N_MU as f64, -1.0 + 2.0 * (i + 1) as f64 / N_MU as f64);
+        let p_mu = std::f64::consts::TAU * integrate(pdf, lo, hi, 1e-10);
+        for j in 0..N_PHI {
+            expected[i * N_PHI + j] = n_samples as f64 * p_mu / N_PHI as f64;
+        }
+    }
+    pearson(&observed, &expected)
+}
+
+/// Pearson's statistic with cells of expected count < 5 pooled into one.
+pub fn pearson(observed: &[u64], expected: &[f64]) -> Chi2 {
+    let (mut stat, mut cells) = (0.0, 0usize);
+    let (mut pool_o, mut pool_e) = (0.0, 0.0);
+    let mut impossible = 0;
+    for (&o, &e) in observed.iter().zip(expected) {
+        if e <= 0.0 {
+            impossible += o;
+        } else if e < 5.0 {
+            pool_o += o as f64;
+            pool_e += e;
+        } else {
+            stat += (o as f64 - e).powi(2) / e;
+            cells += 1;
+        }
+    }
+    if pool_e >= 5.0 {
+        stat += (pool_o - pool_e).powi(2) / pool_e;
+        cells += 1;
+    }
+    let dof = cells.saturating_sub(1).max(1);
+    Chi2 { stat, dof, p_value: gamma_q(dof as f64 / 2.0, stat / 2.0), impossible }
+}
+
+/// ln Γ(x), Lanczos (g = 7, n = 9), x > 0.
+fn ln_gamma(x: f64) -> f64 {
+    const C: [f64; 9] = [
+        0.999_999_999_999_809_9,
+        676.520_368_121_885_1,
+        -1_259.139_216_722_402_8,
+        771.323_428_777_653_1,
+        -176.615_029_162_140_6,
+        12.507_343_278_686_905,
+        -0.138_571_095_265_720_12,
+        9.984_369_578_019_572e-6,
+        1.505_632_735_149_311_6e-7,
+    ];
+    let x = x - 1.0;
+    let mut a = C[0];
+    let t = x + 7.5;
+    for (i, &c) in C.iter().enumerate().skip(1) {
+        a += c / (x + i as f64);
+    }
+    0.5 * (2.0 * std::f64::consts::PI).ln() + (x + 0.5) * t.ln() - t + a.ln()
+}
+
+/// Upper regularised incomplete gamma `Q(a, x)`: the chi² p-value for
+/// `a = dof/2`, `x = stat/2` (series below `a + 1`, continued fraction above).
+pub fn gamma_q(a: f64, x: f64) -> f64 {
+    if x <= 0.0 {
+        return 1.0;
+    }
+    let gln = ln_gamma(a);
+    if x < a + 1.0 {
+        let (mut sum, mut del, mut ap) = (1.0 / a, 1.0 / a, a);
+        for _ in 0..10_000 {
+            ap += 1.0;
+            del *= x / ap;
+            sum += del;
+            if del.abs() < sum.abs() * 1e-16 {
+                break;
+            }
+        }
+        1.0 - sum * (-x + a * x.ln() - gln).exp()
+    } else {
+        let tiny = 1e-300;
+        let mut b = x + 1.0 - a;
+        let mut c = 1.0 / tiny;
+        let mut d = 1.0 / b;
+        let mut h = d;
+        for i in 1..10_000 {
+            let an = -(i as f64) * (i as f64 - a);
+            b += 2.0;
+            d = an * d + b;
+            if d.abs() < tiny {
+                d = tiny;
+            }
+            c = b + an / c;
+            if c.abs() < tiny {
+                c = tiny;
+            }
+            d = 1.0 / d;
+            let del = d * c;
+            h *= del;
+            if (del - 1.0).abs() < 1e-16 {
+                break;
+            }
+        }
+        (-x + a * x.ln() - gln).exp() * h
+    }
+}

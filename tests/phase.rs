@@ -1,0 +1,271 @@
+//! Properties every phase object must have, in f32 and f64: normalisation,
+//! mean cosine, chi² of sampled directions, sampled pdf equal to `pdf()`,
+//! monotone inverse that inverts `cdf`, unit directions, batch = scalar, and
+//! the accuracy of the HG and depolarised-Rayleigh inverses against
+//! double-double references.
+
+mod common;
+
+use common::chi2::{chi2_directions, integrate, threshold};
+use common::dd;
+use common::{CHI2_SAMPLES, rng, test_directions, uniform_grid};
+use scatterkit::{Error, Phase, PhaseFunction, Real, Vec3};
+use std::f64::consts::TAU;
+
+/// The phase objects under test, built in precision T.
+fn phases<T: Real>() -> Vec<(String, Phase<T>)> {
+    let mut v = vec![
+        ("isotropic".to_string(), Phase::isotropic()),
+        ("rayleigh".to_string(), Phase::rayleigh()),
+    ];
+    for rho in [0.028, 0.5, 0.95] {
+        v.push((format!("depolarized {rho}"), Phase::rayleigh_depolarized(T::from_f64(rho)).unwrap()));
+    }
+    for g in [-0.9, -0.3, 0.0, 1e-4, 0.5, 0.99] {
+        v.push((format!("hg {g}"), Phase::henyey_greenstein(T::from_f64(g)).unwrap()));
+    }
+    v
+}
+
+fn pdf64<T: Real>(p: &Phase<T>) -> impl Fn(f64) -> f64 + '_ {
+    move |mu| p.pdf(T::from_f64(mu)).to_f64()
+}
+
+#[test]
+fn pdf_integrates_to_one_and_mean_cosine_matches() {
+    fn check<T: Real>(tol: f64) {
+        for (name, p) in phases::<T>() {
+            let pdf = pdf64(&p);
+            let total = TAU * integrate(&pdf, -1.0, 1.0, 1e-12);
+            assert!((total - 1.0).abs() < tol, "{name}: ∫p dω = {total}");
+            let mean = TAU * integrate(&|mu| mu * pdf(mu), -1.0, 1.0, 1e-12);
+            let closed = p.mean_cosine().to_f64();
+            assert!((mean - closed).abs() < tol, "{name}: mean {mean} vs {closed}");
+        }
+    }
+    check::<f32>(2e-6);
+    check::<f64>(1e-9);
+}
+
+#[test]
+fn cdf_is_the_integral_of_the_pdf() {
+    fn check<T: Real>(tol: f64) {
+        for (name, p) in phases::<T>() {
+            let pdf = pdf64(&p);
+            for x in [-1.0, -0.9, -0.5, -0.1, 0.0, 0.3, 0.7, 0.95, 0.999, 1.0] {
+                let num = TAU * integrate(&pdf, -1.0, x, 1e-13);
+                let got = p.cdf(T::from_f64(x)).to_f64();
+                assert!((got - num).abs() < tol, "{name}: F({x}) = {got}, ∫ = {num}");
+            }
+        }
+    }
+    check::<f32>(2e-6);
+    check::<f64>(1e-10);
+}
+
+#[test]
+fn inverse_is_monotone_with_exact_ends_and_inverts_cdf() {
+    fn check<T: Real>() {
+        let eps = T::EPSILON.to_f64();
+        for (name, p) in phases::<T>() {
+            // The ends within 2 ULP (exact for the closed forms of HG and Rayleigh).
+            assert!((p.sample_cos(T::ZERO) + T::ONE).to_f64() <= 2.0 * eps, "{name}");
+            assert!((T::ONE - p.sample_cos(T::ONE)).to_f64() <= 2.0 * eps, "{name}");
+            assert_eq!(p.sample_cos(-T::ONE), p.sample_cos(T::ZERO), "{name}: clamp below");
+            assert_eq!(p.sample_cos(T::TWO), p.sample_cos(T::ONE), "{name}: clamp above");
+            assert!(p.sample_cos(T::NAN).is_nan(), "{name}: NaN in, NaN out");
+            let mut prev = -T::ONE;
+            for u in uniform_grid(200_001) {
+                let u = T::from_f64(u);
+                let mu = p.sample_cos(u);
+                assert!(mu >= prev, "{name}: not monotone at u = {u:?}");
+                prev = mu;
+                // |F(μ(u)) − u| is bounded by the density of μ times the error
+                // in μ (a few ULP) plus the rounding of F itself.
+                let dens = TAU * p.pdf(mu).to_f64();
+                let err = (p.cdf(mu).to_f64() - u.to_f64()).abs();
+                assert!(err <= 8.0 * eps * (1.0 + dens), "{name}: |F(μ(u)) − u| = {err:e} at u = {u:?}");
+            }
+        }
+    }
+    check::<f32>();
+    check::<f64>();
+}
+
+fn to_vec<T: Real>(w: [f64; 3]) -> Vec3<T> {
+    Vec3::new(T::from_f64(w[0]), T::from_f64(w[1]), T::from_f64(w[2])).try_normalize().unwrap()
+}
+
+fn chi2_phase<T: Real>(seed: u64) {
+    for (name, p) in phases::<T>() {
+        for (k, w) in test_directions().into_iter().enumerate() {
+            let w_in = to_vec::<T>(w);
+            let mut r = rng(seed + 17 * k as u64);
+            let w64 = [w_in.x.to_f64(), w_in.y.to_f64(), w_in.z.to_f64()];
+            let res = chi2_directions(&pdf64(&p), w64, CHI2_SAMPLES, || {
+                let (d, _) = p.sample_dir(w_in, T::uniform(&mut r), T::uniform(&mut r));
+                [d.x.to_f64(), d.y.to_f64(), d.z.to_f64()]
+            });
+            assert!(res.passes(), "{name} about {w:?}: {res:?} (threshold {:.2e})", threshold());
+        }
+    }
+}
+
+#[test]
+fn chi2_phase_f32() {
+    chi2_phase::<f32>(1000);
+}
+
+#[test]
+fn chi2_phase_f64() {
+    chi2_phase::<f64>(2000);
+}
+
+#[test]
+fn sample_dir_is_unit_consistent_and_reports_pdf() {
+    fn check<T: Real>(tol: f64) {
+        for (name, p) in phases::<T>() {
+            for w in test_directions() {
+                let w_in = to_vec::<T>(w);
+                let mut r = rng(3);
+                for _ in 0..20_000 {
+                    let (u1, u2) = (T::uniform(&mut r), T::uniform(&mut r));
+                    let (d, pdf) = p.sample_dir(w_in, u1, u2);
+                    let mu = p.sample_cos(u1);
+                    assert!((d.length().to_f64() - 1.0).abs() <= tol, "{name}: |d| = {:?}", d.length());
+                    assert!((d.dot(w_in) - mu).abs().to_f64() <= 2.0 * tol, "{name}: cos θ {:?} vs {mu:?}", d.dot(w_in));
+                    assert_eq!(pdf, p.pdf(mu), "{name}");
+                }
+            }
+        }
+    }
+    check::<f32>(1e-6);
+    check::<f64>(1e-14);
+}
+
+#[test]
+fn forward_lobes_point_forward() {
+    let p = Phase::henyey_greenstein(0.8f64).unwrap();
+    let w_in = Vec3::new(0.0, 1.0, 0.0);
+    let mut r = rng(11);
+    let n = 100_000;
+    let mean: f64 = (0..n).map(|_| p.sample_dir(w_in, f64::uniform(&mut r), f64::uniform(&mut r)).0.y).sum::<f64>() / n as f64;
+    // E[cos θ] = g; σ(cos θ) < 1, so 5σ of the mean is below 0.016.
+    assert!((mean - 0.8).abs() < 0.016, "{mean}");
+    let back = Phase::henyey_greenstein(-0.8f64).unwrap();
+    assert!(back.sample_dir(w_in, 0.9, 0.3).0.y < 0.0);
+}
+
+#[test]
+fn batch_equals_scalar_and_validates() {
+    fn check<T: Real>() {
+        for (name, p) in phases::<T>() {
+            let u: Vec<T> = uniform_grid(1001).map(T::from_f64).collect();
+            let mut out = vec![T::ZERO; u.len()];
+            p.sample_cos_n(&u, &mut out).unwrap();
+            for (&ui, &o) in u.iter().zip(&out) {
+                assert_eq!(o, p.sample_cos(ui), "{name}");
+            }
+            let mut out2 = vec![T::from_f64(7.0); 3];
+            for bad in [T::NAN, -T::EPSILON, T::ONE + T::EPSILON, T::INFINITY] {
+                let u = [T::HALF, bad, T::HALF];
+                assert_eq!(p.sample_cos_n(&u, &mut out2), Err(Error::Domain), "{name}");
+                assert!(out2.iter().all(|&x| x == T::from_f64(7.0)), "{name}: wrote on error");
+            }
+            assert_eq!(p.sample_cos_n(&u[..2], &mut out2), Err(Error::Size));
+            assert_eq!(p.sample_cos_n(&[], &mut []), Ok(()));
+        }
+    }
+    check::<f32>();
+    check::<f64>();
+}
+
+#[test]
+fn constructors_reject_exactly_the_invalid_set() {
+    for g in [1.0f32, -1.0, 1.5, f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+        assert_eq!(Phase::henyey_greenstein(g), Err(Error::Domain), "g = {g}");
+    }
+    for g in [0.0f64, -0.0, 0.999_999_999_999, -0.999_999_999_999, 1e-300] {
+        assert!(Phase::henyey_greenstein(g).is_ok(), "g = {g}");
+    }
+    for rho in [-1e-9f64, 1.0, 2.0, f64::NAN, f64::INFINITY] {
+        assert_eq!(Phase::rayleigh_depolarized(rho), Err(Error::Domain), "rho = {rho}");
+    }
+    for rho in [0.0f32, 0.028, 0.999_999] {
+        assert!(Phase::rayleigh_depolarized(rho).is_ok(), "rho = {rho}");
+    }
+}
+
+/// Max |μ − μ_ref| over `n` uniforms including both ends; the reference sees
+/// exactly the g and u the sampler saw.
+fn max_error<T: Real>(p: &Phase<T>, reference: impl Fn(f64) -> f64, n: usize) -> f64 {
+    uniform_grid(n)
+        .map(|u| {
+            let u = T::from_f64(u);
+            (p.sample_cos(u).to_f64() - reference(u.to_f64())).abs()
+        })
+        .fold(0.0, f64::max)
+}
+
+const HG_GS: [f64; 15] = [
+    0.0, 1e-8, -1e-8, 1e-4, -1e-4, 0.01, -0.01, 0.5, -0.5, 0.9, -0.9, 0.999, -0.999, 0.999999,
+    -0.999999,
+];
+
+#[test]
+fn hg_inverse_is_accurate_on_the_whole_open_interval() {
+    let n = 100_001;
+    let (mut worst32, mut worst64) = (0.0f64, 0.0f64);
+    for g in HG_GS {
+        let p32 = Phase::henyey_greenstein(g as f32).unwrap();
+        let g32 = g as f32 as f64;
+        let e32 = max_error(&p32, |u| dd::hg_inverse(g32, u), n);
+        let p64 = Phase::henyey_greenstein(g).unwrap();
+        let e64 = max_error(&p64, |u| dd::hg_inverse(g, u), n);
+        println!("HG g = {g:>9}: f32 {e32:.2e}  f64 {e64:.2e}");
+        assert!(e32 <= 1e-6, "f32 g = {g}: {e32:e}");
+        assert!(e64 <= 1e-14, "f64 g = {g}: {e64:e}");
+        worst32 = worst32.max(e32);
+        worst64 = worst64.max(e64);
+    }
+    println!("HG worst: f32 {worst32:.2e}, f64 {worst64:.2e}");
+}
+
+#[test]
+fn hg_has_no_jump_where_its_two_forms_meet() {
+    // The forms switch where μ crosses 0; sweep u densely around that point.
+    for g in HG_GS {
+        let p = Phase::henyey_greenstein(g).unwrap();
+        let u0 = p.cdf(0.0);
+        for k in -2000..=2000 {
+            let u = (u0 + k as f64 * 1e-9).clamp(0.0, 1.0);
+            let e = (p.sample_cos(u) - dd::hg_inverse(g, u)).abs();
+            assert!(e <= 1e-14, "g = {g}, u = {u}: {e:e}");
+        }
+    }
+}
+
+#[test]
+fn depolarized_inverse_is_accurate() {
+    let n = 100_001;
+    for rho in [0.0, 0.028, 0.3, 0.9, 0.999] {
+        let p32 = Phase::rayleigh_depolarized(rho as f32).unwrap();
+        let r32 = rho as f32 as f64;
+        let e32 = max_error(&p32, |u| dd::rayleigh_depolarized_inverse(r32, u), n);
+        let p64 = Phase::rayleigh_depolarized(rho).unwrap();
+        let e64 = max_error(&p64, |u| dd::rayleigh_depolarized_inverse(rho, u), n);
+        println!("depolarized rho = {rho}: f32 {e32:.2e}  f64 {e64:.2e}");
+        assert!(e32 <= 1e-6, "f32 rho = {rho}: {e32:e}");
+        assert!(e64 <= 1e-14, "f64 rho = {rho}: {e64:e}");
+    }
+}
+
+#[test]
+fn rho_zero_is_plain_rayleigh() {
+    let a = Phase::rayleigh_depolarized(0.0f64).unwrap();
+    let b = Phase::<f64>::rayleigh();
+    for u in uniform_grid(1001) {
+        assert!((a.sample_cos(u) - b.sample_cos(u)).abs() < 1e-15);
+        assert!((a.pdf(u) - b.pdf(u)).abs() < 1e-15);
+    }
+}

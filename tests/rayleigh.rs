@@ -1,0 +1,232 @@
+//! Rayleigh: every method of Frisvad (2011) against the pdf (chi²), the known
+//! wrong method rejected by the same test, the direct method's accuracy
+//! against a double-double reference, and the paper's tabulation figures.
+
+mod common;
+
+use common::chi2::{chi2_directions, gamma_q, threshold};
+use common::dd;
+use common::{CHI2_SAMPLES, rng, test_directions};
+use rand_xoshiro::rand_core::Rng;
+use scatterkit::{PhaseFunction, Rayleigh, RayleighMethod, Real, Table, Vec3, rayleigh};
+
+fn rayleigh_pdf(mu: f64) -> f64 {
+    3.0 / (16.0 * std::f64::consts::PI) * (1.0 + mu * mu)
+}
+
+fn to_vec<T: Real>(w: [f64; 3]) -> Vec3<T> {
+    let v = Vec3::new(T::from_f64(w[0]), T::from_f64(w[1]), T::from_f64(w[2]));
+    v.try_normalize().unwrap()
+}
+
+fn to_f64<T: Real>(v: Vec3<T>) -> [f64; 3] {
+    [v.x.to_f64(), v.y.to_f64(), v.z.to_f64()]
+}
+
+fn chi2_method<T: Real>(method: RayleighMethod, seed: u64) {
+    for (k, w) in test_directions().into_iter().enumerate() {
+        let w_in = to_vec::<T>(w);
+        let mut r = rng(seed + k as u64);
+        let res = chi2_directions(&rayleigh_pdf, to_f64(w_in), CHI2_SAMPLES, || {
+            to_f64(rayleigh::sample_dir(method, w_in, &mut r))
+        });
+        assert!(
+            res.passes(),
+            "{method:?} ({}) about {w:?}: {res:?}, threshold {:.2e}",
+            std::any::type_name::<T>(),
+            threshold()
+        );
+    }
+}
+
+macro_rules! chi2_tests {
+    ($($name:ident: $m:expr, $seed:expr;)*) => {$(
+        #[test]
+        fn $name() {
+            chi2_method::<f32>($m, $seed);
+            chi2_method::<f64>($m, $seed + 100);
+        }
+    )*};
+}
+
+chi2_tests! {
+    chi2_reject_cube: RayleighMethod::RejectCube, 1;
+    chi2_reject_spherical: RayleighMethod::RejectSpherical, 2;
+    chi2_baranoski_corrected: RayleighMethod::Baranoski, 3;
+    chi2_simplified: RayleighMethod::Simplified, 4;
+    chi2_direct: RayleighMethod::Direct, 5;
+    chi2_direct_fast: RayleighMethod::DirectFast, 6;
+}
+
+/// Baranoski's rejection as first published: `μ = cos(πξ₁)` accepted with
+/// `(1 + μ²)/2`, missing the `sqrt(1 − μ²)` Jacobian and Frisvad's constant.
+/// Known wrong; it exists only here.
+fn baranoski_uncorrected(rng: &mut impl Rng) -> f64 {
+    loop {
+        let mu = (std::f64::consts::PI * f64::uniform(rng)).cos();
+        if 2.0 * f64::uniform(rng) <= 1.0 + mu * mu {
+            return mu;
+        }
+    }
+}
+
+#[test]
+fn chi2_rejects_uncorrected_baranoski() {
+    for (k, w) in test_directions().into_iter().enumerate() {
+        let w_in = to_vec::<f64>(w);
+        let mut r = rng(50 + k as u64);
+        let res = chi2_directions(&rayleigh_pdf, to_f64(w_in), CHI2_SAMPLES, || {
+            let mu = baranoski_uncorrected(&mut r);
+            let phi = std::f64::consts::TAU * f64::uniform(&mut r);
+            to_f64(scatterkit::geometry::direction_about(w_in, mu, phi))
+        });
+        assert!(!res.passes(), "the wrong sampler passed about {w:?}: {res:?}");
+    }
+}
+
+#[test]
+fn chi2_p_values_of_known_quantiles() {
+    // chi² quantiles: P(X > 23.209) = 0.01 for 10 dof; P(X > 3.841) = 0.05 for 1.
+    assert!((gamma_q(5.0, 23.209 / 2.0) - 0.01).abs() < 1e-4);
+    assert!((gamma_q(0.5, 3.841 / 2.0) - 0.05).abs() < 1e-4);
+    assert!((gamma_q(500.0, 500.0) - 0.4941).abs() < 1e-3);
+}
+
+#[test]
+fn every_method_gives_unit_directions_and_zero_mean_cosine() {
+    for m in RayleighMethod::ALL {
+        let mut r = rng(7);
+        let w_in = to_vec::<f32>([0.3, -0.5, 0.81]);
+        let (mut sum, n) = (0.0f64, 200_000);
+        for _ in 0..n {
+            let d = rayleigh::sample_dir(m, w_in, &mut r);
+            assert!((d.length() - 1.0).abs() <= 1e-6, "{m:?}: {d:?}");
+            sum += d.dot(w_in) as f64;
+        }
+        // Var(μ) = 2/5 for Rayleigh: 5σ of the mean is 5·sqrt(0.4/n).
+        assert!((sum / n as f64).abs() < 5.0 * (0.4f64 / n as f64).sqrt(), "{m:?}");
+    }
+}
+
+#[test]
+fn method_values_match_the_c_enum() {
+    for (i, m) in RayleighMethod::ALL.into_iter().enumerate() {
+        assert_eq!(m as u32, i as u32);
+        assert_eq!(RayleighMethod::try_from(i as u32), Ok(m));
+    }
+    assert_eq!(RayleighMethod::try_from(6), Err(scatterkit::Error::Method));
+}
+
+/// Max |μ − μ_ref| of an inverse over `n` uniforms including 0 and 1.
+fn max_error<T: Real>(f: impl Fn(T) -> T, reference: impl Fn(f64) -> f64, n: usize) -> f64 {
+    common::uniform_grid(n)
+        .map(|u| {
+            let u = T::from_f64(u);
+            (f(u).to_f64() - reference(u.to_f64())).abs()
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn direct_inverse_is_accurate() {
+    let n = 1_000_001;
+    let e32 = max_error::<f32>(|u| Rayleigh.sample_cos(u), dd::rayleigh_inverse, n);
+    let e64 = max_error::<f64>(|u| Rayleigh.sample_cos(u), dd::rayleigh_inverse, n);
+    let fast32 = max_error::<f32>(
+        rayleigh::inverse_cdf_fast::<f32>,
+        dd::rayleigh_inverse,
+        n,
+    );
+    println!("Rayleigh direct: f32 {e32:.2e}, f64 {e64:.2e}, f32 fast {fast32:.2e}");
+    // Bounds: 4 ULP of 1 (the stable Cardano form has no cancellation left).
+    assert!(e32 <= 4.0 * f32::EPSILON as f64, "f32 {e32:e}");
+    assert!(e64 <= 4.0 * f64::EPSILON, "f64 {e64:e}");
+    // One Lancaster step: relative cube-root error ~2e-5.
+    assert!(fast32 <= 1e-4, "f32 fast {fast32:e}");
+}
+
+#[test]
+fn direct_inverse_is_monotone_and_inverts_cdf() {
+    let mut prev = -1.0f32;
+    for i in 0..=(1u32 << 20) {
+        let u = i as f32 / (1u32 << 20) as f32;
+        let mu = Rayleigh.sample_cos(u);
+        assert!(mu >= prev, "not monotone at u = {u}");
+        prev = mu;
+        // F is Lipschitz with constant 3/4: |F(μ(u)) − u| ≤ 3/4 |Δμ| + rounding.
+        assert!((Rayleigh.cdf(mu) - u).abs() <= 6e-7, "u = {u}");
+    }
+    assert_eq!(Rayleigh.sample_cos(0.0f32), -1.0);
+    assert_eq!(Rayleigh.sample_cos(1.0f32), 1.0);
+    assert_eq!(Rayleigh.sample_cos(0.5f64), 0.0);
+}
+
+/// (rms, max) error in cos θ of Frisvad's table against the exact inverse,
+/// over a fine uniform grid of u.
+fn table_errors(n: usize) -> (f64, f64) {
+    let mut buf = vec![0.0f64; n + 1];
+    let table = Table::rayleigh_cdf(&mut buf, n).unwrap();
+    let m = 1_000_001;
+    let (mut sum2, mut max) = (0.0f64, 0.0f64);
+    for u in common::uniform_grid(m) {
+        let e = (table.sample_cos(u) - dd::rayleigh_inverse(u)).abs();
+        sum2 += e * e;
+        max = max.max(e);
+    }
+    ((sum2 / m as f64).sqrt(), max)
+}
+
+#[test]
+fn table_reproduces_frisvad_figures() {
+    let (rms32, max32) = table_errors(32);
+    let (rms8, _) = table_errors(8);
+    println!("table n=32: rms {rms32:.3e} max {max32:.3e}; n=8: rms {rms8:.3e}");
+    let within = |got: f64, paper: f64| (got / paper - 1.0).abs() <= 0.05;
+    assert!(within(rms32, 2.9e-4), "n = 32 rms {rms32:e}, paper 2.9e-4");
+    assert!(within(max32, 4.9e-4), "n = 32 max {max32:e}, paper 4.9e-4");
+    assert!(within(rms8, 4.5e-3), "n = 8 rms {rms8:e}, paper 4.5e-3");
+    // "Each doubling of n quarters the error."
+    let (rms64, _) = table_errors(64);
+    assert!((rms32 / rms64 - 4.0).abs() < 0.4, "ratio {}", rms32 / rms64);
+}
+
+#[test]
+fn table_works_for_any_n_and_checks_sizes() {
+    let mut buf = [0.0f32; 2];
+    let t = Table::rayleigh_cdf(&mut buf, 1).unwrap();
+    assert_eq!(t.sample_cos(0.0), -1.0);
+    assert_eq!(t.sample_cos(1.0), 1.0);
+    assert_eq!(t.sample_cos(0.5), 0.0);
+    let mut buf = [0.0f32; 8];
+    assert_eq!(Table::rayleigh_cdf(&mut buf, 0), Err(scatterkit::Error::Size));
+    assert_eq!(Table::rayleigh_cdf(&mut buf, 8), Err(scatterkit::Error::Size));
+    let t = Table::rayleigh_cdf(&mut buf, 7).unwrap();
+    let mut prev = -1.0;
+    for i in 0..=1000 {
+        let mu = t.sample_cos(i as f32 / 1000.0);
+        assert!(mu >= prev);
+        prev = mu;
+    }
+    assert!(t.sample_cos(f32::NAN).is_nan());
+    assert_eq!(t.sample_cos(-3.0), -1.0);
+}
+
+#[test]
+fn cross_section_and_coefficient() {
+    // λ = 500 nm, a = 1 nm, n = 1.5 (in metres): α = 1e-27 · 1.25/4.25,
+    // C = 128π⁵/3 · α²/λ⁴ = 1.8072e-26 m² (evaluated by hand).
+    let c = rayleigh::cross_section(500e-9, 1e-9, 1.5).unwrap();
+    assert!((c / 1.8072e-26 - 1.0).abs() < 1e-4, "{c:e}");
+    let s = rayleigh::scattering_coeff(1e20, 500e-9, 1e-9, 1.5).unwrap();
+    assert!((s / (1e20 * c) - 1.0).abs() < 1e-15);
+    // λ⁻⁴: halving the wavelength scatters 16 times more.
+    let c2 = rayleigh::cross_section(250e-9, 1e-9, 1.5).unwrap();
+    assert!((c2 / c - 16.0).abs() < 1e-12);
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        assert!(rayleigh::cross_section(bad, 1e-9, 1.5).is_err());
+        assert!(rayleigh::cross_section(500e-9, bad, 1.5).is_err());
+        assert!(rayleigh::cross_section(500e-9, 1e-9, bad).is_err());
+    }
+    assert!(rayleigh::scattering_coeff(-1.0, 500e-9, 1e-9, 1.5).is_err());
+    assert_eq!(rayleigh::scattering_coeff(0.0, 500e-9, 1e-9, 1.5), Ok(0.0));
+}

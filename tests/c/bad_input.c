@@ -1,0 +1,224 @@
+/* Bad input through the C ABI: every documented error of the foundation
+ * functions, and that out-pointers stay untouched on error. Prints one line per
+ * failed check and a summary; exits with the number of failures. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "scatterkit.h"
+
+static int passed = 0, failed = 0;
+
+#define CHECK(cond)                                                    \
+    do {                                                               \
+        if (cond) {                                                    \
+            passed++;                                                  \
+        } else {                                                       \
+            failed++;                                                  \
+            printf("FAILED line %d: %s\n", __LINE__, #cond);           \
+        }                                                              \
+    } while (0)
+
+static uint64_t counter(void *state) {
+    uint64_t *s = (uint64_t *)state;
+    *s += 0x9e3779b97f4a7c15ULL;
+    return *s;
+}
+
+static uint64_t constant_zero(void *state) {
+    (void)state;
+    return 0; /* a broken generator: rejection loops must still end */
+}
+
+static int untouched_phase(const sk_phase *p) {
+    size_t i;
+    for (i = 0; i < sizeof p->opaque / sizeof p->opaque[0]; i++)
+        if (p->opaque[i] != 0xdeadbeefu) return 0;
+    return 1;
+}
+
+static void phase_constructors(void) {
+    const float bad_g[] = {1.0f, -1.0f, 1.5f, -7.0f, NAN, INFINITY, -INFINITY};
+    const double bad_g64[] = {1.0, -1.0, 2.0, NAN, INFINITY, -INFINITY};
+    const float bad_rho[] = {-0.001f, 1.0f, 2.0f, NAN, INFINITY, -INFINITY};
+    sk_phase p;
+    sk_phase_f64 p64;
+    size_t i;
+
+    for (i = 0; i < sizeof bad_g / sizeof bad_g[0]; i++) {
+        size_t k;
+        for (k = 0; k < sizeof p.opaque / sizeof p.opaque[0]; k++) p.opaque[k] = 0xdeadbeefu;
+        CHECK(sk_phase_hg(bad_g[i], &p) == SK_ERR_DOMAIN);
+        CHECK(untouched_phase(&p));
+    }
+    for (i = 0; i < sizeof bad_g64 / sizeof bad_g64[0]; i++)
+        CHECK(sk_phase_hg_f64(bad_g64[i], &p64) == SK_ERR_DOMAIN);
+    for (i = 0; i < sizeof bad_rho / sizeof bad_rho[0]; i++) {
+        CHECK(sk_phase_rayleigh_depolarized(bad_rho[i], &p) == SK_ERR_DOMAIN);
+        CHECK(sk_phase_rayleigh_depolarized_f64(bad_rho[i], &p64) == SK_ERR_DOMAIN);
+    }
+    CHECK(sk_phase_hg(0.5f, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_hg_f64(0.5, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_isotropic(NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_isotropic_f64(NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_rayleigh(NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_rayleigh_f64(NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_rayleigh_depolarized(0.1f, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_rayleigh_depolarized_f64(0.1, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_hg(-0.999999f, &p) == SK_OK);
+    CHECK(sk_phase_rayleigh_depolarized(0.0f, &p) == SK_OK);
+}
+
+static void phase_queries(void) {
+    sk_phase zero, hg;
+    sk_phase_f64 zero64;
+    float u[3] = {0.25f, 0.5f, 0.75f}, out[3] = {7.0f, 7.0f, 7.0f}, pdf = 7.0f;
+    sk_vec3 w = {0.0f, 0.0f, 1.0f}, d;
+    memset(&zero, 0, sizeof zero);
+    memset(&zero64, 0, sizeof zero64);
+
+    /* NULL or never-constructed objects: NaN from float functions. */
+    CHECK(isnan(sk_phase_pdf(NULL, 0.0f)));
+    CHECK(isnan(sk_phase_cdf(NULL, 0.0f)));
+    CHECK(isnan(sk_phase_sample_cos(NULL, 0.5f)));
+    CHECK(isnan(sk_phase_mean_cosine(NULL)));
+    CHECK(isnan(sk_phase_pdf(&zero, 0.0f)));
+    CHECK(isnan(sk_phase_pdf_f64(&zero64, 0.0)));
+    CHECK(isnan(sk_phase_mean_cosine_f64(NULL)));
+    d = sk_phase_sample_dir(NULL, w, 0.5f, 0.5f, &pdf);
+    CHECK(isnan(d.x) && isnan(d.y) && isnan(d.z) && isnan(pdf));
+    CHECK(sk_phase_sample_cos_n(NULL, u, out, 3) == SK_ERR_NULL);
+    CHECK(sk_phase_sample_cos_n(&zero, u, out, 3) == SK_ERR_DOMAIN);
+
+    /* Scalar u is clamped; NaN propagates. */
+    CHECK(sk_phase_hg(0.6f, &hg) == SK_OK);
+    CHECK(sk_phase_sample_cos(&hg, -3.0f) == sk_phase_sample_cos(&hg, 0.0f));
+    CHECK(sk_phase_sample_cos(&hg, 5.0f) == sk_phase_sample_cos(&hg, 1.0f));
+    CHECK(isnan(sk_phase_sample_cos(&hg, NAN)));
+    d = sk_phase_sample_dir(&hg, w, 0.3f, 0.2f, NULL); /* pdf_out may be NULL */
+    CHECK(fabsf(d.x * d.x + d.y * d.y + d.z * d.z - 1.0f) < 1e-6f);
+
+    /* Batches: NULL arrays with n > 0, n = 0, bad u, overlap. */
+    CHECK(sk_phase_sample_cos_n(&hg, NULL, out, 3) == SK_ERR_NULL);
+    CHECK(sk_phase_sample_cos_n(&hg, u, NULL, 3) == SK_ERR_NULL);
+    CHECK(sk_phase_sample_cos_n(&hg, NULL, NULL, 0) == SK_OK);
+    CHECK(sk_phase_sample_cos_n(&hg, u, out, 0) == SK_OK);
+    CHECK(sk_phase_sample_cos_n(&hg, u, out, SIZE_MAX) == SK_ERR_SIZE);
+    u[1] = NAN;
+    CHECK(sk_phase_sample_cos_n(&hg, u, out, 3) == SK_ERR_DOMAIN);
+    u[1] = 1.5f;
+    CHECK(sk_phase_sample_cos_n(&hg, u, out, 3) == SK_ERR_DOMAIN);
+    u[1] = -0.0f;
+    CHECK(sk_phase_sample_cos_n(&hg, u, out, 3) == SK_OK);
+    CHECK(out[1] == -1.0f);
+    out[0] = out[1] = out[2] = 7.0f;
+    u[1] = -1e-30f;
+    CHECK(sk_phase_sample_cos_n(&hg, u, out, 3) == SK_ERR_DOMAIN);
+    CHECK(out[0] == 7.0f && out[1] == 7.0f && out[2] == 7.0f);
+    u[1] = 0.5f;
+    CHECK(sk_phase_sample_cos_n(&hg, u, u + 1, 2) == SK_ERR_DOMAIN); /* partial overlap */
+    CHECK(sk_phase_sample_cos_n(&hg, u, u, 3) == SK_OK);            /* in place */
+}
+
+static void rayleigh_methods(void) {
+    uint64_t state = 1;
+    sk_rng rng = {&state, counter}, no_fn = {&state, NULL}, broken = {NULL, constant_zero};
+    sk_vec3 w = {0.0f, 0.0f, 1.0f}, d = {7.0f, 7.0f, 7.0f};
+    sk_vec3_f64 w64 = {0.0, 0.0, 1.0}, d64;
+    float c[4] = {7.0f, 7.0f, 7.0f, 7.0f};
+    double c64[4];
+    uint32_t m;
+
+    CHECK(sk_rayleigh_sample_dir(6, w, &rng, &d) == SK_ERR_METHOD);
+    CHECK(sk_rayleigh_sample_dir(UINT32_MAX, w, &rng, &d) == SK_ERR_METHOD);
+    CHECK(d.x == 7.0f);
+    CHECK(sk_rayleigh_sample_dir_f64(6, w64, &rng, &d64) == SK_ERR_METHOD);
+    CHECK(sk_rayleigh_sample_cos_n(6, &rng, c, 4) == SK_ERR_METHOD);
+    CHECK(sk_rayleigh_sample_cos_n_f64(99, &rng, c64, 4) == SK_ERR_METHOD);
+    CHECK(sk_rayleigh_sample_dir(SK_RAYLEIGH_DIRECT, w, NULL, &d) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_dir(SK_RAYLEIGH_DIRECT, w, &no_fn, &d) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_dir(SK_RAYLEIGH_DIRECT, w, &rng, NULL) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_cos_n(SK_RAYLEIGH_DIRECT, NULL, c, 4) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_cos_n(SK_RAYLEIGH_DIRECT, &no_fn, c, 4) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_cos_n(SK_RAYLEIGH_DIRECT, &rng, NULL, 4) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_cos_n(SK_RAYLEIGH_DIRECT, &rng, NULL, 0) == SK_OK);
+    CHECK(sk_rayleigh_sample_cos_n(SK_RAYLEIGH_DIRECT, &rng, c, SIZE_MAX) == SK_ERR_SIZE);
+    CHECK(c[0] == 7.0f);
+    /* A generator stuck at zero must not hang any method. */
+    for (m = SK_RAYLEIGH_REJECT_CUBE; m <= SK_RAYLEIGH_DIRECT_FAST; m++) {
+        CHECK(sk_rayleigh_sample_dir(m, w, &broken, &d) == SK_OK);
+        CHECK(fabsf(d.x * d.x + d.y * d.y + d.z * d.z - 1.0f) < 1e-6f);
+        CHECK(sk_rayleigh_sample_cos_n(m, &rng, c, 4) == SK_OK);
+        CHECK(c[0] >= -1.0f && c[0] <= 1.0f);
+    }
+}
+
+static void tables(void) {
+    float buf[33];
+    double buf64[33];
+    sk_table t = {NULL, 0, 0};
+    sk_table_f64 t64;
+    sk_table bogus = {NULL, 32, SK_TABLE_RAYLEIGH_CDF};
+
+    CHECK(sk_table_len(SK_TABLE_RAYLEIGH_CDF, 32) == 33);
+    CHECK(sk_table_len(SK_TABLE_RAYLEIGH_CDF, 0) == 0);
+    CHECK(sk_table_len(SK_TABLE_RAYLEIGH_CDF, SIZE_MAX) == 0);
+    CHECK(sk_table_len(77, 32) == 0);
+    CHECK(sk_table_rayleigh_cdf(buf, 32, 32, &t) == SK_ERR_SIZE); /* one float short */
+    CHECK(t.data == NULL);
+    CHECK(sk_table_rayleigh_cdf(buf, 33, 0, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_rayleigh_cdf(NULL, 33, 32, &t) == SK_ERR_NULL);
+    CHECK(sk_table_rayleigh_cdf(buf, 33, 32, NULL) == SK_ERR_NULL);
+    CHECK(sk_table_rayleigh_cdf_f64(buf64, 10, 32, &t64) == SK_ERR_SIZE);
+    CHECK(sk_table_rayleigh_cdf(buf, 33, 32, &t) == SK_OK);
+    CHECK(sk_table_sample_cos(&t, 0.0f) == -1.0f && sk_table_sample_cos(&t, 1.0f) == 1.0f);
+    CHECK(isnan(sk_table_sample_cos(&t, NAN)));
+    CHECK(isnan(sk_table_sample_cos(NULL, 0.5f)));
+    CHECK(isnan(sk_table_sample_cos(&bogus, 0.5f)));
+    bogus.data = buf;
+    bogus.kind = 9;
+    CHECK(isnan(sk_table_sample_cos(&bogus, 0.5f)));
+    bogus.kind = SK_TABLE_RAYLEIGH_CDF;
+    bogus.n = 0;
+    CHECK(isnan(sk_table_sample_cos(&bogus, 0.5f)));
+}
+
+static void coefficients_and_cbrt(void) {
+    const double bad[] = {0.0, -1.0, NAN, INFINITY};
+    size_t i;
+    for (i = 0; i < 4; i++) {
+        CHECK(isnan(sk_rayleigh_cross_section(bad[i], 1e-9, 1.5)));
+        CHECK(isnan(sk_rayleigh_cross_section(500e-9, bad[i], 1.5)));
+        CHECK(isnan(sk_rayleigh_cross_section(500e-9, 1e-9, bad[i])));
+        CHECK(isnan(sk_rayleigh_scattering_coeff(1e20, bad[i], 1e-9, 1.5)));
+    }
+    CHECK(isnan(sk_rayleigh_scattering_coeff(-1.0, 500e-9, 1e-9, 1.5)));
+    CHECK(sk_rayleigh_cross_section(500e-9, 1e-9, 1.5) > 0.0);
+    CHECK(sk_cbrtf(27.0f) == 3.0f && sk_cbrt(-8.0) == -2.0);
+    CHECK(isnan(sk_cbrtf(NAN)) && isinf(sk_cbrt(-INFINITY)) && sk_cbrt(-INFINITY) < 0);
+    CHECK(sk_cbrtf(-0.0f) == 0.0f && signbit(sk_cbrtf(-0.0f)));
+}
+
+static void basis_and_version(void) {
+    sk_vec3 n = {0.0f, 0.0f, -1.0f}, b1 = {7, 7, 7}, b2 = {7, 7, 7};
+    char expected[64];
+    sk_onb(n, NULL, &b2); /* NULL out: writes nothing */
+    CHECK(b2.x == 7.0f);
+    sk_onb(n, &b1, &b2);
+    CHECK(b1.x == 1.0f && b1.y == 0.0f && b2.y == -1.0f);
+    snprintf(expected, sizeof expected, "%d.%d.%d", SK_VERSION_MAJOR, SK_VERSION_MINOR,
+             SK_VERSION_PATCH);
+    CHECK(strcmp(sk_version(), expected) == 0);
+}
+
+int main(void) {
+    phase_constructors();
+    phase_queries();
+    rayleigh_methods();
+    tables();
+    coefficients_and_cbrt();
+    basis_and_version();
+    printf("bad_input: %d checks passed, %d failed\n", passed, failed);
+    return failed;
+}

@@ -1,0 +1,84 @@
+//! `no_std` holds: builds a `#![no_std]` static library that uses scatterkit
+//! and brings its own `#[panic_handler]`. If scatterkit (or a dependency)
+//! pulled in `std`, the build would fail with a duplicate `panic_impl` lang
+//! item.
+
+use std::path::Path;
+use std::process::Command;
+
+const MANIFEST: &str = r#"[package]
+name = "sk-nostd-check"
+version = "0.0.0"
+edition = "2024"
+publish = false
+
+[lib]
+crate-type = ["staticlib"]
+
+[dependencies]
+scatterkit = { path = "ROOT" }
+
+[profile.dev]
+panic = "abort"
+
+[workspace]
+"#;
+
+const LIB: &str = r#"#![no_std]
+use scatterkit::{Phase, PhaseFunction, RayleighMethod, Vec3, rayleigh};
+
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    loop {}
+}
+
+struct Counter(u64);
+impl rand_core::TryRng for Counter {
+    type Error = core::convert::Infallible;
+    fn try_next_u32(&mut self) -> Result<u32, Self::Error> { Ok(self.try_next_u64()? as u32) }
+    fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        Ok(self.0)
+    }
+    fn try_fill_bytes(&mut self, _: &mut [u8]) -> Result<(), Self::Error> { Ok(()) }
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn nostd_sample(g: f32, u: f32) -> f32 {
+    let hg = Phase::henyey_greenstein(g).map_or(f32::NAN, |p| p.sample_cos(u));
+    let d = rayleigh::sample_dir(RayleighMethod::Simplified, Vec3::new(0.0f32, 0.0, 1.0), &mut Counter(1));
+    hg + d.z + scatterkit::cbrt::cbrt_f32(u)
+}
+"#;
+
+#[test]
+fn builds_in_a_no_std_crate_with_its_own_panic_handler() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("nostd_check");
+    std::fs::create_dir_all(dir.join("src")).unwrap();
+    std::fs::write(dir.join("Cargo.toml"), MANIFEST.replace("ROOT", root)).unwrap();
+    std::fs::write(dir.join("src/lib.rs"), LIB).unwrap();
+    // Pin the dependency versions the main build already resolved (and has
+    // cached), so the check needs no network.
+    std::fs::copy(Path::new(root).join("Cargo.lock"), dir.join("Cargo.lock")).unwrap();
+    let manifest = dir.join("Cargo.toml");
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    // rand_core is named in the check crate's code, so it needs the dependency too.
+    let status = Command::new(&cargo)
+        .args(["add", "--offline", "--quiet", "rand_core@0.10", "--no-default-features", "--manifest-path"])
+        .arg(&manifest)
+        .status()
+        .unwrap();
+    assert!(status.success(), "cargo add failed");
+    let out = Command::new(&cargo)
+        .args(["build", "--offline", "--manifest-path"])
+        .arg(&manifest)
+        .env_remove("RUSTFLAGS")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "the no_std crate failed to build:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

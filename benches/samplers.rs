@@ -1,1 +1,151 @@
-fn main() {}
+//! criterion benchmarks: every sampler of the foundation, f32 and f64, as
+//! elements per second (`cargo bench`; `cargo bench --no-run` to only build).
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::rand_core::SeedableRng;
+use scatterkit::{Phase, PhaseFunction, RayleighMethod, Real, Table, Vec3, rayleigh};
+use std::hint::black_box;
+
+const BATCH: usize = 4096;
+
+fn rng() -> Xoshiro256PlusPlus {
+    Xoshiro256PlusPlus::seed_from_u64(7)
+}
+
+fn rayleigh_methods<T: Real>(c: &mut Criterion, label: &str) {
+    let mut g = c.benchmark_group(format!("rayleigh_dir_{label}"));
+    g.throughput(Throughput::Elements(1));
+    let w_in = Vec3::new(T::from_f64(0.48), T::from_f64(0.6), T::from_f64(0.64));
+    for m in RayleighMethod::ALL {
+        let mut r = rng();
+        g.bench_function(BenchmarkId::from_parameter(format!("{m:?}")), |b| {
+            b.iter(|| rayleigh::sample_dir(m, black_box(w_in), &mut r))
+        });
+    }
+    g.finish();
+}
+
+fn phases<T: Real>(c: &mut Criterion, label: &str) {
+    let w_in = Vec3::new(T::from_f64(0.48), T::from_f64(0.6), T::from_f64(0.64));
+    let cases = [
+        ("isotropic", Phase::isotropic()),
+        ("rayleigh", Phase::rayleigh()),
+        (
+            "rayleigh_depolarized",
+            Phase::rayleigh_depolarized(T::from_f64(0.028)).unwrap(),
+        ),
+        (
+            "hg_0.7",
+            Phase::henyey_greenstein(T::from_f64(0.7)).unwrap(),
+        ),
+    ];
+    let mut g = c.benchmark_group(format!("phase_sample_dir_{label}"));
+    g.throughput(Throughput::Elements(1));
+    for (name, p) in cases {
+        let mut r = rng();
+        g.bench_function(name, |b| {
+            b.iter(|| p.sample_dir(black_box(w_in), T::uniform(&mut r), T::uniform(&mut r)))
+        });
+    }
+    g.finish();
+
+    let u: Vec<T> = (0..BATCH)
+        .map(|i| T::from_f64((i as f64 + 0.5) / BATCH as f64))
+        .collect();
+    let mut out = vec![T::ZERO; BATCH];
+    let mut g = c.benchmark_group(format!("phase_sample_cos_{label}"));
+    g.throughput(Throughput::Elements(BATCH as u64));
+    for (name, p) in cases {
+        g.bench_function(BenchmarkId::new("batch", name), |b| {
+            b.iter(|| p.sample_cos_n(black_box(&u), &mut out).unwrap())
+        });
+        g.bench_function(BenchmarkId::new("scalar", name), |b| {
+            b.iter(|| {
+                for (o, &ui) in out.iter_mut().zip(&u) {
+                    *o = p.sample_cos(black_box(ui));
+                }
+            })
+        });
+    }
+    g.finish();
+}
+
+fn tables(c: &mut Criterion) {
+    let mut g = c.benchmark_group("table_sample_cos_f32");
+    g.throughput(Throughput::Elements(BATCH as u64));
+    let u: Vec<f32> = (0..BATCH)
+        .map(|i| ((i * 2654435761) % BATCH) as f32 / BATCH as f32)
+        .collect();
+    for n in [8usize, 32, 256] {
+        let mut buf = vec![0.0f32; n + 1];
+        let t = Table::rayleigh_cdf(&mut buf, n).unwrap();
+        g.bench_function(BenchmarkId::new("frisvad_rayleigh_cdf", n), |b| {
+            b.iter(|| u.iter().map(|&x| t.sample_cos(black_box(x))).sum::<f32>())
+        });
+    }
+    g.finish();
+}
+
+fn cube_roots(c: &mut Criterion) {
+    let xs: Vec<f32> = (0..BATCH)
+        .map(|i| 1e-6 * 1.0068f32.powi(i as i32))
+        .collect();
+    let xd: Vec<f64> = xs.iter().map(|&x| x as f64 * 1.000001).collect();
+    let mut g = c.benchmark_group("cbrt");
+    g.throughput(Throughput::Elements(BATCH as u64));
+    g.bench_function("f32/scatterkit", |b| {
+        b.iter(|| {
+            xs.iter()
+                .map(|&x| scatterkit::cbrt::cbrt_f32(black_box(x)))
+                .sum::<f32>()
+        })
+    });
+    g.bench_function("f32/scatterkit_fast", |b| {
+        b.iter(|| {
+            xs.iter()
+                .map(|&x| scatterkit::cbrt::cbrt_fast_f32(black_box(x)))
+                .sum::<f32>()
+        })
+    });
+    g.bench_function("f32/libm_cbrtf", |b| {
+        b.iter(|| xs.iter().map(|&x| libm::cbrtf(black_box(x))).sum::<f32>())
+    });
+    g.bench_function("f32/powf", |b| {
+        b.iter(|| {
+            xs.iter()
+                .map(|&x| libm::powf(black_box(x), 1.0 / 3.0))
+                .sum::<f32>()
+        })
+    });
+    g.bench_function("f64/scatterkit", |b| {
+        b.iter(|| {
+            xd.iter()
+                .map(|&x| scatterkit::cbrt::cbrt_f64(black_box(x)))
+                .sum::<f64>()
+        })
+    });
+    g.bench_function("f64/scatterkit_fast", |b| {
+        b.iter(|| {
+            xd.iter()
+                .map(|&x| scatterkit::cbrt::cbrt_fast_f64(black_box(x)))
+                .sum::<f64>()
+        })
+    });
+    g.bench_function("f64/libm_cbrt", |b| {
+        b.iter(|| xd.iter().map(|&x| libm::cbrt(black_box(x))).sum::<f64>())
+    });
+    g.finish();
+}
+
+fn all(c: &mut Criterion) {
+    rayleigh_methods::<f32>(c, "f32");
+    rayleigh_methods::<f64>(c, "f64");
+    phases::<f32>(c, "f32");
+    phases::<f64>(c, "f64");
+    tables(c);
+    cube_roots(c);
+}
+
+criterion_group!(benches, all);
+criterion_main!(benches);

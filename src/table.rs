@@ -63,7 +63,11 @@ impl<'a, T: Real> Table<'a, T> {
         // The ends exactly, whatever the rounding of x_n.
         buf[0] = T::ZERO;
         buf[n] = T::ONE;
-        Ok(Table { data: buf, n, kind: TableKind::RayleighCdf })
+        Ok(Table {
+            data: buf,
+            n,
+            kind: TableKind::RayleighCdf,
+        })
     }
 
     /// A sampler over data built earlier (for instance by the C caller).

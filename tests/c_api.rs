@@ -14,7 +14,10 @@ fn root() -> &'static Path {
 /// The target directory this test was built into (`CARGO_TARGET_TMPDIR` is
 /// `<target>/tmp`).
 fn target_dir() -> PathBuf {
-    Path::new(env!("CARGO_TARGET_TMPDIR")).parent().unwrap().to_path_buf()
+    Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf()
 }
 
 /// Builds the static library once per test run; returns its path.
@@ -36,7 +39,10 @@ fn static_lib() -> &'static Path {
 
 /// The host triple, from `rustc -vV` (tests get no TARGET variable).
 fn host_triple() -> String {
-    let out = Command::new("rustc").arg("-vV").output().expect("rustc -vV");
+    let out = Command::new("rustc")
+        .arg("-vV")
+        .output()
+        .expect("rustc -vV");
     let text = String::from_utf8(out.stdout).unwrap();
     text.lines()
         .find_map(|l| l.strip_prefix("host: "))
@@ -83,7 +89,10 @@ fn build_program(src: &Path, cpp: bool) -> PathBuf {
 /// Runs a built program; returns (exit code, stdout).
 fn run(exe: &Path) -> (i32, String) {
     let out = Command::new(exe).output().expect("program failed to start");
-    (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stdout).into_owned())
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+    )
 }
 
 fn run_source(rel: &str, cpp: bool) -> String {
@@ -97,7 +106,11 @@ fn run_source(rel: &str, cpp: bool) -> String {
 fn example_rayleigh_histogram() {
     let out = run_source("c_examples/rayleigh_histogram.c", false);
     assert!(out.contains("SK_RAYLEIGH_DIRECT"), "{out}");
-    assert_eq!(out.lines().filter(|l| l.starts_with('[')).count(), 10, "{out}");
+    assert_eq!(
+        out.lines().filter(|l| l.starts_with('[')).count(),
+        10,
+        "{out}"
+    );
     // The chi² line is printed and, by the exit code, below its critical value.
     assert!(out.contains("chi2 = "), "{out}");
 }

@@ -44,7 +44,10 @@ impl Stats {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "exhaustive over 2.1e9 floats: run with --release")]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "exhaustive over 2.1e9 floats: run with --release"
+)]
 fn cbrtf_exhaustive_within_1_5_ulp() {
     // Every positive finite f32, split over two threads. libm's f64 cbrt is
     // correctly rounded, so its value is the true cube root to ~1e-9 f32 ULP.

@@ -65,7 +65,14 @@ fn builds_in_a_no_std_crate_with_its_own_panic_handler() {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     // rand_core is named in the check crate's code, so it needs the dependency too.
     let status = Command::new(&cargo)
-        .args(["add", "--offline", "--quiet", "rand_core@0.10", "--no-default-features", "--manifest-path"])
+        .args([
+            "add",
+            "--offline",
+            "--quiet",
+            "rand_core@0.10",
+            "--no-default-features",
+            "--manifest-path",
+        ])
         .arg(&manifest)
         .status()
         .unwrap();

@@ -19,10 +19,16 @@ fn phases<T: Real>() -> Vec<(String, Phase<T>)> {
         ("rayleigh".to_string(), Phase::rayleigh()),
     ];
     for rho in [0.028, 0.5, 0.95] {
-        v.push((format!("depolarized {rho}"), Phase::rayleigh_depolarized(T::from_f64(rho)).unwrap()));
+        v.push((
+            format!("depolarized {rho}"),
+            Phase::rayleigh_depolarized(T::from_f64(rho)).unwrap(),
+        ));
     }
     for g in [-0.9, -0.3, 0.0, 1e-4, 0.5, 0.99] {
-        v.push((format!("hg {g}"), Phase::henyey_greenstein(T::from_f64(g)).unwrap()));
+        v.push((
+            format!("hg {g}"),
+            Phase::henyey_greenstein(T::from_f64(g)).unwrap(),
+        ));
     }
     v
 }
@@ -40,7 +46,10 @@ fn pdf_integrates_to_one_and_mean_cosine_matches() {
             assert!((total - 1.0).abs() < tol, "{name}: ∫p dω = {total}");
             let mean = TAU * integrate(&|mu| mu * pdf(mu), -1.0, 1.0, 1e-12);
             let closed = p.mean_cosine().to_f64();
-            assert!((mean - closed).abs() < tol, "{name}: mean {mean} vs {closed}");
+            assert!(
+                (mean - closed).abs() < tol,
+                "{name}: mean {mean} vs {closed}"
+            );
         }
     }
     check::<f32>(2e-6);
@@ -69,10 +78,24 @@ fn inverse_is_monotone_with_exact_ends_and_inverts_cdf() {
         let eps = T::EPSILON.to_f64();
         for (name, p) in phases::<T>() {
             // The ends within 2 ULP (exact for the closed forms of HG and Rayleigh).
-            assert!((p.sample_cos(T::ZERO) + T::ONE).to_f64() <= 2.0 * eps, "{name}");
-            assert!((T::ONE - p.sample_cos(T::ONE)).to_f64() <= 2.0 * eps, "{name}");
-            assert_eq!(p.sample_cos(-T::ONE), p.sample_cos(T::ZERO), "{name}: clamp below");
-            assert_eq!(p.sample_cos(T::TWO), p.sample_cos(T::ONE), "{name}: clamp above");
+            assert!(
+                (p.sample_cos(T::ZERO) + T::ONE).to_f64() <= 2.0 * eps,
+                "{name}"
+            );
+            assert!(
+                (T::ONE - p.sample_cos(T::ONE)).to_f64() <= 2.0 * eps,
+                "{name}"
+            );
+            assert_eq!(
+                p.sample_cos(-T::ONE),
+                p.sample_cos(T::ZERO),
+                "{name}: clamp below"
+            );
+            assert_eq!(
+                p.sample_cos(T::TWO),
+                p.sample_cos(T::ONE),
+                "{name}: clamp above"
+            );
             assert!(p.sample_cos(T::NAN).is_nan(), "{name}: NaN in, NaN out");
             let mut prev = -T::ONE;
             for u in uniform_grid(200_001) {
@@ -84,7 +107,10 @@ fn inverse_is_monotone_with_exact_ends_and_inverts_cdf() {
                 // in μ (a few ULP) plus the rounding of F itself.
                 let dens = TAU * p.pdf(mu).to_f64();
                 let err = (p.cdf(mu).to_f64() - u.to_f64()).abs();
-                assert!(err <= 8.0 * eps * (1.0 + dens), "{name}: |F(μ(u)) − u| = {err:e} at u = {u:?}");
+                assert!(
+                    err <= 8.0 * eps * (1.0 + dens),
+                    "{name}: |F(μ(u)) − u| = {err:e} at u = {u:?}"
+                );
             }
         }
     }
@@ -93,7 +119,9 @@ fn inverse_is_monotone_with_exact_ends_and_inverts_cdf() {
 }
 
 fn to_vec<T: Real>(w: [f64; 3]) -> Vec3<T> {
-    Vec3::new(T::from_f64(w[0]), T::from_f64(w[1]), T::from_f64(w[2])).try_normalize().unwrap()
+    Vec3::new(T::from_f64(w[0]), T::from_f64(w[1]), T::from_f64(w[2]))
+        .try_normalize()
+        .unwrap()
 }
 
 fn chi2_phase<T: Real>(seed: u64) {
@@ -106,7 +134,11 @@ fn chi2_phase<T: Real>(seed: u64) {
                 let (d, _) = p.sample_dir(w_in, T::uniform(&mut r), T::uniform(&mut r));
                 [d.x.to_f64(), d.y.to_f64(), d.z.to_f64()]
             });
-            assert!(res.passes(), "{name} about {w:?}: {res:?} (threshold {:.2e})", threshold());
+            assert!(
+                res.passes(),
+                "{name} about {w:?}: {res:?} (threshold {:.2e})",
+                threshold()
+            );
         }
     }
 }
@@ -132,8 +164,16 @@ fn sample_dir_is_unit_consistent_and_reports_pdf() {
                     let (u1, u2) = (T::uniform(&mut r), T::uniform(&mut r));
                     let (d, pdf) = p.sample_dir(w_in, u1, u2);
                     let mu = p.sample_cos(u1);
-                    assert!((d.length().to_f64() - 1.0).abs() <= tol, "{name}: |d| = {:?}", d.length());
-                    assert!((d.dot(w_in) - mu).abs().to_f64() <= 2.0 * tol, "{name}: cos θ {:?} vs {mu:?}", d.dot(w_in));
+                    assert!(
+                        (d.length().to_f64() - 1.0).abs() <= tol,
+                        "{name}: |d| = {:?}",
+                        d.length()
+                    );
+                    assert!(
+                        (d.dot(w_in) - mu).abs().to_f64() <= 2.0 * tol,
+                        "{name}: cos θ {:?} vs {mu:?}",
+                        d.dot(w_in)
+                    );
                     assert_eq!(pdf, p.pdf(mu), "{name}");
                 }
             }
@@ -149,7 +189,14 @@ fn forward_lobes_point_forward() {
     let w_in = Vec3::new(0.0, 1.0, 0.0);
     let mut r = rng(11);
     let n = 100_000;
-    let mean: f64 = (0..n).map(|_| p.sample_dir(w_in, f64::uniform(&mut r), f64::uniform(&mut r)).0.y).sum::<f64>() / n as f64;
+    let mean: f64 = (0..n)
+        .map(|_| {
+            p.sample_dir(w_in, f64::uniform(&mut r), f64::uniform(&mut r))
+                .0
+                .y
+        })
+        .sum::<f64>()
+        / n as f64;
     // E[cos θ] = g; σ(cos θ) < 1, so 5σ of the mean is below 0.016.
     assert!((mean - 0.8).abs() < 0.016, "{mean}");
     let back = Phase::henyey_greenstein(-0.8f64).unwrap();
@@ -170,7 +217,10 @@ fn batch_equals_scalar_and_validates() {
             for bad in [T::NAN, -T::EPSILON, T::ONE + T::EPSILON, T::INFINITY] {
                 let u = [T::HALF, bad, T::HALF];
                 assert_eq!(p.sample_cos_n(&u, &mut out2), Err(Error::Domain), "{name}");
-                assert!(out2.iter().all(|&x| x == T::from_f64(7.0)), "{name}: wrote on error");
+                assert!(
+                    out2.iter().all(|&x| x == T::from_f64(7.0)),
+                    "{name}: wrote on error"
+                );
             }
             assert_eq!(p.sample_cos_n(&u[..2], &mut out2), Err(Error::Size));
             assert_eq!(p.sample_cos_n(&[], &mut []), Ok(()));
@@ -182,14 +232,25 @@ fn batch_equals_scalar_and_validates() {
 
 #[test]
 fn constructors_reject_exactly_the_invalid_set() {
-    for g in [1.0f32, -1.0, 1.5, f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+    for g in [
+        1.0f32,
+        -1.0,
+        1.5,
+        f32::NAN,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+    ] {
         assert_eq!(Phase::henyey_greenstein(g), Err(Error::Domain), "g = {g}");
     }
     for g in [0.0f64, -0.0, 0.999_999_999_999, -0.999_999_999_999, 1e-300] {
         assert!(Phase::henyey_greenstein(g).is_ok(), "g = {g}");
     }
     for rho in [-1e-9f64, 1.0, 2.0, f64::NAN, f64::INFINITY] {
-        assert_eq!(Phase::rayleigh_depolarized(rho), Err(Error::Domain), "rho = {rho}");
+        assert_eq!(
+            Phase::rayleigh_depolarized(rho),
+            Err(Error::Domain),
+            "rho = {rho}"
+        );
     }
     for rho in [0.0f32, 0.028, 0.999_999] {
         assert!(Phase::rayleigh_depolarized(rho).is_ok(), "rho = {rho}");

@@ -80,7 +80,10 @@ fn chi2_rejects_uncorrected_baranoski() {
             let phi = std::f64::consts::TAU * f64::uniform(&mut r);
             to_f64(scatterkit::geometry::direction_about(w_in, mu, phi))
         });
-        assert!(!res.passes(), "the wrong sampler passed about {w:?}: {res:?}");
+        assert!(
+            !res.passes(),
+            "the wrong sampler passed about {w:?}: {res:?}"
+        );
     }
 }
 
@@ -104,7 +107,10 @@ fn every_method_gives_unit_directions_and_zero_mean_cosine() {
             sum += d.dot(w_in) as f64;
         }
         // Var(μ) = 2/5 for Rayleigh: 5σ of the mean is 5·sqrt(0.4/n).
-        assert!((sum / n as f64).abs() < 5.0 * (0.4f64 / n as f64).sqrt(), "{m:?}");
+        assert!(
+            (sum / n as f64).abs() < 5.0 * (0.4f64 / n as f64).sqrt(),
+            "{m:?}"
+        );
     }
 }
 
@@ -132,11 +138,7 @@ fn direct_inverse_is_accurate() {
     let n = 1_000_001;
     let e32 = max_error::<f32>(|u| Rayleigh.sample_cos(u), dd::rayleigh_inverse, n);
     let e64 = max_error::<f64>(|u| Rayleigh.sample_cos(u), dd::rayleigh_inverse, n);
-    let fast32 = max_error::<f32>(
-        rayleigh::inverse_cdf_fast::<f32>,
-        dd::rayleigh_inverse,
-        n,
-    );
+    let fast32 = max_error::<f32>(rayleigh::inverse_cdf_fast::<f32>, dd::rayleigh_inverse, n);
     println!("Rayleigh direct: f32 {e32:.2e}, f64 {e64:.2e}, f32 fast {fast32:.2e}");
     // Bounds: 4 ULP of 1 (the stable Cardano form has no cancellation left).
     assert!(e32 <= 4.0 * f32::EPSILON as f64, "f32 {e32:e}");
@@ -198,8 +200,14 @@ fn table_works_for_any_n_and_checks_sizes() {
     assert_eq!(t.sample_cos(1.0), 1.0);
     assert_eq!(t.sample_cos(0.5), 0.0);
     let mut buf = [0.0f32; 8];
-    assert_eq!(Table::rayleigh_cdf(&mut buf, 0), Err(scatterkit::Error::Size));
-    assert_eq!(Table::rayleigh_cdf(&mut buf, 8), Err(scatterkit::Error::Size));
+    assert_eq!(
+        Table::rayleigh_cdf(&mut buf, 0),
+        Err(scatterkit::Error::Size)
+    );
+    assert_eq!(
+        Table::rayleigh_cdf(&mut buf, 8),
+        Err(scatterkit::Error::Size)
+    );
     let t = Table::rayleigh_cdf(&mut buf, 7).unwrap();
     let mut prev = -1.0;
     for i in 0..=1000 {

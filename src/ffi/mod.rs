@@ -95,7 +95,11 @@ macro_rules! impl_cvec {
             }
             #[inline(always)]
             fn from_vec(v: Vec3<$t>) -> Self {
-                Self { x: v.x, y: v.y, z: v.z }
+                Self {
+                    x: v.x,
+                    y: v.y,
+                    z: v.z,
+                }
             }
         }
     };
@@ -126,7 +130,10 @@ impl CRng {
     pub(crate) unsafe fn from_ptr(rng: *mut sk_rng) -> Option<CRng> {
         // SAFETY: non-NULL `rng` points to an sk_rng (module contract).
         let r = unsafe { rng.as_ref() }?;
-        Some(CRng { state: r.state, next: r.next_u64? })
+        Some(CRng {
+            state: r.state,
+            next: r.next_u64?,
+        })
     }
 }
 

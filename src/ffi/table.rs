@@ -48,7 +48,11 @@ macro_rules! impl_table_store {
         impl TableStore for $c {
             type T = $t;
             fn new(data: *const $t, n: usize, kind: TableKind) -> Self {
-                Self { data, n, kind: kind as u32 }
+                Self {
+                    data,
+                    n,
+                    kind: kind as u32,
+                }
             }
             fn parts(&self) -> (*const $t, usize, u32) {
                 (self.data, self.n, self.kind)
@@ -59,7 +63,12 @@ macro_rules! impl_table_store {
 impl_table_store!(sk_table, f32);
 impl_table_store!(sk_table_f64, f64);
 
-unsafe fn rayleigh_cdf<S: TableStore>(buf: *mut S::T, len: usize, n: usize, out: *mut S) -> sk_status {
+unsafe fn rayleigh_cdf<S: TableStore>(
+    buf: *mut S::T,
+    len: usize,
+    n: usize,
+    out: *mut S,
+) -> sk_status {
     if buf.is_null() || out.is_null() {
         return sk_status::SK_ERR_NULL;
     }
@@ -93,7 +102,10 @@ unsafe fn sample_cos<S: TableStore>(t: *const S, u: S::T) -> S::T {
 /// 0 for an unknown kind, n = 0, or a count that overflows size_t.
 #[unsafe(no_mangle)]
 pub extern "C" fn sk_table_len(kind: u32, n: usize) -> usize {
-    TableKind::try_from(kind).ok().and_then(|k| k.len(n)).unwrap_or(0)
+    TableKind::try_from(kind)
+        .ok()
+        .and_then(|k| k.len(n))
+        .unwrap_or(0)
 }
 
 /// Frisvad's (2011) tabulated Rayleigh CDF with n >= 1 intervals, written to

@@ -75,7 +75,9 @@ pub trait PhaseFunction<T: Real> {
 #[inline]
 pub fn check_uniforms<T: Real>(u: &[T]) -> Result<(), Error> {
     // `!(x >= 0 && x <= 1)` is true for NaN too; `fold` keeps this branch-free.
-    let bad = u.iter().fold(false, |bad, &x| bad | !(x >= T::ZERO && x <= T::ONE));
+    let bad = u
+        .iter()
+        .fold(false, |bad, &x| bad | !(x >= T::ZERO && x <= T::ONE));
     if bad { Err(Error::Domain) } else { Ok(()) }
 }
 

@@ -66,7 +66,10 @@ impl RayleighMethod {
 impl TryFrom<u32> for RayleighMethod {
     type Error = Error;
     fn try_from(v: u32) -> Result<Self, Error> {
-        RayleighMethod::ALL.get(v as usize).copied().ok_or(Error::Method)
+        RayleighMethod::ALL
+            .get(v as usize)
+            .copied()
+            .ok_or(Error::Method)
     }
 }
 

@@ -35,7 +35,13 @@ impl<T: Real> RayleighDepolarized<T> {
         let omg = T::ONE - gamma;
         let a = (T::ONE + T::from_f64(3.0) * gamma) / omg;
         let k = T::TWO * (T::ONE + T::TWO * gamma) / omg;
-        Ok(RayleighDepolarized { rho, gamma, a, a2: a * a, k })
+        Ok(RayleighDepolarized {
+            rho,
+            gamma,
+            a,
+            a2: a * a,
+            k,
+        })
     }
     /// The depolarisation factor ρ.
     pub fn rho(&self) -> T {

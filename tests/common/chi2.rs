@@ -44,37 +44,76 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 /// A frame about `w` by Gram–Schmidt against the least-aligned axis.
 fn frame(w: [f64; 3]) -> ([f64; 3], [f64; 3]) {
-    let helper = if w[0].abs() < 0.6 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+    let helper = if w[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
     let d = dot(helper, w);
-    let b1 = norm([helper[0] - d * w[0], helper[1] - d * w[1], helper[2] - d * w[2]]);
+    let b1 = norm([
+        helper[0] - d * w[0],
+        helper[1] - d * w[1],
+        helper[2] - d * w[2],
+    ]);
     (b1, cross(w, b1))
 }
 
-/// Adaptive Simpson integration of `f` over `[a, b]`.
+/// Adaptive Simpson integration of `f` over `[a, b]` to absolute tolerance
+/// `tol` (depth at most 30).
 pub fn integrate(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
-    fn rec(f: &dyn Fn(f64) -> f64, a: f64, b: f64, fa: f64, fm: f64, fb: f64, whole: f64, tol: f64, depth: u32) -> f64 {
-        let m = 0.5 * (a + b);
-        let (lm, rm) = (0.5 * (a + m), 0.5 * (m + b));
-        let (flm, frm) = (f(lm), f(rm));
-        let left = (m - a) / 6.0 * (fa + 4.0 * flm + fm);
-        let right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
-        let delta = left + right - whole;
+    /// One interval: its ends and the values of `f` at its ends and middle.
+    #[derive(Clone, Copy)]
+    struct Span {
+        a: f64,
+        b: f64,
+        fa: f64,
+        fm: f64,
+        fb: f64,
+    }
+    fn simpson(s: Span) -> f64 {
+        (s.b - s.a) / 6.0 * (s.fa + 4.0 * s.fm + s.fb)
+    }
+    fn rec(f: &dyn Fn(f64) -> f64, s: Span, whole: f64, tol: f64, depth: u32) -> f64 {
+        let m = 0.5 * (s.a + s.b);
+        let left = Span {
+            a: s.a,
+            b: m,
+            fa: s.fa,
+            fm: f(0.5 * (s.a + m)),
+            fb: s.fm,
+        };
+        let right = Span {
+            a: m,
+            b: s.b,
+            fa: s.fm,
+            fm: f(0.5 * (m + s.b)),
+            fb: s.fb,
+        };
+        let (l, r) = (simpson(left), simpson(right));
+        let delta = l + r - whole;
         if depth == 0 || delta.abs() <= 15.0 * tol {
-            left + right + delta / 15.0
+            l + r + delta / 15.0
         } else {
-            rec(f, a, m, fa, flm, fm, left, tol / 2.0, depth - 1)
-                + rec(f, m, b, fm, frm, fb, right, tol / 2.0, depth - 1)
+            rec(f, left, l, tol / 2.0, depth - 1) + rec(f, right, r, tol / 2.0, depth - 1)
         }
     }
-    let m = 0.5 * (a + b);
-    let (fa, fm, fb) = (f(a), f(m), f(b));
-    let whole = (b - a) / 6.0 * (fa + 4.0 * fm + fb);
-    rec(f, a, b, fa, fm, fb, whole, tol, 30)
+    let s = Span {
+        a,
+        b,
+        fa: f(a),
+        fm: f(0.5 * (a + b)),
+        fb: f(b),
+    };
+    rec(f, s, simpson(s), tol, 30)
 }
 
 /// Runs the test: `sample()` returns unit directions, `pdf(μ)` is the density
@@ -98,7 +137,10 @@ pub fn chi2_directions(
     }
     let mut expected = vec![0.0; N_MU * N_PHI];
     for i in 0..N_MU {
-        let (lo, hi) = (-1.0 + 2.0 * i as f64 / N_MU as f64, -1.0 + 2.0 * (i + 1) as f64 / N_MU as f64);
+        let (lo, hi) = (
+            -1.0 + 2.0 * i as f64 / N_MU as f64,
+            -1.0 + 2.0 * (i + 1) as f64 / N_MU as f64,
+        );
         let p_mu = std::f64::consts::TAU * integrate(pdf, lo, hi, 1e-10);
         for j in 0..N_PHI {
             expected[i * N_PHI + j] = n_samples as f64 * p_mu / N_PHI as f64;
@@ -128,7 +170,12 @@ pub fn pearson(observed: &[u64], expected: &[f64]) -> Chi2 {
         cells += 1;
     }
     let dof = cells.saturating_sub(1).max(1);
-    Chi2 { stat, dof, p_value: gamma_q(dof as f64 / 2.0, stat / 2.0), impossible }
+    Chi2 {
+        stat,
+        dof,
+        p_value: gamma_q(dof as f64 / 2.0, stat / 2.0),
+        impossible,
+    }
 }
 
 /// ln Γ(x), Lanczos (g = 7, n = 9), x > 0.

@@ -18,7 +18,10 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
 
 fn quick_two_sum(a: f64, b: f64) -> Dd {
     let s = a + b;
-    Dd { hi: s, lo: b - (s - a) }
+    Dd {
+        hi: s,
+        lo: b - (s - a),
+    }
 }
 
 impl Dd {
@@ -69,7 +72,10 @@ impl Add for Dd {
 impl Neg for Dd {
     type Output = Dd;
     fn neg(self) -> Dd {
-        Dd { hi: -self.hi, lo: -self.lo }
+        Dd {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
     }
 }
 
@@ -118,7 +124,11 @@ pub fn rayleigh_inverse(u: f64) -> f64 {
     let a = s.abs();
     let w = (a + (a * a + 1.0).sqrt()).cbrt();
     let mu = w - Dd::new(1.0) / w;
-    if s.hi < 0.0 { -mu.to_f64() } else { mu.to_f64() }
+    if s.hi < 0.0 {
+        -mu.to_f64()
+    } else {
+        mu.to_f64()
+    }
 }
 
 /// Depolarised Rayleigh's inverse CDF by Cardano in double-double:
@@ -144,5 +154,7 @@ pub fn hg_inverse(g: f64, u: f64) -> f64 {
     }
     let one = Dd::new(1.0);
     let s = (one - g * g) / (one - g + g * u * 2.0);
-    ((one + g * g - s * s) / (g * 2.0)).to_f64().clamp(-1.0, 1.0)
+    ((one + g * g - s * s) / (g * 2.0))
+        .to_f64()
+        .clamp(-1.0, 1.0)
 }

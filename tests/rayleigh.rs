@@ -238,3 +238,33 @@ fn cross_section_and_coefficient() {
     assert!(rayleigh::scattering_coeff(-1.0, 500e-9, 1e-9, 1.5).is_err());
     assert_eq!(rayleigh::scattering_coeff(0.0, 500e-9, 1e-9, 1.5), Ok(0.0));
 }
+
+/// Frisvad's table samples exactly the density its linear interpolation
+/// implies: piecewise constant in μ, `(F[i+1] − F[i])/Δx` on interval i.
+/// chi² against that density checks the search and interpolation.
+#[test]
+fn chi2_table_samples_its_own_piecewise_density() {
+    fn check<T: Real>(n: usize, seed: u64) {
+        let mut buf = vec![T::ZERO; n + 1];
+        let table = Table::rayleigh_cdf(&mut buf, n).unwrap();
+        let f: Vec<f64> = table.data().iter().map(|x| x.to_f64()).collect();
+        let dx = 2.0 / n as f64;
+        let pdf = move |mu: f64| {
+            let i = (((mu + 1.0) / dx) as usize).min(n - 1);
+            (f[i + 1] - f[i]) / dx / std::f64::consts::TAU
+        };
+        for (k, w) in test_directions().into_iter().enumerate() {
+            let w_in = to_vec::<T>(w);
+            let mut r = rng(seed + k as u64);
+            let res = chi2_directions(&pdf, to_f64(w_in), CHI2_SAMPLES, || {
+                let mu = table.sample_cos(T::uniform(&mut r));
+                let phi = T::TAU * T::uniform(&mut r);
+                to_f64(scatterkit::geometry::direction_about(w_in, mu, phi))
+            });
+            assert!(res.passes(), "table n = {n} about {w:?}: {res:?}");
+        }
+    }
+    // n = 10 and 25 put the table's nodes on the chi² cell edges (50 cells).
+    check::<f32>(10, 300);
+    check::<f64>(25, 400);
+}

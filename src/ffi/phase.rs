@@ -266,9 +266,9 @@ pub unsafe extern "C" fn sk_phase_sample_dir_f64(
     unsafe { sample_dir(p, w_in, u1, u2, pdf_out) }
 }
 
-/// cos_out[i] = sk_phase_sample_cos(p, u[i]) for i < n. `u` and `cos_out` may
-/// be the same array; other overlaps give SK_ERR_DOMAIN. SK_ERR_DOMAIN if any
-/// u[i] is NaN or outside [0, 1], or p is unconstructed; SK_ERR_NULL for NULL
+/// `cos_out[i] = sk_phase_sample_cos(p, u[i])` for `i < n`. `u` and `cos_out`
+/// may be the same array; other overlaps give SK_ERR_DOMAIN. SK_ERR_DOMAIN if
+/// any `u[i]` is NaN or outside `[0, 1]`, or p is unconstructed; SK_ERR_NULL for NULL
 /// p, or NULL arrays with n > 0; SK_ERR_SIZE if n floats cannot exist. On
 /// error nothing is written; n = 0 is SK_OK.
 #[unsafe(no_mangle)]

@@ -61,7 +61,7 @@ pub use error::Error;
 pub use geometry::{Vec3, onb};
 pub use phase::rayleigh;
 pub use phase::{
-    HenyeyGreenstein, Isotropic, Phase, PhaseFunction, Rayleigh, RayleighDepolarized,
+    Draine, Fog, HenyeyGreenstein, Isotropic, Phase, PhaseFunction, Rayleigh, RayleighDepolarized,
     RayleighMethod,
 };
 pub use real::Real;

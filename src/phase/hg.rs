@@ -22,7 +22,7 @@ use crate::real::Real;
 /// Henyey–Greenstein with asymmetry `g ∈ (-1, 1)`; `g > 0` scatters forward.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HenyeyGreenstein<T> {
-    g: T,
+    pub(super) g: T,
 }
 
 impl<T: Real> HenyeyGreenstein<T> {

@@ -10,11 +10,15 @@
 //! [`Phase`] is the closed set of models behind one small `Copy` value; each
 //! model is also usable on its own.
 
+pub mod draine;
+pub mod fog;
 mod hg;
 mod isotropic;
 pub mod rayleigh;
 mod rayleigh_depolarized;
 
+pub use draine::Draine;
+pub use fog::{Fog, FogParams, fog_fit};
 pub use hg::HenyeyGreenstein;
 pub use isotropic::Isotropic;
 pub use rayleigh::{Rayleigh, RayleighMethod};
@@ -98,13 +102,17 @@ pub enum Phase<T> {
     RayleighDepolarized(RayleighDepolarized<T>) = 3,
     /// Henyey–Greenstein.
     HenyeyGreenstein(HenyeyGreenstein<T>) = 4,
+    /// Draine (Cornette–Shanks for α = 1).
+    Draine(Draine<T>) = 5,
+    /// The fog mixture of HG and Draine.
+    Fog(Fog<T>) = 6,
 }
 
 impl<T: Real> Phase<T> {
     /// The discriminant of the last variant (the C layer checks tags against
     /// `1..=LAST_TAG`).
     #[cfg_attr(not(feature = "ffi"), allow(dead_code))]
-    pub(crate) const LAST_TAG: u32 = 4;
+    pub(crate) const LAST_TAG: u32 = 6;
 
     /// Isotropic scattering.
     pub fn isotropic() -> Self {
@@ -122,6 +130,23 @@ impl<T: Real> Phase<T> {
     pub fn henyey_greenstein(g: T) -> Result<Self, Error> {
         HenyeyGreenstein::new(g).map(Phase::HenyeyGreenstein)
     }
+    /// Draine with `g ∈ (-1, 1)` and finite `alpha ≥ 0`.
+    pub fn draine(g: T, alpha: T) -> Result<Self, Error> {
+        Draine::new(g, alpha).map(Phase::Draine)
+    }
+    /// Cornette–Shanks with `g ∈ (-1, 1)` (Draine with `α = 1`).
+    pub fn cornette_shanks(g: T) -> Result<Self, Error> {
+        Draine::cornette_shanks(g).map(Phase::Draine)
+    }
+    /// The fog mixture `(1 − w_d) HG(g_hg) + w_d Draine(g_d, alpha)`.
+    pub fn fog(g_hg: T, g_d: T, alpha: T, w_d: T) -> Result<Self, Error> {
+        Fog::new(g_hg, g_d, alpha, w_d).map(Phase::Fog)
+    }
+    /// The fitted fog phase function for droplets of `diameter_um` µm,
+    /// `0 < d ≤ 50`.
+    pub fn fog_diameter(diameter_um: T) -> Result<Self, Error> {
+        Fog::from_diameter(diameter_um).map(Phase::Fog)
+    }
 }
 
 macro_rules! dispatch {
@@ -131,6 +156,8 @@ macro_rules! dispatch {
             Phase::Rayleigh($m) => $e,
             Phase::RayleighDepolarized($m) => $e,
             Phase::HenyeyGreenstein($m) => $e,
+            Phase::Draine($m) => $e,
+            Phase::Fog($m) => $e,
         }
     };
 }

@@ -158,3 +158,90 @@ pub fn hg_inverse(g: f64, u: f64) -> f64 {
         .to_f64()
         .clamp(-1.0, 1.0)
 }
+
+/// Draine's CDF (SPEC §7's cancellation-free form) in double-double.
+pub fn draine_cdf(g: f64, alpha: f64, mu: Dd) -> Dd {
+    let one = Dd::new(1.0);
+    let gd = Dd::new(g);
+    let d = if g >= 0.0 {
+        (one - gd) * (one - gd) + gd * (one - mu) * 2.0
+    } else {
+        (one + gd) * (one + gd) - gd * (one + mu) * 2.0
+    };
+    let s = d.sqrt();
+    let s0 = one + gd;
+    let e = (one + mu) / (s + s0);
+    let se = s0 * e;
+    let i0 = e * 2.0 / (s * s0);
+    let poly = Dd::new(3.0) - se * 6.0 + se * se * 4.0 - gd * se * e * e * 2.0;
+    let i2 = e * 2.0 * poly / (s * s0 * 3.0);
+    let c = one + Dd::new(alpha) * (one + gd * gd * 2.0) / 3.0;
+    let n = (one - gd) * (one + gd) / (c * 2.0);
+    n * (i0 + Dd::new(alpha) * i2)
+}
+
+/// Density of μ for Draine, `N (1 + αμ²)/s³`, in double-double.
+pub fn draine_density(g: f64, alpha: f64, mu: Dd) -> Dd {
+    let one = Dd::new(1.0);
+    let gd = Dd::new(g);
+    let s = (one + gd * gd - gd * mu * 2.0).sqrt();
+    let c = one + Dd::new(alpha) * (one + gd * gd * 2.0) / 3.0;
+    let n = (one - gd) * (one + gd) / (c * 2.0);
+    n * (one + Dd::new(alpha) * mu * mu) / (s * s * s)
+}
+
+/// Draine's inverse CDF in double-double: bisection on the dd CDF to 2⁻⁶⁰,
+/// then two Newton steps in dd; for u > 1/2 the mirror problem
+/// `F_{−g}(−μ) = 1 − u`, so the residual is always taken in the small tail.
+pub fn draine_inverse(g: f64, alpha: f64, u: f64) -> f64 {
+    let (g, target, sign) = if u > 0.5 {
+        (-g, Dd::new(1.0) - u, -1.0)
+    } else {
+        (g, Dd::new(u), 1.0)
+    };
+    if target.hi <= 0.0 {
+        return -sign;
+    }
+    let (mut lo, mut hi) = (-1.0f64, 1.0f64);
+    for _ in 0..62 {
+        let mid = 0.5 * (lo + hi);
+        if draine_cdf(g, alpha, Dd::new(mid)) < target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let mut x = Dd::new(0.5 * (lo + hi));
+    for _ in 0..2 {
+        let r = draine_cdf(g, alpha, x) - target;
+        let f = draine_density(g, alpha, x);
+        if f.hi > 0.0 {
+            x = x - r / f;
+        }
+    }
+    sign * x.to_f64().clamp(-1.0, 1.0)
+}
+
+/// The fog mixture's inverse CDF in double-double (bisection on the dd CDF).
+pub fn fog_inverse(g_hg: f64, g_d: f64, alpha: f64, w: f64, u: f64) -> f64 {
+    let (sg, target, sign) = if u > 0.5 {
+        (-1.0, Dd::new(1.0) - u, -1.0)
+    } else {
+        (1.0, Dd::new(u), 1.0)
+    };
+    if target.hi <= 0.0 {
+        return -sign;
+    }
+    let cdf =
+        |x: Dd| draine_cdf(sg * g_hg, 0.0, x) * (1.0 - w) + draine_cdf(sg * g_d, alpha, x) * w;
+    let (mut lo, mut hi) = (-1.0f64, 1.0f64);
+    for _ in 0..62 {
+        let mid = 0.5 * (lo + hi);
+        if cdf(Dd::new(mid)) < target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    sign * (0.5 * (lo + hi))
+}

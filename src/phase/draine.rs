@@ -1,0 +1,367 @@
+//! Draine's phase function (SPEC §3; Jendersie & d'Eon 2023, supplemental
+//! §2.2), with Cornette–Shanks as α = 1 and Henyey–Greenstein as α = 0:
+//!
+//! `p(μ) = (1/4π) (1 − g²)/(1 + g² − 2gμ)^{3/2} · (1 + αμ²)/(1 + α(1 + 2g²)/3)`.
+//!
+//! # Sampling, accurate on the whole domain
+//! The published closed form (eq. 6, [`sample_cos_eq6`]) divides by `g` and by
+//! `α`, cancels for small `|g|` and large `α`, and is NaN at `g = 0`, at
+//! `α = 0` and (in f32) from α ≈ 1000. We solve `F(μ) = u` instead, in f64:
+//!
+//! 1. **A CDF that does not cancel** (SPEC §7): with `s = sqrt(1 + g² − 2gμ)`,
+//!    `s0 = 1 + g`, `e = (1 + μ)/(s + s0)`,
+//!    `F = N (I0 + α I2)`, `I0 = 2e/(s s0)`,
+//!    `I2 = 2e (3 − 6 s0 e + 4 s0² e² − 2g s0 e³)/(3 s s0)`,
+//!    `N = (1 − g)(1 + g)/(2 (1 + α(1 + 2g²)/3))`: every term is a product of
+//!    positive factors or an alternating sum bounded away from cancellation,
+//!    and `F` is accurate relative to itself near `μ = −1`.
+//! 2. **The small tail.** For `u > 1/2` we solve the mirror problem
+//!    `F_{−g}(ν) = 1 − u`, `μ = −ν` (the density is symmetric under
+//!    `(g, μ) → (−g, −μ)`); `1 − u` is exact there, and so `F` is always
+//!    evaluated where it is small and relatively accurate.
+//! 3. **A seed**: eq. 6 evaluated in f64 with its `t5 < 0` cancellation
+//!    removed (`|g| ≥ 0.02`), or the exact `g = 0` solution (a depressed cubic)
+//!    for smaller `|g|`, or when eq. 6 is not finite.
+//! 4. **Newton's method safeguarded by bisection** on `[−1, 1]`: a step that
+//!    leaves the bracket is replaced by bisection, so the iteration converges
+//!    from any seed; it stops when a step falls below the precision's
+//!    tolerance (at most [`MAX_NEWTON`] steps).
+//!
+//! f32 objects run the same f64 code and round once at the end.
+//!
+//! Above α = 10⁴ (tested up to 10⁴; the constructor accepts any finite α ≥ 0)
+//! the same iteration applies; the density tends to the α → ∞ limit
+//! `∝ μ² p_HG`, and `F` stays finite for every α below f64's overflow.
+
+use super::PhaseFunction;
+use super::hg::HenyeyGreenstein;
+use crate::error::Error;
+use crate::real::Real;
+
+/// The most Newton/bisection steps one sample may take (bisection alone
+/// narrows `[−1, 1]` to below 10⁻¹⁸ in 61 steps).
+pub const MAX_NEWTON: u32 = 64;
+
+/// Draine's phase function with asymmetry-like parameter `g ∈ (−1, 1)` and
+/// `α ≥ 0` (finite). `α = 1` is Cornette–Shanks; `α = 0` is HG.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Draine<T> {
+    pub(super) g: T,
+    pub(super) alpha: T,
+}
+
+impl<T: Real> Draine<T> {
+    /// Fails with [`Error::Domain`] unless `−1 < g < 1` and `0 ≤ alpha < ∞`.
+    pub fn new(g: T, alpha: T) -> Result<Self, Error> {
+        let g_ok = g > -T::ONE && g < T::ONE;
+        let a_ok = alpha >= T::ZERO && alpha.is_finite();
+        if g_ok && a_ok {
+            Ok(Draine { g, alpha })
+        } else {
+            Err(Error::Domain)
+        }
+    }
+    /// Cornette–Shanks (1992): Draine with `α = 1`.
+    pub fn cornette_shanks(g: T) -> Result<Self, Error> {
+        Self::new(g, T::ONE)
+    }
+    /// The parameter `g`.
+    pub fn g(&self) -> T {
+        self.g
+    }
+    /// The parameter `α`.
+    pub fn alpha(&self) -> T {
+        self.alpha
+    }
+    fn params(&self) -> Params {
+        Params::new(self.g.to_f64(), self.alpha.to_f64())
+    }
+}
+
+impl<T: Real> PhaseFunction<T> for Draine<T> {
+    #[inline]
+    fn pdf(&self, cos_theta: T) -> T {
+        T::from_f64(self.params().density(cos_theta.to_f64()) / core::f64::consts::TAU)
+    }
+    #[inline]
+    fn cdf(&self, cos_theta: T) -> T {
+        T::from_f64(
+            self.params()
+                .cdf(cos_theta.to_f64().clamp(-1.0, 1.0))
+                .clamp(0.0, 1.0),
+        )
+    }
+    #[inline]
+    fn sample_cos(&self, u: T) -> T {
+        T::from_f64(inverse(
+            self.g.to_f64(),
+            self.alpha.to_f64(),
+            u.clamp01().to_f64(),
+            tol::<T>(),
+        ))
+    }
+    /// `g (1 + α(3 + 2g²)/5) / (1 + α(1 + 2g²)/3)`.
+    #[inline]
+    fn mean_cosine(&self) -> T {
+        let (g, a) = (self.g.to_f64(), self.alpha.to_f64());
+        let g2 = g * g;
+        T::from_f64(g * (1.0 + a * (3.0 + 2.0 * g2) / 5.0) / (1.0 + a * (1.0 + 2.0 * g2) / 3.0))
+    }
+}
+
+/// Newton stops after a step below this (then the error is about
+/// curvature × step², far below f32's resolution).
+pub(crate) const TOL_F32: f64 = 1e-9;
+/// The same for f64: steps at the rounding level of `μ`.
+pub(crate) const TOL_F64: f64 = 1e-15;
+
+/// The Newton tolerance for results of precision `T`.
+#[inline(always)]
+pub(crate) fn tol<T: Real>() -> f64 {
+    if core::mem::size_of::<T>() == 4 {
+        TOL_F32
+    } else {
+        TOL_F64
+    }
+}
+
+/// Draine's parameters in f64 with the normalisation `c = 1 + α(1 + 2g²)/3`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Params {
+    g: f64,
+    alpha: f64,
+    c: f64,
+}
+
+impl Params {
+    pub(crate) fn new(g: f64, alpha: f64) -> Params {
+        Params {
+            g,
+            alpha,
+            c: 1.0 + alpha * (1.0 + 2.0 * g * g) / 3.0,
+        }
+    }
+
+    /// The mirror image `(g, μ) → (−g, −μ)`.
+    pub(crate) fn mirrored(self) -> Params {
+        Params { g: -self.g, ..self }
+    }
+
+    /// `s = sqrt(1 + g² − 2gμ)`, as a sum of non-negative terms for either
+    /// sign of g (no cancellation at `μ → sign(g)`, `|g| → 1`).
+    #[inline(always)]
+    fn s(&self, mu: f64) -> f64 {
+        let g = self.g;
+        let d = if g >= 0.0 {
+            (1.0 - g) * (1.0 - g) + 2.0 * g * (1.0 - mu)
+        } else {
+            (1.0 + g) * (1.0 + g) - 2.0 * g * (1.0 + mu)
+        };
+        libm::sqrt(d)
+    }
+
+    /// Density of `μ = cos θ` (that is, `2π p(μ)`): `N (1 + αμ²)/s³`.
+    #[inline(always)]
+    pub(crate) fn density(&self, mu: f64) -> f64 {
+        let s = self.s(mu);
+        let n = (1.0 - self.g) * (1.0 + self.g) / (2.0 * self.c);
+        n * (1.0 + self.alpha * mu * mu) / (s * s * s)
+    }
+
+    /// `F(μ) = P(cos θ ≤ μ)`, the cancellation-free form (module docs).
+    #[inline(always)]
+    pub(crate) fn cdf(&self, mu: f64) -> f64 {
+        let g = self.g;
+        let s = self.s(mu);
+        let s0 = 1.0 + g;
+        let e = (1.0 + mu) / (s + s0);
+        let se = s0 * e;
+        let i0 = 2.0 * e / (s * s0);
+        let i2 = 2.0 * e * (3.0 - 6.0 * se + 4.0 * se * se - 2.0 * g * se * e * e) / (3.0 * s * s0);
+        let n = (1.0 - g) * (1.0 + g) / (2.0 * self.c);
+        n * (i0 + self.alpha * i2)
+    }
+}
+
+/// The exact inverse CDF at `g = 0`: `αμ³ + 3μ = (3 + α)(2u − 1)`. With
+/// `μ = y/√α` this is `y³ + 3y = 2β`, `β = (3 + α)(2u − 1)√α/2`, solved by the
+/// cancellation-free Cardano root; the scaling keeps α → 0 finite
+/// (`μ → 2u − 1`) and large α from overflowing.
+#[inline]
+fn inverse_g0(alpha: f64, u: f64) -> f64 {
+    if alpha < 1e-12 {
+        // αμ³ is below 10⁻¹²: one fixed-point correction of μ = 2u − 1.
+        let mu0 = 2.0 * u - 1.0;
+        return mu0 + alpha * (mu0 - mu0 * mu0 * mu0) / 3.0;
+    }
+    let alpha = alpha.min(1e30);
+    let ra = libm::sqrt(alpha);
+    let beta = (3.0 + alpha) * (2.0 * u - 1.0) * ra * 0.5;
+    let y = super::rayleigh::depressed_cubic_root::<f64, false>(1.0, 1.0, beta);
+    y / ra
+}
+
+/// Eq. 6 of Jendersie & d'Eon (2023) in f64, with the cancellation of
+/// `t5 + sqrt(t5² − t6³)` for `t5 < 0` removed (rewritten as
+/// `t6³ / (t5 − sqrt(t5² − t6³))`) and `1 − g²` factored. A seed only: it
+/// still divides by `g` and by `α`.
+#[inline]
+fn seed_eq6(g: f64, a: f64, u: f64) -> f64 {
+    let g2 = g * g;
+    let g4 = g2 * g2;
+    let omg2 = (1.0 - g) * (1.0 + g);
+    let t0 = a * omg2;
+    let t1 = -a * omg2 * (1.0 + g2);
+    let t2 = -3.0 * (-4.0 * g2 * omg2 + t1 * (1.0 + g2));
+    let t3 = g * (2.0 * u - 1.0);
+    let t4 = 3.0 * g2 * (1.0 + t3) + a * (2.0 + g2 * (1.0 + (1.0 + 2.0 * g2) * t3));
+    let t5 = t0 * (t1 * t2 + t4 * t4) + t1 * t1 * t1;
+    let t6 = t0 * 4.0 * (g4 - g2);
+    let t6_3 = t6 * t6 * t6;
+    let root = libm::sqrt(t5 * t5 - t6_3);
+    let t7 = crate::cbrt::cbrt_f64(if t5 >= 0.0 {
+        t5 + root
+    } else {
+        t6_3 / (t5 - root)
+    });
+    let t8 = 2.0 * (t1 + t6 / t7 + t7) / t0;
+    let k = 6.0 * (1.0 + g2);
+    let t9 = libm::sqrt(k + t8);
+    let d = libm::sqrt(k - t8 + 8.0 * t4 / (t0 * t9)) - t9;
+    g / 2.0 + (1.0 / (2.0 * g) - d * d / (8.0 * g))
+}
+
+/// `F⁻¹(u)` in f64 for `u ∈ [0, 1]`, steps stopping below `tol` (module docs).
+pub(crate) fn inverse(g: f64, alpha: f64, u: f64, tol: f64) -> f64 {
+    let p = Params::new(g, alpha);
+    if u > 0.5 {
+        -inverse_tail(p.mirrored(), 1.0 - u, tol)
+    } else {
+        inverse_tail(p, u, tol)
+    }
+}
+
+/// `F⁻¹(target)` without the mirror step: accurate when `target ≤ 1/2`.
+pub(crate) fn inverse_tail(p: Params, target: f64, tol: f64) -> f64 {
+    if p.alpha == 0.0 {
+        return PhaseFunction::<f64>::sample_cos(&HenyeyGreenstein { g: p.g }, target);
+    }
+    let seed = if p.g.abs() >= 0.02 {
+        seed_eq6(p.g, p.alpha, target)
+    } else {
+        f64::NAN
+    };
+    let seed = if seed.is_finite() {
+        seed
+    } else {
+        inverse_g0(p.alpha, target)
+    };
+    solve_bracketed(|x| (p.cdf(x), p.density(x)), target, seed, -1.0, 1.0, tol)
+}
+
+/// Solves `F(x) = target` for an increasing `F` on `[lo, hi]` (with
+/// `F(lo) ≤ target ≤ F(hi)`), where `f(x)` returns `(F(x), F'(x))`: Newton's
+/// method from `seed`, kept inside a shrinking bracket and replaced by
+/// bisection whenever a step would leave it; stops after a step below `tol`
+/// or [`MAX_NEWTON`] steps.
+pub(crate) fn solve_bracketed(
+    f: impl Fn(f64) -> (f64, f64),
+    target: f64,
+    seed: f64,
+    mut lo: f64,
+    mut hi: f64,
+    tol: f64,
+) -> f64 {
+    if target.is_nan() {
+        return f64::NAN;
+    }
+    if target <= 0.0 {
+        return lo;
+    }
+    let mut x = if seed > lo && seed < hi {
+        seed
+    } else {
+        0.5 * (lo + hi)
+    };
+    for _ in 0..MAX_NEWTON {
+        let (fx, dfx) = f(x);
+        let r = fx - target;
+        if r == 0.0 {
+            break;
+        }
+        if r > 0.0 {
+            hi = x;
+        } else {
+            lo = x;
+        }
+        let mut next = x - r / dfx;
+        if !(next > lo && next < hi) {
+            next = 0.5 * (lo + hi);
+        }
+        let step = (next - x).abs();
+        x = next;
+        if step <= tol || hi - lo <= tol {
+            break;
+        }
+    }
+    x
+}
+
+/// Eq. 6 of Jendersie & d'Eon (2023) exactly as published, in the precision
+/// `T`: the reference the accuracy map and benchmarks compare against. It is
+/// NaN at `g = 0` and `α = 0` and inaccurate for small `|g|` and large `α`
+/// (see `docs/draine_accuracy.md`); use [`Draine::sample_cos`] instead.
+pub fn sample_cos_eq6<T: Real>(g: T, alpha: T, u: T) -> T {
+    let one = T::ONE;
+    let (two, three, four, six, eight) = (
+        T::TWO,
+        T::from_f64(3.0),
+        T::from_f64(4.0),
+        T::from_f64(6.0),
+        T::from_f64(8.0),
+    );
+    let a = alpha;
+    let g2 = g * g;
+    let g4 = g2 * g2;
+    let t0 = a - a * g2;
+    let t1 = a * g4 - a;
+    let t2 = -three * (four * (g4 - g2) + t1 * (one + g2));
+    let t3 = g * (two * u - one);
+    let t4 = three * g2 * (one + t3) + a * (two + g2 * (one + (one + two * g2) * t3));
+    let t5 = t0 * (t1 * t2 + t4 * t4) + t1 * t1 * t1;
+    let t6 = t0 * four * (g4 - g2);
+    let t7 = (t5 + (t5 * t5 - t6 * t6 * t6).sqrt()).cbrt();
+    let t8 = two * (t1 + t6 / t7 + t7) / t0;
+    let t9 = (six * (one + g2) + t8).sqrt();
+    let d = (six * (one + g2) - t8 + eight * t4 / (t0 * t9)).sqrt() - t9;
+    g / two + (one / (two * g) - d * d / (eight * g))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn g0_inverse_solves_its_cubic() {
+        for alpha in [1e-20, 1e-6, 0.5, 1.0, 250.0, 1e4, 1e40] {
+            for u in [0.0, 0.1, 0.5, 0.77, 1.0] {
+                let mu = inverse_g0(alpha, u);
+                let p = Params::new(0.0, alpha);
+                assert!(
+                    (p.cdf(mu) - u).abs() < 1e-13,
+                    "α = {alpha}, u = {u}: F = {}",
+                    p.cdf(mu)
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn mirror_symmetry_of_the_cdf() {
+        let p = Params::new(0.6, 3.0);
+        for mu in [-0.9, -0.2, 0.4, 0.95] {
+            let upper = 1.0 - p.cdf(mu);
+            assert!((upper - p.mirrored().cdf(-mu)).abs() < 1e-14);
+        }
+    }
+}

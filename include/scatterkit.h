@@ -103,6 +103,14 @@ enum sk_table_kind
      Frisvad's tabulated Rayleigh CDF: n + 1 values at cos theta = -1 + 2i/n.
      */
     SK_TABLE_RAYLEIGH_CDF = 0,
+    /*
+     Inverse CDF of a phase function, cubic Hermite in u: 2(n + 1) values.
+     */
+    SK_TABLE_INVERSE = 1,
+    /*
+     Inverse CDF of a measured phase function, cubic Hermite: 2(n + 1) values.
+     */
+    SK_TABLE_MEASURED = 2,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -309,6 +317,67 @@ sk_status sk_phase_rayleigh_depolarized(float depolarization, sk_phase *out);
 sk_status sk_phase_rayleigh_depolarized_f64(double depolarization, sk_phase_f64 *out);
 
 /*
+ Draine's phase function (Jendersie & d'Eon 2023) with -1 < g < 1 and
+ finite alpha >= 0; alpha = 1 is Cornette-Shanks, alpha = 0 is HG. Sampled
+ exactly and accurately on the whole domain. SK_ERR_DOMAIN otherwise.
+ */
+sk_status sk_phase_draine(float g, float alpha, sk_phase *out);
+
+/*
+ Double twin of `sk_phase_draine`.
+ */
+sk_status sk_phase_draine_f64(double g, double alpha, sk_phase_f64 *out);
+
+/*
+ Cornette-Shanks (1992): Draine with alpha = 1; -1 < g < 1.
+ */
+sk_status sk_phase_cornette_shanks(float g, sk_phase *out);
+
+/*
+ Double twin of `sk_phase_cornette_shanks`.
+ */
+sk_status sk_phase_cornette_shanks_f64(double g, sk_phase_f64 *out);
+
+/*
+ The fog mixture (1 - w_d) HG(g_hg) + w_d Draine(g_d, alpha):
+ |g_hg| < 1, |g_d| < 1, finite alpha >= 0, 0 <= w_d <= 1, else SK_ERR_DOMAIN.
+ sk_phase_sample_cos inverts the mixture's CDF exactly (monotone);
+ sk_phase_sample_cos_lobe is the paper's cheaper lobe-choice sampler.
+ */
+sk_status sk_phase_fog(float g_hg, float g_d, float alpha, float w_d, sk_phase *out);
+
+/*
+ Double twin of `sk_phase_fog`.
+ */
+sk_status sk_phase_fog_f64(double g_hg, double g_d, double alpha, double w_d, sk_phase_f64 *out);
+
+/*
+ The fog phase function fitted to Mie scattering by water droplets of
+ diameter 0 < d <= 50 micrometres (Jendersie & d'Eon 2023; four ranges
+ split at 0.1, 1.5 and 5 um). SK_ERR_DOMAIN outside (0, 50] or NaN.
+ */
+sk_status sk_phase_fog_diameter(float diameter_um, sk_phase *out);
+
+/*
+ Double twin of `sk_phase_fog_diameter`.
+ */
+sk_status sk_phase_fog_diameter_f64(double diameter_um, sk_phase_f64 *out);
+
+/*
+ cos theta by lobe: for a fog phase, the paper's sampler (u < w_d picks the
+ Draine lobe and u is rescaled and reused inside the lobe): exact in
+ distribution and cheaper than sk_phase_sample_cos, but not monotone in u.
+ For every other phase the same as sk_phase_sample_cos. NaN for a NULL or
+ unconstructed phase.
+ */
+float sk_phase_sample_cos_lobe(const sk_phase *p, float u);
+
+/*
+ Double twin of `sk_phase_sample_cos_lobe`.
+ */
+double sk_phase_sample_cos_lobe_f64(const sk_phase_f64 *p, double u);
+
+/*
  Density per steradian at cos_theta. NaN for a NULL or unconstructed phase.
  */
 float sk_phase_pdf(const sk_phase *p, float cos_theta);
@@ -447,6 +516,52 @@ sk_status sk_table_rayleigh_cdf(float *buf, size_t len, size_t n, sk_table *out)
  Double twin of `sk_table_rayleigh_cdf`.
  */
 sk_status sk_table_rayleigh_cdf_f64(double *buf, size_t len, size_t n, sk_table_f64 *out);
+
+/*
+ Tabulates the inverse CDF of phase `p` at n >= 1 intervals into buf (len
+ floats, at least sk_table_len(SK_TABLE_INVERSE, n) = 2(n + 1)) for O(1)
+ cubic Hermite lookup with sk_table_sample_cos (monotone in u). SK_ERR_NULL
+ for NULL pointers; SK_ERR_DOMAIN for an unconstructed phase; SK_ERR_SIZE for
+ n = 0 or len too small.
+ */
+sk_status sk_table_inverse(const sk_phase *p, float *buf, size_t len, size_t n, sk_table *out);
+
+/*
+ Double twin of `sk_table_inverse`.
+ */
+sk_status sk_table_inverse_f64(const sk_phase_f64 *p,
+                               double *buf,
+                               size_t len,
+                               size_t n,
+                               sk_table_f64 *out);
+
+/*
+ A sampler for a phase function measured at m >= 2 cosines: cos_theta
+ strictly increasing or strictly decreasing within [-1, 1], pdf finite and
+ non-negative with a positive integral, any scale (it is normalised). The
+ density is linear in cos theta between the points and zero outside their
+ range. buf holds len floats, at least 2(n + 1). SK_ERR_NULL for NULL
+ pointers; SK_ERR_SIZE for m < 2, n = 0 or len too small; SK_ERR_DOMAIN for
+ invalid data.
+ */
+sk_status sk_table_measured(const float *cos_theta,
+                            const float *pdf,
+                            size_t m,
+                            float *buf,
+                            size_t len,
+                            size_t n,
+                            sk_table *out);
+
+/*
+ Double twin of `sk_table_measured`.
+ */
+sk_status sk_table_measured_f64(const double *cos_theta,
+                                const double *pdf,
+                                size_t m,
+                                double *buf,
+                                size_t len,
+                                size_t n,
+                                sk_table_f64 *out);
 
 /*
  cos theta for u in [0, 1] (clamped; NaN gives NaN) from a table; NaN for a

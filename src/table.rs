@@ -1,9 +1,20 @@
 //! Tabulated samplers over caller-owned memory (no allocation).
 //!
-//! [`TableKind::RayleighCdf`] is Frisvad's (2011, §3C) table: the exact
-//! Rayleigh CDF at `n + 1` equally spaced cosines, inverted by binary search
-//! and linear interpolation. Its error in `cos θ` falls as `1/n²`; it is here
-//! to reproduce the paper, not because it is the best table.
+//! * [`TableKind::RayleighCdf`] is Frisvad's (2011, §3C) table: the exact
+//!   Rayleigh CDF at `n + 1` equally spaced cosines, inverted by binary search
+//!   and linear interpolation. Its error in `cos θ` falls as `1/n²`; it is here
+//!   to reproduce the paper, not because it is the best table.
+//! * [`TableKind::Inverse`] tabulates the inverse CDF itself at `n + 1`
+//!   equally spaced `u`, with its slope `dμ/du = 1/(2π p(μ))`, and evaluates a
+//!   cubic Hermite spline: O(1) lookup (no search), error falling as `1/n⁴`.
+//!   Slopes are limited (Fritsch–Carlson) so the map stays monotone in `u`.
+//! * [`TableKind::Measured`] is the same spline built from a measured or
+//!   otherwise tabulated phase function given at `m` cosines: the density is
+//!   taken as linear in `cos θ` between the given points (zero outside their
+//!   range) and normalised, and its inverse CDF is tabulated exactly.
+//!
+//! Layout of the Hermite kinds: `2(n + 1)` values `μ_i, d_i` interleaved,
+//! `d_i = (dμ/du)(u_i) / n` (the slope per interval).
 
 use crate::error::Error;
 use crate::phase::{PhaseFunction, Rayleigh};
@@ -16,6 +27,10 @@ pub enum TableKind {
     /// Frisvad's tabulated Rayleigh CDF: `n + 1` values `F(x_i)`,
     /// `x_i = −1 + 2i/n`.
     RayleighCdf = 0,
+    /// The inverse CDF of a phase function, cubic Hermite in `u`.
+    Inverse = 1,
+    /// The inverse CDF of a measured phase function, cubic Hermite in `u`.
+    Measured = 2,
 }
 
 impl TryFrom<u32> for TableKind {
@@ -23,6 +38,8 @@ impl TryFrom<u32> for TableKind {
     fn try_from(v: u32) -> Result<Self, Error> {
         match v {
             0 => Ok(TableKind::RayleighCdf),
+            1 => Ok(TableKind::Inverse),
+            2 => Ok(TableKind::Measured),
             _ => Err(Error::Method),
         }
     }
@@ -32,9 +49,12 @@ impl TableKind {
     /// Number of floats a table of resolution `n` occupies, or `None` if
     /// `n = 0` or the count overflows `usize`.
     pub fn len(self, n: usize) -> Option<usize> {
+        if n == 0 {
+            return None;
+        }
         match self {
-            TableKind::RayleighCdf if n >= 1 => n.checked_add(1),
-            TableKind::RayleighCdf => None,
+            TableKind::RayleighCdf => n.checked_add(1),
+            TableKind::Inverse | TableKind::Measured => n.checked_add(1)?.checked_mul(2),
         }
     }
 }
@@ -70,6 +90,55 @@ impl<'a, T: Real> Table<'a, T> {
         })
     }
 
+    /// Tabulates the inverse CDF of `phase` at `n ≥ 1` intervals in `buf`
+    /// (at least `2(n + 1)` values) for O(1) cubic Hermite lookup. Fails with
+    /// [`Error::Size`] if `n = 0` or `buf` is too short.
+    pub fn inverse<P: PhaseFunction<T>>(
+        phase: &P,
+        buf: &'a mut [T],
+        n: usize,
+    ) -> Result<Self, Error> {
+        let len = TableKind::Inverse.len(n).ok_or(Error::Size)?;
+        let buf = buf.get_mut(..len).ok_or(Error::Size)?;
+        let h = T::ONE / T::from_f64(n as f64);
+        for i in 0..=n {
+            let u = if i == n {
+                T::ONE
+            } else {
+                T::from_f64(i as f64) * h
+            };
+            let mu = phase.sample_cos(u);
+            buf[2 * i] = mu;
+            buf[2 * i + 1] = h / (T::TAU * phase.pdf(mu));
+        }
+        limit_slopes(buf, n);
+        Ok(Table {
+            data: buf,
+            n,
+            kind: TableKind::Inverse,
+        })
+    }
+
+    /// Builds a sampler from a phase function measured at `m ≥ 2` cosines:
+    /// `cos_theta` strictly increasing or strictly decreasing within
+    /// `[−1, 1]`, `pdf` finite and non-negative with a positive integral (any
+    /// scale: it is normalised). The density is linear in `cos θ` between the
+    /// points and zero outside their range. `buf` holds at least `2(n + 1)`
+    /// values. [`Error::Size`] for `n = 0`, `m < 2`, slices of different
+    /// lengths or a short `buf`; [`Error::Domain`] for invalid data.
+    pub fn measured(cos_theta: &[T], pdf: &[T], buf: &'a mut [T], n: usize) -> Result<Self, Error> {
+        let len = TableKind::Measured.len(n).ok_or(Error::Size)?;
+        let buf = buf.get_mut(..len).ok_or(Error::Size)?;
+        let data = Measured::new(cos_theta, pdf)?;
+        data.fill_inverse(buf, n);
+        limit_slopes(buf, n);
+        Ok(Table {
+            data: buf,
+            n,
+            kind: TableKind::Measured,
+        })
+    }
+
     /// A sampler over data built earlier (for instance by the C caller).
     /// Fails with [`Error::Size`] if `n = 0` or `data` is too short.
     pub fn from_data(data: &'a [T], n: usize, kind: TableKind) -> Result<Self, Error> {
@@ -96,7 +165,24 @@ impl<'a, T: Real> Table<'a, T> {
     pub fn sample_cos(&self, u: T) -> T {
         match self.kind {
             TableKind::RayleighCdf => self.sample_cdf_table(u.clamp01()),
+            TableKind::Inverse | TableKind::Measured => self.sample_hermite(u.clamp01()),
         }
+    }
+
+    /// Cubic Hermite interpolation of the tabulated inverse: interval
+    /// `i = ⌊u n⌋` found by arithmetic, no search.
+    #[inline]
+    fn sample_hermite(&self, u: T) -> T {
+        let x = u * T::from_f64(self.n as f64);
+        // `as usize` saturates (NaN → 0): the index is always in bounds.
+        let i = (x.to_f64() as usize).min(self.n - 1);
+        let t = x - T::from_f64(i as f64);
+        let d = &self.data[2 * i..2 * i + 4];
+        let (y0, d0, y1, d1) = (d[0], d[1], d[2], d[3]);
+        let dy = y1 - y0;
+        let c2 = T::from_f64(3.0) * dy - T::TWO * d0 - d1;
+        let c3 = d0 + d1 - T::TWO * dy;
+        (y0 + t * (d0 + t * (c2 + t * c3))).clamp_unit()
     }
 
     /// Binary search for `F[i] ≤ u < F[i+1]`, then linear interpolation
@@ -116,5 +202,124 @@ impl<'a, T: Real> Table<'a, T> {
         let t = (u - f[lo]) / (f[hi] - f[lo]);
         let dx = T::TWO / T::from_f64(self.n as f64);
         ((T::from_f64(lo as f64) + t) * dx - T::ONE).clamp_unit()
+    }
+}
+
+/// Fritsch–Carlson: each node's slope is clamped to `[0, 3Δ]` for the secants
+/// `Δ` of both neighbouring intervals, which keeps the cubic Hermite spline
+/// monotone (and turns the infinite slopes of zero densities into finite ones).
+fn limit_slopes<T: Real>(buf: &mut [T], n: usize) {
+    let three = T::from_f64(3.0);
+    for i in 0..=n {
+        let mut d = buf[2 * i + 1];
+        if !(d >= T::ZERO) {
+            d = T::ZERO;
+        }
+        if i > 0 {
+            let lim = three * (buf[2 * i] - buf[2 * i - 2]);
+            if !(d <= lim) {
+                d = lim;
+            }
+        }
+        if i < n {
+            let lim = three * (buf[2 * i + 2] - buf[2 * i]);
+            if !(d <= lim) {
+                d = lim;
+            }
+        }
+        buf[2 * i + 1] = d;
+    }
+}
+
+/// Validated measured data: `m` points in increasing `cos θ` order (the
+/// caller's order reversed if it was decreasing).
+struct Measured<'d, T> {
+    x: &'d [T],
+    p: &'d [T],
+    reversed: bool,
+    /// `∫ p dμ` by the trapezoid rule (exact for the linear density).
+    area: f64,
+}
+
+impl<'d, T: Real> Measured<'d, T> {
+    fn new(x: &'d [T], p: &'d [T]) -> Result<Self, Error> {
+        if x.len() != p.len() || x.len() < 2 {
+            return Err(Error::Size);
+        }
+        let reversed = x[1] < x[0];
+        let mut area = 0.0;
+        for j in 0..x.len() {
+            let (xj, pj) = (x[j].to_f64(), p[j].to_f64());
+            if !(xj >= -1.0 && xj <= 1.0 && pj >= 0.0 && pj.is_finite()) {
+                return Err(Error::Domain);
+            }
+            if j > 0 {
+                let step = xj - x[j - 1].to_f64();
+                if !(if reversed { step < 0.0 } else { step > 0.0 }) {
+                    return Err(Error::Domain);
+                }
+                area += 0.5 * step.abs() * (pj + p[j - 1].to_f64());
+            }
+        }
+        if !(area > 0.0 && area.is_finite()) {
+            return Err(Error::Domain);
+        }
+        Ok(Measured {
+            x,
+            p,
+            reversed,
+            area,
+        })
+    }
+
+    /// The k-th point in increasing order, density normalised to ∫ = 1.
+    fn point(&self, k: usize) -> (f64, f64) {
+        let j = if self.reversed {
+            self.x.len() - 1 - k
+        } else {
+            k
+        };
+        (self.x[j].to_f64(), self.p[j].to_f64() / self.area)
+    }
+
+    /// Writes `μ_i = F⁻¹(i/n)` and the limited-later slopes, sweeping the
+    /// segments once (the CDF is quadratic on each).
+    fn fill_inverse(&self, buf: &mut [T], n: usize) {
+        let m = self.x.len();
+        let (mut k, mut cdf0) = (0usize, 0.0f64);
+        for i in 0..=n {
+            let u = i as f64 / n as f64;
+            // Advance to the segment [k, k+1] holding u.
+            loop {
+                let ((x0, q0), (x1, q1)) = (self.point(k), self.point(k + 1));
+                let mass = 0.5 * (x1 - x0) * (q0 + q1);
+                // Zero-mass segments are skipped: F⁻¹(0) is where the support starts.
+                if (mass > 0.0 && cdf0 + mass >= u) || k + 2 >= m {
+                    let r = (u - cdf0).max(0.0);
+                    let tau = segment_root(x1 - x0, q0, q1, r);
+                    let mu = (x0 + tau).clamp(x0, x1);
+                    let q = q0 + (q1 - q0) * ((mu - x0) / (x1 - x0));
+                    buf[2 * i] = T::from_f64(mu);
+                    buf[2 * i + 1] = T::from_f64(1.0 / (q * n as f64));
+                    break;
+                }
+                cdf0 += mass;
+                k += 1;
+            }
+        }
+    }
+}
+
+/// The offset `τ ∈ [0, L]` at which a segment of length `L` with density
+/// linear from `q0` to `q1` accumulates mass `r`:
+/// `q0 τ + (q1 − q0) τ²/(2L) = r`, as `2r / (q0 + sqrt(q0² + 2(q1 − q0) r/L))`
+/// (the form without the cancellation of `−q0 + sqrt(...)`).
+fn segment_root(len: f64, q0: f64, q1: f64, r: f64) -> f64 {
+    let disc = (q0 * q0 + 2.0 * (q1 - q0) * r / len).max(0.0);
+    let den = q0 + libm::sqrt(disc);
+    if den > 0.0 {
+        (2.0 * r / den).min(len)
+    } else {
+        0.0
     }
 }

@@ -1,5 +1,6 @@
 //! Tables over caller-owned memory (API.md "Tables").
 
+use super::phase::{PhaseStore, load};
 use super::{sk_status, slice_in, slice_out, write_result};
 use crate::real::Real;
 use crate::table::{Table, TableKind};
@@ -10,6 +11,10 @@ use crate::table::{Table, TableKind};
 pub enum sk_table_kind {
     /// Frisvad's tabulated Rayleigh CDF: n + 1 values at cos theta = -1 + 2i/n.
     SK_TABLE_RAYLEIGH_CDF = 0,
+    /// Inverse CDF of a phase function, cubic Hermite in u: 2(n + 1) values.
+    SK_TABLE_INVERSE = 1,
+    /// Inverse CDF of a measured phase function, cubic Hermite: 2(n + 1) values.
+    SK_TABLE_MEASURED = 2,
 }
 
 /// A table sampler (float) over the caller's memory, which must outlive it.
@@ -80,6 +85,52 @@ unsafe fn rayleigh_cdf<S: TableStore>(
     unsafe { write_result(out, r) }
 }
 
+unsafe fn inverse<S: TableStore, P: PhaseStore<T = S::T>>(
+    p: *const P,
+    buf: *mut S::T,
+    len: usize,
+    n: usize,
+    out: *mut S,
+) -> sk_status {
+    if p.is_null() || buf.is_null() || out.is_null() {
+        return sk_status::SK_ERR_NULL;
+    }
+    let Some(phase) = (unsafe { load(p) }) else {
+        return sk_status::SK_ERR_DOMAIN;
+    };
+    let slice = match unsafe { slice_out(buf, len) } {
+        Ok(s) => s,
+        Err(e) => return e,
+    };
+    let r = Table::inverse(phase, slice, n).map(|t| S::new(buf, t.n(), t.kind()));
+    unsafe { write_result(out, r) }
+}
+
+#[allow(clippy::too_many_arguments)]
+unsafe fn measured<S: TableStore>(
+    cos_theta: *const S::T,
+    pdf: *const S::T,
+    m: usize,
+    buf: *mut S::T,
+    len: usize,
+    n: usize,
+    out: *mut S,
+) -> sk_status {
+    if cos_theta.is_null() || pdf.is_null() || buf.is_null() || out.is_null() {
+        return sk_status::SK_ERR_NULL;
+    }
+    let (x, p) = match unsafe { (slice_in(cos_theta, m), slice_in(pdf, m)) } {
+        (Ok(x), Ok(p)) => (x, p),
+        (Err(e), _) | (_, Err(e)) => return e,
+    };
+    let slice = match unsafe { slice_out(buf, len) } {
+        Ok(s) => s,
+        Err(e) => return e,
+    };
+    let r = Table::measured(x, p, slice, n).map(|t| S::new(buf, t.n(), t.kind()));
+    unsafe { write_result(out, r) }
+}
+
 unsafe fn sample_cos<S: TableStore>(t: *const S, u: S::T) -> S::T {
     // SAFETY: a non-NULL t points to a table built by this library.
     let Some(t) = (unsafe { t.as_ref() }) else {
@@ -130,6 +181,68 @@ pub unsafe extern "C" fn sk_table_rayleigh_cdf_f64(
     out: *mut sk_table_f64,
 ) -> sk_status {
     unsafe { rayleigh_cdf(buf, len, n, out) }
+}
+
+/// Tabulates the inverse CDF of phase `p` at n >= 1 intervals into buf (len
+/// floats, at least sk_table_len(SK_TABLE_INVERSE, n) = 2(n + 1)) for O(1)
+/// cubic Hermite lookup with sk_table_sample_cos (monotone in u). SK_ERR_NULL
+/// for NULL pointers; SK_ERR_DOMAIN for an unconstructed phase; SK_ERR_SIZE for
+/// n = 0 or len too small.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_inverse(
+    p: *const super::sk_phase,
+    buf: *mut f32,
+    len: usize,
+    n: usize,
+    out: *mut sk_table,
+) -> sk_status {
+    unsafe { inverse(p, buf, len, n, out) }
+}
+
+/// Double twin of `sk_table_inverse`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_inverse_f64(
+    p: *const super::sk_phase_f64,
+    buf: *mut f64,
+    len: usize,
+    n: usize,
+    out: *mut sk_table_f64,
+) -> sk_status {
+    unsafe { inverse(p, buf, len, n, out) }
+}
+
+/// A sampler for a phase function measured at m >= 2 cosines: cos_theta
+/// strictly increasing or strictly decreasing within [-1, 1], pdf finite and
+/// non-negative with a positive integral, any scale (it is normalised). The
+/// density is linear in cos theta between the points and zero outside their
+/// range. buf holds len floats, at least 2(n + 1). SK_ERR_NULL for NULL
+/// pointers; SK_ERR_SIZE for m < 2, n = 0 or len too small; SK_ERR_DOMAIN for
+/// invalid data.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_measured(
+    cos_theta: *const f32,
+    pdf: *const f32,
+    m: usize,
+    buf: *mut f32,
+    len: usize,
+    n: usize,
+    out: *mut sk_table,
+) -> sk_status {
+    unsafe { measured(cos_theta, pdf, m, buf, len, n, out) }
+}
+
+/// Double twin of `sk_table_measured`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_measured_f64(
+    cos_theta: *const f64,
+    pdf: *const f64,
+    m: usize,
+    buf: *mut f64,
+    len: usize,
+    n: usize,
+    out: *mut sk_table_f64,
+) -> sk_status {
+    unsafe { measured(cos_theta, pdf, m, buf, len, n, out) }
 }
 
 /// cos theta for u in [0, 1] (clamped; NaN gives NaN) from a table; NaN for a

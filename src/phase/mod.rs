@@ -109,6 +109,17 @@ pub enum Phase<T> {
 }
 
 impl<T: Real> Phase<T> {
+    /// `cos θ` by lobe: for the fog mixture, the paper's sampler
+    /// ([`Fog::sample_cos_by_lobe`]: one uniform picks the lobe and is reused
+    /// inside it; exact in distribution, cheaper, not monotone in `u`); for
+    /// every single-lobe phase function the same as `sample_cos`.
+    pub fn sample_cos_by_lobe(&self, u: T) -> T {
+        match self {
+            Phase::Fog(f) => f.sample_cos_by_lobe(u),
+            p => p.sample_cos(u),
+        }
+    }
+
     /// The discriminant of the last variant (the C layer checks tags against
     /// `1..=LAST_TAG`).
     #[cfg_attr(not(feature = "ffi"), allow(dead_code))]

@@ -1,0 +1,227 @@
+//! Tables: the Hermite inverse table against exact inverses (Rayleigh at
+//! n = 32 within 10⁻⁶, the fog at 2 µm for n = 64…1024), measured-data tables
+//! against the density they were measured from, monotonicity and validation.
+
+mod common;
+
+use common::chi2::chi2_directions;
+use common::{CHI2_SAMPLES, dd, rng, uniform_grid};
+use scatterkit::{Error, Phase, PhaseFunction, Real, Table, TableKind, Vec3};
+
+/// Max |table(u) − exact(u)| over a fine grid of u, and whether the table is
+/// monotone on it.
+fn table_error<T: Real>(t: &Table<T>, exact: impl Fn(f64) -> f64) -> (f64, bool) {
+    table_error_on(t, exact, 400_001)
+}
+
+fn table_error_on<T: Real>(t: &Table<T>, exact: impl Fn(f64) -> f64, points: usize) -> (f64, bool) {
+    let (mut worst, mut prev, mut monotone) = (0.0f64, -2.0f64, true);
+    for u in uniform_grid(points) {
+        let mu = t.sample_cos(T::from_f64(u)).to_f64();
+        worst = worst.max((mu - exact(T::from_f64(u).to_f64())).abs());
+        monotone &= mu >= prev;
+        prev = mu;
+    }
+    (worst, monotone)
+}
+
+#[test]
+fn rayleigh_inverse_table_at_32_is_within_1e6() {
+    let mut buf = vec![0.0f64; TableKind::Inverse.len(32).unwrap()];
+    let t = Table::inverse(&Phase::rayleigh(), &mut buf, 32).unwrap();
+    let (e64, mono64) = table_error(&t, dd::rayleigh_inverse);
+    let mut buf32 = vec![0.0f32; 66];
+    let t32 = Table::inverse(&Phase::rayleigh(), &mut buf32, 32).unwrap();
+    let (e32, mono32) = table_error(&t32, dd::rayleigh_inverse);
+    let mut paper = vec![0.0f64; 33];
+    let frisvad = Table::rayleigh_cdf(&mut paper, 32).unwrap();
+    let (ep, _) = table_error(&frisvad, dd::rayleigh_inverse);
+    println!(
+        "Rayleigh n = 32: Hermite inverse f64 {e64:.2e}, f32 {e32:.2e}; Frisvad's table {ep:.2e}"
+    );
+    assert!(e64 <= 1e-6 && e32 <= 1e-6, "{e64:e} {e32:e}");
+    assert!(mono64 && mono32);
+    assert!(ep / e64 >= 100.0);
+}
+
+#[test]
+fn fog_table_error_by_size() {
+    let p = scatterkit::phase::fog_fit(2.0).unwrap();
+    let fog = Phase::<f64>::fog(p.g_hg, p.g_d, p.alpha, p.w_d).unwrap();
+    let mut prev = f64::INFINITY;
+    for n in [64usize, 256, 1024] {
+        let mut buf = vec![0.0f64; 2 * (n + 1)];
+        let t = Table::inverse(&fog, &mut buf, n).unwrap();
+        let exact = |u| dd::fog_inverse(p.g_hg, p.g_d, p.alpha, p.w_d, u);
+        let (e, mono) = table_error_on(&t, exact, 100_001);
+        println!("fog 2 µm, n = {n}: max |μ error| {e:.2e}");
+        assert!(mono, "n = {n}");
+        assert!(e < prev, "n = {n}: the error must fall with n");
+        prev = e;
+    }
+}
+
+#[test]
+fn tables_of_every_phase_are_monotone_and_close() {
+    let phases = [
+        Phase::<f64>::isotropic(),
+        Phase::henyey_greenstein(0.9).unwrap(),
+        Phase::henyey_greenstein(-0.5).unwrap(),
+        Phase::draine(0.3, 250.0).unwrap(),
+        Phase::fog_diameter(10.0).unwrap(),
+    ];
+    for p in phases {
+        // Where the density is tiny (Draine with α = 250 near μ = 0) the
+        // quantile is steep and a uniform-u table needs many nodes: check that
+        // the error falls with n and is small at n = 4096.
+        let mut errors = Vec::new();
+        for n in [256usize, 4096] {
+            let mut buf = vec![0.0; 2 * (n + 1)];
+            let t = Table::inverse(&p, &mut buf, n).unwrap();
+            let (e, mono) = table_error_on(&t, |u| p.sample_cos(u), 100_001);
+            assert!(mono, "{p:?}, n = {n}");
+            errors.push(e);
+        }
+        assert!(
+            errors[1] < 1e-3 && errors[1] <= errors[0] / 100.0,
+            "{p:?}: {errors:?}"
+        );
+        let mut buf = vec![0.0; 2 * 257];
+        let t = Table::inverse(&p, &mut buf, 256).unwrap();
+        assert_eq!(t.sample_cos(0.0), -1.0);
+        assert_eq!(t.sample_cos(1.0), 1.0);
+        assert!(t.sample_cos(f64::NAN).is_nan());
+    }
+}
+
+/// HG measured at m cosines, from the pdf.
+fn measured_hg(g: f64, m: usize) -> (Vec<f64>, Vec<f64>) {
+    let p = Phase::henyey_greenstein(g).unwrap();
+    // Denser near μ = 1, where the lobe is: μ = 1 − 2(1 − t)².
+    let x: Vec<f64> = (0..m)
+        .map(|i| 1.0 - 2.0 * (1.0 - i as f64 / (m - 1) as f64).powi(2))
+        .collect();
+    let pdf = x.iter().map(|&mu| 7.0 * p.pdf(mu)).collect(); // any scale
+    (x, pdf)
+}
+
+#[test]
+fn measured_table_reproduces_the_measured_density() {
+    let (x, pdf) = measured_hg(0.6, 4001);
+    let mut buf = vec![0.0; 2 * 1025];
+    let t = Table::measured(&x, &pdf, &mut buf, 1024).unwrap();
+    let exact = Phase::henyey_greenstein(0.6).unwrap();
+    let (e, mono) = table_error(&t, |u| exact.sample_cos(u));
+    println!("measured HG(0.6), m = 4001, n = 1024: max |μ error| {e:.2e}");
+    assert!(mono && e < 1e-4, "{e:e}");
+    // Descending order (angles from 0° to 180°) gives the same table.
+    let (xr, pr): (Vec<f64>, Vec<f64>) = (
+        x.iter().rev().copied().collect(),
+        pdf.iter().rev().copied().collect(),
+    );
+    let mut buf2 = vec![0.0; 2 * 1025];
+    let t2 = Table::measured(&xr, &pr, &mut buf2, 1024).unwrap();
+    let diff = t
+        .data()
+        .iter()
+        .zip(t2.data())
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(diff < 1e-12, "descending order differs by {diff:e}");
+    // chi² of directions from the table against the HG density it measured.
+    let w_in = Vec3::new(0.0, 0.0, 1.0);
+    let mut r = rng(99);
+    let res = chi2_directions(&|mu| exact.pdf(mu), [0.0, 0.0, 1.0], CHI2_SAMPLES, || {
+        let mu = t.sample_cos(f64::uniform(&mut r));
+        let d = scatterkit::geometry::direction_about(
+            w_in,
+            mu,
+            std::f64::consts::TAU * f64::uniform(&mut r),
+        );
+        [d.x, d.y, d.z]
+    });
+    assert!(res.passes(), "{res:?}");
+}
+
+#[test]
+fn measured_table_with_gaps_and_partial_range() {
+    // Density only on [0, 0.5], zero at the ends: samples stay inside.
+    let x = [-1.0f32, 0.0, 0.25, 0.5, 1.0];
+    let p = [0.0f32, 0.0, 2.0, 0.0, 0.0];
+    let mut buf = [0.0f32; 2 * 65];
+    let t = Table::measured(&x, &p, &mut buf, 64).unwrap();
+    for u in uniform_grid(10_001) {
+        let mu = t.sample_cos(u as f32);
+        assert!((-1e-6..=0.5 + 1e-6).contains(&mu), "u = {u}: {mu}");
+    }
+    // The triangle is symmetric about 0.25: the median is there.
+    assert!((t.sample_cos(0.5) - 0.25).abs() < 1e-3);
+}
+
+#[test]
+fn measured_table_validation() {
+    let mut buf = [0.0f64; 2 * 9];
+    let ok_x = [-1.0, 0.0, 1.0];
+    let ok_p = [1.0, 1.0, 1.0];
+    assert!(Table::measured(&ok_x, &ok_p, &mut buf, 8).is_ok());
+    let domain = |x: &[f64], p: &[f64], buf: &mut [f64]| Table::measured(x, p, buf, 8).err();
+    assert_eq!(
+        domain(&[-1.0, 0.5, 0.2], &ok_p, &mut buf),
+        Some(Error::Domain),
+        "unsorted"
+    );
+    assert_eq!(
+        domain(&[-1.0, 0.0, 0.0], &ok_p, &mut buf),
+        Some(Error::Domain),
+        "repeated"
+    );
+    assert_eq!(
+        domain(&ok_x, &[1.0, -1.0, 1.0], &mut buf),
+        Some(Error::Domain),
+        "negative"
+    );
+    assert_eq!(
+        domain(&ok_x, &[1.0, f64::NAN, 1.0], &mut buf),
+        Some(Error::Domain),
+        "NaN"
+    );
+    assert_eq!(
+        domain(&ok_x, &[1.0, f64::INFINITY, 1.0], &mut buf),
+        Some(Error::Domain),
+        "inf"
+    );
+    assert_eq!(
+        domain(&[-1.0, 0.0, 1.5], &ok_p, &mut buf),
+        Some(Error::Domain),
+        "outside [-1, 1]"
+    );
+    assert_eq!(
+        domain(&ok_x, &[0.0, 0.0, 0.0], &mut buf),
+        Some(Error::Domain),
+        "zero integral"
+    );
+    assert_eq!(
+        domain(&ok_x[..1], &ok_p[..1], &mut buf),
+        Some(Error::Size),
+        "m < 2"
+    );
+    assert_eq!(
+        domain(&ok_x, &ok_p[..2], &mut buf),
+        Some(Error::Size),
+        "lengths"
+    );
+    assert_eq!(
+        Table::measured(&ok_x, &ok_p, &mut buf, 0).err(),
+        Some(Error::Size)
+    );
+    assert_eq!(
+        Table::measured(&ok_x, &ok_p, &mut buf[..17], 8).err(),
+        Some(Error::Size)
+    );
+    assert_eq!(
+        Table::inverse(&Phase::<f64>::rayleigh(), &mut buf[..17], 8).err(),
+        Some(Error::Size)
+    );
+    assert_eq!(TableKind::Inverse.len(8), Some(18));
+    assert_eq!(TableKind::Measured.len(usize::MAX), None);
+}

@@ -212,23 +212,23 @@ fn limit_slopes<T: Real>(buf: &mut [T], n: usize) {
     let three = T::from_f64(3.0);
     for i in 0..=n {
         let mut d = buf[2 * i + 1];
-        if !(d >= T::ZERO) {
+        if d.is_nan() || d < T::ZERO {
             d = T::ZERO;
         }
         if i > 0 {
-            let lim = three * (buf[2 * i] - buf[2 * i - 2]);
-            if !(d <= lim) {
-                d = lim;
-            }
+            d = upto(d, three * (buf[2 * i] - buf[2 * i - 2]));
         }
         if i < n {
-            let lim = three * (buf[2 * i + 2] - buf[2 * i]);
-            if !(d <= lim) {
-                d = lim;
-            }
+            d = upto(d, three * (buf[2 * i + 2] - buf[2 * i]));
         }
         buf[2 * i + 1] = d;
     }
+}
+
+/// `d` capped at `limit` (an infinite `d` becomes `limit`).
+#[inline]
+fn upto<T: Real>(d: T, limit: T) -> T {
+    if d > limit { limit } else { d }
 }
 
 /// Validated measured data: `m` points in increasing `cos θ` order (the

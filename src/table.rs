@@ -250,7 +250,7 @@ impl<'d, T: Real> Measured<'d, T> {
         let mut area = 0.0;
         for j in 0..x.len() {
             let (xj, pj) = (x[j].to_f64(), p[j].to_f64());
-            if !(xj >= -1.0 && xj <= 1.0 && pj >= 0.0 && pj.is_finite()) {
+            if !((-1.0..=1.0).contains(&xj) && pj >= 0.0 && pj.is_finite()) {
                 return Err(Error::Domain);
             }
             if j > 0 {

@@ -190,6 +190,120 @@ fn direction_rows() -> Vec<Row> {
     rows
 }
 
+/// Inverse CDFs: ns per `sample_cos(u)` with u from the fast RNG, and max
+/// error against the f64 sampler (itself within 10⁻¹³ of double-double).
+fn inverse_rows() -> Vec<(String, f64, f64)> {
+    let mut rows = Vec::new();
+    let mut push = |name: String, f: &dyn Fn(f32) -> f32, exact: &dyn Fn(f64) -> f64| {
+        let mut r = Xoshiro256PlusPlus::seed_from_u64(3);
+        let ns = time_ns(|| f(f32::uniform(&mut r)));
+        rows.push((name, ns, max_error(f, exact)));
+    };
+    let cases: Vec<(&str, Phase<f64>)> = vec![
+        ("isotropic", Phase::isotropic()),
+        (
+            "Henyey-Greenstein g = 0.7",
+            Phase::henyey_greenstein(0.7).unwrap(),
+        ),
+        ("Rayleigh (direct)", Phase::rayleigh()),
+        (
+            "Rayleigh depolarized rho = 0.028",
+            Phase::rayleigh_depolarized(0.028).unwrap(),
+        ),
+        (
+            "Cornette-Shanks g = 0.5",
+            Phase::cornette_shanks(0.5).unwrap(),
+        ),
+        (
+            "Draine g = 0.3, alpha = 250",
+            Phase::draine(0.3, 250.0).unwrap(),
+        ),
+        (
+            "Draine g = 0, alpha = 1000",
+            Phase::draine(0.0, 1000.0).unwrap(),
+        ),
+        (
+            "fog 2 um (exact mixture inverse)",
+            Phase::fog_diameter(2.0).unwrap(),
+        ),
+    ];
+    for (name, p64) in cases {
+        // The f64 reference sees the parameters the f32 object holds.
+        let p32: Phase<f32> = p64.cast();
+        let reference: Phase<f64> = p32.cast();
+        push(name.to_string(), &|u| p32.sample_cos(u), &|u| {
+            reference.sample_cos(u)
+        });
+    }
+    let fog32 = Phase::<f32>::fog_diameter(2.0).unwrap();
+    let fog64: Phase<f64> = fog32.cast();
+    push(
+        "fog 2 um, paper's lobe sampler (not monotone)".into(),
+        &|u| fog32.sample_cos_by_lobe(u),
+        &|u| fog64.sample_cos_by_lobe(u),
+    );
+    for (g, a) in [(0.5f32, 1.0f32), (0.3, 250.0)] {
+        let d64 = Phase::<f64>::draine(g as f64, a as f64).unwrap();
+        push(
+            format!("Draine g = {g}, alpha = {a}: eq. 6 as published"),
+            &|u| scatterkit::phase::draine::sample_cos_eq6(g, a, u),
+            &|u| d64.sample_cos(u),
+        );
+    }
+    for n in [32usize, 64, 256] {
+        let mut buf = vec![0.0f32; 2 * (n + 1)];
+        let t = Table::inverse(&Phase::<f32>::rayleigh(), &mut buf, n).unwrap();
+        push(
+            format!("Rayleigh, Hermite inverse table n = {n}"),
+            &|u| t.sample_cos(u),
+            &rayleigh_exact,
+        );
+    }
+    let mut buf = vec![0.0f32; 33];
+    let t = Table::rayleigh_cdf(&mut buf, 32).unwrap();
+    push(
+        "Rayleigh, Frisvad's CDF table n = 32".into(),
+        &|u| t.sample_cos(u),
+        &rayleigh_exact,
+    );
+    for n in [64usize, 256, 1024] {
+        let mut buf = vec![0.0f32; 2 * (n + 1)];
+        let t = Table::inverse(&fog32, &mut buf, n).unwrap();
+        push(
+            format!("fog 2 um, Hermite inverse table n = {n}"),
+            &|u| t.sample_cos(u),
+            &|u| fog64.sample_cos(u),
+        );
+    }
+    rows
+}
+
+/// Draine by rejection from HG: accept μ ~ HG(g) with probability
+/// `(1 + αμ²)/(1 + α)`.
+fn draine_by_rejection<R: TryRng<Error = Infallible>>(g: f32, alpha: f32, r: &mut R) -> f32 {
+    let hg = Phase::henyey_greenstein(g).unwrap();
+    loop {
+        let mu = hg.sample_cos(f32::uniform(r));
+        if f32::uniform(r) * (1.0 + alpha) <= 1.0 + alpha * mu * mu {
+            return mu;
+        }
+    }
+}
+
+/// The three Draine samplers, ns per cosine with the fast RNG.
+fn draine_rows() -> Vec<(String, f64)> {
+    let mut rows = Vec::new();
+    for (g, a) in [(0.5f32, 1.0f32), (0.9, 10.0), (0.3, 250.0), (0.01, 1000.0)] {
+        let d = Phase::draine(g, a).unwrap();
+        let mut r = Xoshiro256PlusPlus::seed_from_u64(4);
+        let ours = time_ns(|| d.sample_cos(f32::uniform(&mut r)));
+        let eq6 = time_ns(|| scatterkit::phase::draine::sample_cos_eq6(g, a, f32::uniform(&mut r)));
+        let rej = time_ns(|| draine_by_rejection(g, a, &mut r));
+        rows.push((format!("g = {g}, alpha = {a}: ours {ours:.1} | eq. 6 {eq6:.1} | HG rejection {rej:.1} | ours/eq. 6 {:.2}", ours / eq6), ours));
+    }
+    rows
+}
+
 /// Cube roots: ns per call over inputs spread across [1e-6, 1e6], and max
 /// error in ULP (relative to f32 spacing) against libm's correctly rounded f64.
 fn cbrt_rows() -> Vec<(String, f64, f64)> {
@@ -256,6 +370,19 @@ fn main() {
             base.1 / r.slow_ns,
             r.accuracy
         );
+    }
+    println!();
+    println!("Inverse CDFs (f32): ns per sample_cos(u), max |cos θ error| against the f64 sampler");
+    println!();
+    println!("| sampler | ns | max abs error |");
+    println!("|---|---:|---:|");
+    for (name, ns, err) in inverse_rows() {
+        println!("| {name} | {ns:.2} | {err:.1e} |");
+    }
+    println!();
+    println!("Draine samplers (f32), ns per cosine:");
+    for (line, _) in draine_rows() {
+        println!("  {line}");
     }
     println!();
     println!("Cube roots: ns per call and max error (ULP of f32, every 101st positive float)");

@@ -126,8 +126,21 @@ pub fn onb<T: Real>(n: Vec3<T>) -> (Vec3<T>, Vec3<T>) {
 /// `(b1, b2) = onb(axis)` (SPEC §0).
 #[inline(always)]
 pub fn direction_about<T: Real>(axis: Vec3<T>, mu: T, phi: T) -> Vec3<T> {
-    // (1 - μ)(1 + μ) instead of 1 - μ²: no cancellation as |μ| → 1.
-    let sin_theta = ((T::ONE - mu) * (T::ONE + mu)).max_of(T::ZERO).sqrt();
+    direction_about_sin(axis, mu, sin_from_cos(mu), phi)
+}
+
+/// `sinθ = sqrt((1 − μ)(1 + μ))` for `θ ∈ [0, π]`; `(1 − μ)(1 + μ)` instead of
+/// `1 − μ²` so nothing cancels as `|μ| → 1`.
+#[inline(always)]
+pub fn sin_from_cos<T: Real>(mu: T) -> T {
+    ((T::ONE - mu) * (T::ONE + mu)).max_of(T::ZERO).sqrt()
+}
+
+/// [`direction_about`] with `sinθ` given: samplers that know `1 − μ` more
+/// precisely than `μ` itself (a forward lobe in f32, where `cos θ` rounds to
+/// 1 for θ below 2.4·10⁻⁴) keep the small angle in the direction.
+#[inline(always)]
+pub fn direction_about_sin<T: Real>(axis: Vec3<T>, mu: T, sin_theta: T, phi: T) -> Vec3<T> {
     let (sin_phi, cos_phi) = phi.sin_cos();
     let (b1, b2) = onb(axis);
     Vec3::from_local(

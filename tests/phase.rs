@@ -33,15 +33,24 @@ fn phases<T: Real>() -> Vec<(String, Phase<T>)> {
     v
 }
 
-fn pdf64<T: Real>(p: &Phase<T>) -> impl Fn(f64) -> f64 + '_ {
+/// `p`'s own density, in its own precision, as a function of f64 μ.
+fn pdf_t<T: Real>(p: &Phase<T>) -> impl Fn(f64) -> f64 + '_ {
     move |mu| p.pdf(T::from_f64(mu)).to_f64()
+}
+
+/// The density of `p`'s parameters evaluated in f64 (for chi² expected
+/// counts: the pdf at μ rounded to f32 misstates lobes narrower than f32's
+/// spacing near ±1).
+fn pdf64<T: Real>(p: &Phase<T>) -> impl Fn(f64) -> f64 {
+    let p64: Phase<f64> = p.cast();
+    move |mu| p64.pdf(mu)
 }
 
 #[test]
 fn pdf_integrates_to_one_and_mean_cosine_matches() {
     fn check<T: Real>(tol: f64) {
         for (name, p) in phases::<T>() {
-            let pdf = pdf64(&p);
+            let pdf = pdf_t(&p);
             let total = TAU * integrate(&pdf, -1.0, 1.0, 1e-12);
             assert!((total - 1.0).abs() < tol, "{name}: ∫p dω = {total}");
             let mean = TAU * integrate(&|mu| mu * pdf(mu), -1.0, 1.0, 1e-12);
@@ -60,7 +69,7 @@ fn pdf_integrates_to_one_and_mean_cosine_matches() {
 fn cdf_is_the_integral_of_the_pdf() {
     fn check<T: Real>(tol: f64) {
         for (name, p) in phases::<T>() {
-            let pdf = pdf64(&p);
+            let pdf = pdf_t(&p);
             for x in [-1.0, -0.9, -0.5, -0.1, 0.0, 0.3, 0.7, 0.95, 0.999, 1.0] {
                 let num = TAU * integrate(&pdf, -1.0, x, 1e-13);
                 let got = p.cdf(T::from_f64(x)).to_f64();
@@ -328,5 +337,36 @@ fn rho_zero_is_plain_rayleigh() {
     for u in uniform_grid(1001) {
         assert!((a.sample_cos(u) - b.sample_cos(u)).abs() < 1e-15);
         assert!((a.pdf(u) - b.pdf(u)).abs() < 1e-15);
+    }
+}
+
+#[test]
+fn small_angles_survive_in_f32_directions() {
+    // Forward lobes: for the last u below 1, cos θ rounds to 1 in f32 (θ below
+    // 2.4e-4), yet the direction must keep sin θ to f32 relative precision.
+    let cases = [
+        Phase::<f32>::henyey_greenstein(0.999).unwrap(),
+        Phase::fog_diameter(40.0).unwrap(),
+        Phase::draine(0.99, 3.0).unwrap(),
+    ];
+    let w_in = Vec3::new(0.0f32, 0.0, 1.0);
+    for p in cases {
+        let p64: Phase<f64> = p.cast();
+        let mut rounded_to_one = 0;
+        for k in 1..=2000u32 {
+            let u = 1.0 - k as f32 * f32::EPSILON / 2.0;
+            let (d, _) = p.sample_dir(w_in, u, 0.3);
+            let sin_got = (d.x as f64).hypot(d.y as f64);
+            let sin_ref = p64.sample_cos_sin(u as f64).1;
+            rounded_to_one += (p.sample_cos(u) == 1.0) as u32;
+            assert!(
+                (sin_got / sin_ref - 1.0).abs() < 1e-5,
+                "{p:?} u = {u}: sin θ {sin_got:e} vs {sin_ref:e}"
+            );
+        }
+        assert!(
+            rounded_to_one > 0,
+            "{p:?}: the case this test is about did not occur"
+        );
     }
 }

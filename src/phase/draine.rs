@@ -21,11 +21,15 @@
 //!    evaluated where it is small and relatively accurate.
 //! 3. **A seed**: eq. 6 evaluated in f64 with its `t5 < 0` cancellation
 //!    removed (`|g| ≥ 0.02`), or the exact `g = 0` solution (a depressed cubic)
-//!    for smaller `|g|`, or when eq. 6 is not finite.
-//! 4. **Newton's method safeguarded by bisection** on `[−1, 1]`: a step that
+//!    for smaller `|g|`, or when eq. 6 is not finite. For f32 results where
+//!    this seed is already within ~10⁻¹¹ (`|g| ≥ 0.05`, `10⁻⁴ ≤ α ≤ 10`: the
+//!    region where eq. 6 works), it is the answer, and the sampler costs
+//!    about what eq. 6 does.
+//! 4. **Halley's method safeguarded by bisection** on `[−1, 1]`: a step that
 //!    leaves the bracket is replaced by bisection, so the iteration converges
 //!    from any seed; it stops when a step falls below the precision's
-//!    tolerance (at most [`MAX_NEWTON`] steps).
+//!    tolerance (at most [`MAX_NEWTON`] steps). `F`, `F'` and `F''` cost one
+//!    square root and one division together.
 //!
 //! f32 objects run the same f64 code and round once at the end.
 //!
@@ -38,7 +42,7 @@ use super::hg::HenyeyGreenstein;
 use crate::error::Error;
 use crate::real::Real;
 
-/// The most Newton/bisection steps one sample may take (bisection alone
+/// The most Halley/bisection steps one sample may take (bisection alone
 /// narrows `[−1, 1]` to below 10⁻¹⁸ in 61 steps).
 pub const MAX_NEWTON: u32 = 64;
 
@@ -93,12 +97,14 @@ impl<T: Real> PhaseFunction<T> for Draine<T> {
     }
     #[inline]
     fn sample_cos(&self, u: T) -> T {
-        T::from_f64(inverse(
-            self.g.to_f64(),
-            self.alpha.to_f64(),
-            u.clamp01().to_f64(),
-            tol::<T>(),
-        ))
+        self.sample_cos_sin(u).0
+    }
+    /// `sin θ` from the f64 solution, so forward and backward lobes keep
+    /// angles that `cos θ` in f32 cannot resolve.
+    #[inline]
+    fn sample_cos_sin(&self, u: T) -> (T, T) {
+        let (mu, sin) = inverse::<T>(self.g.to_f64(), self.alpha.to_f64(), u.clamp01().to_f64());
+        (T::from_f64(mu), T::from_f64(sin))
     }
     /// `g (1 + α(3 + 2g²)/5) / (1 + α(1 + 2g²)/3)`.
     #[inline]
@@ -109,13 +115,15 @@ impl<T: Real> PhaseFunction<T> for Draine<T> {
     }
 }
 
-/// Newton stops after a step below this (then the error is about
-/// curvature × step², far below f32's resolution).
-pub(crate) const TOL_F32: f64 = 1e-9;
-/// The same for f64: steps at the rounding level of `μ`.
+/// Halley's iteration stops after a step below this, relative to the
+/// variable (`1 + μ` near the pole): the error left is about curvature ×
+/// step³, far below f32's resolution.
+pub(crate) const TOL_F32: f64 = 1e-6;
+/// For f64, steps continue to the rounding level of `μ` (there is no speed
+/// target in f64, and the last steps buy digits where `F` is flat).
 pub(crate) const TOL_F64: f64 = 1e-15;
 
-/// The Newton tolerance for results of precision `T`.
+/// The iteration tolerance for results of precision `T`.
 #[inline(always)]
 pub(crate) fn tol<T: Real>() -> f64 {
     if core::mem::size_of::<T>() == 4 {
@@ -125,37 +133,52 @@ pub(crate) fn tol<T: Real>() -> f64 {
     }
 }
 
-/// Draine's parameters in f64 with the normalisation `c = 1 + α(1 + 2g²)/3`.
+/// Draine's parameters in f64 with the normalisation `c = 1 + α(1 + 2g²)/3`
+/// and the constants every evaluation needs.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Params {
     g: f64,
     alpha: f64,
-    c: f64,
+    /// `N = (1 − g)(1 + g)/(2c)`.
+    n: f64,
+    /// `1/(1 + g)`.
+    inv_s0: f64,
+}
+
+/// `F(μ)`, `F'(μ)` (the density of μ) and `F''(μ)` at one point.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Eval {
+    pub(crate) cdf: f64,
+    pub(crate) density: f64,
+    pub(crate) slope: f64,
 }
 
 impl Params {
     pub(crate) fn new(g: f64, alpha: f64) -> Params {
+        let c = 1.0 + alpha * (1.0 + 2.0 * g * g) / 3.0;
         Params {
             g,
             alpha,
-            c: 1.0 + alpha * (1.0 + 2.0 * g * g) / 3.0,
+            n: (1.0 - g) * (1.0 + g) / (2.0 * c),
+            inv_s0: 1.0 / (1.0 + g),
         }
     }
 
     /// The mirror image `(g, μ) → (−g, −μ)`.
     pub(crate) fn mirrored(self) -> Params {
-        Params { g: -self.g, ..self }
+        Params::new(-self.g, self.alpha)
     }
 
-    /// `s = sqrt(1 + g² − 2gμ)`, as a sum of non-negative terms for either
-    /// sign of g (no cancellation at `μ → sign(g)`, `|g| → 1`).
+    /// `s = sqrt(1 + g² − 2gμ)` at `y = 1 + μ`, as a sum of non-negative terms
+    /// for either sign of g: `(1 − g)² + 2g(2 − y)` or `(1 + g)² − 2g y` (no
+    /// cancellation at `μ → sign(g)`, `|g| → 1`).
     #[inline(always)]
-    fn s(&self, mu: f64) -> f64 {
+    fn s(&self, y: f64) -> f64 {
         let g = self.g;
         let d = if g >= 0.0 {
-            (1.0 - g) * (1.0 - g) + 2.0 * g * (1.0 - mu)
+            (1.0 - g) * (1.0 - g) + 2.0 * g * (2.0 - y)
         } else {
-            (1.0 + g) * (1.0 + g) - 2.0 * g * (1.0 + mu)
+            (1.0 + g) * (1.0 + g) - 2.0 * g * y
         };
         libm::sqrt(d)
     }
@@ -163,23 +186,42 @@ impl Params {
     /// Density of `μ = cos θ` (that is, `2π p(μ)`): `N (1 + αμ²)/s³`.
     #[inline(always)]
     pub(crate) fn density(&self, mu: f64) -> f64 {
-        let s = self.s(mu);
-        let n = (1.0 - self.g) * (1.0 + self.g) / (2.0 * self.c);
-        n * (1.0 + self.alpha * mu * mu) / (s * s * s)
+        let s = self.s(1.0 + mu);
+        self.n * (1.0 + self.alpha * mu * mu) / (s * s * s)
     }
 
-    /// `F(μ) = P(cos θ ≤ μ)`, the cancellation-free form (module docs).
+    /// `F(μ) = P(cos θ ≤ μ)` alone.
     #[inline(always)]
     pub(crate) fn cdf(&self, mu: f64) -> f64 {
+        self.eval_y(1.0 + mu).cdf
+    }
+
+    /// `F`, `F'` and `F''` at `y = 1 + μ` (the variable the solver works in,
+    /// so that `1 + μ` near the pole keeps its relative precision), from one
+    /// square root and one division. With `q = 1/(s (s + s0))`:
+    /// `1/s = q (s + s0)`, `e = y/(s + s0) = y q s`,
+    /// `F = N I0 (1 + α P/3)` with `I0 = 2e/(s s0)` and
+    /// `P = 3 − 6 s0 e + 4 (s0 e)² − 2g s0 e³` (SPEC §7's `I2 = I0 P/3`),
+    /// `F' = N (1 + αμ²)/s³`, `F'' = N/s³ (2αμ + 3g (1 + αμ²)/s²)`.
+    #[inline(always)]
+    pub(crate) fn eval_y(&self, y: f64) -> Eval {
         let g = self.g;
-        let s = self.s(mu);
-        let s0 = 1.0 + g;
-        let e = (1.0 + mu) / (s + s0);
-        let se = s0 * e;
-        let i0 = 2.0 * e / (s * s0);
-        let i2 = 2.0 * e * (3.0 - 6.0 * se + 4.0 * se * se - 2.0 * g * se * e * e) / (3.0 * s * s0);
-        let n = (1.0 - g) * (1.0 + g) / (2.0 * self.c);
-        n * (i0 + self.alpha * i2)
+        let mu = y - 1.0;
+        let s = self.s(y);
+        let sum = s + (1.0 + g);
+        let q = 1.0 / (s * sum);
+        let inv_s = q * sum;
+        let e = y * q * s;
+        let se = (1.0 + g) * e;
+        let i0 = 2.0 * e * inv_s * self.inv_s0;
+        let p = 3.0 - 6.0 * se + 4.0 * se * se - 2.0 * g * se * e * e;
+        let inv_s3 = inv_s * inv_s * inv_s;
+        let w = 1.0 + self.alpha * mu * mu;
+        Eval {
+            cdf: self.n * i0 * (1.0 + self.alpha * p / 3.0),
+            density: self.n * w * inv_s3,
+            slope: self.n * inv_s3 * (2.0 * self.alpha * mu + 3.0 * g * w * inv_s * inv_s),
+        }
     }
 }
 
@@ -203,12 +245,12 @@ fn inverse_g0(alpha: f64, u: f64) -> f64 {
 
 /// Eq. 6 of Jendersie & d'Eon (2023) in f64, with the cancellation of
 /// `t5 + sqrt(t5² − t6³)` for `t5 < 0` removed (rewritten as
-/// `t6³ / (t5 − sqrt(t5² − t6³))`) and `1 − g²` factored. A seed only: it
-/// still divides by `g` and by `α`.
+/// `t6³ / (t5 − sqrt(t5² − t6³))`) and `1 − g²` factored. It still divides
+/// by `g` and by `α`, so it is used where those are not small; NaN where its
+/// cube root's argument leaves `[1e-200, 1e200]`.
 #[inline]
 fn seed_eq6(g: f64, a: f64, u: f64) -> f64 {
     let g2 = g * g;
-    let g4 = g2 * g2;
     let omg2 = (1.0 - g) * (1.0 + g);
     let t0 = a * omg2;
     let t1 = -a * omg2 * (1.0 + g2);
@@ -216,14 +258,18 @@ fn seed_eq6(g: f64, a: f64, u: f64) -> f64 {
     let t3 = g * (2.0 * u - 1.0);
     let t4 = 3.0 * g2 * (1.0 + t3) + a * (2.0 + g2 * (1.0 + (1.0 + 2.0 * g2) * t3));
     let t5 = t0 * (t1 * t2 + t4 * t4) + t1 * t1 * t1;
-    let t6 = t0 * 4.0 * (g4 - g2);
+    let t6 = -4.0 * t0 * g2 * omg2;
     let t6_3 = t6 * t6 * t6;
     let root = libm::sqrt(t5 * t5 - t6_3);
-    let t7 = crate::cbrt::cbrt_f64(if t5 >= 0.0 {
+    let arg = if t5 >= 0.0 {
         t5 + root
     } else {
         t6_3 / (t5 - root)
-    });
+    };
+    if !(arg > 1e-200 && arg < 1e200) {
+        return f64::NAN;
+    }
+    let t7 = crate::cbrt::cbrt_moderate_f64(arg);
     let t8 = 2.0 * (t1 + t6 / t7 + t7) / t0;
     let k = 6.0 * (1.0 + g2);
     let t9 = libm::sqrt(k + t8);
@@ -231,46 +277,83 @@ fn seed_eq6(g: f64, a: f64, u: f64) -> f64 {
     g / 2.0 + (1.0 / (2.0 * g) - d * d / (8.0 * g))
 }
 
-/// `F⁻¹(u)` in f64 for `u ∈ [0, 1]`, steps stopping below `tol` (module docs).
-pub(crate) fn inverse(g: f64, alpha: f64, u: f64, tol: f64) -> f64 {
+/// `F⁻¹(u)` in f64 for `u ∈ [0, 1]`, for results of precision `T` (module
+/// docs): `(cos θ, sin θ)`.
+pub(crate) fn inverse<T: Real>(g: f64, alpha: f64, u: f64) -> (f64, f64) {
     let p = Params::new(g, alpha);
     if u > 0.5 {
-        -inverse_tail(p.mirrored(), 1.0 - u, tol)
+        from_tail(inverse_tail::<T>(p.mirrored(), 1.0 - u), true)
     } else {
-        inverse_tail(p, u, tol)
+        from_tail(inverse_tail::<T>(p, u), false)
     }
 }
 
-/// `F⁻¹(target)` without the mirror step: accurate when `target ≤ 1/2`.
-pub(crate) fn inverse_tail(p: Params, target: f64, tol: f64) -> f64 {
+/// `(cos θ, sin θ)` from a tail solution `y = 1 + μ_tail` (of the mirrored
+/// problem if `mirrored`): `sin θ = sqrt(y (2 − y))` keeps the precision `y`
+/// has near the pole.
+#[inline(always)]
+pub(crate) fn from_tail(y: f64, mirrored: bool) -> (f64, f64) {
+    let mu = if mirrored { 1.0 - y } else { y - 1.0 };
+    (mu, libm::sqrt((y * (2.0 - y)).max(0.0)))
+}
+
+/// `y = 1 + F⁻¹(target)` without the mirror step: accurate when
+/// `target ≤ 1/2`.
+pub(crate) fn inverse_tail<T: Real>(p: Params, target: f64) -> f64 {
     if p.alpha == 0.0 {
-        return PhaseFunction::<f64>::sample_cos(&HenyeyGreenstein { g: p.g }, target);
+        return HenyeyGreenstein { g: p.g }.one_plus_minus_mu(target).0;
     }
-    let seed = if p.g.abs() >= 0.02 {
-        seed_eq6(p.g, p.alpha, target)
+    if target.is_nan() {
+        return f64::NAN;
+    }
+    if target <= 0.0 {
+        return 0.0;
+    }
+    let ag = p.g.abs();
+    let eq6_region = ag >= EQ6_MIN_G && p.alpha >= EQ6_MIN_ALPHA && p.alpha <= EQ6_MAX_ALPHA;
+    let seed = if ag >= 0.02 {
+        1.0 + seed_eq6(p.g, p.alpha, target)
     } else {
         f64::NAN
     };
+    if eq6_region && core::mem::size_of::<T>() == 4 && (EQ6_MIN_Y..=2.0).contains(&seed) {
+        // Eq. 6 in f64 on the small tail is within ~10⁻¹¹ here (see
+        // docs/draine_accuracy.md), 10³ finer than f32 resolves, and y is
+        // large enough for that absolute error to leave sin θ exact: done.
+        return seed;
+    }
     let seed = if seed.is_finite() {
         seed
     } else {
-        inverse_g0(p.alpha, target)
+        1.0 + inverse_g0(p.alpha, target)
     };
-    solve_bracketed(|x| (p.cdf(x), p.density(x)), target, seed, -1.0, 1.0, tol)
+    solve_bracketed::<T>(|y| p.eval_y(y), target, seed, 0.0, 2.0)
 }
 
+/// Below this `y = 1 + μ` the eq. 6 shortcut is not taken: its ~10⁻¹¹
+/// absolute error would show in `sin θ = sqrt(y (2 − y))`.
+const EQ6_MIN_Y: f64 = 1e-3;
+
+/// Where eq. 6 (in f64, on the small tail) is used as it is for f32 results:
+/// `|g| ≥ 0.05`, `10⁻⁴ ≤ α ≤ 10`. The stability sweep in `tests/draine.rs`
+/// holds this region to the same bound as everything else.
+const EQ6_MIN_G: f64 = 0.05;
+const EQ6_MIN_ALPHA: f64 = 1e-4;
+const EQ6_MAX_ALPHA: f64 = 10.0;
+
 /// Solves `F(x) = target` for an increasing `F` on `[lo, hi]` (with
-/// `F(lo) ≤ target ≤ F(hi)`), where `f(x)` returns `(F(x), F'(x))`: Newton's
-/// method from `seed`, kept inside a shrinking bracket and replaced by
-/// bisection whenever a step would leave it; stops after a step below `tol`
-/// or [`MAX_NEWTON`] steps.
-pub(crate) fn solve_bracketed(
-    f: impl Fn(f64) -> (f64, f64),
+/// `F(lo) ≤ target ≤ F(hi)`), where `f(x)` gives `F`, `F'` and `F''`:
+/// Halley's method (cubic convergence) from `seed`, kept inside a shrinking
+/// bracket and replaced by bisection whenever a step would leave it. Stops
+/// once a step is below `tol::<T>()` relative to `x` (the next error is then
+/// about `curvature · step³`), or when a step no longer moves `x`, or after
+/// [`MAX_NEWTON`] steps.
+pub(crate) fn solve_bracketed<T: Real>(
+    f: impl Fn(f64) -> Eval,
     target: f64,
     seed: f64,
     mut lo: f64,
     mut hi: f64,
-    tol: f64,
 ) -> f64 {
     if target.is_nan() {
         return f64::NAN;
@@ -278,14 +361,15 @@ pub(crate) fn solve_bracketed(
     if target <= 0.0 {
         return lo;
     }
+    let tol = tol::<T>();
     let mut x = if seed > lo && seed < hi {
         seed
     } else {
         0.5 * (lo + hi)
     };
     for _ in 0..MAX_NEWTON {
-        let (fx, dfx) = f(x);
-        let r = fx - target;
+        let e = f(x);
+        let r = e.cdf - target;
         if r == 0.0 {
             break;
         }
@@ -294,13 +378,24 @@ pub(crate) fn solve_bracketed(
         } else {
             lo = x;
         }
-        let mut next = x - r / dfx;
-        if !(next > lo && next < hi) {
+        let mut next = x - 2.0 * r * e.density / (2.0 * e.density * e.density - r * e.slope);
+        if next == x {
+            // The correction is below the resolution of x: converged. (x is
+            // also a bracket end now, so the test below would bisect away.)
+            break;
+        }
+        let halley = next > lo && next < hi;
+        if !halley {
             next = 0.5 * (lo + hi);
         }
         let step = (next - x).abs();
         x = next;
-        if step <= tol || hi - lo <= tol {
+        // Stop after a small Halley step, relative to x (a bisection step says
+        // nothing about the error), or when the bracket has shrunk to
+        // adjacent floats.
+        if (halley && step <= tol * x.abs())
+            || hi - lo <= 2.0 * f64::EPSILON * hi.abs().max(lo.abs())
+        {
             break;
         }
     }

@@ -15,7 +15,7 @@
 //!   inverse of [`PhaseFunction::cdf`].
 
 use super::PhaseFunction;
-use super::draine::{self, Params, inverse_tail, solve_bracketed};
+use super::draine::{Eval, Params, from_tail, inverse_tail, solve_bracketed};
 use crate::error::Error;
 use crate::real::Real;
 
@@ -117,6 +117,16 @@ impl<T: Real> Fog<T> {
         Self::new(t(p.g_hg), t(p.g_d), t(p.alpha), t(p.w_d))
     }
 
+    /// A mixture from parameters already known to be valid.
+    pub(crate) fn from_parts(g_hg: T, g_d: T, alpha: T, w_d: T) -> Self {
+        Fog {
+            g_hg,
+            g_d,
+            alpha,
+            w_d,
+        }
+    }
+
     /// The four parameters `(g_hg, g_d, alpha, w_d)`.
     pub fn params(&self) -> (T, T, T, T) {
         (self.g_hg, self.g_d, self.alpha, self.w_d)
@@ -129,6 +139,29 @@ impl<T: Real> Fog<T> {
             Params::new(self.g_d.to_f64(), self.alpha.to_f64()),
             self.w_d.to_f64(),
         )
+    }
+
+    /// The exact inverse of the mixture's CDF, in f64 (module docs):
+    /// `(cos θ, sin θ)`, solved for `1 + μ` in the smaller tail.
+    fn inverse(&self, u: T) -> (f64, f64) {
+        let (h, d, w) = self.lobes();
+        let u = u.clamp01().to_f64();
+        // Solve in the smaller tail (mirror both lobes for u > 1/2).
+        let (h, d, target, mirrored) = if u > 0.5 {
+            (h.mirrored(), d.mirrored(), 1.0 - u, true)
+        } else {
+            (h, d, u, false)
+        };
+        if target.is_nan() {
+            return (f64::NAN, f64::NAN);
+        }
+        // The mixture's quantile lies between the lobes' quantiles.
+        let a = inverse_tail::<T>(h, target);
+        let b = inverse_tail::<T>(d, target);
+        let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
+        let seed = (1.0 - w) * a + w * b;
+        let y = solve_bracketed::<T>(|y| mixture(h, d, w, y), target, seed, lo, hi);
+        from_tail(y, mirrored)
     }
 
     /// The paper's sampler (SPEC §4): the Draine lobe when `u < w_D`, with
@@ -148,49 +181,41 @@ impl<T: Real> Fog<T> {
     }
 }
 
-/// `(F(x), F'(x))` of the mixture.
+/// `F`, `F'`, `F''` of the mixture at `y = 1 + μ`.
 #[inline(always)]
-fn mixture(h: Params, d: Params, w: f64, x: f64) -> (f64, f64) {
-    (
-        (1.0 - w) * h.cdf(x) + w * d.cdf(x),
-        (1.0 - w) * h.density(x) + w * d.density(x),
-    )
+fn mixture(h: Params, d: Params, w: f64, y: f64) -> Eval {
+    let (a, b) = (h.eval_y(y), d.eval_y(y));
+    let mix = |p: f64, q: f64| (1.0 - w) * p + w * q;
+    Eval {
+        cdf: mix(a.cdf, b.cdf),
+        density: mix(a.density, b.density),
+        slope: mix(a.slope, b.slope),
+    }
 }
 
 impl<T: Real> PhaseFunction<T> for Fog<T> {
     #[inline]
     fn pdf(&self, cos_theta: T) -> T {
         let (h, d, w) = self.lobes();
-        T::from_f64(mixture(h, d, w, cos_theta.to_f64()).1 / core::f64::consts::TAU)
+        T::from_f64(mixture(h, d, w, 1.0 + cos_theta.to_f64()).density / core::f64::consts::TAU)
     }
     #[inline]
     fn cdf(&self, cos_theta: T) -> T {
         let (h, d, w) = self.lobes();
         T::from_f64(
-            mixture(h, d, w, cos_theta.to_f64().clamp(-1.0, 1.0))
-                .0
+            mixture(h, d, w, 1.0 + cos_theta.to_f64().clamp(-1.0, 1.0))
+                .cdf
                 .clamp(0.0, 1.0),
         )
     }
     fn sample_cos(&self, u: T) -> T {
-        let (h, d, w) = self.lobes();
-        let u = u.clamp01().to_f64();
-        let tol = draine::tol::<T>();
-        // Solve in the smaller tail (mirror both lobes for u > 1/2).
-        let (h, d, target, sign) = if u > 0.5 {
-            (h.mirrored(), d.mirrored(), 1.0 - u, -1.0)
-        } else {
-            (h, d, u, 1.0)
-        };
-        if target.is_nan() {
-            return T::NAN;
-        }
-        let a = inverse_tail(h, target, tol);
-        let b = inverse_tail(d, target, tol);
-        let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
-        let seed = (1.0 - w) * a + w * b;
-        let x = solve_bracketed(|x| mixture(h, d, w, x), target, seed, lo, hi, tol);
-        T::from_f64(sign * x)
+        T::from_f64(self.inverse(u).0)
+    }
+    /// `sin θ` from the f64 solution, so forward lobes keep angles that
+    /// `cos θ` in f32 cannot resolve (see [`Draine`](super::Draine)).
+    fn sample_cos_sin(&self, u: T) -> (T, T) {
+        let (mu, sin) = self.inverse(u);
+        (T::from_f64(mu), T::from_f64(sin))
     }
     /// `(1 − w_D) g_HG + w_D ⟨cos θ⟩_Draine`.
     fn mean_cosine(&self) -> T {

@@ -38,6 +38,28 @@ impl<T: Real> HenyeyGreenstein<T> {
     pub fn g(&self) -> T {
         self.g
     }
+    /// `(1 + μ, 1 − μ)` for `μ = F⁻¹(u)` (module docs).
+    #[inline(always)]
+    pub(super) fn one_plus_minus_mu(&self, u: T) -> (T, T) {
+        let g = self.g;
+        let u = u.clamp01();
+        let v = T::ONE - u;
+        let (omg, opg) = (T::ONE - g, T::ONE + g);
+        // d = 1 − g + 2gu, 1 − g + gu and 1 + gu, each written as a sum of
+        // non-negative terms for the sign of g: for g < 0, `1 − g + 2gu`
+        // cancels as u → 1 and g → −1, but `(1 + g) − 2g(1 − u)` does not.
+        let (d, a, b) = if g >= T::ZERO {
+            (omg + T::TWO * g * u, omg + g * u, T::ONE + g * u)
+        } else {
+            (opg - T::TWO * g * v, T::ONE - g * v, opg - g * v)
+        };
+        let inv_d2 = T::ONE / (d * d);
+        (
+            T::TWO * u * opg * opg * a * inv_d2,
+            T::TWO * v * omg * omg * b * inv_d2,
+        )
+    }
+
     /// `1 + g² − 2gμ`, written as a sum of non-negative terms so it does not
     /// cancel at `μ → sign(g)`, `|g| → 1`.
     #[inline(always)]
@@ -70,26 +92,19 @@ impl<T: Real> PhaseFunction<T> for HenyeyGreenstein<T> {
     }
     #[inline]
     fn sample_cos(&self, u: T) -> T {
-        let g = self.g;
-        let u = u.clamp01();
-        let v = T::ONE - u;
-        let (omg, opg) = (T::ONE - g, T::ONE + g);
-        // d = 1 − g + 2gu, 1 − g + gu and 1 + gu, each written as a sum of
-        // non-negative terms for the sign of g: for g < 0, `1 − g + 2gu`
-        // cancels as u → 1 and g → −1, but `(1 + g) − 2g(1 − u)` does not.
-        let (d, a, b) = if g >= T::ZERO {
-            (omg + T::TWO * g * u, omg + g * u, T::ONE + g * u)
-        } else {
-            (opg - T::TWO * g * v, T::ONE - g * v, opg - g * v)
-        };
-        let inv_d2 = T::ONE / (d * d);
-        let one_plus_mu = T::TWO * u * opg * opg * a * inv_d2;
-        let one_minus_mu = T::TWO * v * omg * omg * b * inv_d2;
-        if one_plus_mu < T::ONE {
+        self.sample_cos_sin(u).0
+    }
+    /// `sin θ = sqrt((1 + μ)(1 − μ))` from the two factors the sampler forms
+    /// anyway, each accurate relative to itself.
+    #[inline]
+    fn sample_cos_sin(&self, u: T) -> (T, T) {
+        let (one_plus_mu, one_minus_mu) = self.one_plus_minus_mu(u);
+        let mu = if one_plus_mu < T::ONE {
             one_plus_mu - T::ONE
         } else {
             T::ONE - one_minus_mu
-        }
+        };
+        (mu, (one_plus_mu * one_minus_mu).max_of(T::ZERO).sqrt())
     }
     #[inline(always)]
     fn mean_cosine(&self) -> T {

@@ -14,6 +14,7 @@ pub mod draine;
 pub mod fog;
 mod hg;
 mod isotropic;
+pub mod particle;
 pub mod rayleigh;
 mod rayleigh_depolarized;
 
@@ -25,7 +26,7 @@ pub use rayleigh::{Rayleigh, RayleighMethod};
 pub use rayleigh_depolarized::RayleighDepolarized;
 
 use crate::error::Error;
-use crate::geometry::{Vec3, direction_about};
+use crate::geometry::{Vec3, direction_about_sin, sin_from_cos};
 use crate::real::Real;
 
 /// A phase function over the cosine of the scattering angle.
@@ -42,14 +43,24 @@ pub trait PhaseFunction<T: Real> {
     /// Mean cosine `⟨cos θ⟩ = 2π ∫ μ p(μ) dμ` (the asymmetry parameter).
     fn mean_cosine(&self) -> T;
 
+    /// `(cos θ, sin θ)` for `cos θ = sample_cos(u)`, with `sin θ` as
+    /// accurate as the sampler knows it: where `1 − |cos θ|` is known to
+    /// better than the spacing of floats near 1, `sin θ` keeps it.
+    #[inline]
+    fn sample_cos_sin(&self, u: T) -> (T, T) {
+        let mu = self.sample_cos(u);
+        (mu, sin_from_cos(mu))
+    }
+
     /// A direction scattered from the unit propagation direction `w_in`:
     /// `cos θ = sample_cos(u1)`, azimuth `2π u2` in the basis
-    /// [`onb`](crate::geometry::onb)`(w_in)`. Returns the direction and its
-    /// density per steradian.
+    /// [`onb`](crate::geometry::onb)`(w_in)`, the polar angle from
+    /// [`sample_cos_sin`](Self::sample_cos_sin). Returns the direction and
+    /// its density per steradian.
     #[inline]
     fn sample_dir(&self, w_in: Vec3<T>, u1: T, u2: T) -> (Vec3<T>, T) {
-        let mu = self.sample_cos(u1);
-        let dir = direction_about(w_in, mu, T::TAU * u2.clamp01());
+        let (mu, sin_theta) = self.sample_cos_sin(u1);
+        let dir = direction_about_sin(w_in, mu, sin_theta, T::TAU * u2.clamp01());
         (dir, self.pdf(mu))
     }
 
@@ -189,6 +200,10 @@ impl<T: Real> PhaseFunction<T> for Phase<T> {
     #[inline]
     fn mean_cosine(&self) -> T {
         dispatch!(self, m => m.mean_cosine())
+    }
+    #[inline]
+    fn sample_cos_sin(&self, u: T) -> (T, T) {
+        dispatch!(self, m => m.sample_cos_sin(u))
     }
     #[inline]
     fn sample_dir(&self, w_in: Vec3<T>, u1: T, u2: T) -> (Vec3<T>, T) {

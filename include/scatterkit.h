@@ -364,6 +364,20 @@ sk_status sk_phase_fog_diameter(float diameter_um, sk_phase *out);
 sk_status sk_phase_fog_diameter_f64(double diameter_um, sk_phase_f64 *out);
 
 /*
+ The cheapest of isotropic, HG, Rayleigh, Draine and the full fog fit
+ (by measured sampling cost) whose density stays within total-variation
+ distance `tolerance` (0 < tolerance < 1) of the fog fit for droplets of
+ 0 < diameter_um <= 50 micrometres; HG and Draine get best-fit parameters.
+ Takes milliseconds: build once per medium. SK_ERR_DOMAIN outside the ranges.
+ */
+sk_status sk_phase_particle(float diameter_um, float tolerance, sk_phase *out);
+
+/*
+ Double twin of `sk_phase_particle`.
+ */
+sk_status sk_phase_particle_f64(double diameter_um, double tolerance, sk_phase_f64 *out);
+
+/*
  cos theta by lobe: for a fog phase, the paper's sampler (u < w_d picks the
  Draine lobe and u is rescaled and reused inside the lobe): exact in
  distribution and cheaper than sk_phase_sample_cos, but not monotone in u.

@@ -129,6 +129,17 @@ fn example_hg_stratified() {
 }
 
 #[test]
+fn example_fog_histogram() {
+    let out = run_source("c_examples/fog_histogram.c", false);
+    assert!(out.starts_with("fog, 2 um droplets"), "{out}");
+    assert_eq!(
+        out.lines().filter(|l| l.starts_with('[')).count(),
+        18,
+        "{out}"
+    );
+}
+
+#[test]
 fn bad_input_from_c() {
     let exe = build_program(&root().join("tests/c/bad_input.c"), false);
     let (code, out) = run(&exe);

@@ -264,6 +264,30 @@ pub unsafe extern "C" fn sk_phase_fog_diameter_f64(
     unsafe { construct(out, Phase::fog_diameter(diameter_um)) }
 }
 
+/// The cheapest of isotropic, HG, Rayleigh, Draine and the full fog fit
+/// (by measured sampling cost) whose density stays within total-variation
+/// distance `tolerance` (0 < tolerance < 1) of the fog fit for droplets of
+/// 0 < diameter_um <= 50 micrometres; HG and Draine get best-fit parameters.
+/// Takes milliseconds: build once per medium. SK_ERR_DOMAIN outside the ranges.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_particle(
+    diameter_um: f32,
+    tolerance: f32,
+    out: *mut sk_phase,
+) -> sk_status {
+    unsafe { construct(out, Phase::particle(diameter_um, tolerance)) }
+}
+
+/// Double twin of `sk_phase_particle`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_particle_f64(
+    diameter_um: f64,
+    tolerance: f64,
+    out: *mut sk_phase_f64,
+) -> sk_status {
+    unsafe { construct(out, Phase::particle(diameter_um, tolerance)) }
+}
+
 /// cos theta by lobe: for a fog phase, the paper's sampler (u < w_d picks the
 /// Draine lobe and u is rescaled and reused inside the lobe): exact in
 /// distribution and cheaper than sk_phase_sample_cos, but not monotone in u.

@@ -70,6 +70,85 @@ static void phase_constructors(void) {
     CHECK(sk_phase_rayleigh_depolarized(0.0f, &p) == SK_OK);
 }
 
+static void scattering_phases(void) {
+    const float bad_alpha[] = {-1e-30f, -1.0f, NAN, INFINITY};
+    sk_phase p;
+    sk_phase_f64 p64;
+    float cosines[4] = {-1.0f, -0.5f, 0.5f, 1.0f}, pdf[4] = {1.0f, 2.0f, 3.0f, 4.0f};
+    float buf[2 * 33];
+    sk_table t;
+    size_t i;
+
+    for (i = 0; i < 4; i++) {
+        CHECK(sk_phase_draine(0.5f, bad_alpha[i], &p) == SK_ERR_DOMAIN);
+        CHECK(sk_phase_fog(0.5f, 0.5f, bad_alpha[i], 0.5f, &p) == SK_ERR_DOMAIN);
+    }
+    CHECK(sk_phase_draine(1.0f, 1.0f, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_draine(NAN, 1.0f, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_draine_f64(-1.0, 1.0, &p64) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_cornette_shanks(-1.5f, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_cornette_shanks_f64(INFINITY, &p64) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_fog(1.0f, 0.5f, 1.0f, 0.5f, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_fog(0.5f, 0.5f, 1.0f, 1.5f, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_fog(0.5f, 0.5f, 1.0f, -0.1f, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_fog_f64(0.5, 0.5, 1.0, NAN, &p64) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_fog_diameter(0.0f, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_fog_diameter(-2.0f, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_fog_diameter(50.5f, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_fog_diameter(NAN, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_fog_diameter_f64(INFINITY, &p64) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_particle(2.0f, 0.0f, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_particle(2.0f, 1.0f, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_particle(2.0f, NAN, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_particle(60.0f, 0.1f, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_particle_f64(0.0, 0.1, &p64) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_draine(0.5f, 1.0f, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_cornette_shanks(0.5f, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_fog(0.5f, 0.5f, 1.0f, 0.5f, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_fog_diameter(2.0f, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_particle(2.0f, 0.1f, NULL) == SK_ERR_NULL);
+    CHECK(isnan(sk_phase_sample_cos_lobe(NULL, 0.5f)));
+    /* Valid extremes: no NaN, nothing outside [-1, 1]. */
+    CHECK(sk_phase_draine(0.0f, 0.0f, &p) == SK_OK);
+    CHECK(fabsf(sk_phase_sample_cos(&p, 0.3f)) <= 1.0f);
+    CHECK(sk_phase_draine(-0.999f, 1e4f, &p) == SK_OK);
+    CHECK(sk_phase_sample_cos(&p, 1.0f) == 1.0f && sk_phase_sample_cos(&p, 0.0f) == -1.0f);
+    CHECK(sk_phase_fog_diameter(50.0f, &p) == SK_OK);
+    CHECK(fabsf(sk_phase_sample_cos_lobe(&p, 0.999f)) <= 1.0f);
+    CHECK(sk_phase_particle(0.01f, 0.01f, &p) == SK_OK);
+
+    /* Tables: sizes, NULLs, measured data. */
+    CHECK(sk_table_len(SK_TABLE_INVERSE, 32) == 66 && sk_table_len(SK_TABLE_MEASURED, 32) == 66);
+    CHECK(sk_phase_hg(0.5f, &p) == SK_OK);
+    CHECK(sk_table_inverse(&p, buf, 65, 32, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_inverse(&p, buf, 66, 0, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_inverse(NULL, buf, 66, 32, &t) == SK_ERR_NULL);
+    CHECK(sk_table_inverse(&p, NULL, 66, 32, &t) == SK_ERR_NULL);
+    CHECK(sk_table_inverse(&p, buf, 66, 32, NULL) == SK_ERR_NULL);
+    {
+        sk_phase zero;
+        memset(&zero, 0, sizeof zero);
+        CHECK(sk_table_inverse(&zero, buf, 66, 32, &t) == SK_ERR_DOMAIN);
+    }
+    CHECK(sk_table_inverse(&p, buf, 66, 32, &t) == SK_OK);
+    CHECK(sk_table_sample_cos(&t, 0.0f) == -1.0f && sk_table_sample_cos(&t, 1.0f) == 1.0f);
+    CHECK(sk_table_measured(cosines, pdf, 4, buf, 66, 32, &t) == SK_OK);
+    CHECK(sk_table_measured(cosines, pdf, 1, buf, 66, 32, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_measured(cosines, pdf, 4, buf, 10, 32, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_measured(NULL, pdf, 4, buf, 66, 32, &t) == SK_ERR_NULL);
+    CHECK(sk_table_measured(cosines, NULL, 4, buf, 66, 32, &t) == SK_ERR_NULL);
+    pdf[2] = -1.0f;
+    CHECK(sk_table_measured(cosines, pdf, 4, buf, 66, 32, &t) == SK_ERR_DOMAIN);
+    pdf[2] = NAN;
+    CHECK(sk_table_measured(cosines, pdf, 4, buf, 66, 32, &t) == SK_ERR_DOMAIN);
+    pdf[2] = 3.0f;
+    cosines[2] = -0.7f; /* unsorted */
+    CHECK(sk_table_measured(cosines, pdf, 4, buf, 66, 32, &t) == SK_ERR_DOMAIN);
+    cosines[2] = 0.5f;
+    pdf[0] = pdf[1] = pdf[2] = pdf[3] = 0.0f; /* no mass */
+    CHECK(sk_table_measured(cosines, pdf, 4, buf, 66, 32, &t) == SK_ERR_DOMAIN);
+}
+
 static void phase_queries(void) {
     sk_phase zero, hg;
     sk_phase_f64 zero64;
@@ -165,6 +244,7 @@ static void tables(void) {
     CHECK(sk_table_len(SK_TABLE_RAYLEIGH_CDF, 0) == 0);
     CHECK(sk_table_len(SK_TABLE_RAYLEIGH_CDF, SIZE_MAX) == 0);
     CHECK(sk_table_len(77, 32) == 0);
+    CHECK(sk_table_len(SK_TABLE_INVERSE, SIZE_MAX) == 0);
     CHECK(sk_table_rayleigh_cdf(buf, 32, 32, &t) == SK_ERR_SIZE); /* one float short */
     CHECK(t.data == NULL);
     CHECK(sk_table_rayleigh_cdf(buf, 33, 0, &t) == SK_ERR_SIZE);
@@ -214,6 +294,7 @@ static void basis_and_version(void) {
 
 int main(void) {
     phase_constructors();
+    scattering_phases();
     phase_queries();
     rayleigh_methods();
     tables();

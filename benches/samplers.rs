@@ -3,8 +3,10 @@
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::rand_core::Rng;
 use rand_xoshiro::rand_core::SeedableRng;
-use scatterkit::{Phase, PhaseFunction, RayleighMethod, Real, Table, Vec3, rayleigh};
+use scatterkit::phase::draine::sample_cos_eq6;
+use scatterkit::{Draine, Phase, PhaseFunction, RayleighMethod, Real, Table, Vec3, rayleigh};
 use std::hint::black_box;
 
 const BATCH: usize = 4096;
@@ -71,6 +73,56 @@ fn phases<T: Real>(c: &mut Criterion, label: &str) {
     g.finish();
 }
 
+/// Draine by rejection from HG: accept μ ~ HG(g) with `(1 + αμ²)/(1 + α)`.
+fn draine_rejection<R: Rng>(hg: &Phase<f32>, alpha: f32, r: &mut R) -> f32 {
+    loop {
+        let mu = hg.sample_cos(f32::uniform(r));
+        if f32::uniform(r) * (1.0 + alpha) <= 1.0 + alpha * mu * mu {
+            return mu;
+        }
+    }
+}
+
+/// Our Draine sampler, eq. 6 as published, and rejection from HG, in the
+/// regions of the accuracy map (`docs/draine_accuracy.md`).
+fn draine(c: &mut Criterion) {
+    let mut g = c.benchmark_group("draine_sample_cos_f32");
+    g.throughput(Throughput::Elements(1));
+    for (gg, a) in [
+        (0.5f32, 1.0f32),
+        (0.9, 10.0),
+        (0.3, 250.0),
+        (0.01, 1000.0),
+        (-0.7, 1e4),
+    ] {
+        let id = format!("g{gg}_a{a}");
+        let ours = Draine::new(gg, a).unwrap();
+        let hg = Phase::henyey_greenstein(gg).unwrap();
+        let mut r = rng();
+        g.bench_function(BenchmarkId::new("ours", &id), |b| {
+            b.iter(|| ours.sample_cos(f32::uniform(&mut r)))
+        });
+        g.bench_function(BenchmarkId::new("eq6_published", &id), |b| {
+            b.iter(|| sample_cos_eq6(black_box(gg), black_box(a), f32::uniform(&mut r)))
+        });
+        g.bench_function(BenchmarkId::new("hg_rejection", &id), |b| {
+            b.iter(|| draine_rejection(&hg, a, &mut r))
+        });
+    }
+    g.finish();
+    let mut g = c.benchmark_group("fog_sample_cos_f32");
+    g.throughput(Throughput::Elements(1));
+    let fog = scatterkit::Fog::<f32>::from_diameter(2.0).unwrap();
+    let mut r = rng();
+    g.bench_function("exact_inverse_2um", |b| {
+        b.iter(|| fog.sample_cos(f32::uniform(&mut r)))
+    });
+    g.bench_function("by_lobe_2um", |b| {
+        b.iter(|| fog.sample_cos_by_lobe(f32::uniform(&mut r)))
+    });
+    g.finish();
+}
+
 fn tables(c: &mut Criterion) {
     let mut g = c.benchmark_group("table_sample_cos_f32");
     g.throughput(Throughput::Elements(BATCH as u64));
@@ -82,6 +134,11 @@ fn tables(c: &mut Criterion) {
         let t = Table::rayleigh_cdf(&mut buf, n).unwrap();
         g.bench_function(BenchmarkId::new("frisvad_rayleigh_cdf", n), |b| {
             b.iter(|| u.iter().map(|&x| t.sample_cos(black_box(x))).sum::<f32>())
+        });
+        let mut hbuf = vec![0.0f32; 2 * (n + 1)];
+        let h = Table::inverse(&Phase::rayleigh(), &mut hbuf, n).unwrap();
+        g.bench_function(BenchmarkId::new("hermite_inverse_rayleigh", n), |b| {
+            b.iter(|| u.iter().map(|&x| h.sample_cos(black_box(x))).sum::<f32>())
         });
     }
     g.finish();
@@ -143,6 +200,7 @@ fn all(c: &mut Criterion) {
     rayleigh_methods::<f64>(c, "f64");
     phases::<f32>(c, "f32");
     phases::<f64>(c, "f64");
+    draine(c);
     tables(c);
     cube_roots(c);
 }

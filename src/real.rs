@@ -90,6 +90,10 @@ pub trait Real:
     fn powf(self, p: Self) -> Self;
     /// `atan2(self, x)`.
     fn atan2(self, x: Self) -> Self;
+    /// `⌊self⌋` as an index for `self ≥ 0`; saturating (NaN gives 0).
+    fn to_index(self) -> usize;
+    /// An index as a float.
+    fn from_index(i: usize) -> Self;
     /// True unless NaN or ±∞.
     fn is_finite(self) -> bool;
     /// True for NaN.
@@ -203,6 +207,18 @@ macro_rules! impl_real {
             #[inline(always)]
             fn atan2(self, x: Self) -> Self {
                 libm::$atan2(self, x)
+            }
+            #[inline(always)]
+            fn to_index(self) -> usize {
+                // Through i64: one cvttss2si/cvttsd2si on x86-64, where a
+                // direct unsigned conversion takes several instructions.
+                // Negative values and NaN give 0.
+                (self as i64).max(0) as usize
+            }
+            #[inline(always)]
+            fn from_index(i: usize) -> Self {
+                // Through i64 for the same reason (indices stay below 2⁶³).
+                i as i64 as $t
             }
             #[inline(always)]
             fn is_finite(self) -> bool {

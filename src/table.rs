@@ -64,6 +64,8 @@ impl TableKind {
 pub struct Table<'a, T> {
     data: &'a [T],
     n: usize,
+    /// `n` as a float (the lookup's scale).
+    n_t: T,
     kind: TableKind,
 }
 
@@ -85,6 +87,7 @@ impl<'a, T: Real> Table<'a, T> {
         buf[n] = T::ONE;
         Ok(Table {
             data: buf,
+            n_t: T::from_index(n),
             n,
             kind: TableKind::RayleighCdf,
         })
@@ -114,6 +117,7 @@ impl<'a, T: Real> Table<'a, T> {
         limit_slopes(buf, n);
         Ok(Table {
             data: buf,
+            n_t: T::from_index(n),
             n,
             kind: TableKind::Inverse,
         })
@@ -134,6 +138,7 @@ impl<'a, T: Real> Table<'a, T> {
         limit_slopes(buf, n);
         Ok(Table {
             data: buf,
+            n_t: T::from_index(n),
             n,
             kind: TableKind::Measured,
         })
@@ -144,7 +149,12 @@ impl<'a, T: Real> Table<'a, T> {
     pub fn from_data(data: &'a [T], n: usize, kind: TableKind) -> Result<Self, Error> {
         let len = kind.len(n).ok_or(Error::Size)?;
         let data = data.get(..len).ok_or(Error::Size)?;
-        Ok(Table { data, n, kind })
+        Ok(Table {
+            data,
+            n,
+            n_t: T::from_index(n),
+            kind,
+        })
     }
 
     /// The table's resolution `n`.
@@ -161,7 +171,7 @@ impl<'a, T: Real> Table<'a, T> {
     }
 
     /// `cos θ` for `u ∈ [0, 1]` (clamped; NaN gives NaN), monotone in `u`.
-    #[inline]
+    #[inline(always)]
     pub fn sample_cos(&self, u: T) -> T {
         match self.kind {
             TableKind::RayleighCdf => self.sample_cdf_table(u.clamp01()),
@@ -171,14 +181,16 @@ impl<'a, T: Real> Table<'a, T> {
 
     /// Cubic Hermite interpolation of the tabulated inverse: interval
     /// `i = ⌊u n⌋` found by arithmetic, no search.
-    #[inline]
+    #[inline(always)]
     fn sample_hermite(&self, u: T) -> T {
-        let x = u * T::from_f64(self.n as f64);
-        // `as usize` saturates (NaN → 0): the index is always in bounds.
-        let i = (x.to_f64() as usize).min(self.n - 1);
-        let t = x - T::from_f64(i as f64);
-        let d = &self.data[2 * i..2 * i + 4];
-        let (y0, d0, y1, d1) = (d[0], d[1], d[2], d[3]);
+        let x = u * self.n_t;
+        // Saturating conversion (NaN → 0) and the min keep i in bounds.
+        let i = x.to_index().min(self.n - 1);
+        let t = x - T::from_index(i);
+        let [y0, d0, y1, d1] = match self.data.get(2 * i..2 * i + 4) {
+            Some(&[a, b, c, d]) => [a, b, c, d],
+            _ => return T::NAN,
+        };
         let dy = y1 - y0;
         let c2 = T::from_f64(3.0) * dy - T::TWO * d0 - d1;
         let c3 = d0 + d1 - T::TWO * dy;
@@ -186,8 +198,9 @@ impl<'a, T: Real> Table<'a, T> {
     }
 
     /// Binary search for `F[i] ≤ u < F[i+1]`, then linear interpolation
-    /// (Frisvad 2011, §3C, in the orientation of SPEC §0).
-    #[inline]
+    /// (Frisvad 2011, §3C, in the orientation of SPEC §0). Kept out of line
+    /// so the O(1) Hermite lookup beside it inlines into the caller's loop.
+    #[inline(never)]
     fn sample_cdf_table(&self, u: T) -> T {
         let f = self.data;
         let (mut lo, mut hi) = (0usize, self.n);

@@ -144,6 +144,59 @@ fn tables(c: &mut Criterion) {
     g.finish();
 }
 
+/// Surface samplers (SunSolve's models), f32 and f64.
+fn surfaces<T: Real>(c: &mut Criterion, label: &str) {
+    use scatterkit::surface::{
+        CrossingPolicy, Fraction, Surface, SurfaceModel, fresnel_dielectric, lambert_sample,
+        phong_sample, refract,
+    };
+    let t = T::from_f64;
+    let mut g = c.benchmark_group(format!("surface_{label}"));
+    g.throughput(Throughput::Elements(1));
+    let n = Vec3::new(T::ZERO, T::ZERO, T::ONE);
+    let d = Vec3::new(t(0.6), T::ZERO, t(-0.8));
+    let axis = Vec3::new(t(0.6), T::ZERO, t(0.8));
+    let mut r = rng();
+    g.bench_function("lambert_sample", |b| {
+        b.iter(|| lambert_sample(black_box(n), T::uniform(&mut r), T::uniform(&mut r)))
+    });
+    for policy in [
+        CrossingPolicy::Fold,
+        CrossingPolicy::Resample,
+        CrossingPolicy::Mirror,
+    ] {
+        g.bench_function(format!("phong_sample_a1000_{policy:?}"), |b| {
+            b.iter(|| {
+                phong_sample(
+                    black_box(axis),
+                    n,
+                    t(1000.0),
+                    policy,
+                    T::uniform(&mut r),
+                    T::uniform(&mut r),
+                )
+            })
+        });
+    }
+    g.bench_function("fresnel_dielectric", |b| {
+        b.iter(|| fresnel_dielectric(T::uniform(&mut r), t(1.5), t(3.9)))
+    });
+    g.bench_function("refract", |b| {
+        b.iter(|| refract(black_box(d), n, t(1.5), t(3.9)))
+    });
+    let s = Surface::new(
+        SurfaceModel::Phong,
+        t(1000.0),
+        Fraction::Scalar(t(50e-9)),
+        CrossingPolicy::Fold,
+    )
+    .unwrap();
+    g.bench_function("interact_phong_scalar", |b| {
+        b.iter(|| s.interact(black_box(d), n, t(1.5), t(3.9), t(600e-9), &mut r))
+    });
+    g.finish();
+}
+
 fn cube_roots(c: &mut Criterion) {
     let xs: Vec<f32> = (0..BATCH)
         .map(|i| 1e-6 * 1.0068f32.powi(i as i32))
@@ -201,6 +254,8 @@ fn all(c: &mut Criterion) {
     phases::<f32>(c, "f32");
     phases::<f64>(c, "f64");
     draine(c);
+    surfaces::<f32>(c, "f32");
+    surfaces::<f64>(c, "f64");
     tables(c);
     cube_roots(c);
 }

@@ -178,6 +178,40 @@ fn direction_rows() -> Vec<Row> {
             }
         );
     }
+    let up = Vec3::new(0.0f32, 0.0, 1.0);
+    row!(rows, "surface: Lambert", "exact".into(), |r| {
+        scatterkit::surface::lambert_sample(up, f32::uniform(r), f32::uniform(r))
+    });
+    let spec = Vec3::new(0.6f32, 0.0, 0.8);
+    row!(
+        rows,
+        "surface: Phong alpha = 1000, fold",
+        "exact".into(),
+        |r| scatterkit::surface::phong_sample(
+            spec,
+            up,
+            1000.0,
+            scatterkit::CrossingPolicy::Fold,
+            f32::uniform(r),
+            f32::uniform(r)
+        )
+    );
+    let surf = scatterkit::Surface::new(
+        scatterkit::SurfaceModel::Phong,
+        1000.0f32,
+        scatterkit::Fraction::Scalar(50e-9),
+        scatterkit::CrossingPolicy::Fold,
+    )
+    .unwrap();
+    let incident = Vec3::new(0.6f32, 0.0, -0.8);
+    row!(
+        rows,
+        "surface: interact (Fresnel, scalar model, Phong)",
+        "exact".into(),
+        |r| surf
+            .interact(incident, up, 1.5, 3.9, 600e-9, r)
+            .map_or(up, |x| x.0)
+    );
     let g = 0.7f32;
     let hg = Phase::henyey_greenstein(g).unwrap();
     let err = max_error(|u| hg.sample_cos(u), |u| hg_exact(g as f64, u));

@@ -24,6 +24,16 @@
 
 
 /*
+ Bit of `event_out`: the ray was transmitted (else reflected).
+ */
+#define SK_EVENT_TRANSMITTED 1
+
+/*
+ Bit of `event_out`: the ray was scattered by the model (else specular).
+ */
+#define SK_EVENT_SCATTERED 2
+
+/*
  Result of every fallible call. Out-pointers are written only on `SK_OK`.
  */
 typedef enum {
@@ -121,6 +131,92 @@ typedef uint32_t sk_table_kind;
 #endif // __cplusplus
 
 /*
+ How a surface scatters (passed as uint32_t; other values give SK_ERR_METHOD).
+ */
+enum sk_surface_model
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+    /*
+     No scattering: mirror reflection or Snell refraction.
+     */
+    SK_SURFACE_SPECULAR = 0,
+    /*
+     Lambertian: cosine-weighted about the normal on the leaving side.
+     */
+    SK_SURFACE_LAMBERT = 1,
+    /*
+     Phong: cos(dtheta) = u^(1/(alpha+1)) about the specular direction.
+     */
+    SK_SURFACE_PHONG = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_surface_model sk_surface_model;
+#else
+typedef uint32_t sk_surface_model;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/*
+ Which share of rays scatters (passed as uint32_t).
+ */
+enum sk_fraction_model
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+    /*
+     A constant share in [0, 1].
+     */
+    SK_FRACTION_CONSTANT = 0,
+    /*
+     The scalar-scattering model from the RMS roughness.
+     */
+    SK_FRACTION_SCALAR = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_fraction_model sk_fraction_model;
+#else
+typedef uint32_t sk_fraction_model;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/*
+ What happens to a Phong direction that lands on the wrong side of the
+ surface (passed as uint32_t).
+ */
+enum sk_crossing_policy
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+    /*
+     SunSolve: polar angle theta > 90 deg about the leaving-side normal
+     becomes theta - 90 deg at the same azimuth.
+     */
+    SK_CROSSING_FOLD = 0,
+    /*
+     Draw again until above the surface (16 draws at most, then mirror):
+     the lobe truncated to the hemisphere and renormalised.
+     */
+    SK_CROSSING_RESAMPLE = 1,
+    /*
+     Reflect the direction across the surface plane.
+     */
+    SK_CROSSING_MIRROR = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_crossing_policy sk_crossing_policy;
+#else
+typedef uint32_t sk_crossing_policy;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/*
  A 3-vector of floats (a unit propagation direction where one is expected).
  */
 typedef struct {
@@ -193,6 +289,60 @@ typedef struct {
      */
     uint64_t (*next_u64)(void *state);
 } sk_rng;
+
+/*
+ A surface's scattering behaviour (float). Build it with sk_surface_new;
+ every call checks its fields again, so a value not built that way gives
+ an error rather than undefined behaviour.
+ */
+typedef struct {
+    /*
+     An sk_surface_model.
+     */
+    uint32_t model;
+    /*
+     An sk_fraction_model.
+     */
+    uint32_t fraction_model;
+    /*
+     An sk_crossing_policy.
+     */
+    uint32_t policy;
+    /*
+     Phong exponent.
+     */
+    float phong_alpha;
+    /*
+     Constant share, or RMS roughness for the scalar model.
+     */
+    float fraction;
+} sk_surface;
+
+/*
+ A surface's scattering behaviour (double); see `sk_surface`.
+ */
+typedef struct {
+    /*
+     An sk_surface_model.
+     */
+    uint32_t model;
+    /*
+     An sk_fraction_model.
+     */
+    uint32_t fraction_model;
+    /*
+     An sk_crossing_policy.
+     */
+    uint32_t policy;
+    /*
+     Phong exponent.
+     */
+    double phong_alpha;
+    /*
+     Constant share, or RMS roughness for the scalar model.
+     */
+    double fraction;
+} sk_surface_f64;
 
 /*
  A table sampler (float) over the caller's memory, which must outlive it.
@@ -512,6 +662,178 @@ double sk_rayleigh_scattering_coeff(double number_density,
                                     double wavelength,
                                     double radius,
                                     double rel_index);
+
+/*
+ Mirror reflection of direction d at a surface of normal n (either side,
+ any length): d - 2 (d.n) n with both made unit first. NaN for zero or
+ non-finite vectors.
+ */
+sk_vec3 sk_reflect(sk_vec3 d, sk_vec3 n);
+
+/*
+ Double twin of `sk_reflect`.
+ */
+sk_vec3_f64 sk_reflect_f64(sk_vec3_f64 d, sk_vec3_f64 n);
+
+/*
+ Snell refraction of direction d through a surface of normal n (either
+ side, any length; both made unit) from index n_i into n_t. SK_ERR_DOMAIN
+ on total internal reflection, for zero or non-finite vectors, or indices
+ that are not finite and positive; SK_ERR_NULL for a NULL out.
+ */
+sk_status sk_refract(sk_vec3 d, sk_vec3 n, float n_i, float n_t, sk_vec3 *out);
+
+/*
+ Double twin of `sk_refract`.
+ */
+sk_status sk_refract_f64(sk_vec3_f64 d, sk_vec3_f64 n, double n_i, double n_t, sk_vec3_f64 *out);
+
+/*
+ Unpolarised Fresnel reflectance (R_s + R_p)/2 of a dielectric interface
+ for light at |cos_i| (either direction of travel) from n_i into n_t; 1 on
+ total internal reflection; NaN for invalid indices or |cos_i| > 1.
+ */
+float sk_fresnel_dielectric(float cos_i, float n_i, float n_t);
+
+/*
+ Double twin of `sk_fresnel_dielectric`.
+ */
+double sk_fresnel_dielectric_f64(double cos_i, double n_i, double n_t);
+
+/*
+ Lambertian direction in the hemisphere of `normal` (the side the ray
+ leaves to; any length): theta = arccos(sqrt(u1)), phi = 2 pi u2. NaN for
+ a zero or non-finite normal.
+ */
+sk_vec3 sk_lambert_sample(sk_vec3 normal, float u1, float u2);
+
+/*
+ Double twin of `sk_lambert_sample`.
+ */
+sk_vec3_f64 sk_lambert_sample_f64(sk_vec3_f64 normal, double u1, double u2);
+
+/*
+ Phong direction: cos(dtheta) = u1^(1/(alpha+1)) about the specular
+ direction `axis`, phi = 2 pi u2, kept on the side of `normal` (the side
+ the ray leaves to) by `policy` (sk_crossing_policy; RESAMPLE derives its
+ further uniforms from u1, u2 by a hash). 1 <= alpha <= 1e6. NaN for an
+ invalid alpha or policy, or zero or non-finite vectors.
+ */
+sk_vec3 sk_phong_sample(sk_vec3 axis,
+                        sk_vec3 normal,
+                        float alpha,
+                        uint32_t policy,
+                        float u1,
+                        float u2);
+
+/*
+ Double twin of `sk_phong_sample`.
+ */
+sk_vec3_f64 sk_phong_sample_f64(sk_vec3_f64 axis,
+                                sk_vec3_f64 normal,
+                                double alpha,
+                                uint32_t policy,
+                                double u1,
+                                double u2);
+
+/*
+ Scalar-scattering share on reflection:
+ 1 - exp(-((2 pi/wavelength) sigma_rms 2 n_i cos_i)^2). Wavelength and
+ sigma_rms in one length unit; NaN unless wavelength > 0, sigma_rms >= 0,
+ n_i > 0 (all finite) and |cos_i| <= 1.
+ */
+float sk_scatter_fraction_reflect(float wavelength, float sigma_rms, float n_i, float cos_i);
+
+/*
+ Double twin of `sk_scatter_fraction_reflect`.
+ */
+double sk_scatter_fraction_reflect_f64(double wavelength,
+                                       double sigma_rms,
+                                       double n_i,
+                                       double cos_i);
+
+/*
+ Scalar-scattering share on transmission:
+ 1 - exp(-((2 pi/wavelength) sigma_rms |n_i cos_i - n_t cos_t|)^2); NaN on
+ invalid arguments (as sk_scatter_fraction_reflect, and n_t > 0, |cos_t| <= 1).
+ */
+float sk_scatter_fraction_transmit(float wavelength,
+                                   float sigma_rms,
+                                   float n_i,
+                                   float cos_i,
+                                   float n_t,
+                                   float cos_t);
+
+/*
+ Double twin of `sk_scatter_fraction_transmit`.
+ */
+double sk_scatter_fraction_transmit_f64(double wavelength,
+                                        double sigma_rms,
+                                        double n_i,
+                                        double cos_i,
+                                        double n_t,
+                                        double cos_t);
+
+/*
+ A surface: `model` (sk_surface_model), Phong exponent in [1, 1e6]
+ (checked for SK_SURFACE_PHONG only), `fraction_model`
+ (sk_fraction_model) with a constant `fraction` in [0, 1] or the RMS
+ roughness `sigma_rms` >= 0 (same length unit as the wavelength given to
+ sk_surface_interact), and the crossing `policy` (sk_crossing_policy).
+ SK_ERR_METHOD for unknown enum values, SK_ERR_DOMAIN for values out of
+ range, SK_ERR_NULL for a NULL out.
+ */
+sk_status sk_surface_new(uint32_t model,
+                         float phong_alpha,
+                         uint32_t fraction_model,
+                         float fraction,
+                         float sigma_rms,
+                         uint32_t policy,
+                         sk_surface *out);
+
+/*
+ Double twin of `sk_surface_new`.
+ */
+sk_status sk_surface_new_f64(uint32_t model,
+                             double phong_alpha,
+                             uint32_t fraction_model,
+                             double fraction,
+                             double sigma_rms,
+                             uint32_t policy,
+                             sk_surface_f64 *out);
+
+/*
+ One interaction of a ray along `d` with the surface of geometric normal
+ `normal` (either side; any length), from index n_i into n_t, at
+ `wavelength` (scalar model only). Fresnel picks reflection or
+ transmission, the scattering share picks scattered or specular, the model
+ picks the direction (unit, written to dir_out); event_out gets
+ SK_EVENT_TRANSMITTED and SK_EVENT_SCATTERED bits. SK_ERR_NULL for NULL s,
+ rng, rng->next_u64 or outputs; SK_ERR_DOMAIN for zero or non-finite
+ vectors, invalid indices or wavelength; SK_ERR_METHOD for a corrupted s.
+ */
+sk_status sk_surface_interact(const sk_surface *s,
+                              sk_vec3 d,
+                              sk_vec3 normal,
+                              float n_i,
+                              float n_t,
+                              float wavelength,
+                              sk_rng *rng,
+                              sk_vec3 *dir_out,
+                              uint32_t *event_out);
+
+/*
+ Double twin of `sk_surface_interact`.
+ */
+sk_status sk_surface_interact_f64(const sk_surface_f64 *s,
+                                  sk_vec3_f64 d,
+                                  sk_vec3_f64 normal,
+                                  double n_i,
+                                  double n_t,
+                                  double wavelength,
+                                  sk_rng *rng,
+                                  sk_vec3_f64 *dir_out,
+                                  uint32_t *event_out);
 
 /*
  Number of floats (or doubles) a table of `kind` and resolution n needs;

@@ -52,6 +52,7 @@ mod error;
 pub mod geometry;
 pub mod phase;
 pub mod real;
+pub mod surface;
 pub mod table;
 
 #[cfg(feature = "ffi")]
@@ -65,4 +66,5 @@ pub use phase::{
     RayleighMethod,
 };
 pub use real::Real;
+pub use surface::{CrossingPolicy, Fraction, Surface, SurfaceModel};
 pub use table::{Table, TableKind};

@@ -86,6 +86,8 @@ pub trait Real:
     fn ln_1p(self) -> Self;
     /// `e^self`.
     fn exp(self) -> Self;
+    /// `e^self − 1`, accurate for small `self`.
+    fn exp_m1(self) -> Self;
     /// `self^p`.
     fn powf(self, p: Self) -> Self;
     /// `atan2(self, x)`.
@@ -131,7 +133,7 @@ pub trait Real:
 macro_rules! impl_real {
     ($t:ty, $shift:expr, $scale:expr, $cbrt:path, $cbrt_fast:path,
      $sqrt:ident, $sincos:ident, $cos:ident, $log:ident, $log1p:ident,
-     $exp:ident, $pow:ident, $atan2:ident, $copysign:ident, $fabs:ident) => {
+     $exp:ident, $expm1:ident, $pow:ident, $atan2:ident, $copysign:ident, $fabs:ident) => {
         impl Real for $t {
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
@@ -201,6 +203,10 @@ macro_rules! impl_real {
                 libm::$exp(self)
             }
             #[inline(always)]
+            fn exp_m1(self) -> Self {
+                libm::$expm1(self)
+            }
+            #[inline(always)]
             fn powf(self, p: Self) -> Self {
                 libm::$pow(self, p)
             }
@@ -244,6 +250,7 @@ impl_real!(
     logf,
     log1pf,
     expf,
+    expm1f,
     powf,
     atan2f,
     copysignf,
@@ -261,6 +268,7 @@ impl_real!(
     log,
     log1p,
     exp,
+    expm1,
     pow,
     atan2,
     copysign,

@@ -140,6 +140,16 @@ fn example_fog_histogram() {
 }
 
 #[test]
+fn example_surface_shares() {
+    let out = run_source("c_examples/surface_shares.c", false);
+    assert!(
+        out.contains("shares within 4 sigma of the closed forms, deviation within 1%: yes"),
+        "{out}"
+    );
+    assert_eq!(out.matches("incidence").count(), 2, "{out}");
+}
+
+#[test]
 fn bad_input_from_c() {
     let exe = build_program(&root().join("tests/c/bad_input.c"), false);
     let (code, out) = run(&exe);

@@ -14,12 +14,14 @@ mod cbrt;
 mod geometry;
 mod phase;
 mod rayleigh;
+mod surface;
 mod table;
 
 pub use cbrt::*;
 pub use geometry::*;
 pub use phase::*;
 pub use rayleigh::*;
+pub use surface::*;
 pub use table::*;
 
 use crate::error::Error;

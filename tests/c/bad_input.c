@@ -280,6 +280,73 @@ static void coefficients_and_cbrt(void) {
     CHECK(sk_cbrtf(-0.0f) == 0.0f && signbit(sk_cbrtf(-0.0f)));
 }
 
+static void surfaces(void) {
+    uint64_t state = 3;
+    sk_rng rng = {&state, counter}, no_fn = {&state, NULL};
+    sk_surface s, bad;
+    sk_vec3 d = {0.0f, 0.0f, -1.0f}, n = {0.0f, 0.0f, 1.0f}, zero = {0.0f, 0.0f, 0.0f};
+    sk_vec3 nanv = {NAN, 0.0f, 1.0f}, out = {7.0f, 7.0f, 7.0f}, r;
+    sk_vec3 grazing = {0.9f, 0.0f, 0.3f};
+    uint32_t ev = 77;
+
+    CHECK(sk_surface_new(3, 10.0f, SK_FRACTION_CONSTANT, 0.5f, 0.0f, SK_CROSSING_FOLD, &s) == SK_ERR_METHOD);
+    CHECK(sk_surface_new(SK_SURFACE_LAMBERT, 10.0f, 2, 0.5f, 0.0f, SK_CROSSING_FOLD, &s) == SK_ERR_METHOD);
+    CHECK(sk_surface_new(SK_SURFACE_LAMBERT, 10.0f, SK_FRACTION_CONSTANT, 0.5f, 0.0f, 3, &s) == SK_ERR_METHOD);
+    CHECK(sk_surface_new(SK_SURFACE_PHONG, 0.5f, SK_FRACTION_CONSTANT, 0.5f, 0.0f, SK_CROSSING_FOLD, &s) == SK_ERR_DOMAIN);
+    CHECK(sk_surface_new(SK_SURFACE_PHONG, 2e6f, SK_FRACTION_CONSTANT, 0.5f, 0.0f, SK_CROSSING_FOLD, &s) == SK_ERR_DOMAIN);
+    CHECK(sk_surface_new(SK_SURFACE_PHONG, NAN, SK_FRACTION_CONSTANT, 0.5f, 0.0f, SK_CROSSING_FOLD, &s) == SK_ERR_DOMAIN);
+    CHECK(sk_surface_new(SK_SURFACE_LAMBERT, 1.0f, SK_FRACTION_CONSTANT, 1.5f, 0.0f, SK_CROSSING_FOLD, &s) == SK_ERR_DOMAIN);
+    CHECK(sk_surface_new(SK_SURFACE_LAMBERT, 1.0f, SK_FRACTION_CONSTANT, -0.1f, 0.0f, SK_CROSSING_FOLD, &s) == SK_ERR_DOMAIN);
+    CHECK(sk_surface_new(SK_SURFACE_LAMBERT, 1.0f, SK_FRACTION_SCALAR, 0.0f, -1e-9f, SK_CROSSING_FOLD, &s) == SK_ERR_DOMAIN);
+    CHECK(sk_surface_new(SK_SURFACE_LAMBERT, 1.0f, SK_FRACTION_SCALAR, 0.0f, INFINITY, SK_CROSSING_FOLD, &s) == SK_ERR_DOMAIN);
+    CHECK(sk_surface_new(SK_SURFACE_LAMBERT, 1.0f, SK_FRACTION_SCALAR, 0.0f, 1e-9f, SK_CROSSING_FOLD, NULL) == SK_ERR_NULL);
+    CHECK(sk_surface_new(SK_SURFACE_LAMBERT, 0.0f, SK_FRACTION_SCALAR, 0.0f, 50e-9f, SK_CROSSING_FOLD, &s) == SK_OK);
+
+    CHECK(sk_surface_interact(NULL, d, n, 1.0f, 1.5f, 600e-9f, &rng, &out, &ev) == SK_ERR_NULL);
+    CHECK(sk_surface_interact(&s, d, n, 1.0f, 1.5f, 600e-9f, NULL, &out, &ev) == SK_ERR_NULL);
+    CHECK(sk_surface_interact(&s, d, n, 1.0f, 1.5f, 600e-9f, &no_fn, &out, &ev) == SK_ERR_NULL);
+    CHECK(sk_surface_interact(&s, d, n, 1.0f, 1.5f, 600e-9f, &rng, NULL, &ev) == SK_ERR_NULL);
+    CHECK(sk_surface_interact(&s, d, n, 1.0f, 1.5f, 600e-9f, &rng, &out, NULL) == SK_ERR_NULL);
+    CHECK(sk_surface_interact(&s, zero, n, 1.0f, 1.5f, 600e-9f, &rng, &out, &ev) == SK_ERR_DOMAIN);
+    CHECK(sk_surface_interact(&s, d, nanv, 1.0f, 1.5f, 600e-9f, &rng, &out, &ev) == SK_ERR_DOMAIN);
+    CHECK(sk_surface_interact(&s, d, n, 0.0f, 1.5f, 600e-9f, &rng, &out, &ev) == SK_ERR_DOMAIN);
+    CHECK(sk_surface_interact(&s, d, n, 1.0f, NAN, 600e-9f, &rng, &out, &ev) == SK_ERR_DOMAIN);
+    CHECK(sk_surface_interact(&s, d, n, 1.0f, 1.5f, -1.0f, &rng, &out, &ev) == SK_ERR_DOMAIN);
+    CHECK(out.x == 7.0f && ev == 77);
+    bad = s;
+    bad.model = 7;
+    CHECK(sk_surface_interact(&bad, d, n, 1.0f, 1.5f, 600e-9f, &rng, &out, &ev) == SK_ERR_METHOD);
+    bad = s;
+    bad.fraction = -1.0f;
+    CHECK(sk_surface_interact(&bad, d, n, 1.0f, 1.5f, 600e-9f, &rng, &out, &ev) == SK_ERR_DOMAIN);
+    CHECK(sk_surface_interact(&s, d, n, 1.0f, 1.5f, 600e-9f, &rng, &out, &ev) == SK_OK);
+    CHECK(ev <= (SK_EVENT_TRANSMITTED | SK_EVENT_SCATTERED));
+
+    CHECK(sk_refract(grazing, n, 1.5f, 1.0f, &r) == SK_ERR_DOMAIN); /* total internal reflection */
+    CHECK(sk_refract(d, n, 1.0f, 1.5f, NULL) == SK_ERR_NULL);
+    CHECK(sk_refract(d, n, -1.0f, 1.5f, &r) == SK_ERR_DOMAIN);
+    CHECK(sk_refract(zero, n, 1.0f, 1.5f, &r) == SK_ERR_DOMAIN);
+    CHECK(sk_refract(d, nanv, 1.0f, 1.5f, &r) == SK_ERR_DOMAIN);
+    r = sk_reflect(zero, n);
+    CHECK(isnan(r.x));
+    CHECK(isnan(sk_fresnel_dielectric(0.5f, 0.0f, 1.5f)) && isnan(sk_fresnel_dielectric(2.0f, 1.0f, 1.5f)));
+    CHECK(sk_fresnel_dielectric(0.1f, 1.5f, 1.0f) == 1.0f);
+    r = sk_lambert_sample(zero, 0.5f, 0.5f);
+    CHECK(isnan(r.x));
+    r = sk_phong_sample(n, n, 0.5f, SK_CROSSING_FOLD, 0.5f, 0.5f);
+    CHECK(isnan(r.x));
+    r = sk_phong_sample(n, n, 2e6f, SK_CROSSING_FOLD, 0.5f, 0.5f);
+    CHECK(isnan(r.x));
+    r = sk_phong_sample(n, n, 10.0f, 9, 0.5f, 0.5f);
+    CHECK(isnan(r.x));
+    r = sk_phong_sample(grazing, n, 1.0f, SK_CROSSING_RESAMPLE, 0.999f, 0.5f);
+    CHECK(r.z >= 0.0f);
+    CHECK(isnan(sk_scatter_fraction_reflect(0.0f, 1e-9f, 1.5f, 1.0f)));
+    CHECK(isnan(sk_scatter_fraction_reflect(600e-9f, -1e-9f, 1.5f, 1.0f)));
+    CHECK(isnan(sk_scatter_fraction_transmit(600e-9f, 1e-9f, 1.5f, 1.0f, 0.0f, 1.0f)));
+    CHECK(isnan(sk_scatter_fraction_transmit(600e-9f, 1e-9f, 1.5f, 1.0f, 3.9f, 1.5f)));
+}
+
 static void basis_and_version(void) {
     sk_vec3 n = {0.0f, 0.0f, -1.0f}, b1 = {7, 7, 7}, b2 = {7, 7, 7};
     char expected[64];
@@ -299,6 +366,7 @@ int main(void) {
     rayleigh_methods();
     tables();
     coefficients_and_cbrt();
+    surfaces();
     basis_and_version();
     printf("bad_input: %d checks passed, %d failed\n", passed, failed);
     return failed;

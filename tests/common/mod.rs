@@ -4,6 +4,7 @@
 
 pub mod chi2;
 pub mod dd;
+pub mod ks;
 
 pub use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;

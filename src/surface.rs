@@ -1,0 +1,471 @@
+//! Surface scattering as solar-cell ray tracers do it (SPEC §5; SunSolve's
+//! "Optical scattering" models).
+//!
+//! At an interface a ray is first reflected or transmitted (Fresnel, chosen
+//! stochastically); then a share Λ of rays scatters by the surface's model
+//! (Lambertian or Phong) and the rest go on specularly (mirror reflection or
+//! Snell refraction).
+//!
+//! Conventions: every direction is a unit **propagation** direction. A
+//! surface normal may be given on either side of the surface; functions that
+//! need a side say which (`sk_surface_interact` accepts either and orients
+//! the normal against the incident ray). Polarisation is not tracked.
+//!
+//! # Phong directions that cross the surface
+//! A Phong lobe about a grazing specular direction reaches below the surface.
+//! [`CrossingPolicy`] names what happens to a sampled direction on the wrong
+//! side (polar angle θ > 90° from the leaving-side normal `n`):
+//! * [`CrossingPolicy::Fold`] (SunSolve): θ becomes θ − 90° at the same
+//!   azimuth about `n`; as a vector, `d' = |d·n| t + sqrt(1 − (d·n)²) n` with
+//!   `t` the unit tangential part of `d`. The density above the surface is the
+//!   lobe's plus the crossed part moved by that rotation (its solid angle
+//!   changes by `cos θ'/sin θ'`: crossed rays pile up towards the surface
+//!   plane's opposite edge and the normal).
+//! * [`CrossingPolicy::Resample`]: draw again until the direction is above
+//!   the surface (at most [`RESAMPLE_ATTEMPTS`] draws), which gives exactly
+//!   the lobe truncated to the hemisphere and renormalised; if every draw
+//!   crosses, the last one is mirrored. Draws come from the caller's RNG in
+//!   [`Surface::interact`]; [`phong_sample`] (which has only two uniforms)
+//!   derives further uniforms from them by a splitmix64 hash.
+//! * [`CrossingPolicy::Mirror`]: reflect the direction across the surface
+//!   plane, `d' = d − 2 (d·n) n`; the density above is the lobe's plus its
+//!   mirror image's.
+
+use crate::error::Error;
+use crate::geometry::{Vec3, direction_about_sin, onb};
+use crate::real::Real;
+use rand_core::Rng;
+
+/// Mirror reflection of the propagation direction `d` at a surface with
+/// normal `n` (either side): `d − 2 (d·n) n`.
+#[inline]
+pub fn reflect<T: Real>(d: Vec3<T>, n: Vec3<T>) -> Vec3<T> {
+    d - n * (T::TWO * d.dot(n))
+}
+
+/// `n` turned to face against `d` (towards the side `d` comes from).
+#[inline(always)]
+fn facing<T: Real>(d: Vec3<T>, n: Vec3<T>) -> Vec3<T> {
+    if d.dot(n) > T::ZERO { -n } else { n }
+}
+
+/// Snell refraction of the unit propagation direction `d` through a surface
+/// with unit normal `n` (either side) from index `n_i` into index `n_t`:
+/// `η d + (η cos θᵢ − cos θₜ) n_f` with `η = n_i/n_t` and `n_f` facing
+/// against `d`. [`Error::Domain`] on total internal reflection or for indices
+/// that are not finite and positive.
+pub fn refract<T: Real>(d: Vec3<T>, n: Vec3<T>, n_i: T, n_t: T) -> Result<Vec3<T>, Error> {
+    if !(positive(n_i) && positive(n_t)) {
+        return Err(Error::Domain);
+    }
+    let nf = facing(d, n);
+    let cos_i = -d.dot(nf);
+    let eta = n_i / n_t;
+    let Some(cos_t) = cos_transmitted(cos_i, n_i, n_t) else {
+        return Err(Error::Domain);
+    };
+    // η d and the normal term nearly cancel for large η: renormalise so the
+    // result is unit to rounding (a few ULP off otherwise, ~10⁻⁶ in f32).
+    let t = d * eta + nf * (eta * cos_i - cos_t);
+    Ok(t * (T::ONE / t.length()))
+}
+
+/// `cos θₜ` of the refracted ray for `|cos θᵢ|`, or `None` on total internal
+/// reflection (or NaN input). `sin²θᵢ` is formed as `(1 − cos)(1 + cos)`: no
+/// cancellation at grazing incidence.
+#[inline]
+fn cos_transmitted<T: Real>(cos_i: T, n_i: T, n_t: T) -> Option<T> {
+    let eta = n_i / n_t;
+    let sin2_t = eta * eta * (T::ONE - cos_i) * (T::ONE + cos_i);
+    if sin2_t <= T::ONE {
+        Some((T::ONE - sin2_t).max_of(T::ZERO).sqrt())
+    } else {
+        None
+    }
+}
+
+#[inline(always)]
+fn positive<T: Real>(x: T) -> bool {
+    x > T::ZERO && x.is_finite()
+}
+
+/// Unpolarised Fresnel reflectance of a dielectric interface, `(R_s + R_p)/2`,
+/// for light arriving at `|cos_i|` (either direction of travel) from index
+/// `n_i` into `n_t`; 1 on total internal reflection. NaN for indices that are
+/// not finite and positive or `|cos_i| > 1`.
+pub fn fresnel_dielectric<T: Real>(cos_i: T, n_i: T, n_t: T) -> T {
+    let c = cos_i.abs();
+    if !(positive(n_i) && positive(n_t) && c <= T::ONE) {
+        return T::NAN;
+    }
+    let Some(ct) = cos_transmitted(c, n_i, n_t) else {
+        return T::ONE;
+    };
+    let rs = (n_i * c - n_t * ct) / (n_i * c + n_t * ct);
+    let rp = (n_t * c - n_i * ct) / (n_t * c + n_i * ct);
+    (rs * rs + rp * rp) * T::HALF
+}
+
+/// A cosine-weighted (Lambertian) direction in the hemisphere of the unit
+/// `normal` (the side the ray leaves to): `θ = arccos √u1`, `φ = 2π u2`
+/// (SunSolve). Density `cos θ / π` per steradian.
+#[inline]
+pub fn lambert_sample<T: Real>(normal: Vec3<T>, u1: T, u2: T) -> Vec3<T> {
+    cone_sample(normal, u1.clamp01().sqrt(), T::TAU * u2.clamp01())
+}
+
+/// The direction at polar cosine `c` and azimuth `phi` about `axis`.
+#[inline(always)]
+fn cone_sample<T: Real>(axis: Vec3<T>, c: T, phi: T) -> Vec3<T> {
+    let s = ((T::ONE - c) * (T::ONE + c)).max_of(T::ZERO).sqrt();
+    direction_about_sin(axis, c, s, phi)
+}
+
+/// What happens to a Phong direction that lands on the wrong side of the
+/// surface (module docs). The C enum `sk_crossing_policy`.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CrossingPolicy {
+    /// SunSolve's rule: polar angle θ > 90° becomes θ − 90°, same azimuth.
+    Fold = 0,
+    /// Draw again (bounded), then mirror.
+    Resample = 1,
+    /// Reflect across the surface plane.
+    Mirror = 2,
+}
+
+impl TryFrom<u32> for CrossingPolicy {
+    type Error = Error;
+    fn try_from(v: u32) -> Result<Self, Error> {
+        match v {
+            0 => Ok(CrossingPolicy::Fold),
+            1 => Ok(CrossingPolicy::Resample),
+            2 => Ok(CrossingPolicy::Mirror),
+            _ => Err(Error::Method),
+        }
+    }
+}
+
+/// Draws [`CrossingPolicy::Resample`] makes before it mirrors.
+pub const RESAMPLE_ATTEMPTS: u32 = 16;
+
+/// The Phong exponent's accepted range (SunSolve's): `[1, 10⁶]`.
+pub const PHONG_ALPHA_MIN: f64 = 1.0;
+/// Upper end of the Phong exponent's range.
+pub const PHONG_ALPHA_MAX: f64 = 1e6;
+
+/// One Phong direction about `axis`: `cos Δθ = u1^{1/(α+1)}`, `φ = 2π u2`.
+#[inline(always)]
+fn phong_lobe<T: Real>(axis: Vec3<T>, alpha: T, u1: T, u2: T) -> Vec3<T> {
+    // u^{1/(α+1)} = exp(ln u/(α+1)); 1 − cos Δθ = −expm1(ln u/(α+1)) would be
+    // finer near the axis, but the direction is built from cos and sin below.
+    let u1 = u1.clamp01();
+    let c = u1.powf(T::ONE / (alpha + T::ONE));
+    cone_sample(axis, c, T::TAU * u2.clamp01())
+}
+
+/// `d` moved to the leaving side of `normal` by `policy`'s deterministic
+/// rule (Fold or Mirror; Resample's fallback is Mirror).
+#[inline]
+fn uncross<T: Real>(d: Vec3<T>, normal: Vec3<T>, policy: CrossingPolicy) -> Vec3<T> {
+    let c = d.dot(normal);
+    match policy {
+        CrossingPolicy::Fold => {
+            // θ → θ − 90° at the same azimuth: rotate by −90° in the plane
+            // of d and the normal.
+            let tangential = d - normal * c;
+            let t = tangential.try_normalize().unwrap_or_else(|| onb(normal).0);
+            let s = ((T::ONE - c) * (T::ONE + c)).max_of(T::ZERO).sqrt();
+            t * (-c) + normal * s
+        }
+        CrossingPolicy::Resample | CrossingPolicy::Mirror => d - normal * (T::TWO * c),
+    }
+}
+
+/// A Phong-scattered direction (SunSolve, after Schümacher):
+/// `cos Δθ = u1^{1/(α+1)}` about the unit specular direction `axis`, azimuth
+/// `2π u2`, kept on the side of the unit `normal` (the side the ray leaves
+/// to) by `policy`. `alpha` must be in `[1, 10⁶]`; at `α = 1` about the
+/// normal this is [`lambert_sample`]. [`CrossingPolicy::Resample`] draws
+/// further uniforms from a splitmix64 hash of `(u1, u2)` here (use
+/// [`phong_sample_rng`] to draw them from an RNG). NaN for `alpha` outside
+/// its range.
+pub fn phong_sample<T: Real>(
+    axis: Vec3<T>,
+    normal: Vec3<T>,
+    alpha: T,
+    policy: CrossingPolicy,
+    u1: T,
+    u2: T,
+) -> Vec3<T> {
+    let mut stream = HashStream::new(u1.to_f64(), u2.to_f64());
+    phong_with(axis, normal, alpha, policy, u1, u2, || {
+        (
+            T::from_bits_uniform(stream.next()),
+            T::from_bits_uniform(stream.next()),
+        )
+    })
+}
+
+/// [`phong_sample`] with every uniform from `rng` (Resample's extra draws too).
+pub fn phong_sample_rng<T: Real, R: Rng + ?Sized>(
+    axis: Vec3<T>,
+    normal: Vec3<T>,
+    alpha: T,
+    policy: CrossingPolicy,
+    rng: &mut R,
+) -> Vec3<T> {
+    let (u1, u2) = (T::uniform(rng), T::uniform(rng));
+    phong_with(axis, normal, alpha, policy, u1, u2, || {
+        (T::uniform(rng), T::uniform(rng))
+    })
+}
+
+fn phong_with<T: Real>(
+    axis: Vec3<T>,
+    normal: Vec3<T>,
+    alpha: T,
+    policy: CrossingPolicy,
+    u1: T,
+    u2: T,
+    mut more: impl FnMut() -> (T, T),
+) -> Vec3<T> {
+    if !(alpha >= T::from_f64(PHONG_ALPHA_MIN) && alpha <= T::from_f64(PHONG_ALPHA_MAX)) {
+        return Vec3::new(T::NAN, T::NAN, T::NAN);
+    }
+    let mut d = phong_lobe(axis, alpha, u1, u2);
+    if policy == CrossingPolicy::Resample {
+        let mut attempts = 1;
+        while d.dot(normal) < T::ZERO && attempts < RESAMPLE_ATTEMPTS {
+            let (a, b) = more();
+            d = phong_lobe(axis, alpha, a, b);
+            attempts += 1;
+        }
+    }
+    if d.dot(normal) < T::ZERO {
+        uncross(d, normal, policy)
+    } else {
+        d
+    }
+}
+
+/// A deterministic stream of 64-bit words from two uniforms (splitmix64 of
+/// their bits): Resample's further draws when no RNG is at hand.
+struct HashStream(u64);
+
+impl HashStream {
+    fn new(a: f64, b: f64) -> Self {
+        HashStream(a.to_bits() ^ b.to_bits().rotate_left(32) ^ 0x5ca7_7e2e_d5ca_77e2)
+    }
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+}
+
+/// The scalar-scattering model's share of scattered rays on reflection,
+/// `Λ = 1 − exp(−((2π/λ) σ_rms · 2 nᵢ cos θᵢ)²)` (SPEC §5). `wavelength` λ
+/// and `sigma_rms` in one length unit; λ > 0, σ ≥ 0, `n_i > 0` finite,
+/// `|cos_i| ≤ 1`; NaN otherwise.
+pub fn scatter_fraction_reflect<T: Real>(wavelength: T, sigma_rms: T, n_i: T, cos_i: T) -> T {
+    if !(positive(wavelength)
+        && sigma_rms >= T::ZERO
+        && sigma_rms.is_finite()
+        && positive(n_i)
+        && cos_i.abs() <= T::ONE)
+    {
+        return T::NAN;
+    }
+    one_minus_exp_neg_sq(T::TAU / wavelength * sigma_rms * T::TWO * n_i * cos_i.abs())
+}
+
+/// The scalar-scattering model's share on transmission,
+/// `Λ = 1 − exp(−((2π/λ) σ_rms |nᵢ cos θᵢ − nₜ cos θₜ|)²)`; arguments as in
+/// [`scatter_fraction_reflect`] plus `n_t > 0` and `|cos_t| ≤ 1`.
+pub fn scatter_fraction_transmit<T: Real>(
+    wavelength: T,
+    sigma_rms: T,
+    n_i: T,
+    cos_i: T,
+    n_t: T,
+    cos_t: T,
+) -> T {
+    let ok = positive(wavelength)
+        && sigma_rms >= T::ZERO
+        && sigma_rms.is_finite()
+        && positive(n_i)
+        && positive(n_t)
+        && cos_i.abs() <= T::ONE
+        && cos_t.abs() <= T::ONE;
+    if !ok {
+        return T::NAN;
+    }
+    one_minus_exp_neg_sq(
+        T::TAU / wavelength * sigma_rms * (n_i * cos_i.abs() - n_t * cos_t.abs()).abs(),
+    )
+}
+
+/// `1 − e^{−x²}` as `−expm1(−x²)`: no cancellation for small roughness.
+#[inline]
+fn one_minus_exp_neg_sq<T: Real>(x: T) -> T {
+    -(-(x * x)).exp_m1()
+}
+
+/// How a surface scatters (the C enum `sk_surface_model`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SurfaceModel {
+    /// No scattering: every ray goes on specularly.
+    Specular = 0,
+    /// Lambertian: cosine-weighted about the normal, independent of incidence.
+    Lambert = 1,
+    /// Phong about the specular direction.
+    Phong = 2,
+}
+
+impl TryFrom<u32> for SurfaceModel {
+    type Error = Error;
+    fn try_from(v: u32) -> Result<Self, Error> {
+        match v {
+            0 => Ok(SurfaceModel::Specular),
+            1 => Ok(SurfaceModel::Lambert),
+            2 => Ok(SurfaceModel::Phong),
+            _ => Err(Error::Method),
+        }
+    }
+}
+
+/// The share of rays that scatter (the C enum `sk_fraction_model` picks it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Fraction<T> {
+    /// A constant share Λ ∈ [0, 1].
+    Constant(T),
+    /// The scalar-scattering model with RMS roughness σ_rms ≥ 0 (in the
+    /// length unit of the wavelength passed to [`Surface::interact`]).
+    Scalar(T),
+}
+
+/// Bits of the event [`Surface::interact`] reports.
+pub mod event {
+    /// The ray was transmitted (else reflected).
+    pub const TRANSMITTED: u32 = 1;
+    /// The ray was scattered by the surface model (else specular).
+    pub const SCATTERED: u32 = 2;
+}
+
+/// An interface's scattering behaviour, validated once. A plain `Copy` value.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Surface<T> {
+    model: SurfaceModel,
+    phong_alpha: T,
+    fraction: Fraction<T>,
+    policy: CrossingPolicy,
+}
+
+impl<T: Real> Surface<T> {
+    /// Fails with [`Error::Domain`] for a Phong exponent outside `[1, 10⁶]`
+    /// (checked only for [`SurfaceModel::Phong`]), a constant fraction
+    /// outside `[0, 1]`, or a negative or non-finite roughness.
+    pub fn new(
+        model: SurfaceModel,
+        phong_alpha: T,
+        fraction: Fraction<T>,
+        policy: CrossingPolicy,
+    ) -> Result<Self, Error> {
+        let alpha_ok = model != SurfaceModel::Phong
+            || (phong_alpha >= T::from_f64(PHONG_ALPHA_MIN)
+                && phong_alpha <= T::from_f64(PHONG_ALPHA_MAX));
+        let fraction_ok = match fraction {
+            Fraction::Constant(f) => f >= T::ZERO && f <= T::ONE,
+            Fraction::Scalar(s) => s >= T::ZERO && s.is_finite(),
+        };
+        if alpha_ok && fraction_ok {
+            Ok(Surface {
+                model,
+                phong_alpha,
+                fraction,
+                policy,
+            })
+        } else {
+            Err(Error::Domain)
+        }
+    }
+
+    /// One interaction of a ray travelling along `d` (need not be unit
+    /// length) with the surface of geometric normal `normal` (either side,
+    /// any length), from index `n_i` into `n_t`, at `wavelength` (used by the
+    /// scalar model only; same length unit as σ_rms). Fresnel picks reflection
+    /// or transmission, Λ picks scattered or specular, the model picks the
+    /// direction. Returns the new unit direction and the [`event`] bits.
+    ///
+    /// [`Error::Domain`] for zero or non-finite vectors, indices that are not
+    /// finite and positive, or (scalar model) a wavelength that is not.
+    pub fn interact<R: Rng + ?Sized>(
+        &self,
+        d: Vec3<T>,
+        normal: Vec3<T>,
+        n_i: T,
+        n_t: T,
+        wavelength: T,
+        rng: &mut R,
+    ) -> Result<(Vec3<T>, u32), Error> {
+        let (Some(d), Some(n)) = (d.try_normalize(), normal.try_normalize()) else {
+            return Err(Error::Domain);
+        };
+        let scalar = matches!(self.fraction, Fraction::Scalar(_));
+        if !(positive(n_i) && positive(n_t)) || (scalar && !positive(wavelength)) {
+            return Err(Error::Domain);
+        }
+        let nf = facing(d, n);
+        let cos_i = (-d.dot(nf)).clamp_unit();
+        let cos_t = cos_transmitted(cos_i, n_i, n_t);
+        let reflectance = if cos_t.is_some() {
+            fresnel_dielectric(cos_i, n_i, n_t)
+        } else {
+            T::ONE
+        };
+        let reflected = T::uniform(rng) < reflectance;
+        // The specular direction and the normal on the side the ray leaves to.
+        let (specular, leaving, lambda) = match (reflected, cos_t) {
+            (false, Some(ct)) => {
+                let eta = n_i / n_t;
+                let t = d * eta + nf * (eta * cos_i - ct);
+                let t = t * (T::ONE / t.length());
+                let l = match self.fraction {
+                    Fraction::Constant(f) => f,
+                    Fraction::Scalar(s) => {
+                        scatter_fraction_transmit(wavelength, s, n_i, cos_i, n_t, ct)
+                    }
+                };
+                (t, -nf, l)
+            }
+            _ => {
+                let l = match self.fraction {
+                    Fraction::Constant(f) => f,
+                    Fraction::Scalar(s) => scatter_fraction_reflect(wavelength, s, n_i, cos_i),
+                };
+                (reflect(d, nf), nf, l)
+            }
+        };
+        let transmitted = if reflected || cos_t.is_none() {
+            0
+        } else {
+            event::TRANSMITTED
+        };
+        let scattered = self.model != SurfaceModel::Specular && T::uniform(rng) < lambda;
+        let dir = if !scattered {
+            specular
+        } else if self.model == SurfaceModel::Lambert {
+            lambert_sample(leaving, T::uniform(rng), T::uniform(rng))
+        } else {
+            phong_sample_rng(specular, leaving, self.phong_alpha, self.policy, rng)
+        };
+        Ok((
+            dir,
+            transmitted | if scattered { event::SCATTERED } else { 0 },
+        ))
+    }
+}

@@ -1,0 +1,520 @@
+//! Surface scattering: Lambert (chi²), Phong (KS on the cone CDF, and α = 1
+//! equals Lambert), the crossing policies, Fresnel, Snell, the scattering
+//! fractions, and `Surface::interact`'s shares against the formulas.
+
+mod common;
+
+use common::chi2::{chi2_directions, threshold};
+use common::ks::{ks_critical, ks_statistic};
+use common::{CHI2_SAMPLES, rng, test_directions};
+use scatterkit::surface::{
+    self, CrossingPolicy, Fraction, Surface, SurfaceModel, event, fresnel_dielectric,
+    lambert_sample, phong_sample, phong_sample_rng, reflect, refract, scatter_fraction_reflect,
+    scatter_fraction_transmit,
+};
+use scatterkit::{Real, Vec3};
+
+/// Significance per KS test, with the suite's Šidák correction.
+fn ks_alpha() -> f64 {
+    threshold()
+}
+
+fn to_vec<T: Real>(w: [f64; 3]) -> Vec3<T> {
+    Vec3::new(T::from_f64(w[0]), T::from_f64(w[1]), T::from_f64(w[2]))
+        .try_normalize()
+        .unwrap()
+}
+
+fn f64v<T: Real>(v: Vec3<T>) -> [f64; 3] {
+    [v.x.to_f64(), v.y.to_f64(), v.z.to_f64()]
+}
+
+#[test]
+fn lambert_is_cosine_weighted_about_the_normal() {
+    fn check<T: Real>(seed: u64) {
+        let normals = [[0.0, 0.0, 1.0], [0.0, 0.0, -1.0], [0.3, -0.5, 0.81]];
+        for (k, w) in normals.into_iter().enumerate() {
+            let n = to_vec::<T>(w);
+            let mut r = rng(seed + k as u64);
+            let pdf = |mu: f64| {
+                if mu > 0.0 {
+                    mu / std::f64::consts::PI
+                } else {
+                    0.0
+                }
+            };
+            let res = chi2_directions(&pdf, f64v(n), CHI2_SAMPLES, || {
+                f64v(lambert_sample(n, T::uniform(&mut r), T::uniform(&mut r)))
+            });
+            assert!(res.passes(), "Lambert about {w:?}: {res:?}");
+        }
+    }
+    check::<f32>(10);
+    check::<f64>(20);
+}
+
+#[test]
+fn phong_cone_follows_c_to_the_alpha_plus_one() {
+    // At normal incidence no direction crosses: P(cos Δθ ≤ c) = c^{α+1}.
+    // f64 for α = 10⁶, where f32's spacing near 1 cannot resolve the cone.
+    fn check<T: Real>(alphas: &[f64], seed: u64) {
+        let n = Vec3::new(T::ZERO, T::ZERO, T::ONE);
+        for &alpha in alphas {
+            let mut r = rng(seed);
+            let count = 200_000;
+            // The statistic in x = (α + 1) ln(1/cos Δθ) ~ Exp(1), which keeps
+            // resolution for narrow cones (1 − cos Δθ is tiny).
+            let mut xs: Vec<f64> = (0..count)
+                .map(|_| {
+                    let d = phong_sample(
+                        n,
+                        n,
+                        T::from_f64(alpha),
+                        CrossingPolicy::Fold,
+                        T::uniform(&mut r),
+                        T::uniform(&mut r),
+                    );
+                    -(alpha + 1.0) * d.z.to_f64().ln()
+                })
+                .collect();
+            let dstat = ks_statistic(&mut xs, |x| -(-x).exp_m1());
+            assert!(
+                dstat < ks_critical(ks_alpha(), count),
+                "α = {alpha}: D = {dstat:e}"
+            );
+        }
+    }
+    check::<f32>(&[1.0, 10.0, 1000.0], 30);
+    check::<f64>(&[1.0, 10.0, 1000.0, 1e6], 40);
+}
+
+#[test]
+fn phong_alpha_one_at_normal_incidence_is_lambert() {
+    let mut r = rng(5);
+    for w in test_directions() {
+        let n = to_vec::<f64>(w);
+        for _ in 0..10_000 {
+            let (u1, u2) = (f64::uniform(&mut r), f64::uniform(&mut r));
+            let a = phong_sample(n, n, 1.0, CrossingPolicy::Fold, u1, u2);
+            let b = lambert_sample(n, u1, u2);
+            assert!((a - b).length() < 1e-15, "{a:?} vs {b:?}");
+        }
+    }
+}
+
+#[test]
+fn no_policy_leaves_a_direction_on_the_wrong_side() {
+    // Grazing specular directions put half the lobe below the surface.
+    let normal = Vec3::new(0.0f64, 0.0, 1.0);
+    for policy in [
+        CrossingPolicy::Fold,
+        CrossingPolicy::Resample,
+        CrossingPolicy::Mirror,
+    ] {
+        for axis in [[1.0, 0.0, 0.01], [0.6, 0.0, 0.8], [0.0, 1.0, 1e-6]] {
+            let axis = to_vec::<f64>(axis);
+            let mut r = rng(9);
+            for alpha in [1.0, 10.0, 1000.0] {
+                for _ in 0..20_000 {
+                    let d = phong_sample(
+                        axis,
+                        normal,
+                        alpha,
+                        policy,
+                        f64::uniform(&mut r),
+                        f64::uniform(&mut r),
+                    );
+                    assert!(d.z >= 0.0, "{policy:?} α {alpha}: {d:?}");
+                    assert!((d.length() - 1.0).abs() < 1e-12);
+                    let e = phong_sample_rng(axis, normal, alpha, policy, &mut r);
+                    assert!(
+                        e.z >= 0.0 && (e.length() - 1.0).abs() < 1e-12,
+                        "{policy:?}: {e:?}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn policies_produce_their_documented_distributions() {
+    // Resample: the lobe truncated to the upper hemisphere and renormalised.
+    // Check it against the Phong density (cos Δθ)^α (α + 1)/(2π) restricted
+    // to z ≥ 0, by chi² about the axis.
+    let axis = to_vec::<f64>([0.8, 0.0, 0.6]);
+    let normal = Vec3::new(0.0, 0.0, 1.0);
+    let alpha = 3.0;
+    // Mass of the lobe above the surface, by sampling the untruncated lobe.
+    let mut r = rng(77);
+    let m = 4_000_000;
+    let above = (0..m)
+        .filter(|_| {
+            let c = f64::uniform(&mut r).powf(1.0 / (alpha + 1.0));
+            let phi = std::f64::consts::TAU * f64::uniform(&mut r);
+            scatterkit::geometry::direction_about(axis, c, phi).z >= 0.0
+        })
+        .count() as f64
+        / m as f64;
+    let mut r = rng(78);
+    let n = CHI2_SAMPLES;
+    let mut upper = 0usize;
+    let mut samples = Vec::with_capacity(n);
+    for _ in 0..n {
+        let d = phong_sample_rng(axis, normal, alpha, CrossingPolicy::Resample, &mut r);
+        upper += (d.dot(axis) > 0.9) as usize;
+        samples.push(d);
+    }
+    // P(cos Δθ > 0.9 | above) = P(cos Δθ > 0.9)/P(above): every direction
+    // within 25.8° of this axis (36.9° above the surface) is above it.
+    let expected = (1.0 - 0.9f64.powf(alpha + 1.0)) / above;
+    let got = upper as f64 / n as f64;
+    let sigma = (expected * (1.0 - expected) / n as f64).sqrt();
+    assert!(
+        (got - expected).abs() < 4.0 * sigma,
+        "resample: {got} vs {expected} ± {sigma}"
+    );
+    // Mirror: directions are the lobe folded by reflection in the plane;
+    // the mirrored mass appears as directions closer to the plane than the
+    // lobe alone puts there.
+    let mut r = rng(79);
+    let below_share: f64 = (0..n)
+        .map(|_| {
+            let u1 = f64::uniform(&mut r);
+            let u2 = f64::uniform(&mut r);
+            let raw = scatterkit::geometry::direction_about(
+                axis,
+                u1.powf(1.0 / (alpha + 1.0)),
+                std::f64::consts::TAU * u2,
+            );
+            let d = phong_sample(axis, normal, alpha, CrossingPolicy::Mirror, u1, u2);
+            if raw.z < 0.0 {
+                assert!(
+                    (d.z + raw.z).abs() < 1e-12 && (d.x - raw.x).abs() < 1e-12,
+                    "mirror"
+                );
+                1.0
+            } else {
+                assert!((d - raw).length() < 1e-12);
+                0.0
+            }
+        })
+        .sum::<f64>()
+        / n as f64;
+    assert!((below_share - (1.0 - above)).abs() < 4.0 * ((1.0 - above) * above / n as f64).sqrt());
+    // Fold: polar angle θ > 90° becomes θ − 90° at the same azimuth.
+    let d = Vec3::new(0.6f64, 0.0, -0.8);
+    let folded = phong_sample(d, normal, 1e6, CrossingPolicy::Fold, 1.0, 0.0);
+    let theta = (-0.8f64).acos(); // θ of d from the normal: 143.13°
+    let expect = Vec3::new(
+        (theta - std::f64::consts::FRAC_PI_2).sin(),
+        0.0,
+        (theta - std::f64::consts::FRAC_PI_2).cos(),
+    );
+    assert!(
+        (folded - expect).length() < 1e-6,
+        "fold: {folded:?} vs {expect:?}"
+    );
+}
+
+#[test]
+fn fresnel_matches_the_closed_forms() {
+    for (ni, nt) in [(1.0, 1.5), (1.5, 1.0), (1.5, 3.9), (1.0, 1.333)] {
+        let r0 = ((ni - nt) / (ni + nt)) * ((ni - nt) / (ni + nt));
+        assert!((fresnel_dielectric(1.0f64, ni, nt) - r0).abs() < 1e-15);
+        assert!(
+            (fresnel_dielectric(-1.0f64, ni, nt) - r0).abs() < 1e-15,
+            "either direction of travel"
+        );
+        // Brewster: R_p = 0, so R = R_s/2.
+        let tb = (nt / ni).atan();
+        let (ci, ct) = (tb.cos(), (ni / nt * tb.sin()).asin().cos());
+        let rs = ((ni * ci - nt * ct) / (ni * ci + nt * ct)).powi(2);
+        assert!(
+            (fresnel_dielectric(ci, ni, nt) - rs / 2.0).abs() < 1e-14,
+            "Brewster {ni} {nt}"
+        );
+        if ni > nt {
+            let crit = (nt / ni).asin();
+            assert_eq!(fresnel_dielectric((crit + 1e-3).cos(), ni, nt), 1.0, "TIR");
+            // Continuity at the critical angle: R → 1 from below.
+            let below = fresnel_dielectric((crit - 1e-9).cos(), ni, nt);
+            assert!(1.0 - below < 2e-3, "{below}");
+        }
+    }
+    assert!(fresnel_dielectric(0.5f32, -1.0, 1.5).is_nan());
+    assert!(fresnel_dielectric(1.5f32, 1.0, 1.5).is_nan());
+    assert!(fresnel_dielectric(0.5f32, 1.0, f32::INFINITY).is_nan());
+}
+
+#[test]
+fn snell_holds_in_the_plane_of_incidence() {
+    let mut r = rng(4);
+    for _ in 0..100_000 {
+        let n = to_vec::<f32>([
+            f64::uniform(&mut r) - 0.5,
+            f64::uniform(&mut r) - 0.5,
+            f64::uniform(&mut r) - 0.5,
+        ]);
+        let d = to_vec::<f32>([
+            f64::uniform(&mut r) - 0.5,
+            f64::uniform(&mut r) - 0.5,
+            f64::uniform(&mut r) - 0.5,
+        ]);
+        let (ni, nt) = (
+            1.0 + 3.0 * f32::uniform(&mut r),
+            1.0 + 3.0 * f32::uniform(&mut r),
+        );
+        match refract(d, n, ni, nt) {
+            Ok(t) => {
+                let sin_i = d.cross(n).length();
+                let sin_t = t.cross(n).length();
+                assert!(
+                    (ni * sin_i - nt * sin_t).abs() < 1e-5 * ni.max(nt),
+                    "{ni} {sin_i} {nt} {sin_t}"
+                );
+                assert!(
+                    t.dot(d.cross(n)).abs() < 1e-6,
+                    "out of the plane of incidence"
+                );
+                assert!((t.length() - 1.0).abs() < 1e-6);
+                // Transmitted to the other side of the surface.
+                assert!(t.dot(n) * d.dot(n) >= 0.0);
+            }
+            Err(_) => assert!(ni / nt * d.cross(n).length() > 1.0 - 1e-6, "false TIR"),
+        }
+    }
+    let g = Vec3::new(0.8f64, 0.0, -0.6);
+    let m = reflect(g, Vec3::new(0.0, 0.0, 1.0));
+    assert_eq!(m, Vec3::new(0.8, 0.0, 0.6));
+}
+
+#[test]
+fn scatter_fractions_match_the_formulas() {
+    let tau = std::f64::consts::TAU;
+    let (lambda, sigma, ni, nt) = (600e-9, 50e-9, 1.5, 3.9);
+    for ci in [1.0f64, 0.5, 0.01] {
+        let x = tau / lambda * sigma * 2.0 * ni * ci;
+        assert!(
+            (scatter_fraction_reflect(lambda, sigma, ni, ci) - (1.0 - (-x * x).exp())).abs()
+                < 1e-15
+        );
+        let ct = (1.0 - (ni / nt) * (ni / nt) * (1.0 - ci * ci)).sqrt();
+        let y = tau / lambda * sigma * (ni * ci - nt * ct).abs();
+        assert!(
+            (scatter_fraction_transmit(lambda, sigma, ni, ci, nt, ct) - (1.0 - (-y * y).exp()))
+                .abs()
+                < 1e-15
+        );
+    }
+    // Λ → 0 as σ → 0, with no cancellation on the way.
+    let tiny = scatter_fraction_reflect(600e-9f64, 1e-15, 1.5, 1.0);
+    let x = tau / 600e-9 * 1e-15 * 3.0;
+    assert!((tiny / (x * x) - 1.0).abs() < 1e-12, "{tiny:e}");
+    assert_eq!(scatter_fraction_reflect(600e-9f32, 0.0, 1.5, 1.0), 0.0);
+    assert!(scatter_fraction_reflect(0.0f64, 1e-9, 1.5, 1.0).is_nan());
+    assert!(scatter_fraction_reflect(600e-9f64, -1e-9, 1.5, 1.0).is_nan());
+}
+
+/// Over many events, the reflected share equals Fresnel and the scattered
+/// share equals Λ, within 4σ; reflections stay on the incident side and
+/// transmissions cross.
+fn interact_shares(model: SurfaceModel, theta_deg: f64, n: usize) {
+    let (ni, nt, lambda, sigma) = (1.5f64, 3.9, 600e-9, 50e-9);
+    let s = Surface::new(model, 1000.0, Fraction::Scalar(sigma), CrossingPolicy::Fold).unwrap();
+    let th = theta_deg.to_radians();
+    let d = Vec3::new(th.sin(), 0.0, -th.cos());
+    let normal = Vec3::new(0.0, 0.0, 3.0); // any length, incident side
+    let (ci, ct) = (th.cos(), (1.0 - (ni / nt * th.sin()).powi(2)).sqrt());
+    let r_exp = fresnel_dielectric(ci, ni, nt);
+    let lr = scatter_fraction_reflect(lambda, sigma, ni, ci);
+    let lt = scatter_fraction_transmit(lambda, sigma, ni, ci, nt, ct);
+    let mut r = rng(123);
+    let (mut refl, mut refl_scat, mut trans_scat) = (0usize, 0usize, 0usize);
+    for _ in 0..n {
+        let (dir, ev) = s.interact(d, normal, ni, nt, lambda, &mut r).unwrap();
+        let transmitted = ev & event::TRANSMITTED != 0;
+        let scattered = ev & event::SCATTERED != 0;
+        if transmitted {
+            assert!(dir.z < 0.0, "a transmission must cross: {dir:?}");
+            trans_scat += scattered as usize;
+        } else {
+            assert!(dir.z > 0.0, "a reflection must stay: {dir:?}");
+            refl += 1;
+            refl_scat += scattered as usize;
+        }
+        assert!((dir.length() - 1.0).abs() < 1e-12);
+    }
+    let within = |k: usize, total: usize, p: f64| {
+        let sd = (p * (1.0 - p) / total as f64).sqrt();
+        (k as f64 / total as f64 - p).abs() <= 4.0 * sd + 1e-12
+    };
+    assert!(
+        within(refl, n, r_exp),
+        "reflected {} vs Fresnel {r_exp}",
+        refl as f64 / n as f64
+    );
+    if model != SurfaceModel::Specular {
+        assert!(
+            within(refl_scat, refl, lr),
+            "scattered on reflection {} vs {lr}",
+            refl_scat as f64 / refl as f64
+        );
+        assert!(
+            within(trans_scat, n - refl, lt),
+            "scattered on transmission {} vs {lt}",
+            trans_scat as f64 / (n - refl) as f64
+        );
+    } else {
+        assert_eq!(refl_scat + trans_scat, 0);
+    }
+}
+
+#[test]
+fn interact_shares_match_fresnel_and_lambda() {
+    for model in [
+        SurfaceModel::Specular,
+        SurfaceModel::Lambert,
+        SurfaceModel::Phong,
+    ] {
+        for theta in [0.0, 60.0] {
+            interact_shares(model, theta, 1_000_000);
+        }
+    }
+}
+
+#[test]
+fn total_internal_reflection_always_reflects() {
+    let s = Surface::new(
+        SurfaceModel::Lambert,
+        1.0,
+        Fraction::Constant(0.5f64),
+        CrossingPolicy::Mirror,
+    )
+    .unwrap();
+    let d = to_vec::<f64>([0.9, 0.0, 0.3]); // grazing, leaving glass upwards
+    let n = Vec3::new(0.0, 0.0, 1.0);
+    let mut r = rng(2);
+    for _ in 0..10_000 {
+        let (dir, ev) = s.interact(d, n, 1.5, 1.0, 600e-9, &mut r).unwrap();
+        assert_eq!(ev & event::TRANSMITTED, 0);
+        assert!(dir.z <= 0.0, "stays in the glass: {dir:?}");
+    }
+}
+
+#[test]
+fn constructors_and_interact_reject_bad_input() {
+    use scatterkit::Error::*;
+    let c = |m, a: f64, f, p| Surface::new(m, a, f, p).err();
+    assert_eq!(
+        c(
+            SurfaceModel::Phong,
+            0.5,
+            Fraction::Constant(0.5),
+            CrossingPolicy::Fold
+        ),
+        Some(Domain)
+    );
+    assert_eq!(
+        c(
+            SurfaceModel::Phong,
+            2e6,
+            Fraction::Constant(0.5),
+            CrossingPolicy::Fold
+        ),
+        Some(Domain)
+    );
+    assert_eq!(
+        c(
+            SurfaceModel::Phong,
+            f64::NAN,
+            Fraction::Constant(0.5),
+            CrossingPolicy::Fold
+        ),
+        Some(Domain)
+    );
+    assert_eq!(
+        c(
+            SurfaceModel::Lambert,
+            0.0,
+            Fraction::Constant(0.5),
+            CrossingPolicy::Fold
+        ),
+        None,
+        "α unused"
+    );
+    assert_eq!(
+        c(
+            SurfaceModel::Lambert,
+            1.0,
+            Fraction::Constant(1.5),
+            CrossingPolicy::Fold
+        ),
+        Some(Domain)
+    );
+    assert_eq!(
+        c(
+            SurfaceModel::Lambert,
+            1.0,
+            Fraction::Constant(f64::NAN),
+            CrossingPolicy::Fold
+        ),
+        Some(Domain)
+    );
+    assert_eq!(
+        c(
+            SurfaceModel::Lambert,
+            1.0,
+            Fraction::Scalar(-1e-9),
+            CrossingPolicy::Fold
+        ),
+        Some(Domain)
+    );
+    assert_eq!(
+        c(
+            SurfaceModel::Lambert,
+            1.0,
+            Fraction::Scalar(f64::INFINITY),
+            CrossingPolicy::Fold
+        ),
+        Some(Domain)
+    );
+    assert_eq!(SurfaceModel::try_from(3), Err(Method));
+    assert_eq!(CrossingPolicy::try_from(3), Err(Method));
+    let s = Surface::new(
+        SurfaceModel::Lambert,
+        1.0,
+        Fraction::Scalar(1e-9f64),
+        CrossingPolicy::Fold,
+    )
+    .unwrap();
+    let mut r = rng(1);
+    let d = Vec3::new(0.0, 0.0, -1.0);
+    let n = Vec3::new(0.0, 0.0, 1.0);
+    let zero = Vec3::new(0.0, 0.0, 0.0);
+    let nan = Vec3::new(f64::NAN, 0.0, 1.0);
+    assert_eq!(
+        s.interact(zero, n, 1.0, 1.5, 600e-9, &mut r).err(),
+        Some(Domain)
+    );
+    assert_eq!(
+        s.interact(d, nan, 1.0, 1.5, 600e-9, &mut r).err(),
+        Some(Domain)
+    );
+    assert_eq!(
+        s.interact(d, n, 0.0, 1.5, 600e-9, &mut r).err(),
+        Some(Domain)
+    );
+    assert_eq!(
+        s.interact(d, n, 1.0, f64::NAN, 600e-9, &mut r).err(),
+        Some(Domain)
+    );
+    assert_eq!(s.interact(d, n, 1.0, 1.5, 0.0, &mut r).err(), Some(Domain));
+    assert!(refract(d, n, 1.0, -1.5).is_err());
+    assert!(
+        phong_sample(d, n, 0.5, CrossingPolicy::Fold, 0.5, 0.5)
+            .x
+            .is_nan()
+    );
+    let _ = surface::RESAMPLE_ATTEMPTS;
+}

@@ -64,6 +64,15 @@ impl<T: Real> Vec3<T> {
             None
         }
     }
+    /// The same vector in another precision (rounded).
+    #[inline(always)]
+    pub fn cast<U: Real>(self) -> Vec3<U> {
+        Vec3::new(
+            U::from_f64(self.x.to_f64()),
+            U::from_f64(self.y.to_f64()),
+            U::from_f64(self.z.to_f64()),
+        )
+    }
     /// Expresses local coordinates `(x, y, z)` in the basis `(b1, b2, n)`.
     #[inline(always)]
     pub fn from_local(local: Self, b1: Self, b2: Self, n: Self) -> Self {

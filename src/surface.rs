@@ -52,22 +52,33 @@ fn facing<T: Real>(d: Vec3<T>, n: Vec3<T>) -> Vec3<T> {
 /// Snell refraction of the unit propagation direction `d` through a surface
 /// with unit normal `n` (either side) from index `n_i` into index `n_t`:
 /// `η d + (η cos θᵢ − cos θₜ) n_f` with `η = n_i/n_t` and `n_f` facing
-/// against `d`. [`Error::Domain`] on total internal reflection or for indices
-/// that are not finite and positive.
+/// against `d`, computed in f64 and rounded once (so f32 results keep
+/// `nᵢ sin θᵢ = nₜ sin θₜ` to the rounding of the output). [`Error::Domain`]
+/// on total internal reflection or for indices that are not finite and
+/// positive.
 pub fn refract<T: Real>(d: Vec3<T>, n: Vec3<T>, n_i: T, n_t: T) -> Result<Vec3<T>, Error> {
     if !(positive(n_i) && positive(n_t)) {
         return Err(Error::Domain);
     }
-    let nf = facing(d, n);
+    let eta = n_i.to_f64() / n_t.to_f64();
+    snell(d.cast(), facing(d, n).cast(), eta)
+        .map(Vec3::cast)
+        .ok_or(Error::Domain)
+}
+
+/// The unit refracted direction for `d`, the normal `nf` facing against it,
+/// and `η = nᵢ/nₜ`; `None` on total internal reflection (or zero vectors).
+/// Both vectors are renormalised here in f64: an f32 "unit" vector is unit
+/// only to ~10⁻⁷, and refraction amplifies that by up to η².
+#[inline]
+fn snell(d: Vec3<f64>, nf: Vec3<f64>, eta: f64) -> Option<Vec3<f64>> {
+    let (d, nf) = (d.try_normalize()?, nf.try_normalize()?);
     let cos_i = -d.dot(nf);
-    let eta = n_i / n_t;
-    let Some(cos_t) = cos_transmitted(cos_i, n_i, n_t) else {
-        return Err(Error::Domain);
-    };
+    let cos_t = cos_transmitted(cos_i, eta, 1.0)?;
     // η d and the normal term nearly cancel for large η: renormalise so the
-    // result is unit to rounding (a few ULP off otherwise, ~10⁻⁶ in f32).
+    // result is unit to rounding.
     let t = d * eta + nf * (eta * cos_i - cos_t);
-    Ok(t * (T::ONE / t.length()))
+    Some(t * (1.0 / t.length()))
 }
 
 /// `cos θₜ` of the refracted ray for `|cos θᵢ|`, or `None` on total internal
@@ -429,20 +440,23 @@ impl<T: Real> Surface<T> {
         };
         let reflected = T::uniform(rng) < reflectance;
         // The specular direction and the normal on the side the ray leaves to.
-        let (specular, leaving, lambda) = match (reflected, cos_t) {
-            (false, Some(ct)) => {
-                let eta = n_i / n_t;
-                let t = d * eta + nf * (eta * cos_i - ct);
-                let t = t * (T::ONE / t.length());
+        let eta = n_i.to_f64() / n_t.to_f64();
+        let refracted = if reflected {
+            None
+        } else {
+            cos_t.zip(snell(d.cast(), nf.cast(), eta))
+        };
+        let (specular, leaving, lambda) = match refracted {
+            Some((ct, t)) => {
                 let l = match self.fraction {
                     Fraction::Constant(f) => f,
                     Fraction::Scalar(s) => {
                         scatter_fraction_transmit(wavelength, s, n_i, cos_i, n_t, ct)
                     }
                 };
-                (t, -nf, l)
+                (t.cast(), -nf, l)
             }
-            _ => {
+            None => {
                 let l = match self.fraction {
                     Fraction::Constant(f) => f,
                     Fraction::Scalar(s) => scatter_fraction_reflect(wavelength, s, n_i, cos_i),
@@ -450,10 +464,10 @@ impl<T: Real> Surface<T> {
                 (reflect(d, nf), nf, l)
             }
         };
-        let transmitted = if reflected || cos_t.is_none() {
-            0
-        } else {
+        let transmitted = if refracted.is_some() {
             event::TRANSMITTED
+        } else {
+            0
         };
         let scattered = self.model != SurfaceModel::Specular && T::uniform(rng) < lambda;
         let dir = if !scattered {

@@ -6,7 +6,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::Rng;
 use rand_xoshiro::rand_core::SeedableRng;
 use scatterkit::phase::draine::sample_cos_eq6;
-use scatterkit::{Draine, Phase, PhaseFunction, RayleighMethod, Real, Table, Vec3, rayleigh};
+use scatterkit::{Draine, Grid, Phase, PhaseFunction, RayleighMethod, Real, Table, Vec3, rayleigh};
 use std::hint::black_box;
 
 const BATCH: usize = 4096;
@@ -197,6 +197,61 @@ fn surfaces<T: Real>(c: &mut Criterion, label: &str) {
     g.finish();
 }
 
+/// Media: free paths, spectral homogeneous sampling, and tracking through a
+/// grid and a callback. Tracking throughput counts tentative collisions
+/// (steps): a ray across the unit cube with majorant 16 takes 16 on average.
+fn media<T: Real>(c: &mut Criterion, label: &str) {
+    use scatterkit::medium::{delta_track_fn, free_path, homogeneous_sample, ratio_track_fn};
+    let t = T::from_f64;
+    let mut g = c.benchmark_group(format!("medium_{label}"));
+    g.throughput(Throughput::Elements(1));
+    let mut r = rng();
+    g.bench_function("free_path", |b| {
+        b.iter(|| free_path(black_box(t(2.0)), T::uniform(&mut r)))
+    });
+    let st = [t(0.5), t(1.0), t(2.0)];
+    let ss = [t(0.4), t(0.9), t(1.5)];
+    let mut w = [T::ZERO; 3];
+    g.bench_function("homogeneous_sample_3ch", |b| {
+        b.iter(|| {
+            homogeneous_sample(
+                &st,
+                &ss,
+                t(1.0),
+                T::uniform(&mut r),
+                T::uniform(&mut r),
+                &mut w,
+            )
+        })
+    });
+    let values: Vec<T> = (0..16 * 16 * 16)
+        .map(|i| t(((i * 7919) % 101) as f64 / 100.0))
+        .collect();
+    let grid = Grid::new(&values, 16, 16, 16, t(2.0), t(14.0)).unwrap();
+    let (o, d) = (
+        Vec3::new(t(-0.5), t(0.31), t(0.47)),
+        Vec3::new(T::ONE, T::ZERO, T::ZERO),
+    );
+    let maj = grid.majorant().to_f64();
+    g.throughput(Throughput::Elements(maj as u64));
+    g.bench_function("ratio_track_grid_steps", |b| {
+        b.iter(|| grid.ratio_track(black_box(o), d, t(2.0), &mut r))
+    });
+    let blob = |p: Vec3<T>| {
+        let q = p - Vec3::new(t(0.5), t(0.5), t(0.5));
+        (t(16.0) * (T::ONE - t(4.0) * q.dot(q))).max_of(T::ZERO)
+    };
+    g.throughput(Throughput::Elements(16));
+    g.bench_function("ratio_track_fn_steps", |b| {
+        b.iter(|| ratio_track_fn(blob, t(16.0), black_box(o), d, t(0.5), t(1.5), &mut r))
+    });
+    g.throughput(Throughput::Elements(1));
+    g.bench_function("delta_track_fn_event", |b| {
+        b.iter(|| delta_track_fn(blob, t(16.0), black_box(o), d, t(0.5), t(1.5), &mut r))
+    });
+    g.finish();
+}
+
 fn cube_roots(c: &mut Criterion) {
     let xs: Vec<f32> = (0..BATCH)
         .map(|i| 1e-6 * 1.0068f32.powi(i as i32))
@@ -256,6 +311,8 @@ fn all(c: &mut Criterion) {
     draine(c);
     surfaces::<f32>(c, "f32");
     surfaces::<f64>(c, "f64");
+    media::<f32>(c, "f32");
+    media::<f64>(c, "f64");
     tables(c);
     cube_roots(c);
 }

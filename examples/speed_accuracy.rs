@@ -338,6 +338,41 @@ fn draine_rows() -> Vec<(String, f64)> {
     rows
 }
 
+/// Media: ns per call and per tracking step.
+fn media_rows() -> Vec<(String, f64)> {
+    use scatterkit::medium::{free_path, homogeneous_sample};
+    let mut r = Xoshiro256PlusPlus::seed_from_u64(5);
+    let mut rows = Vec::new();
+    rows.push((
+        "free path".to_string(),
+        time_ns(|| free_path(2.0f32, f32::uniform(&mut r))),
+    ));
+    let (st, ss, mut w) = ([0.5f32, 1.0, 2.0], [0.4f32, 0.9, 1.5], [0.0f32; 3]);
+    rows.push((
+        "homogeneous sample, 3 channels".to_string(),
+        time_ns(|| {
+            homogeneous_sample(
+                &st,
+                &ss,
+                1.0,
+                f32::uniform(&mut r),
+                f32::uniform(&mut r),
+                &mut w,
+            )
+            .map_or(0.0, |s| s.t)
+        }),
+    ));
+    let values: Vec<f32> = (0..16 * 16 * 16)
+        .map(|i| ((i * 7919) % 101) as f32 / 100.0)
+        .collect();
+    let grid = scatterkit::Grid::new(&values, 16, 16, 16, 2.0, 14.0).unwrap();
+    let (o, d) = (Vec3::new(-0.5f32, 0.31, 0.47), Vec3::new(1.0f32, 0.0, 0.0));
+    let steps = grid.majorant() as f64; // expected tentative collisions across the cube
+    let ns = time_ns(|| grid.ratio_track(o, d, 2.0, &mut r));
+    rows.push(("ratio tracking, 16³ grid: per step".to_string(), ns / steps));
+    rows
+}
+
 /// Cube roots: ns per call over inputs spread across [1e-6, 1e6], and max
 /// error in ULP (relative to f32 spacing) against libm's correctly rounded f64.
 fn cbrt_rows() -> Vec<(String, f64, f64)> {
@@ -417,6 +452,14 @@ fn main() {
     println!("Draine samplers (f32), ns per cosine:");
     for (line, _) in draine_rows() {
         println!("  {line}");
+    }
+    println!();
+    println!("Media (f32): ns per call");
+    println!();
+    println!("| operation | ns |");
+    println!("|---|---:|");
+    for (name, ns) in media_rows() {
+        println!("| {name} | {ns:.2} |");
     }
     println!();
     println!("Cube roots: ns per call and max error (ULP of f32, every 101st positive float)");

@@ -217,6 +217,39 @@ typedef uint32_t sk_crossing_policy;
 #endif // __cplusplus
 
 /*
+ What tracking found (written to `scattered_out`).
+ */
+enum sk_track_event
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+    /*
+     No collision in the interval: t_out is t_max.
+     */
+    SK_TRACK_ESCAPED = 0,
+    /*
+     A real collision that scatters (grid: probability sigma_s/sigma_t).
+     */
+    SK_TRACK_SCATTERED = 1,
+    /*
+     A real collision that absorbs (grid).
+     */
+    SK_TRACK_ABSORBED = 2,
+    /*
+     A real collision in a caller's medium (its albedo decides).
+     */
+    SK_TRACK_COLLIDED = 3,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_track_event sk_track_event;
+#else
+typedef uint32_t sk_track_event;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/*
  A 3-vector of floats (a unit propagation direction where one is expected).
  */
 typedef struct {
@@ -253,6 +286,103 @@ typedef struct {
 } sk_vec3_f64;
 
 /*
+ A density grid over the unit cube (float), borrowing the caller's buffer
+ of nx*ny*nz values (x fastest), which must outlive it. Build it with
+ sk_grid_new; the fields are what that validated.
+ */
+typedef struct {
+    /*
+     The caller's density values.
+     */
+    const float *density;
+    /*
+     Grid nodes along x.
+     */
+    uint32_t nx;
+    /*
+     Grid nodes along y.
+     */
+    uint32_t ny;
+    /*
+     Grid nodes along z.
+     */
+    uint32_t nz;
+    /*
+     Absorption coefficient per unit density.
+     */
+    float sigma_a;
+    /*
+     Scattering coefficient per unit density.
+     */
+    float sigma_s;
+    /*
+     The largest density value (found by sk_grid_new).
+     */
+    float max_density;
+} sk_grid;
+
+/*
+ A density grid (double); see `sk_grid`.
+ */
+typedef struct {
+    /*
+     The caller's density values.
+     */
+    const double *density;
+    /*
+     Grid nodes along x.
+     */
+    uint32_t nx;
+    /*
+     Grid nodes along y.
+     */
+    uint32_t ny;
+    /*
+     Grid nodes along z.
+     */
+    uint32_t nz;
+    /*
+     Absorption coefficient per unit density.
+     */
+    double sigma_a;
+    /*
+     Scattering coefficient per unit density.
+     */
+    double sigma_s;
+    /*
+     The largest density value (found by sk_grid_new_f64).
+     */
+    double max_density;
+} sk_grid_f64;
+
+/*
+ The caller's random number generator: `next_u64(state)` returns 64
+ uniformly random bits. Uniform floats are taken from the top 24 (float) or
+ 53 (double) bits.
+ */
+typedef struct {
+    /*
+     Passed to `next_u64` unchanged; may be NULL if the callback allows.
+     */
+    void *state;
+    /*
+     The generator. Must not be NULL.
+     */
+    uint64_t (*next_u64)(void *state);
+} sk_rng;
+
+/*
+ The caller's medium: sigma_t at point p (per length unit), which must stay
+ in [0, sigma_maj] along the ray.
+ */
+typedef float (*sk_density_fn)(void *ctx, sk_vec3 p);
+
+/*
+ The caller's medium (double); see `sk_density_fn`.
+ */
+typedef double (*sk_density_fn_f64)(void *ctx, sk_vec3_f64 p);
+
+/*
  A phase function (float). A plain value with no pointers inside: build it
  with an `sk_phase_*` constructor, then copy it and share it freely across
  threads. Its contents are private.
@@ -273,22 +403,6 @@ typedef struct {
      */
     uint64_t opaque[32];
 } sk_phase_f64;
-
-/*
- The caller's random number generator: `next_u64(state)` returns 64
- uniformly random bits. Uniform floats are taken from the top 24 (float) or
- 53 (double) bits.
- */
-typedef struct {
-    /*
-     Passed to `next_u64` unchanged; may be NULL if the callback allows.
-     */
-    void *state;
-    /*
-     The generator. Must not be NULL.
-     */
-    uint64_t (*next_u64)(void *state);
-} sk_rng;
 
 /*
  A surface's scattering behaviour (float). Build it with sk_surface_new;
@@ -423,6 +537,207 @@ void sk_onb(sk_vec3 n, sk_vec3 *b1, sk_vec3 *b2);
  Double twin of `sk_onb`.
  */
 void sk_onb_f64(sk_vec3_f64 n, sk_vec3_f64 *b1, sk_vec3_f64 *b2);
+
+/*
+ Distance to the next interaction in a homogeneous medium:
+ -ln(1 - u)/sigma_t (u clamped to [0, 1]; u = 1 or sigma_t = 0 gives +inf).
+ NaN for a negative or non-finite sigma_t or NaN u.
+ */
+float sk_free_path(float sigma_t, float u);
+
+/*
+ Double twin of `sk_free_path`.
+ */
+double sk_free_path_f64(double sigma_t, double u);
+
+/*
+ Beer-Lambert transmittance exp(-sigma_t distance) for sigma_t >= 0 and
+ distance >= 0 (+inf allowed; a vacuum transmits 1 over any distance).
+ NaN for negative or NaN arguments.
+ */
+float sk_transmittance(float sigma_t, float distance);
+
+/*
+ Double twin of `sk_transmittance`.
+ */
+double sk_transmittance_f64(double sigma_t, double distance);
+
+/*
+ pbrt's spectral homogeneous sampling: a channel chosen by u_channel, its
+ free path by u_dist; *t_out is the distance (t_max for the surface
+ event), *scattered_out 1 for a medium event and 0 for the surface, and
+ weight_out[c] the weight per channel (sigma_s Tr / mean(sigma_t Tr) or
+ Tr / mean(Tr)). sigma_t, sigma_s and weight_out hold `channels` values;
+ weight_out must not overlap the inputs (SK_ERR_DOMAIN).
+ SK_ERR_SIZE for channels = 0; SK_ERR_NULL for NULL pointers;
+ SK_ERR_DOMAIN for negative or non-finite coefficients, sigma_s > sigma_t
+ or t_max negative or NaN. Nothing is written on error.
+ */
+sk_status sk_homogeneous_sample(const float *sigma_t,
+                                const float *sigma_s,
+                                size_t channels,
+                                float t_max,
+                                float u_channel,
+                                float u_dist,
+                                float *t_out,
+                                uint32_t *scattered_out,
+                                float *weight_out);
+
+/*
+ Double twin of `sk_homogeneous_sample`.
+ */
+sk_status sk_homogeneous_sample_f64(const double *sigma_t,
+                                    const double *sigma_s,
+                                    size_t channels,
+                                    double t_max,
+                                    double u_channel,
+                                    double u_dist,
+                                    double *t_out,
+                                    uint32_t *scattered_out,
+                                    double *weight_out);
+
+/*
+ A density grid over the unit cube from the caller's nx*ny*nz values (x
+ fastest; borrowed, not copied), sampled at the grid nodes and
+ interpolated trilinearly; sigma_t(p) = (sigma_a + sigma_s) density(p).
+ Scans the values once. SK_ERR_NULL for NULL density or out; SK_ERR_SIZE
+ for a zero dimension or a product that overflows; SK_ERR_DOMAIN for a
+ negative or non-finite value or coefficient.
+ */
+sk_status sk_grid_new(const float *density,
+                      uint32_t nx,
+                      uint32_t ny,
+                      uint32_t nz,
+                      float sigma_a,
+                      float sigma_s,
+                      sk_grid *out);
+
+/*
+ Double twin of `sk_grid_new`.
+ */
+sk_status sk_grid_new_f64(const double *density,
+                          uint32_t nx,
+                          uint32_t ny,
+                          uint32_t nz,
+                          double sigma_a,
+                          double sigma_s,
+                          sk_grid_f64 *out);
+
+/*
+ The interpolated density at p (0 outside the unit cube); NaN for a NULL
+ or malformed grid.
+ */
+float sk_grid_density(const sk_grid *g, sk_vec3 p);
+
+/*
+ Double twin of `sk_grid_density`.
+ */
+double sk_grid_density_f64(const sk_grid_f64 *g, sk_vec3_f64 p);
+
+/*
+ Delta (Woodcock) tracking through the grid from o along d (any non-zero
+ length; distances along d/|d|) over [0, t_max], clipped to the unit cube.
+ Writes the distance and an sk_track_event (ESCAPED with t_max, SCATTERED
+ or ABSORBED). A zero majorant or a ray that misses the cube escapes at
+ once. SK_ERR_NULL for NULL pointers or callback; SK_ERR_DOMAIN for zero
+ or non-finite vectors or t_max negative or NaN; SK_ERR_SIZE after 2^20
+ steps or for a malformed grid.
+ */
+sk_status sk_delta_track(const sk_grid *g,
+                         sk_vec3 o,
+                         sk_vec3 d,
+                         float t_max,
+                         sk_rng *rng,
+                         float *t_out,
+                         uint32_t *scattered_out);
+
+/*
+ Double twin of `sk_delta_track`.
+ */
+sk_status sk_delta_track_f64(const sk_grid_f64 *g,
+                             sk_vec3_f64 o,
+                             sk_vec3_f64 d,
+                             double t_max,
+                             sk_rng *rng,
+                             double *t_out,
+                             uint32_t *scattered_out);
+
+/*
+ Ratio tracking through the grid: an unbiased estimate of the
+ transmittance from o along d over [0, t_max]. 1 for a ray that misses the
+ cube; NaN for NULL or invalid arguments or after 2^20 steps.
+ */
+float sk_ratio_track(const sk_grid *g, sk_vec3 o, sk_vec3 d, float t_max, sk_rng *rng);
+
+/*
+ Double twin of `sk_ratio_track`.
+ */
+double sk_ratio_track_f64(const sk_grid_f64 *g,
+                          sk_vec3_f64 o,
+                          sk_vec3_f64 d,
+                          double t_max,
+                          sk_rng *rng);
+
+/*
+ Delta tracking through the caller's medium f(ctx, p) = sigma_t(p) over
+ [t_min, t_max] from o along d, with majorant sigma_maj. Writes the
+ distance and SK_TRACK_COLLIDED or SK_TRACK_ESCAPED (with t_max).
+ SK_ERR_DOMAIN when f returns a value outside [0, sigma_maj] (reported,
+ not clamped: clamping would bias), for zero or non-finite vectors,
+ sigma_maj negative or non-finite, or t_min < 0 or t_max < t_min;
+ SK_ERR_NULL for NULL f, rng or outputs; SK_ERR_SIZE after 2^20 steps.
+ */
+sk_status sk_delta_track_fn(sk_density_fn f,
+                            void *ctx,
+                            float sigma_maj,
+                            sk_vec3 o,
+                            sk_vec3 d,
+                            float t_min,
+                            float t_max,
+                            sk_rng *rng,
+                            float *t_out,
+                            uint32_t *scattered_out);
+
+/*
+ Double twin of `sk_delta_track_fn`.
+ */
+sk_status sk_delta_track_fn_f64(sk_density_fn_f64 f,
+                                void *ctx,
+                                double sigma_maj,
+                                sk_vec3_f64 o,
+                                sk_vec3_f64 d,
+                                double t_min,
+                                double t_max,
+                                sk_rng *rng,
+                                double *t_out,
+                                uint32_t *scattered_out);
+
+/*
+ Ratio tracking through the caller's medium (arguments as
+ sk_delta_track_fn): an unbiased transmittance estimate over
+ [t_min, t_max]. NaN for NULL or invalid arguments, a density outside
+ [0, sigma_maj], or after 2^20 steps.
+ */
+float sk_ratio_track_fn(sk_density_fn f,
+                        void *ctx,
+                        float sigma_maj,
+                        sk_vec3 o,
+                        sk_vec3 d,
+                        float t_min,
+                        float t_max,
+                        sk_rng *rng);
+
+/*
+ Double twin of `sk_ratio_track_fn`.
+ */
+double sk_ratio_track_fn_f64(sk_density_fn_f64 f,
+                             void *ctx,
+                             double sigma_maj,
+                             sk_vec3_f64 o,
+                             sk_vec3_f64 d,
+                             double t_min,
+                             double t_max,
+                             sk_rng *rng);
 
 /*
  Isotropic scattering, p = 1/(4 pi).

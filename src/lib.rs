@@ -50,6 +50,7 @@
 pub mod cbrt;
 mod error;
 pub mod geometry;
+pub mod medium;
 pub mod phase;
 pub mod real;
 pub mod surface;
@@ -60,6 +61,7 @@ pub mod ffi;
 
 pub use error::Error;
 pub use geometry::{Vec3, onb};
+pub use medium::Grid;
 pub use phase::rayleigh;
 pub use phase::{
     Draine, Fog, HenyeyGreenstein, Isotropic, Phase, PhaseFunction, Rayleigh, RayleighDepolarized,

@@ -150,6 +150,13 @@ fn example_surface_shares() {
 }
 
 #[test]
+fn example_fog_slab() {
+    let out = run_source("c_examples/fog_slab.c", false);
+    assert!(out.contains("absorbing only: transmitted"), "{out}");
+    assert!(out.trim_end().ends_with("ok"), "{out}");
+}
+
+#[test]
 fn bad_input_from_c() {
     let exe = build_program(&root().join("tests/c/bad_input.c"), false);
     let (code, out) = run(&exe);

@@ -12,6 +12,7 @@
 
 mod cbrt;
 mod geometry;
+mod medium;
 mod phase;
 mod rayleigh;
 mod surface;
@@ -19,6 +20,7 @@ mod table;
 
 pub use cbrt::*;
 pub use geometry::*;
+pub use medium::*;
 pub use phase::*;
 pub use rayleigh::*;
 pub use surface::*;
@@ -171,6 +173,12 @@ pub(crate) unsafe fn write_result<V>(out: *mut V, r: Result<V, Error>) -> sk_sta
     }
 }
 
+/// True when `n` elements of `T` can exist in one allocation.
+#[inline(always)]
+pub(crate) fn fits<T>(n: usize) -> bool {
+    n <= isize::MAX as usize / core::mem::size_of::<T>()
+}
+
 /// A shared slice from a C array of `n` elements: `Ok(&[])` for `n = 0`
 /// (whatever the pointer), `SK_ERR_NULL` for NULL with `n > 0`, `SK_ERR_SIZE`
 /// if `n` elements cannot exist in one allocation.
@@ -182,7 +190,7 @@ pub(crate) unsafe fn slice_in<'a, T>(p: *const T, n: usize) -> Result<&'a [T], s
     if p.is_null() {
         return Err(sk_status::SK_ERR_NULL);
     }
-    if n > isize::MAX as usize / core::mem::size_of::<T>() {
+    if !fits::<T>(n) {
         return Err(sk_status::SK_ERR_SIZE);
     }
     // SAFETY: non-NULL, valid for n elements (module contract), size checked.
@@ -198,11 +206,18 @@ pub(crate) unsafe fn slice_out<'a, T>(p: *mut T, n: usize) -> Result<&'a mut [T]
     if p.is_null() {
         return Err(sk_status::SK_ERR_NULL);
     }
-    if n > isize::MAX as usize / core::mem::size_of::<T>() {
+    if !fits::<T>(n) {
         return Err(sk_status::SK_ERR_SIZE);
     }
     // SAFETY: as in slice_in, and the caller's array is writable.
     Ok(unsafe { core::slice::from_raw_parts_mut(p, n) })
+}
+
+/// True when the arrays of `n` elements at `a` and `b` share memory.
+pub(crate) fn overlaps<T>(a: *const T, b: *const T, n: usize) -> bool {
+    let bytes = n.saturating_mul(core::mem::size_of::<T>());
+    let (a, b) = (a as usize, b as usize);
+    n > 0 && a < b.saturating_add(bytes) && b < a.saturating_add(bytes)
 }
 
 /// Runs `f(u, out)` over two C arrays of `n` elements that are either
@@ -230,9 +245,7 @@ pub(crate) unsafe fn map_arrays<T: Real>(
     if n == 0 {
         return sk_status::SK_OK;
     }
-    let (a, b) = (u as usize, out as usize);
-    let bytes = n * core::mem::size_of::<T>();
-    if a == b {
+    if u == out.cast_const() {
         const CHUNK: usize = 64;
         let mut start = 0;
         while start < n {
@@ -247,7 +260,7 @@ pub(crate) unsafe fn map_arrays<T: Real>(
             start += len;
         }
         sk_status::SK_OK
-    } else if a < b + bytes && b < a + bytes {
+    } else if overlaps(u, out.cast_const(), n) {
         sk_status::SK_ERR_DOMAIN
     } else {
         let out_s = unsafe { core::slice::from_raw_parts_mut(out, n) };

@@ -347,6 +347,89 @@ static void surfaces(void) {
     CHECK(isnan(sk_scatter_fraction_transmit(600e-9f, 1e-9f, 1.5f, 1.0f, 3.9f, 1.5f)));
 }
 
+static float dense(void *ctx, sk_vec3 p) {
+    (void)ctx;
+    (void)p;
+    return 5.0f; /* above the majorant the caller claims */
+}
+
+static void media(void) {
+    uint64_t state = 5;
+    sk_rng rng = {&state, counter}, no_fn = {&state, NULL};
+    const float st[2] = {1.0f, 2.0f}, ss[2] = {0.5f, 1.0f}, bad_ss[2] = {1.5f, 1.0f};
+    const float values[8] = {1, 1, 1, 1, 1, 1, 1, 1}, negative[2] = {1.0f, -1.0f}, nan_values[2] = {1.0f, NAN};
+    float w[2] = {7.0f, 7.0f}, t = 7.0f, overlap[4] = {1.0f, 2.0f, 0.5f, 1.0f};
+    uint32_t ev = 77;
+    sk_grid g, bogus;
+    sk_vec3 o = {-1.0f, 0.5f, 0.5f}, d = {1.0f, 0.0f, 0.0f}, zero = {0.0f, 0.0f, 0.0f}, nanv = {NAN, 0.0f, 0.0f};
+
+    CHECK(isnan(sk_free_path(-1.0f, 0.5f)) && isnan(sk_free_path(NAN, 0.5f)) && isnan(sk_free_path(INFINITY, 0.5f)));
+    CHECK(isinf(sk_free_path(0.0f, 0.5f)) && isinf(sk_free_path(1.0f, 1.0f)) && sk_free_path(1.0f, -5.0f) == 0.0f);
+    CHECK(isnan(sk_free_path(1.0f, NAN)));
+    CHECK(isnan(sk_transmittance(-1.0f, 1.0f)) && isnan(sk_transmittance(1.0f, -1.0f)) && isnan(sk_transmittance(NAN, 1.0f)));
+    CHECK(sk_transmittance(0.0f, INFINITY) == 1.0f && sk_transmittance(1.0f, INFINITY) == 0.0f);
+
+    CHECK(sk_homogeneous_sample(st, ss, 0, 1.0f, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_SIZE);
+    CHECK(sk_homogeneous_sample(NULL, ss, 2, 1.0f, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_NULL);
+    CHECK(sk_homogeneous_sample(st, NULL, 2, 1.0f, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_NULL);
+    CHECK(sk_homogeneous_sample(st, ss, 2, 1.0f, 0.5f, 0.5f, NULL, &ev, w) == SK_ERR_NULL);
+    CHECK(sk_homogeneous_sample(st, ss, 2, 1.0f, 0.5f, 0.5f, &t, NULL, w) == SK_ERR_NULL);
+    CHECK(sk_homogeneous_sample(st, ss, 2, 1.0f, 0.5f, 0.5f, &t, &ev, NULL) == SK_ERR_NULL);
+    CHECK(sk_homogeneous_sample(st, bad_ss, 2, 1.0f, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_DOMAIN);
+    CHECK(sk_homogeneous_sample(st, ss, 2, -1.0f, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_DOMAIN);
+    CHECK(sk_homogeneous_sample(st, ss, 2, NAN, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_DOMAIN);
+    CHECK(sk_homogeneous_sample(st, ss, SIZE_MAX, 1.0f, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_SIZE);
+    CHECK(sk_homogeneous_sample(overlap, overlap + 2, 2, 1.0f, 0.5f, 0.5f, &t, &ev, overlap + 1) == SK_ERR_DOMAIN);
+    CHECK(w[0] == 7.0f && t == 7.0f && ev == 77);
+    CHECK(sk_homogeneous_sample(st, ss, 2, INFINITY, 0.5f, 0.5f, &t, &ev, w) == SK_OK && ev == 1);
+
+    CHECK(sk_grid_new(values, 0, 2, 2, 1.0f, 1.0f, &g) == SK_ERR_SIZE);
+    CHECK(sk_grid_new(values, 2, 0, 2, 1.0f, 1.0f, &g) == SK_ERR_SIZE);
+    CHECK(sk_grid_new(values, UINT32_MAX, UINT32_MAX, UINT32_MAX, 1.0f, 1.0f, &g) == SK_ERR_SIZE);
+    CHECK(sk_grid_new(NULL, 2, 2, 2, 1.0f, 1.0f, &g) == SK_ERR_NULL);
+    CHECK(sk_grid_new(values, 2, 2, 2, 1.0f, 1.0f, NULL) == SK_ERR_NULL);
+    CHECK(sk_grid_new(negative, 2, 1, 1, 1.0f, 1.0f, &g) == SK_ERR_DOMAIN);
+    CHECK(sk_grid_new(nan_values, 2, 1, 1, 1.0f, 1.0f, &g) == SK_ERR_DOMAIN);
+    CHECK(sk_grid_new(values, 2, 2, 2, -1.0f, 1.0f, &g) == SK_ERR_DOMAIN);
+    CHECK(sk_grid_new(values, 2, 2, 2, 1.0f, INFINITY, &g) == SK_ERR_DOMAIN);
+    CHECK(sk_grid_new(values, 2, 2, 2, 1.0f, 1.0f, &g) == SK_OK);
+    CHECK(g.max_density == 1.0f && sk_grid_density(&g, o) == 0.0f);
+    CHECK(isnan(sk_grid_density(NULL, o)));
+
+    CHECK(sk_delta_track(NULL, o, d, 3.0f, &rng, &t, &ev) == SK_ERR_NULL);
+    CHECK(sk_delta_track(&g, o, d, 3.0f, NULL, &t, &ev) == SK_ERR_NULL);
+    CHECK(sk_delta_track(&g, o, d, 3.0f, &no_fn, &t, &ev) == SK_ERR_NULL);
+    CHECK(sk_delta_track(&g, o, d, 3.0f, &rng, NULL, &ev) == SK_ERR_NULL);
+    CHECK(sk_delta_track(&g, o, d, 3.0f, &rng, &t, NULL) == SK_ERR_NULL);
+    CHECK(sk_delta_track(&g, o, zero, 3.0f, &rng, &t, &ev) == SK_ERR_DOMAIN);
+    CHECK(sk_delta_track(&g, nanv, d, 3.0f, &rng, &t, &ev) == SK_ERR_DOMAIN);
+    CHECK(sk_delta_track(&g, o, d, -1.0f, &rng, &t, &ev) == SK_ERR_DOMAIN);
+    CHECK(sk_delta_track(&g, o, d, NAN, &rng, &t, &ev) == SK_ERR_DOMAIN);
+    bogus = g;
+    bogus.nx = 0;
+    CHECK(sk_delta_track(&bogus, o, d, 3.0f, &rng, &t, &ev) == SK_ERR_SIZE);
+    CHECK(isnan(sk_ratio_track(&bogus, o, d, 3.0f, &rng)));
+    CHECK(isnan(sk_ratio_track(NULL, o, d, 3.0f, &rng)) && isnan(sk_ratio_track(&g, o, d, 3.0f, NULL)));
+    CHECK(isnan(sk_ratio_track(&g, o, zero, 3.0f, &rng)));
+    {
+        sk_vec3 away = {5.0f, 5.0f, 5.0f};
+        CHECK(sk_delta_track(&g, away, d, 3.0f, &rng, &t, &ev) == SK_OK && ev == SK_TRACK_ESCAPED && t == 3.0f);
+        CHECK(sk_ratio_track(&g, away, d, 3.0f, &rng) == 1.0f);
+    }
+
+    CHECK(sk_delta_track_fn(NULL, NULL, 1.0f, o, d, 0.0f, 1.0f, &rng, &t, &ev) == SK_ERR_NULL);
+    CHECK(sk_delta_track_fn(dense, NULL, 1.0f, o, d, 0.0f, 1.0f, NULL, &t, &ev) == SK_ERR_NULL);
+    CHECK(sk_delta_track_fn(dense, NULL, 1.0f, o, d, 0.0f, 1.0f, &rng, NULL, &ev) == SK_ERR_NULL);
+    CHECK(sk_delta_track_fn(dense, NULL, 1.0f, o, d, 0.0f, 1.0f, &rng, &t, &ev) == SK_ERR_DOMAIN); /* above majorant */
+    CHECK(isnan(sk_ratio_track_fn(dense, NULL, 1.0f, o, d, 0.0f, 1.0f, &rng)));
+    CHECK(sk_delta_track_fn(dense, NULL, 10.0f, o, d, 2.0f, 1.0f, &rng, &t, &ev) == SK_ERR_DOMAIN); /* t_max < t_min */
+    CHECK(sk_delta_track_fn(dense, NULL, -1.0f, o, d, 0.0f, 1.0f, &rng, &t, &ev) == SK_ERR_DOMAIN);
+    CHECK(sk_delta_track_fn(dense, NULL, 10.0f, o, zero, 0.0f, 1.0f, &rng, &t, &ev) == SK_ERR_DOMAIN);
+    CHECK(isnan(sk_ratio_track_fn(NULL, NULL, 10.0f, o, d, 0.0f, 1.0f, &rng)));
+    CHECK(sk_delta_track_fn(dense, NULL, 0.0f, o, d, 0.0f, 1.0f, &rng, &t, &ev) == SK_OK && ev == SK_TRACK_ESCAPED);
+    CHECK(sk_delta_track_fn(dense, NULL, 10.0f, o, d, 0.0f, 1.0f, &rng, &t, &ev) == SK_OK);
+}
+
 static void basis_and_version(void) {
     sk_vec3 n = {0.0f, 0.0f, -1.0f}, b1 = {7, 7, 7}, b2 = {7, 7, 7};
     char expected[64];
@@ -367,6 +450,7 @@ int main(void) {
     tables();
     coefficients_and_cbrt();
     surfaces();
+    media();
     basis_and_version();
     printf("bad_input: %d checks passed, %d failed\n", passed, failed);
     return failed;

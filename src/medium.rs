@@ -1,0 +1,478 @@
+//! Participating media (SPEC §6; pbrt-v3 §15.2): free paths, homogeneous
+//! media with spectral coefficients, and unbiased delta and ratio tracking
+//! through a density grid or a caller's density function.
+//!
+//! Units: coefficients σ in inverse length, distances `t` in the same length
+//! unit, measured along `d/|d|` (a direction of any non-zero length is
+//! accepted and only its direction is used, so `dist·|d|` versus `dist/|d|`
+//! cannot go wrong).
+//!
+//! Every loop is bounded: tracking stops after [`MAX_STEPS`] tentative
+//! collisions and then reports [`Error::Size`] (delta tracking) or NaN
+//! (ratio tracking) rather than a biased answer. A zero majorant, or a ray
+//! that misses the medium, returns at once: no interaction, transmittance 1.
+
+use crate::error::Error;
+use crate::geometry::Vec3;
+use crate::real::Real;
+use rand_core::Rng;
+
+/// The most tentative collisions one tracking call takes (2²⁰); a medium of
+/// majorant optical depth beyond ~10⁶ along one ray reports [`Error::Size`].
+pub const MAX_STEPS: u32 = 1 << 20;
+
+/// Distance to the next interaction in a homogeneous medium of extinction
+/// `sigma_t` (≥ 0, finite): `t = −ln(1 − u)/σ_t`, evaluated as
+/// `−ln1p(−u)/σ_t` (no rounding of `1 − u` for small u). `u` is clamped to
+/// `[0, 1]`; `u = 1` or `σ_t = 0` gives +∞ (no interaction). NaN for a
+/// negative or non-finite `sigma_t`, or NaN `u`.
+#[inline]
+pub fn free_path<T: Real>(sigma_t: T, u: T) -> T {
+    if !(sigma_t >= T::ZERO && sigma_t.is_finite()) {
+        return T::NAN;
+    }
+    let u = u.clamp01();
+    if sigma_t == T::ZERO {
+        return if u.is_nan() { T::NAN } else { T::INFINITY };
+    }
+    -(-u).ln_1p() / sigma_t
+}
+
+/// Beer–Lambert transmittance `e^{−σ_t d}` for `sigma_t ≥ 0` and
+/// `distance ≥ 0` (either may be +∞; `0·∞` counts as 0, so a vacuum
+/// transmits over any distance). NaN for negative or NaN arguments.
+#[inline]
+pub fn transmittance<T: Real>(sigma_t: T, distance: T) -> T {
+    if !(sigma_t >= T::ZERO && distance >= T::ZERO) {
+        return T::NAN;
+    }
+    if sigma_t == T::ZERO || distance == T::ZERO {
+        return T::ONE;
+    }
+    (-(sigma_t * distance)).exp()
+}
+
+/// What a homogeneous sample hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HomogeneousSample<T> {
+    /// Distance to the event (`t_max` for the surface event).
+    pub t: T,
+    /// True for a medium (scattering) event, false for the surface at `t_max`.
+    pub scattered: bool,
+}
+
+/// pbrt's spectral homogeneous sampling: pick a channel uniformly with
+/// `u_channel`, sample its free path with `u_dist`, and weight each channel by
+/// the average density over channels: at a medium event
+/// `β = Tr σ_s / mean(σ_t Tr)`, at the surface `β = Tr / mean(Tr)`, with
+/// `Tr = e^{−σ_t t}`. `weight_out` receives β per channel. Where every
+/// channel's density has underflowed to 0, β is 0 (the path carries nothing).
+///
+/// [`Error::Size`] for zero channels or slices of different lengths;
+/// [`Error::Domain`] for coefficients that are negative or not finite,
+/// `σ_s > σ_t`, or `t_max` negative or NaN (+∞ is allowed). Nothing is
+/// written on error.
+pub fn homogeneous_sample<T: Real>(
+    sigma_t: &[T],
+    sigma_s: &[T],
+    t_max: T,
+    u_channel: T,
+    u_dist: T,
+    weight_out: &mut [T],
+) -> Result<HomogeneousSample<T>, Error> {
+    let c = sigma_t.len();
+    if c == 0 || sigma_s.len() != c || weight_out.len() != c {
+        return Err(Error::Size);
+    }
+    let valid = |t: T, s: T| t.is_finite() && s.is_finite() && s >= T::ZERO && t >= s;
+    if !sigma_t.iter().zip(sigma_s).all(|(&t, &s)| valid(t, s)) || !non_negative(t_max) {
+        return Err(Error::Domain);
+    }
+    let channel = (u_channel.clamp01() * T::from_index(c))
+        .to_index()
+        .min(c - 1);
+    let dist = free_path(sigma_t[channel], u_dist);
+    let medium = dist < t_max;
+    let t = if medium { dist } else { t_max };
+    let mut pdf = T::ZERO;
+    for (w, &st) in weight_out.iter_mut().zip(sigma_t) {
+        let tr = transmittance(st, t);
+        *w = tr;
+        pdf += if medium { st * tr } else { tr };
+    }
+    let pdf = pdf / T::from_index(c);
+    for (w, &ss) in weight_out.iter_mut().zip(sigma_s) {
+        let num = if medium { *w * ss } else { *w };
+        *w = if pdf > T::ZERO { num / pdf } else { T::ZERO };
+    }
+    Ok(HomogeneousSample {
+        t,
+        scattered: medium,
+    })
+}
+
+/// The outcome of delta tracking.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Event {
+    /// No collision in `[t_min, t_max]`: the ray leaves the medium.
+    Escaped = 0,
+    /// A real collision that scatters (grid: chosen with probability σ_s/σ_t).
+    Scattered = 1,
+    /// A real collision that absorbs.
+    Absorbed = 2,
+    /// A real collision (caller's density: the caller's albedo decides).
+    Collided = 3,
+}
+
+/// A density grid over the unit cube `[0, 1]³`, borrowed from the caller:
+/// `nx·ny·nz` non-negative values, x fastest (`i + nx (j + ny k)`), sampled
+/// at the grid nodes (`x_i = i/(nx − 1)`; a dimension of 1 is constant along
+/// its axis) and interpolated trilinearly, so a density linear in x, y, z is
+/// represented exactly. (pbrt samples at cell centres instead.) Zero outside
+/// the cube. `σ_t(p) = (σ_a + σ_s) density(p)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Grid<'a, T> {
+    density: &'a [T],
+    n: [usize; 3],
+    sigma_a: T,
+    sigma_s: T,
+    max_density: T,
+}
+
+impl<'a, T: Real> Grid<'a, T> {
+    /// Validates and borrows `density`. [`Error::Size`] for a zero dimension,
+    /// a product that overflows, or a buffer shorter than `nx·ny·nz`;
+    /// [`Error::Domain`] for a negative or non-finite density value or
+    /// coefficient.
+    pub fn new(
+        density: &'a [T],
+        nx: usize,
+        ny: usize,
+        nz: usize,
+        sigma_a: T,
+        sigma_s: T,
+    ) -> Result<Self, Error> {
+        Self::scan(density, nx, ny, nz, sigma_a, sigma_s).map(|(g, _)| g)
+    }
+
+    /// [`Grid::new`], also returning the maximum density it found.
+    pub(crate) fn scan(
+        density: &'a [T],
+        nx: usize,
+        ny: usize,
+        nz: usize,
+        sigma_a: T,
+        sigma_s: T,
+    ) -> Result<(Self, T), Error> {
+        let count = grid_len(nx, ny, nz).ok_or(Error::Size)?;
+        let density = density.get(..count).ok_or(Error::Size)?;
+        let coeff_ok = |s: T| s >= T::ZERO && s.is_finite();
+        if !(coeff_ok(sigma_a) && coeff_ok(sigma_s)) {
+            return Err(Error::Domain);
+        }
+        let mut max_density = T::ZERO;
+        for &v in density {
+            if !(v >= T::ZERO && v.is_finite()) {
+                return Err(Error::Domain);
+            }
+            max_density = max_density.max_of(v);
+        }
+        Ok((
+            Grid {
+                density,
+                n: [nx, ny, nz],
+                sigma_a,
+                sigma_s,
+                max_density,
+            },
+            max_density,
+        ))
+    }
+
+    /// A grid from parts a previous [`Grid::new`] validated (the C layer
+    /// keeps them in `sk_grid`). `density` must hold `nx·ny·nz` values.
+    pub(crate) fn from_parts(
+        density: &'a [T],
+        n: [usize; 3],
+        sigma_a: T,
+        sigma_s: T,
+        max_density: T,
+    ) -> Self {
+        Grid {
+            density,
+            n,
+            sigma_a,
+            sigma_s,
+            max_density,
+        }
+    }
+
+    /// The interpolated density at `p` (0 outside the unit cube).
+    pub fn density(&self, p: Vec3<T>) -> T {
+        let inside = |x: T| x >= T::ZERO && x <= T::ONE;
+        if !(inside(p.x) && inside(p.y) && inside(p.z)) {
+            return T::ZERO;
+        }
+        let [nx, ny, nz] = self.n;
+        let (ix, fx) = node(p.x, nx);
+        let (iy, fy) = node(p.y, ny);
+        let (iz, fz) = node(p.z, nz);
+        let at = |i: usize, j: usize, k: usize| {
+            let (i, j, k) = (
+                (ix + i).min(nx - 1),
+                (iy + j).min(ny - 1),
+                (iz + k).min(nz - 1),
+            );
+            self.density[i + nx * (j + ny * k)]
+        };
+        let lerp = |a: T, b: T, t: T| a + (b - a) * t;
+        let x00 = lerp(at(0, 0, 0), at(1, 0, 0), fx);
+        let x10 = lerp(at(0, 1, 0), at(1, 1, 0), fx);
+        let x01 = lerp(at(0, 0, 1), at(1, 0, 1), fx);
+        let x11 = lerp(at(0, 1, 1), at(1, 1, 1), fx);
+        lerp(lerp(x00, x10, fy), lerp(x01, x11, fy), fz)
+    }
+
+    /// `σ_t(p)`.
+    #[inline]
+    pub fn sigma_t(&self, p: Vec3<T>) -> T {
+        (self.sigma_a + self.sigma_s) * self.density(p)
+    }
+
+    /// The majorant `(σ_a + σ_s) max(density)`, raised by a few ULP so the
+    /// rounding of the interpolation can never exceed it (any majorant at or
+    /// above σ_t keeps tracking unbiased).
+    pub fn majorant(&self) -> T {
+        (self.sigma_a + self.sigma_s) * self.max_density * (T::ONE + T::from_f64(4.0) * T::EPSILON)
+    }
+
+    /// The single-scattering albedo `σ_s/(σ_a + σ_s)` (0 for a vacuum).
+    pub fn albedo(&self) -> T {
+        let st = self.sigma_a + self.sigma_s;
+        if st > T::ZERO {
+            self.sigma_s / st
+        } else {
+            T::ZERO
+        }
+    }
+
+    /// Delta (Woodcock) tracking from `o` along `d` over `[0, t_max]`, the
+    /// ray first clipped to the unit cube. Returns the distance and the event
+    /// (a real collision scatters with probability σ_s/σ_t). [`Error::Domain`]
+    /// for a zero or non-finite `d` or `o`, or `t_max` negative or NaN;
+    /// [`Error::Size`] when [`MAX_STEPS`] is reached.
+    pub fn delta_track<R: Rng + ?Sized>(
+        &self,
+        o: Vec3<T>,
+        d: Vec3<T>,
+        t_max: T,
+        rng: &mut R,
+    ) -> Result<(T, Event), Error> {
+        let (o, d) = ray(o, d)?;
+        if !non_negative(t_max) {
+            return Err(Error::Domain);
+        }
+        let Some((t0, t1)) = clip_unit_cube(o, d, T::ZERO, t_max) else {
+            return Ok((t_max, Event::Escaped));
+        };
+        let (t, hit) = delta(|p| Ok(self.sigma_t(p)), self.majorant(), o, d, t0, t1, rng)?;
+        if !hit {
+            return Ok((t_max, Event::Escaped));
+        }
+        let event = if T::uniform(rng) < self.albedo() {
+            Event::Scattered
+        } else {
+            Event::Absorbed
+        };
+        Ok((t, event))
+    }
+
+    /// Ratio tracking: an unbiased estimate of the transmittance from `o`
+    /// along `d` over `[0, t_max]` (clipped to the cube). NaN for invalid
+    /// input or when [`MAX_STEPS`] is reached.
+    pub fn ratio_track<R: Rng + ?Sized>(&self, o: Vec3<T>, d: Vec3<T>, t_max: T, rng: &mut R) -> T {
+        let Ok((o, d)) = ray(o, d) else {
+            return T::NAN;
+        };
+        if !non_negative(t_max) {
+            return T::NAN;
+        }
+        let Some((t0, t1)) = clip_unit_cube(o, d, T::ZERO, t_max) else {
+            return T::ONE;
+        };
+        ratio(|p| Ok(self.sigma_t(p)), self.majorant(), o, d, t0, t1, rng).unwrap_or(T::NAN)
+    }
+}
+
+/// `nx·ny·nz` if no dimension is 0 and the product fits in `usize`.
+pub fn grid_len(nx: usize, ny: usize, nz: usize) -> Option<usize> {
+    if nx == 0 || ny == 0 || nz == 0 {
+        return None;
+    }
+    nx.checked_mul(ny)?.checked_mul(nz)
+}
+
+/// Node index and fraction of coordinate `x ∈ [0, 1]` on `n` nodes.
+#[inline(always)]
+fn node<T: Real>(x: T, n: usize) -> (usize, T) {
+    if n == 1 {
+        return (0, T::ZERO);
+    }
+    let s = x * T::from_index(n - 1);
+    let i = s.to_index().min(n - 2);
+    (i, s - T::from_index(i))
+}
+
+/// `x ≥ 0`, false for NaN.
+#[inline(always)]
+fn non_negative<T: Real>(x: T) -> bool {
+    x >= T::ZERO
+}
+
+/// A validated ray: finite origin, unit direction.
+fn ray<T: Real>(o: Vec3<T>, d: Vec3<T>) -> Result<(Vec3<T>, Vec3<T>), Error> {
+    if !(o.is_finite() && d.is_finite()) {
+        return Err(Error::Domain);
+    }
+    Ok((o, d.try_normalize().ok_or(Error::Domain)?))
+}
+
+/// The part `[t0, t1]` of `[t_min, t_max]` inside the unit cube (slab
+/// method), or `None` if the ray misses it there.
+pub fn clip_unit_cube<T: Real>(o: Vec3<T>, d: Vec3<T>, t_min: T, t_max: T) -> Option<(T, T)> {
+    let (mut t0, mut t1) = (t_min, t_max);
+    for (oc, dc) in [(o.x, d.x), (o.y, d.y), (o.z, d.z)] {
+        if dc == T::ZERO {
+            if !(oc >= T::ZERO && oc <= T::ONE) {
+                return None;
+            }
+            continue;
+        }
+        let inv = T::ONE / dc;
+        let (a, b) = ((T::ZERO - oc) * inv, (T::ONE - oc) * inv);
+        let (near, far) = if a < b { (a, b) } else { (b, a) };
+        t0 = t0.max_of(near);
+        if far < t1 {
+            t1 = far;
+        }
+    }
+    if t0 < t1 { Some((t0, t1)) } else { None }
+}
+
+/// `σ_t` at `p` from the caller, checked against the majorant.
+#[inline(always)]
+fn checked<T: Real>(sigma_t: T, sigma_maj: T) -> Result<T, Error> {
+    if sigma_t >= T::ZERO && sigma_t <= sigma_maj {
+        Ok(sigma_t)
+    } else {
+        Err(Error::Domain)
+    }
+}
+
+/// Delta tracking over `[t0, t1]`: `(t, true)` at a real collision, or
+/// `(t1, false)`. `sigma_t` may fail (a density above the majorant).
+fn delta<T: Real, R: Rng + ?Sized>(
+    sigma_t: impl Fn(Vec3<T>) -> Result<T, Error>,
+    sigma_maj: T,
+    o: Vec3<T>,
+    d: Vec3<T>,
+    t0: T,
+    t1: T,
+    rng: &mut R,
+) -> Result<(T, bool), Error> {
+    if sigma_maj.is_nan() || sigma_maj <= T::ZERO {
+        return Ok((t1, false));
+    }
+    let mut t = t0;
+    for _ in 0..MAX_STEPS {
+        t += free_path(sigma_maj, T::uniform(rng));
+        if t.is_nan() || t >= t1 {
+            return Ok((t1, false));
+        }
+        let st = checked(sigma_t(o + d * t)?, sigma_maj)?;
+        if T::uniform(rng) * sigma_maj < st {
+            return Ok((t, true));
+        }
+    }
+    Err(Error::Size)
+}
+
+/// Ratio tracking over `[t0, t1]`: the product of `1 − σ_t/σ_maj` at the
+/// tentative collisions.
+fn ratio<T: Real, R: Rng + ?Sized>(
+    sigma_t: impl Fn(Vec3<T>) -> Result<T, Error>,
+    sigma_maj: T,
+    o: Vec3<T>,
+    d: Vec3<T>,
+    t0: T,
+    t1: T,
+    rng: &mut R,
+) -> Result<T, Error> {
+    if sigma_maj.is_nan() || sigma_maj <= T::ZERO {
+        return Ok(T::ONE);
+    }
+    let (mut t, mut tr) = (t0, T::ONE);
+    for _ in 0..MAX_STEPS {
+        t += free_path(sigma_maj, T::uniform(rng));
+        if t.is_nan() || t >= t1 {
+            return Ok(tr);
+        }
+        let st = checked(sigma_t(o + d * t)?, sigma_maj)?;
+        tr *= T::ONE - st / sigma_maj;
+        if tr == T::ZERO {
+            return Ok(tr);
+        }
+    }
+    Err(Error::Size)
+}
+
+/// Validates the interval and majorant of the callback versions.
+fn check_fn_args<T: Real>(sigma_maj: T, t_min: T, t_max: T) -> Result<(), Error> {
+    let ok = sigma_maj >= T::ZERO && sigma_maj.is_finite() && t_min >= T::ZERO && t_max >= t_min;
+    if ok { Ok(()) } else { Err(Error::Domain) }
+}
+
+/// Delta tracking through a caller's medium: `sigma_t(p)` gives σ_t at a
+/// point (it must stay in `[0, sigma_maj]`), over `[t_min, t_max]` along
+/// `d` from `o`. Returns the distance and [`Event::Collided`] or
+/// [`Event::Escaped`] (at `t_max`). [`Error::Domain`] for invalid arguments
+/// or a density outside `[0, sigma_maj]` met on the way (reported, not
+/// clamped: clamping would bias); [`Error::Size`] at [`MAX_STEPS`].
+#[allow(clippy::too_many_arguments)]
+pub fn delta_track_fn<T: Real, R: Rng + ?Sized>(
+    sigma_t: impl Fn(Vec3<T>) -> T,
+    sigma_maj: T,
+    o: Vec3<T>,
+    d: Vec3<T>,
+    t_min: T,
+    t_max: T,
+    rng: &mut R,
+) -> Result<(T, Event), Error> {
+    let (o, d) = ray(o, d)?;
+    check_fn_args(sigma_maj, t_min, t_max)?;
+    let (t, hit) = delta(|p| Ok(sigma_t(p)), sigma_maj, o, d, t_min, t_max, rng)?;
+    Ok(if hit {
+        (t, Event::Collided)
+    } else {
+        (t_max, Event::Escaped)
+    })
+}
+
+/// Ratio tracking through a caller's medium (arguments as
+/// [`delta_track_fn`]): an unbiased transmittance estimate over
+/// `[t_min, t_max]`. [`Error::Domain`] for invalid arguments or a density
+/// outside `[0, sigma_maj]`; [`Error::Size`] at [`MAX_STEPS`].
+pub fn ratio_track_fn<T: Real, R: Rng + ?Sized>(
+    sigma_t: impl Fn(Vec3<T>) -> T,
+    sigma_maj: T,
+    o: Vec3<T>,
+    d: Vec3<T>,
+    t_min: T,
+    t_max: T,
+    rng: &mut R,
+) -> Result<T, Error> {
+    let (o, d) = ray(o, d)?;
+    check_fn_args(sigma_maj, t_min, t_max)?;
+    ratio(|p| Ok(sigma_t(p)), sigma_maj, o, d, t_min, t_max, rng)
+}

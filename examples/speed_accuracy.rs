@@ -150,12 +150,19 @@ fn direction_rows() -> Vec<Row> {
             rayleigh::sample_dir(m, w_in, r)
         });
     }
-    let direct = max_error(|u| Phase::<f32>::rayleigh().sample_cos(u), rayleigh_exact);
+    let direct = max_error(rayleigh::inverse_cdf_direct::<f32>, rayleigh_exact);
     row!(
         rows,
         "Rayleigh, direct (Cardano, cbrt)",
         format!("{direct:.1e}"),
         |r| { rayleigh::sample_dir(RayleighMethod::Direct, w_in, r) }
+    );
+    let mm = max_error(rayleigh::inverse_cdf_minimax::<f32>, rayleigh_exact);
+    row!(
+        rows,
+        "Rayleigh, direct (minimax cube root)",
+        format!("{mm:.1e}"),
+        |r| { rayleigh::sample_dir(RayleighMethod::DirectMinimax, w_in, r) }
     );
     let fast = max_error(rayleigh::inverse_cdf_fast::<f32>, rayleigh_exact);
     row!(
@@ -163,6 +170,13 @@ fn direction_rows() -> Vec<Row> {
         "Rayleigh, direct (cbrt_fast)",
         format!("{fast:.1e}"),
         |r| { rayleigh::sample_dir(RayleighMethod::DirectFast, w_in, r) }
+    );
+    let te = max_error(rayleigh::inverse_cdf_table::<f32>, rayleigh_exact);
+    row!(
+        rows,
+        "Rayleigh, built-in Hermite table (n = 128)",
+        format!("{te:.1e}"),
+        |r| { rayleigh::sample_dir(RayleighMethod::Table, w_in, r) }
     );
     for n in [8usize, 32] {
         let mut buf = vec![0.0f32; n + 1];

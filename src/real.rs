@@ -96,6 +96,8 @@ pub trait Real:
     fn to_index(self) -> usize;
     /// An index as a float.
     fn from_index(i: usize) -> Self;
+    /// The slice of `Self`'s precision from a pair of tables kept in both.
+    fn pick<'a>(f32s: &'a [f32], f64s: &'a [f64]) -> &'a [Self];
     /// True unless NaN or ±∞.
     fn is_finite(self) -> bool;
     /// True for NaN.
@@ -132,7 +134,7 @@ pub trait Real:
 
 macro_rules! impl_real {
     ($t:ty, $shift:expr, $scale:expr, $cbrt:path, $cbrt_fast:path,
-     $sqrt:ident, $sincos:ident, $cos:ident, $log:ident, $log1p:ident,
+     $pick:expr, $sqrt:ident, $sincos:ident, $cos:ident, $log:ident, $log1p:ident,
      $exp:ident, $expm1:ident, $pow:ident, $atan2:ident, $copysign:ident, $fabs:ident) => {
         impl Real for $t {
             const ZERO: Self = 0.0;
@@ -227,6 +229,10 @@ macro_rules! impl_real {
                 i as i64 as $t
             }
             #[inline(always)]
+            fn pick<'a>(f32s: &'a [f32], f64s: &'a [f64]) -> &'a [Self] {
+                $pick(f32s, f64s)
+            }
+            #[inline(always)]
             fn is_finite(self) -> bool {
                 <$t>::is_finite(self)
             }
@@ -244,6 +250,7 @@ impl_real!(
     1.0 / (1u64 << 24) as f32,
     crate::cbrt::cbrt_f32,
     crate::cbrt::cbrt_fast_f32,
+    |a, _| a,
     sqrtf,
     sincosf,
     cosf,
@@ -262,6 +269,7 @@ impl_real!(
     1.0 / (1u64 << 53) as f64,
     crate::cbrt::cbrt_f64,
     crate::cbrt::cbrt_fast_f64,
+    |_, b| b,
     sqrt,
     sincos,
     cos,

@@ -56,6 +56,8 @@ chi2_tests! {
     chi2_simplified: RayleighMethod::Simplified, 4;
     chi2_direct: RayleighMethod::Direct, 5;
     chi2_direct_fast: RayleighMethod::DirectFast, 6;
+    chi2_direct_minimax: RayleighMethod::DirectMinimax, 7;
+    chi2_table: RayleighMethod::Table, 8;
 }
 
 /// Baranoski's rejection as first published: `μ = cos(πξ₁)` accepted with
@@ -120,7 +122,7 @@ fn method_values_match_the_c_enum() {
         assert_eq!(m as u32, i as u32);
         assert_eq!(RayleighMethod::try_from(i as u32), Ok(m));
     }
-    assert_eq!(RayleighMethod::try_from(6), Err(scatterkit::Error::Method));
+    assert_eq!(RayleighMethod::try_from(8), Err(scatterkit::Error::Method));
 }
 
 /// Max |μ − μ_ref| of an inverse over `n` uniforms including 0 and 1.
@@ -136,15 +138,37 @@ fn max_error<T: Real>(f: impl Fn(T) -> T, reference: impl Fn(f64) -> f64, n: usi
 #[test]
 fn direct_inverse_is_accurate() {
     let n = 1_000_001;
-    let e32 = max_error::<f32>(|u| Rayleigh.sample_cos(u), dd::rayleigh_inverse, n);
-    let e64 = max_error::<f64>(|u| Rayleigh.sample_cos(u), dd::rayleigh_inverse, n);
+    let e32 = max_error::<f32>(rayleigh::inverse_cdf_direct::<f32>, dd::rayleigh_inverse, n);
+    let e64 = max_error::<f64>(rayleigh::inverse_cdf_direct::<f64>, dd::rayleigh_inverse, n);
+    let m32 = max_error::<f32>(|u| Rayleigh.sample_cos(u), dd::rayleigh_inverse, n);
+    let m64 = max_error::<f64>(|u| Rayleigh.sample_cos(u), dd::rayleigh_inverse, n);
     let fast32 = max_error::<f32>(rayleigh::inverse_cdf_fast::<f32>, dd::rayleigh_inverse, n);
-    println!("Rayleigh direct: f32 {e32:.2e}, f64 {e64:.2e}, f32 fast {fast32:.2e}");
+    println!(
+        "Rayleigh direct: f32 {e32:.2e}, f64 {e64:.2e}; minimax: f32 {m32:.2e}, f64 {m64:.2e}; f32 fast {fast32:.2e}"
+    );
     // Bounds: 4 ULP of 1 (the stable Cardano form has no cancellation left).
-    assert!(e32 <= 4.0 * f32::EPSILON as f64, "f32 {e32:e}");
-    assert!(e64 <= 4.0 * f64::EPSILON, "f64 {e64:e}");
+    for (name, e, eps) in [
+        ("direct", e32, f32::EPSILON as f64),
+        ("minimax", m32, f32::EPSILON as f64),
+    ] {
+        assert!(e <= 4.0 * eps, "{name} f32 {e:e}");
+    }
+    for (name, e) in [("direct", e64), ("minimax", m64)] {
+        assert!(e <= 4.0 * f64::EPSILON, "{name} f64 {e:e}");
+    }
     // One Lancaster step: relative cube-root error ~2e-5.
     assert!(fast32 <= 1e-4, "f32 fast {fast32:e}");
+    // The built-in Hermite table: interpolation error below f32 resolution.
+    let t64 = max_error::<f64>(rayleigh::inverse_cdf_table::<f64>, dd::rayleigh_inverse, n);
+    let t32 = max_error::<f32>(rayleigh::inverse_cdf_table::<f32>, dd::rayleigh_inverse, n);
+    println!(
+        "Rayleigh table (n = {}): f64 {t64:.2e}, f32 {t32:.2e}",
+        rayleigh::TABLE_N
+    );
+    assert!(
+        t64 <= 1e-8 && t32 <= 4.0 * f32::EPSILON as f64,
+        "table {t64:e} {t32:e}"
+    );
 }
 
 #[test]

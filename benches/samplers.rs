@@ -1,6 +1,9 @@
 //! criterion benchmarks: every sampler of the foundation, f32 and f64, as
 //! elements per second (`cargo bench`; `cargo bench --no-run` to only build).
 
+#[path = "peers.rs"]
+mod peers;
+
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::Rng;
@@ -73,14 +76,39 @@ fn phases<T: Real>(c: &mut Criterion, label: &str) {
     g.finish();
 }
 
-/// Draine by rejection from HG: accept μ ~ HG(g) with `(1 + αμ²)/(1 + α)`.
-fn draine_rejection<R: Rng>(hg: &Phase<f32>, alpha: f32, r: &mut R) -> f32 {
-    loop {
-        let mu = hg.sample_cos(f32::uniform(r));
-        if f32::uniform(r) * (1.0 + alpha) <= 1.0 + alpha * mu * mu {
-            return mu;
-        }
-    }
+/// The peers' formulas (benches/peers.rs) beside ours, per cos θ.
+fn peer_formulas(c: &mut Criterion) {
+    let mut g = c.benchmark_group("peers_sample_cos_f32");
+    g.throughput(Throughput::Elements(1));
+    let mut r = rng();
+    g.bench_function("rayleigh/mitsuba3_two_cbrt", |b| {
+        b.iter(|| peers::mitsuba_rayleigh(f32::uniform(&mut r)))
+    });
+    g.bench_function("rayleigh/cycles_fast_inv_cbrt", |b| {
+        b.iter(|| peers::cycles_rayleigh(f32::uniform(&mut r)))
+    });
+    g.bench_function("rayleigh/ours_direct", |b| {
+        b.iter(|| rayleigh::inverse_cdf_direct(f32::uniform(&mut r)))
+    });
+    g.bench_function("rayleigh/ours_minimax", |b| {
+        b.iter(|| rayleigh::inverse_cdf_minimax(f32::uniform(&mut r)))
+    });
+    g.bench_function("rayleigh/ours_table", |b| {
+        b.iter(|| rayleigh::inverse_cdf_table(f32::uniform(&mut r)))
+    });
+    let hg = Phase::henyey_greenstein(0.7f32).unwrap();
+    g.bench_function("hg/pbrt_v4", |b| {
+        b.iter(|| peers::pbrt_v4_hg(black_box(0.7), f32::uniform(&mut r)))
+    });
+    g.bench_function("hg/ours", |b| {
+        b.iter(|| hg.sample_cos(f32::uniform(&mut r)))
+    });
+    g.finish();
+}
+
+/// Draine by rejection from HG (benches/peers.rs).
+fn draine_rejection<R: Rng>(g: f32, alpha: f32, r: &mut R) -> f32 {
+    peers::draine_rejection(g, alpha, || f32::uniform(r))
 }
 
 /// Our Draine sampler, eq. 6 as published, and rejection from HG, in the
@@ -97,7 +125,6 @@ fn draine(c: &mut Criterion) {
     ] {
         let id = format!("g{gg}_a{a}");
         let ours = Draine::new(gg, a).unwrap();
-        let hg = Phase::henyey_greenstein(gg).unwrap();
         let mut r = rng();
         g.bench_function(BenchmarkId::new("ours", &id), |b| {
             b.iter(|| ours.sample_cos(f32::uniform(&mut r)))
@@ -106,7 +133,7 @@ fn draine(c: &mut Criterion) {
             b.iter(|| sample_cos_eq6(black_box(gg), black_box(a), f32::uniform(&mut r)))
         });
         g.bench_function(BenchmarkId::new("hg_rejection", &id), |b| {
-            b.iter(|| draine_rejection(&hg, a, &mut r))
+            b.iter(|| draine_rejection(gg, a, &mut r))
         });
     }
     g.finish();
@@ -308,6 +335,7 @@ fn all(c: &mut Criterion) {
     rayleigh_methods::<f64>(c, "f64");
     phases::<f32>(c, "f32");
     phases::<f64>(c, "f64");
+    peer_formulas(c);
     draine(c);
     surfaces::<f32>(c, "f32");
     surfaces::<f64>(c, "f64");

@@ -192,6 +192,7 @@ impl<'a, T: Real> Grid<'a, T> {
 
     /// A grid from parts a previous [`Grid::new`] validated (the C layer
     /// keeps them in `sk_grid`). `density` must hold `nx·ny·nz` values.
+    #[cfg_attr(not(feature = "ffi"), allow(dead_code))]
     pub(crate) fn from_parts(
         density: &'a [T],
         n: [usize; 3],

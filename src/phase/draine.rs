@@ -330,9 +330,13 @@ pub(crate) fn inverse_tail<T: Real>(p: Params, target: f64) -> f64 {
     solve_bracketed::<T>(|y| p.eval_y(y), target, seed, 0.0, 2.0)
 }
 
-/// Below this `y = 1 + μ` the eq. 6 shortcut is not taken: its ~10⁻¹¹
-/// absolute error would show in `sin θ = sqrt(y (2 − y))`.
-const EQ6_MIN_Y: f64 = 1e-3;
+/// Below this `y = 1 + μ` the eq. 6 shortcut is not taken: its absolute
+/// error in this region (≤ 1.3·10⁻¹¹, ≤ 6·10⁻¹³ for |g| ≥ 0.9; see
+/// docs/draine_accuracy.md) must stay below f32's resolution of
+/// `sin θ = sqrt(y (2 − y))`, whose relative error is `δy/(2y)`: ≤ 6·10⁻⁷ of
+/// an already tiny angle at `y = 10⁻⁵`, and 5·10⁻⁸ where |g| ≥ 0.9 (the lobes
+/// that reach the pole).
+const EQ6_MIN_Y: f64 = 1e-5;
 
 /// Where eq. 6 (in f64, on the small tail) is used as it is for f32 results:
 /// `|g| ≥ 0.05`, `10⁻⁴ ≤ α ≤ 10`. The stability sweep in `tests/draine.rs`

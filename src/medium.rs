@@ -91,7 +91,7 @@ pub fn homogeneous_sample<T: Real>(
     let channel = (u_channel.clamp01() * T::from_index(c))
         .to_index()
         .min(c - 1);
-    let dist = free_path(sigma_t[channel], u_dist);
+    let dist = free_path(sigma_t.get(channel).copied().unwrap_or(T::NAN), u_dist);
     let medium = dist < t_max;
     let t = if medium { dist } else { t_max };
     let mut pdf = T::ZERO;
@@ -225,7 +225,11 @@ impl<'a, T: Real> Grid<'a, T> {
                 (iy + j).min(ny - 1),
                 (iz + k).min(nz - 1),
             );
-            self.density[i + nx * (j + ny * k)]
+            // In bounds by construction; `get` lets the compiler see it.
+            self.density
+                .get(i + nx * (j + ny * k))
+                .copied()
+                .unwrap_or(T::NAN)
         };
         let lerp = |a: T, b: T, t: T| a + (b - a) * t;
         let x00 = lerp(at(0, 0, 0), at(1, 0, 0), fx);

@@ -83,8 +83,12 @@ impl<'a, T: Real> Table<'a, T> {
             *f = PhaseFunction::<T>::cdf(&Rayleigh, x);
         }
         // The ends exactly, whatever the rounding of x_n.
-        buf[0] = T::ZERO;
-        buf[n] = T::ONE;
+        if let Some(first) = buf.first_mut() {
+            *first = T::ZERO;
+        }
+        if let Some(last) = buf.last_mut() {
+            *last = T::ONE;
+        }
         Ok(Table {
             data: buf,
             n_t: T::from_index(n),
@@ -104,15 +108,17 @@ impl<'a, T: Real> Table<'a, T> {
         let len = TableKind::Inverse.len(n).ok_or(Error::Size)?;
         let buf = buf.get_mut(..len).ok_or(Error::Size)?;
         let h = T::ONE / T::from_f64(n as f64);
-        for i in 0..=n {
+        for (i, pair) in buf.chunks_exact_mut(2).enumerate() {
             let u = if i == n {
                 T::ONE
             } else {
                 T::from_f64(i as f64) * h
             };
             let mu = phase.sample_cos(u);
-            buf[2 * i] = mu;
-            buf[2 * i + 1] = h / (T::TAU * phase.pdf(mu));
+            if let [y, d] = pair {
+                *y = mu;
+                *d = h / (T::TAU * phase.pdf(mu));
+            }
         }
         limit_slopes(buf, n);
         Ok(Table {
@@ -191,17 +197,19 @@ impl<'a, T: Real> Table<'a, T> {
     /// so the O(1) Hermite lookup beside it inlines into the caller's loop.
     #[inline(never)]
     fn sample_cdf_table(&self, u: T) -> T {
-        let f = self.data;
+        // Indices stay below n + 1 = data.len(); `get` makes that a fact the
+        // compiler can see (no bounds-check panic in the C library).
+        let f = |i: usize| self.data.get(i).copied().unwrap_or(T::NAN);
         let (mut lo, mut hi) = (0usize, self.n);
         while hi - lo > 1 {
             let mid = (lo + hi) / 2;
-            if f[mid] <= u {
+            if f(mid) <= u {
                 lo = mid;
             } else {
                 hi = mid;
             }
         }
-        let t = (u - f[lo]) / (f[hi] - f[lo]);
+        let t = (u - f(lo)) / (f(hi) - f(lo));
         let dx = T::TWO / T::from_f64(self.n as f64);
         ((T::from_f64(lo as f64) + t) * dx - T::ONE).clamp_unit()
     }
@@ -232,17 +240,20 @@ pub(crate) fn hermite<T: Real>(data: &[T], n: usize, n_t: T, u: T) -> T {
 fn limit_slopes<T: Real>(buf: &mut [T], n: usize) {
     let three = T::from_f64(3.0);
     for i in 0..=n {
-        let mut d = buf[2 * i + 1];
+        let y = |k: usize| buf.get(k).copied().unwrap_or(T::NAN);
+        let mut d = y(2 * i + 1);
         if d.is_nan() || d < T::ZERO {
             d = T::ZERO;
         }
         if i > 0 {
-            d = upto(d, three * (buf[2 * i] - buf[2 * i - 2]));
+            d = upto(d, three * (y(2 * i) - y(2 * i - 2)));
         }
         if i < n {
-            d = upto(d, three * (buf[2 * i + 2] - buf[2 * i]));
+            d = upto(d, three * (y(2 * i + 2) - y(2 * i)));
         }
-        buf[2 * i + 1] = d;
+        if let Some(slot) = buf.get_mut(2 * i + 1) {
+            *slot = d;
+        }
     }
 }
 
@@ -267,20 +278,22 @@ impl<'d, T: Real> Measured<'d, T> {
         if x.len() != p.len() || x.len() < 2 {
             return Err(Error::Size);
         }
-        let reversed = x[1] < x[0];
+        let reversed = x.get(1) < x.first();
         let mut area = 0.0;
-        for j in 0..x.len() {
-            let (xj, pj) = (x[j].to_f64(), p[j].to_f64());
+        let mut prev: Option<(f64, f64)> = None;
+        for (&xj, &pj) in x.iter().zip(p) {
+            let (xj, pj) = (xj.to_f64(), pj.to_f64());
             if !((-1.0..=1.0).contains(&xj) && pj >= 0.0 && pj.is_finite()) {
                 return Err(Error::Domain);
             }
-            if j > 0 {
-                let step = xj - x[j - 1].to_f64();
+            if let Some((xp, pp)) = prev {
+                let step = xj - xp;
                 if !(if reversed { step < 0.0 } else { step > 0.0 }) {
                     return Err(Error::Domain);
                 }
-                area += 0.5 * step.abs() * (pj + p[j - 1].to_f64());
+                area += 0.5 * step.abs() * (pj + pp);
             }
+            prev = Some((xj, pj));
         }
         if !(area > 0.0 && area.is_finite()) {
             return Err(Error::Domain);
@@ -300,7 +313,8 @@ impl<'d, T: Real> Measured<'d, T> {
         } else {
             k
         };
-        (self.x[j].to_f64(), self.p[j].to_f64() / self.area)
+        let at = |s: &[T]| s.get(j).map_or(f64::NAN, |v| v.to_f64());
+        (at(self.x), at(self.p) / self.area)
     }
 
     /// Writes `μ_i = F⁻¹(i/n)` and the limited-later slopes, sweeping the
@@ -318,10 +332,13 @@ impl<'d, T: Real> Measured<'d, T> {
                 if (mass > 0.0 && cdf0 + mass >= u) || k + 2 >= m {
                     let r = (u - cdf0).max(0.0);
                     let tau = segment_root(x1 - x0, q0, q1, r);
-                    let mu = (x0 + tau).clamp(x0, x1);
+                    // max/min rather than clamp, which asserts its bounds are ordered.
+                    let mu = (x0 + tau).max(x0).min(x1);
                     let q = q0 + (q1 - q0) * ((mu - x0) / (x1 - x0));
-                    buf[2 * i] = T::from_f64(mu);
-                    buf[2 * i + 1] = T::from_f64(1.0 / (q * n as f64));
+                    if let Some([y, d]) = buf.get_mut(2 * i..2 * i + 2) {
+                        *y = T::from_f64(mu);
+                        *d = T::from_f64(1.0 / (q * n as f64));
+                    }
                     break;
                 }
                 cdf0 += mass;

@@ -2,6 +2,7 @@
 //! RNGs and the directions every sampler is tested about.
 #![allow(dead_code)]
 
+pub mod cbuild;
 pub mod chi2;
 pub mod dd;
 pub mod ks;

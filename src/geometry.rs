@@ -54,15 +54,16 @@ impl<T: Real> Vec3<T> {
     pub fn is_finite(self) -> bool {
         self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
     }
-    /// The vector scaled to unit length, or `None` if it is zero, not finite,
-    /// or too short or long to normalise without overflow.
+    /// The vector scaled to unit length, or `None` if it is zero or not
+    /// finite. Scaled by its largest component first, so huge and subnormal
+    /// vectors normalise too (their squared length would overflow or vanish).
     pub fn try_normalize(self) -> Option<Self> {
-        let len = self.length();
-        if len.is_finite() && len > T::ZERO {
-            Some(self * (T::ONE / len))
-        } else {
-            None
+        let m = self.x.abs().max_of(self.y.abs()).max_of(self.z.abs());
+        if !(m > T::ZERO && m.is_finite() && self.is_finite()) {
+            return None;
         }
+        let v = Vec3::new(self.x / m, self.y / m, self.z / m);
+        Some(v * (T::ONE / v.length()))
     }
     /// The same vector in another precision (rounded).
     #[inline(always)]

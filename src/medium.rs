@@ -209,8 +209,12 @@ impl<'a, T: Real> Grid<'a, T> {
         }
     }
 
-    /// The interpolated density at `p` (0 outside the unit cube).
+    /// The interpolated density at `p` (0 outside the unit cube, NaN for a
+    /// NaN coordinate).
     pub fn density(&self, p: Vec3<T>) -> T {
+        if p.x.is_nan() || p.y.is_nan() || p.z.is_nan() {
+            return T::NAN;
+        }
         let inside = |x: T| x >= T::ZERO && x <= T::ONE;
         if !(inside(p.x) && inside(p.y) && inside(p.z)) {
             return T::ZERO;

@@ -8,9 +8,14 @@ use crate::real::Real;
 pub struct Isotropic;
 
 impl<T: Real> PhaseFunction<T> for Isotropic {
+    /// `1/(4π)`; NaN for a NaN argument, as every pdf.
     #[inline(always)]
-    fn pdf(&self, _cos_theta: T) -> T {
-        T::INV_4PI
+    fn pdf(&self, cos_theta: T) -> T {
+        if cos_theta.is_nan() {
+            T::NAN
+        } else {
+            T::INV_4PI
+        }
     }
     #[inline(always)]
     fn cdf(&self, cos_theta: T) -> T {

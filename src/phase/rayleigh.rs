@@ -399,7 +399,14 @@ pub fn cross_section(wavelength: f64, radius: f64, rel_index: f64) -> Result<f64
         return Err(Error::Domain);
     }
     let n2 = rel_index * rel_index;
-    let alpha = radius * radius * radius * ((n2 - 1.0) / (n2 + 2.0));
+    // (n² − 1)/(n² + 2), as 1 − 3/(n² + 2) for large n, where n² may
+    // overflow (∞/∞); the first form near n = 1, where the second cancels.
+    let lorentz = if n2 > 4.0 {
+        1.0 - 3.0 / (n2 + 2.0)
+    } else {
+        (n2 - 1.0) / (n2 + 2.0)
+    };
+    let alpha = radius * radius * radius * lorentz;
     let pi = core::f64::consts::PI;
     let l2 = wavelength * wavelength;
     // λ⁴ as (λ²)² and the π⁵ factor split so neither overflows early.

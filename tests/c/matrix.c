@@ -1,0 +1,476 @@
+/* The bad-input matrix: every function of include/scatterkit.h, called with
+ * NULL in each pointer argument, NaN, +-inf, -0, a subnormal and +-max in each
+ * float argument, out-of-range enum values, and n = 0 and n = SIZE_MAX, and
+ * checked against the documented status or NaN. tests/matrix.rs fails if a
+ * header function does not appear here. Exits with the number of failures. */
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "scatterkit.h"
+
+static int passed = 0, failed = 0;
+#define CHECK(cond)                                                          \
+    do {                                                                     \
+        if (cond) {                                                          \
+            passed++;                                                        \
+        } else {                                                             \
+            failed++;                                                        \
+            printf("FAILED line %d: %s (i = %d)\n", __LINE__, #cond, i);    \
+        }                                                                    \
+    } while (0)
+
+/* The special values each float argument is tried with. */
+static const float FS[] = {NAN, INFINITY, -INFINITY, -0.0f, 1e-40f, FLT_MAX, -FLT_MAX};
+static const double DS[] = {NAN, INFINITY, -INFINITY, -0.0, 1e-310, DBL_MAX, -DBL_MAX};
+enum { NS = 7 };
+/* Which of them are "bad" for a parameter that must be finite. */
+static int bad(double x) { return isnan(x) || isinf(x); }
+
+static uint64_t counter(void *state) {
+    uint64_t *s = (uint64_t *)state;
+    return *s += 0x9e3779b97f4a7c15ULL;
+}
+static float dens32(void *ctx, sk_vec3 p) {
+    (void)ctx;
+    (void)p;
+    return 0.5f;
+}
+static double dens64(void *ctx, sk_vec3_f64 p) {
+    (void)ctx;
+    (void)p;
+    return 0.5;
+}
+
+static int in_unit(double x) { return x >= -1.0 && x <= 1.0; }
+static int vec_nan3(sk_vec3 v) { return isnan(v.x) && isnan(v.y) && isnan(v.z); }
+static int vec_nan3d(sk_vec3_f64 v) { return isnan(v.x) && isnan(v.y) && isnan(v.z); }
+static int vec_unit(sk_vec3 v) { return fabs(sqrt((double)v.x * v.x + (double)v.y * v.y + (double)v.z * v.z) - 1.0) < 1e-5; }
+static int vec_unitd(sk_vec3_f64 v) { return fabs(sqrt(v.x * v.x + v.y * v.y + v.z * v.z) - 1.0) < 1e-12; }
+
+static void cube_roots_and_version(void) {
+    int i;
+    for (i = 0; i < NS; i++) {
+        float f = FS[i], y = sk_cbrtf(f), z = sk_cbrtf_fast(f);
+        double d = DS[i], w = sk_cbrt(d), v = sk_cbrt_fast(d);
+        CHECK(isnan(f) ? isnan(y) && isnan(z) : isinf(f) || f == 0.0f ? y == f && z == f : isfinite(y) && isfinite(z));
+        CHECK(isnan(d) ? isnan(w) && isnan(v) : isinf(d) || d == 0.0 ? w == d && v == d : isfinite(w) && isfinite(v));
+        CHECK(signbit(y) == signbit(f) || isnan(f));
+    }
+    i = 0;
+    CHECK(sk_version() != NULL && strlen(sk_version()) >= 5);
+}
+
+static void basis(void) {
+    int i;
+    sk_vec3 b1 = {7, 7, 7}, b2 = {7, 7, 7};
+    sk_vec3_f64 c1 = {7, 7, 7}, c2 = {7, 7, 7};
+    const sk_vec3 z = {0, 0, 1};
+    const sk_vec3_f64 zd = {0, 0, 1};
+    sk_onb(z, NULL, &b2);
+    sk_onb(z, &b1, NULL);
+    sk_onb_f64(zd, NULL, &c2);
+    sk_onb_f64(zd, &c1, NULL);
+    i = 0;
+    CHECK(b1.x == 7 && b2.x == 7 && c1.x == 7 && c2.x == 7);
+    for (i = 0; i < NS; i++) { /* any input: no crash, NaN in gives NaN out */
+        sk_vec3 n = {FS[i], 0, 1};
+        sk_vec3_f64 m = {DS[i], 0, 1};
+        sk_onb(n, &b1, &b2);
+        sk_onb_f64(m, &c1, &c2);
+        CHECK(!isnan(FS[i]) || isnan(b1.x));
+        CHECK(!isnan(DS[i]) || isnan(c1.x));
+    }
+}
+
+/* Every phase constructor with each special in each float argument. */
+static void phase_constructors(void) {
+    int i;
+    sk_phase p;
+    sk_phase_f64 q;
+    for (i = 0; i < NS; i++) {
+        float f = FS[i];
+        double d = DS[i];
+        int g_ok = f > -1.0f && f < 1.0f, gd_ok = d > -1.0 && d < 1.0;
+        int a_ok = f >= 0.0f && isfinite(f), ad_ok = d >= 0.0 && isfinite(d);
+        CHECK(sk_phase_hg(f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_hg_f64(d, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_cornette_shanks(f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_cornette_shanks_f64(d, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_draine(f, 1.0f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_draine(0.3f, f, &p) == (a_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_draine_f64(d, 1.0, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_draine_f64(0.3, d, &q) == (ad_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fog(f, 0.5f, 1.0f, 0.5f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fog(0.5f, f, 1.0f, 0.5f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fog(0.5f, 0.5f, f, 0.5f, &p) == (a_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fog(0.5f, 0.5f, 1.0f, f, &p) == (f >= 0.0f && f <= 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fog_f64(d, 0.5, 1.0, 0.5, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fog_f64(0.5, 0.5, 1.0, d, &q) == (d >= 0.0 && d <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fog_diameter(f, &p) == (f > 0.0f && f <= 50.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fog_diameter_f64(d, &q) == (d > 0.0 && d <= 50.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_rayleigh_depolarized(f, &p) == (f >= 0.0f && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_rayleigh_depolarized_f64(d, &q) == (d >= 0.0 && d < 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_particle(f, 0.1f, &p) == (f > 0.0f && f <= 50.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_particle(2.0f, f, &p) == (f > 0.0f && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_particle_f64(d, 0.1, &q) == (d > 0.0 && d <= 50.0 ? SK_OK : SK_ERR_DOMAIN));
+    }
+    i = 0;
+    CHECK(sk_phase_isotropic(NULL) == SK_ERR_NULL && sk_phase_isotropic_f64(NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_rayleigh(NULL) == SK_ERR_NULL && sk_phase_rayleigh_f64(NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_hg(0.1f, NULL) == SK_ERR_NULL && sk_phase_hg_f64(0.1, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_draine(0.1f, 1, NULL) == SK_ERR_NULL && sk_phase_draine_f64(0.1, 1, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_cornette_shanks(0.1f, NULL) == SK_ERR_NULL && sk_phase_cornette_shanks_f64(0.1, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_fog(0.1f, 0.1f, 1, 0.5f, NULL) == SK_ERR_NULL && sk_phase_fog_f64(0.1, 0.1, 1, 0.5, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_fog_diameter(2, NULL) == SK_ERR_NULL && sk_phase_fog_diameter_f64(2, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_rayleigh_depolarized(0.1f, NULL) == SK_ERR_NULL && sk_phase_rayleigh_depolarized_f64(0.1, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_particle(2, 0.1f, NULL) == SK_ERR_NULL && sk_phase_particle_f64(2, 0.1, NULL) == SK_ERR_NULL);
+}
+
+/* Queries of every phase kind with each special argument. */
+static void phase_queries(void) {
+    int i, k;
+    sk_phase ps[6], zero;
+    sk_phase_f64 qs[6], zero64;
+    float u[3] = {0.1f, 0.5f, 0.9f}, out[3];
+    double ud[3] = {0.1, 0.5, 0.9}, outd[3];
+    memset(&zero, 0, sizeof zero);
+    memset(&zero64, 0, sizeof zero64);
+    sk_phase_isotropic(&ps[0]);
+    sk_phase_rayleigh(&ps[1]);
+    sk_phase_hg(0.9f, &ps[2]);
+    sk_phase_draine(0.3f, 250.0f, &ps[3]);
+    sk_phase_fog_diameter(2.0f, &ps[4]);
+    sk_phase_rayleigh_depolarized(0.3f, &ps[5]);
+    sk_phase_isotropic_f64(&qs[0]);
+    sk_phase_rayleigh_f64(&qs[1]);
+    sk_phase_hg_f64(0.9, &qs[2]);
+    sk_phase_draine_f64(0.3, 250.0, &qs[3]);
+    sk_phase_fog_diameter_f64(2.0, &qs[4]);
+    sk_phase_rayleigh_depolarized_f64(0.3, &qs[5]);
+    for (k = 0; k < 6; k++) {
+        for (i = 0; i < NS; i++) {
+            float f = FS[i];
+            double d = DS[i];
+            const sk_vec3 w = {0, 0, 1};
+            const sk_vec3_f64 wd = {0, 0, 1};
+            float pdf;
+            double pdfd;
+            /* Scalar u: clamped; NaN gives NaN. */
+            float c = sk_phase_sample_cos(&ps[k], f), cl = sk_phase_sample_cos_lobe(&ps[k], f);
+            double cd = sk_phase_sample_cos_f64(&qs[k], d), cld = sk_phase_sample_cos_lobe_f64(&qs[k], d);
+            CHECK(isnan(f) ? isnan(c) && isnan(cl) : in_unit(c) && in_unit(cl));
+            CHECK(isnan(d) ? isnan(cd) && isnan(cld) : in_unit(cd) && in_unit(cld));
+            /* cdf: clamped argument, result in [0, 1]; NaN gives NaN. */
+            c = sk_phase_cdf(&ps[k], f);
+            cd = sk_phase_cdf_f64(&qs[k], d);
+            CHECK(isnan(f) ? isnan(c) : c >= 0.0f && c <= 1.0f);
+            CHECK(isnan(d) ? isnan(cd) : cd >= 0.0 && cd <= 1.0);
+            /* pdf: NaN gives NaN; otherwise no NaN inside [-1, 1]. */
+            c = sk_phase_pdf(&ps[k], f);
+            cd = sk_phase_pdf_f64(&qs[k], d);
+            CHECK(!isnan(f) || isnan(c));
+            CHECK(!isnan(d) || isnan(cd));
+            CHECK(!in_unit(f) || (c >= 0.0f && !isnan(c)));
+            /* sample_dir: NaN u gives a NaN direction, else a unit one. */
+            {
+                sk_vec3 dir = sk_phase_sample_dir(&ps[k], w, f, 0.3f, &pdf);
+                sk_vec3_f64 dird = sk_phase_sample_dir_f64(&qs[k], wd, d, 0.3, &pdfd);
+                CHECK(isnan(f) ? isnan(dir.z) : vec_unit(dir) && pdf >= 0.0f);
+                CHECK(isnan(d) ? isnan(dird.z) : vec_unitd(dird) && pdfd >= 0.0);
+                dir = sk_phase_sample_dir(&ps[k], w, 0.3f, f, NULL);
+                CHECK(isnan(f) ? isnan(dir.x) : vec_unit(dir));
+            }
+            /* Batches reject any u that is NaN or outside [0, 1] and write nothing. */
+            u[1] = f;
+            ud[1] = d;
+            out[0] = outd[0] = 7.0f;
+            CHECK(sk_phase_sample_cos_n(&ps[k], u, out, 3) == (f >= 0.0f && f <= 1.0f ? SK_OK : SK_ERR_DOMAIN));
+            CHECK(sk_phase_sample_cos_n_f64(&qs[k], ud, outd, 3) == (d >= 0.0 && d <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
+            CHECK((f >= 0.0f && f <= 1.0f) || out[0] == 7.0f);
+        }
+        i = 0;
+        u[1] = 0.5f;
+        ud[1] = 0.5;
+        CHECK(sk_phase_sample_cos_n(&ps[k], NULL, out, 3) == SK_ERR_NULL);
+        CHECK(sk_phase_sample_cos_n(&ps[k], u, NULL, 3) == SK_ERR_NULL);
+        CHECK(sk_phase_sample_cos_n(&ps[k], NULL, NULL, 0) == SK_OK);
+        CHECK(sk_phase_sample_cos_n(&ps[k], u, out, SIZE_MAX) == SK_ERR_SIZE);
+        CHECK(sk_phase_sample_cos_n_f64(&qs[k], NULL, outd, 3) == SK_ERR_NULL);
+        CHECK(sk_phase_sample_cos_n_f64(&qs[k], ud, outd, SIZE_MAX) == SK_ERR_SIZE);
+        CHECK(sk_phase_sample_cos_n_f64(&qs[k], ud, outd, 0) == SK_OK);
+        CHECK(!isnan(sk_phase_mean_cosine(&ps[k])) && !isnan(sk_phase_mean_cosine_f64(&qs[k])));
+    }
+    i = 0;
+    {
+        const sk_vec3 w = {0, 0, 1};
+        const sk_vec3_f64 wd = {0, 0, 1};
+        const sk_phase *bad_p[2] = {NULL, &zero};
+        const sk_phase_f64 *bad_q[2] = {NULL, &zero64};
+        for (k = 0; k < 2; k++) {
+            CHECK(isnan(sk_phase_pdf(bad_p[k], 0)) && isnan(sk_phase_pdf_f64(bad_q[k], 0)));
+            CHECK(isnan(sk_phase_cdf(bad_p[k], 0)) && isnan(sk_phase_cdf_f64(bad_q[k], 0)));
+            CHECK(isnan(sk_phase_mean_cosine(bad_p[k])) && isnan(sk_phase_mean_cosine_f64(bad_q[k])));
+            CHECK(isnan(sk_phase_sample_cos(bad_p[k], 0.5f)) && isnan(sk_phase_sample_cos_f64(bad_q[k], 0.5)));
+            CHECK(isnan(sk_phase_sample_cos_lobe(bad_p[k], 0.5f)) && isnan(sk_phase_sample_cos_lobe_f64(bad_q[k], 0.5)));
+            CHECK(vec_nan3(sk_phase_sample_dir(bad_p[k], w, 0.5f, 0.5f, NULL)));
+            CHECK(vec_nan3d(sk_phase_sample_dir_f64(bad_q[k], wd, 0.5, 0.5, NULL)));
+            CHECK(sk_phase_sample_cos_n(bad_p[k], u, out, 3) == (k ? SK_ERR_DOMAIN : SK_ERR_NULL));
+            CHECK(sk_phase_sample_cos_n_f64(bad_q[k], ud, outd, 3) == (k ? SK_ERR_DOMAIN : SK_ERR_NULL));
+        }
+    }
+}
+
+static void rayleigh_functions(void) {
+    int i;
+    uint64_t st = 1;
+    sk_rng rng = {&st, counter}, no_fn = {&st, NULL};
+    const uint32_t bad_methods[3] = {8, 1000, UINT32_MAX};
+    sk_vec3 d, w = {0, 0, 1};
+    sk_vec3_f64 dd, wd = {0, 0, 1};
+    float c[4];
+    double cd[4];
+    for (i = 0; i < 3; i++) {
+        uint32_t m = bad_methods[i];
+        CHECK(sk_rayleigh_sample_dir(m, w, &rng, &d) == SK_ERR_METHOD);
+        CHECK(sk_rayleigh_sample_dir_f64(m, wd, &rng, &dd) == SK_ERR_METHOD);
+        CHECK(sk_rayleigh_sample_cos_n(m, &rng, c, 4) == SK_ERR_METHOD);
+        CHECK(sk_rayleigh_sample_cos_n_f64(m, &rng, cd, 4) == SK_ERR_METHOD);
+    }
+    i = 0;
+    CHECK(sk_rayleigh_sample_dir(SK_RAYLEIGH_TABLE, w, NULL, &d) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_dir(SK_RAYLEIGH_TABLE, w, &no_fn, &d) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_dir(SK_RAYLEIGH_TABLE, w, &rng, NULL) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_dir_f64(SK_RAYLEIGH_TABLE, wd, &rng, NULL) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_cos_n(SK_RAYLEIGH_TABLE, &rng, NULL, 4) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_cos_n(SK_RAYLEIGH_TABLE, &rng, NULL, 0) == SK_OK);
+    CHECK(sk_rayleigh_sample_cos_n(SK_RAYLEIGH_TABLE, &rng, c, SIZE_MAX) == SK_ERR_SIZE);
+    CHECK(sk_rayleigh_sample_cos_n_f64(SK_RAYLEIGH_TABLE, &no_fn, cd, 4) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_cos_n_f64(SK_RAYLEIGH_TABLE, &rng, cd, SIZE_MAX) == SK_ERR_SIZE);
+    for (i = 0; i < NS; i++) {
+        double x = DS[i];
+        int ok = x > 0.0 && isfinite(x);
+        sk_vec3 wi = {FS[i], 0, 1};
+        double cs = sk_rayleigh_cross_section(x, 1e-9, 1.5);
+        CHECK(ok ? cs >= 0.0 : isnan(cs));
+        CHECK(ok ? !isnan(sk_rayleigh_cross_section(500e-9, x, 1.5)) : isnan(sk_rayleigh_cross_section(500e-9, x, 1.5)));
+        CHECK(ok ? !isnan(sk_rayleigh_cross_section(500e-9, 1e-9, x)) : isnan(sk_rayleigh_cross_section(500e-9, 1e-9, x)));
+        CHECK((x >= 0.0 && isfinite(x)) ? !isnan(sk_rayleigh_scattering_coeff(x, 500e-9, 1e-9, 1.5))
+                                        : isnan(sk_rayleigh_scattering_coeff(x, 500e-9, 1e-9, 1.5)));
+        /* A non-unit or NaN direction: no crash, status OK (not checked on the hot path). */
+        CHECK(sk_rayleigh_sample_dir(SK_RAYLEIGH_DIRECT, wi, &rng, &d) == SK_OK);
+    }
+}
+
+static void tables(void) {
+    int i;
+    float buf[2 * 33], cosines[3] = {-1, 0, 1}, pdf[3] = {1, 1, 1};
+    double bufd[2 * 33], cosd[3] = {-1, 0, 1}, pdfd[3] = {1, 1, 1};
+    sk_table t, bogus;
+    sk_table_f64 td;
+    sk_phase p;
+    sk_phase_f64 q;
+    sk_phase_hg(0.5f, &p);
+    sk_phase_hg_f64(0.5, &q);
+    i = 0;
+    CHECK(sk_table_len(SK_TABLE_RAYLEIGH_CDF, 0) == 0 && sk_table_len(SK_TABLE_INVERSE, SIZE_MAX) == 0);
+    CHECK(sk_table_len(3, 8) == 0 && sk_table_len(UINT32_MAX, 8) == 0 && sk_table_len(SK_TABLE_MEASURED, 8) == 18);
+    CHECK(sk_table_rayleigh_cdf(buf, 33, 32, NULL) == SK_ERR_NULL && sk_table_rayleigh_cdf(NULL, 33, 32, &t) == SK_ERR_NULL);
+    CHECK(sk_table_rayleigh_cdf(buf, 33, 0, &t) == SK_ERR_SIZE && sk_table_rayleigh_cdf(buf, 33, SIZE_MAX, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_rayleigh_cdf(buf, SIZE_MAX, 32, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_rayleigh_cdf_f64(bufd, 32, 32, &td) == SK_ERR_SIZE && sk_table_rayleigh_cdf_f64(NULL, 33, 32, &td) == SK_ERR_NULL);
+    CHECK(sk_table_inverse(&p, buf, 66, 32, NULL) == SK_ERR_NULL && sk_table_inverse(NULL, buf, 66, 32, &t) == SK_ERR_NULL);
+    CHECK(sk_table_inverse(&p, buf, 66, 0, &t) == SK_ERR_SIZE && sk_table_inverse(&p, buf, SIZE_MAX, 32, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_inverse_f64(&q, bufd, 65, 32, &td) == SK_ERR_SIZE && sk_table_inverse_f64(&q, NULL, 66, 32, &td) == SK_ERR_NULL);
+    CHECK(sk_table_measured(cosines, pdf, 3, buf, 66, 32, NULL) == SK_ERR_NULL);
+    CHECK(sk_table_measured(cosines, pdf, 0, buf, 66, 32, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_measured(cosines, pdf, SIZE_MAX, buf, 66, 32, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_measured_f64(cosd, pdfd, 3, bufd, 66, 0, &td) == SK_ERR_SIZE);
+    CHECK(sk_table_measured_f64(cosd, NULL, 3, bufd, 66, 32, &td) == SK_ERR_NULL);
+    for (i = 0; i < NS; i++) {
+        float f = FS[i];
+        double d = DS[i];
+        cosines[1] = f;
+        pdf[1] = 1;
+        CHECK(sk_table_measured(cosines, pdf, 3, buf, 66, 32, &t) == (f > -1.0f && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        cosines[1] = 0;
+        pdf[1] = f;
+        CHECK(sk_table_measured(cosines, pdf, 3, buf, 66, 32, &t) == (f >= 0.0f && isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
+        pdfd[1] = d;
+        CHECK(sk_table_measured_f64(cosd, pdfd, 3, bufd, 66, 32, &td) == (d >= 0.0 && isfinite(d) ? SK_OK : SK_ERR_DOMAIN));
+        pdfd[1] = 1;
+        /* Lookups: u clamped, NaN gives NaN. */
+        sk_table_rayleigh_cdf(buf, 33, 32, &t);
+        CHECK(isnan(f) ? isnan(sk_table_sample_cos(&t, f)) : in_unit(sk_table_sample_cos(&t, f)));
+        sk_table_inverse_f64(&q, bufd, 66, 32, &td);
+        CHECK(isnan(d) ? isnan(sk_table_sample_cos_f64(&td, d)) : in_unit(sk_table_sample_cos_f64(&td, d)));
+    }
+    i = 0;
+    CHECK(isnan(sk_table_sample_cos(NULL, 0.5f)) && isnan(sk_table_sample_cos_f64(NULL, 0.5)));
+    bogus = t;
+    bogus.kind = 77;
+    CHECK(isnan(sk_table_sample_cos(&bogus, 0.5f)));
+    bogus.kind = SK_TABLE_RAYLEIGH_CDF;
+    bogus.n = SIZE_MAX;
+    CHECK(isnan(sk_table_sample_cos(&bogus, 0.5f)));
+    bogus.n = 4;
+    bogus.data = NULL;
+    CHECK(isnan(sk_table_sample_cos(&bogus, 0.5f)));
+}
+
+static void surfaces(void) {
+    int i;
+    uint64_t st = 2;
+    sk_rng rng = {&st, counter};
+    sk_surface s;
+    sk_surface_f64 sd;
+    sk_vec3 n = {0, 0, 1}, d = {0.6f, 0, -0.8f}, out;
+    sk_vec3_f64 nd = {0, 0, 1}, ddd = {0.6, 0, -0.8}, outd;
+    uint32_t ev;
+    sk_surface_new(SK_SURFACE_PHONG, 10, SK_FRACTION_SCALAR, 0, 5e-8f, SK_CROSSING_FOLD, &s);
+    sk_surface_new_f64(SK_SURFACE_LAMBERT, 1, SK_FRACTION_CONSTANT, 0.5, 0, SK_CROSSING_MIRROR, &sd);
+    for (i = 0; i < NS; i++) {
+        float f = FS[i];
+        double g = DS[i];
+        sk_vec3 v = {f, 0, -1};
+        sk_vec3_f64 vd = {g, 0, -1};
+        sk_vec3 r;
+        /* Vectors with a special component: finite ones work, others are NaN/DOMAIN. */
+        r = sk_reflect(v, n);
+        CHECK(bad(f) ? vec_nan3(r) : vec_unit(r));
+        r = sk_lambert_sample(v, 0.5f, 0.5f);
+        CHECK(bad(f) ? vec_nan3(r) : vec_unit(r));
+        CHECK(vec_unitd(sk_reflect_f64(ddd, nd)) && (bad(g) ? vec_nan3d(sk_reflect_f64(vd, nd)) : 1));
+        CHECK(bad(g) ? vec_nan3d(sk_lambert_sample_f64(vd, 0.5, 0.5)) : vec_unitd(sk_lambert_sample_f64(vd, 0.5, 0.5)));
+        CHECK(sk_refract(v, n, 1.0f, 1.5f, &r) == (bad(f) ? SK_ERR_DOMAIN : SK_OK));
+        CHECK(sk_refract_f64(vd, nd, 1.0, 1.5, &outd) == (bad(g) ? SK_ERR_DOMAIN : SK_OK));
+        /* n_i: valid and positive; refraction exists while n_i sin(theta_i)/n_t <= 1 (sin = 0.6). */
+        CHECK(sk_refract(d, n, f, 1.5f, &r) == (f > 0.0f && isfinite(f) && f * 0.6f / 1.5f <= 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        /* Phong: alpha outside [1, 1e6] and special axes give NaN. */
+        r = sk_phong_sample(n, n, f, SK_CROSSING_FOLD, 0.5f, 0.5f);
+        CHECK((f >= 1.0f && f <= 1e6f) ? vec_unit(r) : vec_nan3(r));
+        CHECK((g >= 1.0 && g <= 1e6) ? vec_unitd(sk_phong_sample_f64(nd, nd, g, SK_CROSSING_RESAMPLE, 0.5, 0.5))
+                                      : vec_nan3d(sk_phong_sample_f64(nd, nd, g, SK_CROSSING_RESAMPLE, 0.5, 0.5)));
+        CHECK(bad(f) ? vec_nan3(sk_phong_sample(v, n, 10, SK_CROSSING_MIRROR, 0.5f, 0.5f)) : 1);
+        CHECK(vec_nan3d(sk_phong_sample_f64(nd, nd, 10, 3, 0.5, 0.5)) && vec_nan3(sk_phong_sample(n, n, 10, UINT32_MAX, 0.5f, 0.5f)));
+        /* Uniforms: clamped, NaN gives NaN. */
+        CHECK(isnan(f) ? isnan(sk_lambert_sample(n, f, 0.5f).z) : vec_unit(sk_lambert_sample(n, f, 0.5f)));
+        /* Fresnel and fractions: NaN or the documented value. */
+        CHECK((f > 0.0f && isfinite(f)) ? sk_fresnel_dielectric(0.5f, f, 1.5f) >= 0.0f : isnan(sk_fresnel_dielectric(0.5f, f, 1.5f)));
+        CHECK(fabsf(f) <= 1.0f ? sk_fresnel_dielectric(f, 1.0f, 1.5f) >= 0.0f : isnan(sk_fresnel_dielectric(f, 1.0f, 1.5f)));
+        CHECK(isnan(sk_fresnel_dielectric_f64(0.5, 1.0, g)) == !(g > 0.0 && isfinite(g)));
+        CHECK((f > 0.0f && isfinite(f)) == !isnan(sk_scatter_fraction_reflect(f, 1e-8f, 1.5f, 1.0f)));
+        CHECK((f >= 0.0f && isfinite(f)) == !isnan(sk_scatter_fraction_reflect(600e-9f, f, 1.5f, 1.0f)));
+        CHECK((g >= 0.0 && isfinite(g)) == !isnan(sk_scatter_fraction_reflect_f64(600e-9, g, 1.5, 1.0)));
+        CHECK((f > 0.0f && isfinite(f)) == !isnan(sk_scatter_fraction_transmit(600e-9f, 1e-8f, 1.5f, 1.0f, f, 1.0f)));
+        CHECK((fabs(g) <= 1.0) == !isnan(sk_scatter_fraction_transmit_f64(600e-9, 1e-8, 1.5, 1.0, 3.9, g)));
+        /* Surface constructor and interaction. */
+        CHECK(sk_surface_new(SK_SURFACE_PHONG, f, SK_FRACTION_CONSTANT, 0.5f, 0, SK_CROSSING_FOLD, &s) ==
+              (f >= 1.0f && f <= 1e6f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_surface_new_f64(SK_SURFACE_SPECULAR, 1, SK_FRACTION_CONSTANT, g, 0, SK_CROSSING_FOLD, &sd) ==
+              (g >= 0.0 && g <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_surface_new(SK_SURFACE_LAMBERT, 1, SK_FRACTION_SCALAR, 0, f, SK_CROSSING_FOLD, &s) ==
+              (f >= 0.0f && isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
+        if (sk_surface_new(SK_SURFACE_PHONG, 10, SK_FRACTION_SCALAR, 0, 5e-8f, SK_CROSSING_FOLD, &s) != SK_OK) failed++;
+        CHECK(sk_surface_interact(&s, d, n, f, 1.5f, 600e-9f, &rng, &out, &ev) == (f > 0.0f && isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_surface_interact(&s, d, n, 1.0f, 1.5f, f, &rng, &out, &ev) == (f > 0.0f && isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_surface_interact(&s, v, n, 1.0f, 1.5f, 600e-9f, &rng, &out, &ev) == (bad(f) ? SK_ERR_DOMAIN : SK_OK));
+        sk_surface_new_f64(SK_SURFACE_LAMBERT, 1, SK_FRACTION_CONSTANT, 0.5, 0, SK_CROSSING_MIRROR, &sd);
+        CHECK(sk_surface_interact_f64(&sd, ddd, vd, 1.0, 1.5, 1.0, &rng, &outd, &ev) == (bad(g) ? SK_ERR_DOMAIN : SK_OK));
+    }
+    i = 0;
+    CHECK(sk_surface_new(3, 1, 0, 0.5f, 0, 0, &s) == SK_ERR_METHOD && sk_surface_new(0, 1, 2, 0.5f, 0, 0, &s) == SK_ERR_METHOD);
+    CHECK(sk_surface_new(0, 1, 0, 0.5f, 0, UINT32_MAX, &s) == SK_ERR_METHOD && sk_surface_new_f64(9, 1, 0, 0.5, 0, 0, &sd) == SK_ERR_METHOD);
+    CHECK(sk_surface_new(0, 1, 0, 0.5f, 0, 0, NULL) == SK_ERR_NULL && sk_surface_new_f64(0, 1, 0, 0.5, 0, 0, NULL) == SK_ERR_NULL);
+    CHECK(sk_surface_interact(NULL, d, n, 1, 1.5f, 1, &rng, &out, &ev) == SK_ERR_NULL);
+    CHECK(sk_surface_interact(&s, d, n, 1, 1.5f, 1, NULL, &out, &ev) == SK_ERR_NULL);
+    CHECK(sk_surface_interact(&s, d, n, 1, 1.5f, 1, &rng, NULL, &ev) == SK_ERR_NULL);
+    CHECK(sk_surface_interact_f64(&sd, ddd, nd, 1, 1.5, 1, &rng, &outd, NULL) == SK_ERR_NULL);
+    CHECK(sk_refract(d, n, 1, 1.5f, NULL) == SK_ERR_NULL && sk_refract_f64(ddd, nd, 1, 1.5, NULL) == SK_ERR_NULL);
+}
+
+static void media(void) {
+    int i;
+    uint64_t st = 3;
+    sk_rng rng = {&st, counter};
+    const float values[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+    const double valuesd[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+    float sig[2] = {1, 2}, sgs[2] = {0.5f, 1}, w[2], t;
+    double sigd[2] = {1, 2}, sgsd[2] = {0.5, 1}, wd[2], td;
+    uint32_t ev;
+    sk_grid g;
+    sk_grid_f64 gd;
+    sk_vec3 o = {-1, 0.5f, 0.5f}, d = {1, 0, 0};
+    sk_vec3_f64 od = {-1, 0.5, 0.5}, dd = {1, 0, 0};
+    sk_grid_new(values, 2, 2, 2, 1, 1, &g);
+    sk_grid_new_f64(valuesd, 2, 2, 2, 1, 1, &gd);
+    for (i = 0; i < NS; i++) {
+        float f = FS[i];
+        double x = DS[i];
+        sk_vec3 v = {f, 0.5f, 0.5f};
+        sk_vec3_f64 vd = {x, 0.5, 0.5};
+        float fp = sk_free_path(f, 0.5f);
+        CHECK((f >= 0.0f && isfinite(f)) ? fp >= 0.0f : isnan(fp));
+        CHECK(isnan(f) ? isnan(sk_free_path(1.0f, f)) : sk_free_path(1.0f, f) >= 0.0f);
+        CHECK(isnan(sk_free_path_f64(x, 0.5)) == !(x >= 0.0 && isfinite(x)));
+        CHECK(isnan(sk_transmittance(f, 1.0f)) == !(f >= 0.0f) && isnan(sk_transmittance(1.0f, f)) == !(f >= 0.0f));
+        CHECK(isnan(sk_transmittance_f64(x, 1.0)) == !(x >= 0.0));
+        sig[1] = f;
+        CHECK(sk_homogeneous_sample(sig, sgs, 2, 1.0f, 0.5f, 0.5f, &t, &ev, w) ==
+              (f >= 1.0f && isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
+        sig[1] = 2;
+        CHECK(sk_homogeneous_sample(sig, sgs, 2, f, 0.5f, 0.5f, &t, &ev, w) == (f >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
+        sigd[0] = x;
+        CHECK(sk_homogeneous_sample_f64(sigd, sgsd, 2, 1.0, 0.5, 0.5, &td, &ev, wd) ==
+              (x >= 0.5 && isfinite(x) ? SK_OK : SK_ERR_DOMAIN));
+        sigd[0] = 1;
+        CHECK(sk_grid_new(values, 2, 2, 2, f, 1, &g) == (f >= 0.0f && isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_grid_new_f64(valuesd, 2, 2, 2, 1, x, &gd) == (x >= 0.0 && isfinite(x) ? SK_OK : SK_ERR_DOMAIN));
+        sk_grid_new(values, 2, 2, 2, 1, 1, &g);
+        sk_grid_new_f64(valuesd, 2, 2, 2, 1, 1, &gd);
+        CHECK(isnan(f) ? isnan(sk_grid_density(&g, v)) : sk_grid_density(&g, v) >= 0.0f);
+        CHECK(isnan(x) ? isnan(sk_grid_density_f64(&gd, vd)) : sk_grid_density_f64(&gd, vd) >= 0.0);
+        CHECK(sk_delta_track(&g, v, d, 3.0f, &rng, &t, &ev) == (bad(f) ? SK_ERR_DOMAIN : SK_OK));
+        CHECK(sk_delta_track(&g, o, d, f, &rng, &t, &ev) == (f >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_delta_track_f64(&gd, od, vd, 3.0, &rng, &td, &ev) == (bad(x) ? SK_ERR_DOMAIN : SK_OK));
+        CHECK(bad(f) ? isnan(sk_ratio_track(&g, v, d, 3.0f, &rng)) : sk_ratio_track(&g, v, d, 3.0f, &rng) >= 0.0f);
+        CHECK(!(x >= 0.0) ? isnan(sk_ratio_track_f64(&gd, od, dd, x, &rng)) : sk_ratio_track_f64(&gd, od, dd, x, &rng) >= 0.0);
+        /* Majorant: invalid -> DOMAIN; 0 or subnormal -> no tentative collision
+         * in [0, 3], so no density check -> OK; FLT_MAX -> 2^20 tiny steps -> SIZE. */
+        CHECK(sk_delta_track_fn(dens32, NULL, f, o, d, 0, 3, &rng, &t, &ev) ==
+              (isnan(f) || isinf(f) || f < 0.0f ? SK_ERR_DOMAIN : f > 1e30f ? SK_ERR_SIZE : SK_OK));
+        CHECK(sk_delta_track_fn_f64(dens64, NULL, 1, od, dd, 0, x, &rng, &td, &ev) == (x >= 0.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(isnan(sk_ratio_track_fn(dens32, NULL, 1, o, d, f, 3, &rng)) == !(f >= 0.0f && f <= 3.0f));
+        CHECK(isnan(sk_ratio_track_fn_f64(dens64, NULL, 1, vd, dd, 0, 3, &rng)) == bad(x));
+    }
+    i = 0;
+    CHECK(sk_homogeneous_sample(sig, sgs, 0, 1, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_SIZE);
+    CHECK(sk_homogeneous_sample(sig, sgs, SIZE_MAX, 1, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_SIZE);
+    CHECK(sk_homogeneous_sample(NULL, sgs, 2, 1, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_NULL);
+    CHECK(sk_homogeneous_sample_f64(sigd, sgsd, 2, 1, 0.5, 0.5, &td, &ev, NULL) == SK_ERR_NULL);
+    CHECK(sk_grid_new(values, 0, 2, 2, 1, 1, &g) == SK_ERR_SIZE && sk_grid_new(NULL, 2, 2, 2, 1, 1, &g) == SK_ERR_NULL);
+    CHECK(sk_grid_new(values, UINT32_MAX, UINT32_MAX, UINT32_MAX, 1, 1, &g) == SK_ERR_SIZE);
+    CHECK(sk_grid_new_f64(valuesd, 2, 2, 2, 1, 1, NULL) == SK_ERR_NULL);
+    CHECK(isnan(sk_grid_density(NULL, o)) && isnan(sk_grid_density_f64(NULL, od)));
+    CHECK(sk_delta_track(NULL, o, d, 1, &rng, &t, &ev) == SK_ERR_NULL && sk_delta_track(&g, o, d, 1, NULL, &t, &ev) == SK_ERR_NULL);
+    CHECK(sk_delta_track_f64(&gd, od, dd, 1, &rng, NULL, &ev) == SK_ERR_NULL);
+    CHECK(isnan(sk_ratio_track(NULL, o, d, 1, &rng)) && isnan(sk_ratio_track_f64(&gd, od, dd, 1, NULL)));
+    CHECK(sk_delta_track_fn(NULL, NULL, 1, o, d, 0, 1, &rng, &t, &ev) == SK_ERR_NULL);
+    CHECK(sk_delta_track_fn_f64(dens64, NULL, 1, od, dd, 0, 1, &rng, &td, NULL) == SK_ERR_NULL);
+    CHECK(isnan(sk_ratio_track_fn(NULL, NULL, 1, o, d, 0, 1, &rng)) && isnan(sk_ratio_track_fn_f64(dens64, NULL, 1, od, dd, 0, 1, NULL)));
+}
+
+int main(void) {
+    cube_roots_and_version();
+    basis();
+    phase_constructors();
+    phase_queries();
+    rayleigh_functions();
+    tables();
+    surfaces();
+    media();
+    printf("matrix: %d checks passed, %d failed\n", passed, failed);
+    return failed;
+}

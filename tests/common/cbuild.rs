@@ -51,10 +51,19 @@ pub fn host_triple() -> String {
 
 /// Compiles and links one C (or C++) source against the static library.
 pub fn build_program(src: &Path, cpp: bool) -> PathBuf {
+    build_program_with(src, cpp, &[], "")
+}
+
+/// [`build_program`] with extra compiler flags (sanitizers, say), writing
+/// the executable with `suffix` appended to its name.
+pub fn build_program_with(src: &Path, cpp: bool, extra: &[&str], suffix: &str) -> PathBuf {
     let lib = static_lib();
     let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c_programs");
     std::fs::create_dir_all(&out_dir).unwrap();
-    let exe = out_dir.join(src.file_stem().unwrap());
+    let exe = out_dir.join(format!(
+        "{}{suffix}",
+        src.file_stem().unwrap().to_string_lossy()
+    ));
     let triple = host_triple();
     let compiler = cc::Build::new()
         .cpp(cpp)
@@ -68,6 +77,7 @@ pub fn build_program(src: &Path, cpp: bool) -> PathBuf {
     let mut cmd = compiler.to_command();
     cmd.arg(if cpp { "-std=c++11" } else { "-std=c99" })
         .args(["-Wall", "-Wextra", "-Werror", "-pedantic"])
+        .args(extra)
         .arg("-I")
         .arg(root().join("include"))
         .arg(src)

@@ -285,7 +285,7 @@ impl<'a, T: Real> Grid<'a, T> {
         let Some((t0, t1)) = clip_unit_cube(o, d, T::ZERO, t_max) else {
             return Ok((t_max, Event::Escaped));
         };
-        let (t, hit) = delta(|p| Ok(self.sigma_t(p)), self.majorant(), o, d, t0, t1, rng)?;
+        let (t, hit) = delta(|p| self.sigma_t(p), self.majorant(), o, d, t0, t1, rng)?;
         if !hit {
             return Ok((t_max, Event::Escaped));
         }
@@ -310,7 +310,7 @@ impl<'a, T: Real> Grid<'a, T> {
         let Some((t0, t1)) = clip_unit_cube(o, d, T::ZERO, t_max) else {
             return T::ONE;
         };
-        ratio(|p| Ok(self.sigma_t(p)), self.majorant(), o, d, t0, t1, rng).unwrap_or(T::NAN)
+        ratio(|p| self.sigma_t(p), self.majorant(), o, d, t0, t1, rng).unwrap_or(T::NAN)
     }
 }
 
@@ -379,10 +379,40 @@ fn checked<T: Real>(sigma_t: T, sigma_maj: T) -> Result<T, Error> {
     }
 }
 
-/// Delta tracking over `[t0, t1]`: `(t, true)` at a real collision, or
-/// `(t1, false)`. `sigma_t` may fail (a density above the majorant).
+/// Walks the tentative collisions of majorant `sigma_maj` over `[t0, t1]`
+/// (the loop delta and ratio tracking share): at each, `visit(t, σ_t, rng)`
+/// may end the walk with a result. `Ok(None)` when the walk leaves the
+/// interval, [`Error::Domain`] for a σ_t outside `[0, σ_maj]`,
+/// [`Error::Size`] after [`MAX_STEPS`].
+#[allow(clippy::too_many_arguments)]
+fn tentative<T: Real, R: Rng + ?Sized, X>(
+    sigma_t: impl Fn(Vec3<T>) -> T,
+    sigma_maj: T,
+    o: Vec3<T>,
+    d: Vec3<T>,
+    t0: T,
+    t1: T,
+    rng: &mut R,
+    mut visit: impl FnMut(T, T, &mut R) -> Option<X>,
+) -> Result<Option<X>, Error> {
+    let mut t = t0;
+    for _ in 0..MAX_STEPS {
+        t += free_path(sigma_maj, T::uniform(rng));
+        if t.is_nan() || t >= t1 {
+            return Ok(None);
+        }
+        let st = checked(sigma_t(o + d * t), sigma_maj)?;
+        if let Some(x) = visit(t, st, rng) {
+            return Ok(Some(x));
+        }
+    }
+    Err(Error::Size)
+}
+
+/// Delta tracking over `[t0, t1]`: `(t, true)` at a real collision (chosen
+/// with probability `σ_t/σ_maj` at each tentative one), or `(t1, false)`.
 fn delta<T: Real, R: Rng + ?Sized>(
-    sigma_t: impl Fn(Vec3<T>) -> Result<T, Error>,
+    sigma_t: impl Fn(Vec3<T>) -> T,
     sigma_maj: T,
     o: Vec3<T>,
     d: Vec3<T>,
@@ -393,24 +423,14 @@ fn delta<T: Real, R: Rng + ?Sized>(
     if sigma_maj.is_nan() || sigma_maj <= T::ZERO {
         return Ok((t1, false));
     }
-    let mut t = t0;
-    for _ in 0..MAX_STEPS {
-        t += free_path(sigma_maj, T::uniform(rng));
-        if t.is_nan() || t >= t1 {
-            return Ok((t1, false));
-        }
-        let st = checked(sigma_t(o + d * t)?, sigma_maj)?;
-        if T::uniform(rng) * sigma_maj < st {
-            return Ok((t, true));
-        }
-    }
-    Err(Error::Size)
+    let real = |t: T, st: T, r: &mut R| (T::uniform(r) * sigma_maj < st).then_some(t);
+    Ok(tentative(sigma_t, sigma_maj, o, d, t0, t1, rng, real)?.map_or((t1, false), |t| (t, true)))
 }
 
 /// Ratio tracking over `[t0, t1]`: the product of `1 − σ_t/σ_maj` at the
-/// tentative collisions.
+/// tentative collisions (stopping early once it is 0).
 fn ratio<T: Real, R: Rng + ?Sized>(
-    sigma_t: impl Fn(Vec3<T>) -> Result<T, Error>,
+    sigma_t: impl Fn(Vec3<T>) -> T,
     sigma_maj: T,
     o: Vec3<T>,
     d: Vec3<T>,
@@ -421,19 +441,12 @@ fn ratio<T: Real, R: Rng + ?Sized>(
     if sigma_maj.is_nan() || sigma_maj <= T::ZERO {
         return Ok(T::ONE);
     }
-    let (mut t, mut tr) = (t0, T::ONE);
-    for _ in 0..MAX_STEPS {
-        t += free_path(sigma_maj, T::uniform(rng));
-        if t.is_nan() || t >= t1 {
-            return Ok(tr);
-        }
-        let st = checked(sigma_t(o + d * t)?, sigma_maj)?;
+    let mut tr = T::ONE;
+    tentative(sigma_t, sigma_maj, o, d, t0, t1, rng, |_, st, _| {
         tr *= T::ONE - st / sigma_maj;
-        if tr == T::ZERO {
-            return Ok(tr);
-        }
-    }
-    Err(Error::Size)
+        (tr == T::ZERO).then_some(())
+    })?;
+    Ok(tr)
 }
 
 /// Validates the interval and majorant of the callback versions.
@@ -460,7 +473,7 @@ pub fn delta_track_fn<T: Real, R: Rng + ?Sized>(
 ) -> Result<(T, Event), Error> {
     let (o, d) = ray(o, d)?;
     check_fn_args(sigma_maj, t_min, t_max)?;
-    let (t, hit) = delta(|p| Ok(sigma_t(p)), sigma_maj, o, d, t_min, t_max, rng)?;
+    let (t, hit) = delta(sigma_t, sigma_maj, o, d, t_min, t_max, rng)?;
     Ok(if hit {
         (t, Event::Collided)
     } else {
@@ -483,5 +496,5 @@ pub fn ratio_track_fn<T: Real, R: Rng + ?Sized>(
 ) -> Result<T, Error> {
     let (o, d) = ray(o, d)?;
     check_fn_args(sigma_maj, t_min, t_max)?;
-    ratio(|p| Ok(sigma_t(p)), sigma_maj, o, d, t_min, t_max, rng)
+    ratio(sigma_t, sigma_maj, o, d, t_min, t_max, rng)
 }

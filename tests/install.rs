@@ -8,7 +8,11 @@ use std::process::Command;
 
 fn sh(cmd: &mut Command) -> String {
     let out = cmd.output().expect("command failed to start");
-    assert!(out.status.success(), "{cmd:?}: {}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{cmd:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
@@ -17,16 +21,25 @@ fn install_and_build(mode: &str, pc_static: bool) -> (String, String) {
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("install{mode}"));
     let _ = std::fs::remove_dir_all(&tmp);
     let target = tmp.parent().unwrap().parent().unwrap();
-    sh(Command::new("sh").arg(root.join("scripts/install.sh")).arg(&tmp).arg(mode).env("CARGO_TARGET_DIR", target));
+    sh(Command::new("sh")
+        .arg(root.join("scripts/install.sh"))
+        .arg(&tmp)
+        .arg(mode)
+        .env("CARGO_TARGET_DIR", target));
     let pc = tmp.join("lib/pkgconfig");
     let mut args = vec!["--cflags", "--libs", "scatterkit"];
     if pc_static {
         args.insert(0, "--static");
     }
-    let flags = sh(Command::new("pkg-config").args(&args).env("PKG_CONFIG_PATH", &pc));
+    let flags = sh(Command::new("pkg-config")
+        .args(&args)
+        .env("PKG_CONFIG_PATH", &pc));
     let exe = tmp.join("hg_stratified");
     let mut cc = Command::new("cc");
-    cc.args(["-std=c99", "-Wall", "-Wextra", "-Werror"]).arg(root.join("c_examples/hg_stratified.c")).arg("-o").arg(&exe);
+    cc.args(["-std=c99", "-Wall", "-Wextra", "-Werror"])
+        .arg(root.join("c_examples/hg_stratified.c"))
+        .arg("-o")
+        .arg(&exe);
     cc.args(flags.split_whitespace());
     sh(&mut cc);
     let run = sh(Command::new(&exe).env("LD_LIBRARY_PATH", tmp.join("lib")));
@@ -38,12 +51,18 @@ fn install_and_build(mode: &str, pc_static: bool) -> (String, String) {
 fn shared_library_through_pkg_config() {
     let (run, ldd) = install_and_build("--shared-only", false);
     assert!(run.contains("sorted: yes"), "{run}");
-    assert!(ldd.contains("libscatterkit.so"), "not linked to the shared library:\n{ldd}");
+    assert!(
+        ldd.contains("libscatterkit.so"),
+        "not linked to the shared library:\n{ldd}"
+    );
 }
 
 #[test]
 fn static_library_through_pkg_config() {
     let (run, ldd) = install_and_build("--static-only", true);
     assert!(run.contains("sorted: yes"), "{run}");
-    assert!(!ldd.contains("libscatterkit"), "linked to a shared scatterkit:\n{ldd}");
+    assert!(
+        !ldd.contains("libscatterkit"),
+        "linked to a shared scatterkit:\n{ldd}"
+    );
 }

@@ -265,6 +265,62 @@ unsafe fn ratio_grid<S: GridStore>(
     }
 }
 
+/// Delta tracking through the caller's density `sigma` (in C vector terms).
+#[allow(clippy::too_many_arguments)]
+unsafe fn delta_fn<V: CVec>(
+    sigma: impl Fn(V) -> V::T,
+    sigma_maj: V::T,
+    o: V,
+    d: V,
+    t_min: V::T,
+    t_max: V::T,
+    rng: *mut sk_rng,
+    t_out: *mut V::T,
+    event_out: *mut u32,
+) -> sk_status {
+    let Some(mut r) = (unsafe { CRng::from_ptr(rng) }) else {
+        return sk_status::SK_ERR_NULL;
+    };
+    if t_out.is_null() || event_out.is_null() {
+        return sk_status::SK_ERR_NULL;
+    }
+    let res = medium::delta_track_fn(
+        |p| sigma(V::from_vec(p)),
+        sigma_maj,
+        o.to_vec(),
+        d.to_vec(),
+        t_min,
+        t_max,
+        &mut r,
+    );
+    unsafe { write_track(res, t_out, event_out) }
+}
+
+/// Ratio tracking through the caller's density `sigma`; NaN on any error.
+unsafe fn ratio_fn<V: CVec>(
+    sigma: impl Fn(V) -> V::T,
+    sigma_maj: V::T,
+    o: V,
+    d: V,
+    t_min: V::T,
+    t_max: V::T,
+    rng: *mut sk_rng,
+) -> V::T {
+    let Some(mut r) = (unsafe { CRng::from_ptr(rng) }) else {
+        return V::T::NAN;
+    };
+    let res = medium::ratio_track_fn(
+        |p| sigma(V::from_vec(p)),
+        sigma_maj,
+        o.to_vec(),
+        d.to_vec(),
+        t_min,
+        t_max,
+        &mut r,
+    );
+    res.unwrap_or(V::T::NAN)
+}
+
 /// Distance to the next interaction in a homogeneous medium:
 /// -ln(1 - u)/sigma_t (u clamped to [0, 1]; u = 1 or sigma_t = 0 gives +inf).
 /// NaN for a negative or non-finite sigma_t or NaN u.
@@ -483,24 +539,23 @@ pub unsafe extern "C" fn sk_delta_track_fn(
     t_out: *mut f32,
     scattered_out: *mut u32,
 ) -> sk_status {
-    let (Some(f), Some(mut r)) = (f, unsafe { CRng::from_ptr(rng) }) else {
+    let Some(f) = f else {
         return sk_status::SK_ERR_NULL;
     };
-    if t_out.is_null() || scattered_out.is_null() {
-        return sk_status::SK_ERR_NULL;
-    }
     // SAFETY: the caller's callback with the caller's context.
-    let sigma = |p: crate::Vec3<f32>| unsafe { f(ctx, sk_vec3::from_vec(p)) };
-    let res = medium::delta_track_fn(
-        sigma,
-        sigma_maj,
-        o.to_vec(),
-        d.to_vec(),
-        t_min,
-        t_max,
-        &mut r,
-    );
-    unsafe { write_track(res, t_out, scattered_out) }
+    unsafe {
+        delta_fn(
+            |p| f(ctx, p),
+            sigma_maj,
+            o,
+            d,
+            t_min,
+            t_max,
+            rng,
+            t_out,
+            scattered_out,
+        )
+    }
 }
 
 /// Double twin of `sk_delta_track_fn`.
@@ -517,24 +572,23 @@ pub unsafe extern "C" fn sk_delta_track_fn_f64(
     t_out: *mut f64,
     scattered_out: *mut u32,
 ) -> sk_status {
-    let (Some(f), Some(mut r)) = (f, unsafe { CRng::from_ptr(rng) }) else {
+    let Some(f) = f else {
         return sk_status::SK_ERR_NULL;
     };
-    if t_out.is_null() || scattered_out.is_null() {
-        return sk_status::SK_ERR_NULL;
-    }
     // SAFETY: the caller's callback with the caller's context.
-    let sigma = |p: crate::Vec3<f64>| unsafe { f(ctx, sk_vec3_f64::from_vec(p)) };
-    let res = medium::delta_track_fn(
-        sigma,
-        sigma_maj,
-        o.to_vec(),
-        d.to_vec(),
-        t_min,
-        t_max,
-        &mut r,
-    );
-    unsafe { write_track(res, t_out, scattered_out) }
+    unsafe {
+        delta_fn(
+            |p| f(ctx, p),
+            sigma_maj,
+            o,
+            d,
+            t_min,
+            t_max,
+            rng,
+            t_out,
+            scattered_out,
+        )
+    }
 }
 
 /// Ratio tracking through the caller's medium (arguments as
@@ -552,21 +606,11 @@ pub unsafe extern "C" fn sk_ratio_track_fn(
     t_max: f32,
     rng: *mut sk_rng,
 ) -> f32 {
-    let (Some(f), Some(mut r)) = (f, unsafe { CRng::from_ptr(rng) }) else {
+    let Some(f) = f else {
         return f32::NAN;
     };
     // SAFETY: the caller's callback with the caller's context.
-    let sigma = |p: crate::Vec3<f32>| unsafe { f(ctx, sk_vec3::from_vec(p)) };
-    medium::ratio_track_fn(
-        sigma,
-        sigma_maj,
-        o.to_vec(),
-        d.to_vec(),
-        t_min,
-        t_max,
-        &mut r,
-    )
-    .unwrap_or(f32::NAN)
+    unsafe { ratio_fn(|p| f(ctx, p), sigma_maj, o, d, t_min, t_max, rng) }
 }
 
 /// Double twin of `sk_ratio_track_fn`.
@@ -581,19 +625,9 @@ pub unsafe extern "C" fn sk_ratio_track_fn_f64(
     t_max: f64,
     rng: *mut sk_rng,
 ) -> f64 {
-    let (Some(f), Some(mut r)) = (f, unsafe { CRng::from_ptr(rng) }) else {
+    let Some(f) = f else {
         return f64::NAN;
     };
     // SAFETY: the caller's callback with the caller's context.
-    let sigma = |p: crate::Vec3<f64>| unsafe { f(ctx, sk_vec3_f64::from_vec(p)) };
-    medium::ratio_track_fn(
-        sigma,
-        sigma_maj,
-        o.to_vec(),
-        d.to_vec(),
-        t_min,
-        t_max,
-        &mut r,
-    )
-    .unwrap_or(f64::NAN)
+    unsafe { ratio_fn(|p| f(ctx, p), sigma_maj, o, d, t_min, t_max, rng) }
 }

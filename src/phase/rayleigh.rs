@@ -349,12 +349,7 @@ pub fn sample_dir<T: Real, R: Rng + ?Sized>(
         RayleighMethod::RejectSpherical => {
             return reject_isotropic(w_in, rng, |r| Some(spherical_point(r)));
         }
-        RayleighMethod::Baranoski => baranoski_cos(rng),
-        RayleighMethod::Simplified => simplified_cos(rng),
-        RayleighMethod::Direct => inverse_cdf::<T, false>(T::uniform(rng)),
-        RayleighMethod::DirectFast => inverse_cdf::<T, true>(T::uniform(rng)),
-        RayleighMethod::DirectMinimax => inverse_cdf_minimax(T::uniform(rng)),
-        RayleighMethod::Table => inverse_cdf_table(T::uniform(rng)),
+        _ => sample_cos(method, rng),
     };
     direction_about(w_in, mu, T::TAU * T::uniform(rng))
 }
@@ -364,8 +359,9 @@ pub fn sample_dir<T: Real, R: Rng + ?Sized>(
 #[inline(always)]
 pub fn sample_cos<T: Real, R: Rng + ?Sized>(method: RayleighMethod, rng: &mut R) -> T {
     match method {
-        RayleighMethod::RejectCube | RayleighMethod::RejectSpherical => {
-            sample_dir(method, Vec3::unit_z(), rng).z
+        RayleighMethod::RejectCube => reject_isotropic(Vec3::unit_z(), rng, cube_point).z,
+        RayleighMethod::RejectSpherical => {
+            reject_isotropic(Vec3::unit_z(), rng, |r| Some(spherical_point(r))).z
         }
         RayleighMethod::Baranoski => baranoski_cos(rng),
         RayleighMethod::Simplified => simplified_cos(rng),

@@ -8,16 +8,24 @@ use scatterkit::ffi::*;
 unsafe extern "C" fn next(state: *mut core::ffi::c_void) -> u64 {
     // SAFETY: the state is the u64 below.
     let s = unsafe { &mut *(state as *mut u64) };
-    *s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+    *s = s
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
     *s
 }
 
 fuzz_target!(|data: &[u8]| {
-    let f: Vec<f32> = data.chunks_exact(4).map(|c| f32::from_le_bytes(c.try_into().unwrap())).collect();
+    let f: Vec<f32> = data
+        .chunks_exact(4)
+        .map(|c| f32::from_le_bytes(c.try_into().unwrap()))
+        .collect();
     let x = |i: usize| f.get(i).copied().unwrap_or(0.5);
     let word = |i: usize| data.get(i).copied().unwrap_or(0) as u32;
     let mut state = data.len() as u64;
-    let mut rng = sk_rng { state: &mut state as *mut u64 as *mut _, next_u64: Some(next) };
+    let mut rng = sk_rng {
+        state: &mut state as *mut u64 as *mut _,
+        next_u64: Some(next),
+    };
     let mut p = sk_phase { opaque: [0; 32] };
     let n = f.len();
     let mut out = vec![0.0f32; n];
@@ -40,17 +48,44 @@ fuzz_target!(|data: &[u8]| {
         let mu = sk_phase_sample_cos(&p, x(4));
         assert!(mu.is_nan() || mu.abs() <= 1.0);
         // Enums arrive as arbitrary integers.
-        let mut d = sk_vec3 { x: 0.0, y: 0.0, z: 0.0 };
-        let s = sk_rayleigh_sample_dir(word(0), sk_vec3 { x: 0.0, y: 0.0, z: 1.0 }, &mut rng, &mut d);
+        let mut d = sk_vec3 {
+            x: 0.0,
+            y: 0.0,
+            z: 0.0,
+        };
+        let s = sk_rayleigh_sample_dir(
+            word(0),
+            sk_vec3 {
+                x: 0.0,
+                y: 0.0,
+                z: 1.0,
+            },
+            &mut rng,
+            &mut d,
+        );
         assert!((s == sk_status::SK_OK) == (word(0) <= 7));
-        let mut surf = sk_surface { model: 0, fraction_model: 0, policy: 0, phong_alpha: 1.0, fraction: 0.0 };
+        let mut surf = sk_surface {
+            model: 0,
+            fraction_model: 0,
+            policy: 0,
+            phong_alpha: 1.0,
+            fraction: 0.0,
+        };
         let s = sk_surface_new(word(1), x(5), word(2), x(6), x(7), word(3), &mut surf);
         if s == sk_status::SK_OK {
             let mut ev = 0u32;
             let _ = sk_surface_interact(
                 &surf,
-                sk_vec3 { x: x(8), y: x(9), z: x(10) },
-                sk_vec3 { x: x(11), y: x(12), z: x(13) },
+                sk_vec3 {
+                    x: x(8),
+                    y: x(9),
+                    z: x(10),
+                },
+                sk_vec3 {
+                    x: x(11),
+                    y: x(12),
+                    z: x(13),
+                },
                 x(14),
                 x(15),
                 x(16),
@@ -63,8 +98,20 @@ fuzz_target!(|data: &[u8]| {
         let m = n / 2;
         let len = word(4) as usize;
         let mut buf = vec![0.0f32; len.min(4096)];
-        let mut t = sk_table { data: core::ptr::null(), n: 0, kind: 0 };
-        let s = sk_table_measured(f.as_ptr(), f.as_ptr().add(m), m, buf.as_mut_ptr(), buf.len(), word(5) as usize, &mut t);
+        let mut t = sk_table {
+            data: core::ptr::null(),
+            n: 0,
+            kind: 0,
+        };
+        let s = sk_table_measured(
+            f.as_ptr(),
+            f.as_ptr().add(m),
+            m,
+            buf.as_mut_ptr(),
+            buf.len(),
+            word(5) as usize,
+            &mut t,
+        );
         if s == sk_status::SK_OK {
             let c = sk_table_sample_cos(&t, x(4));
             assert!(c.is_nan() || c.abs() <= 1.0);
@@ -72,12 +119,46 @@ fuzz_target!(|data: &[u8]| {
         // Homogeneous media with arbitrary channels.
         let mut w = vec![0.0f32; m];
         let (mut tt, mut sc) = (0.0f32, 0u32);
-        let _ = sk_homogeneous_sample(f.as_ptr(), f.as_ptr().add(m), m, x(17), x(18), x(19), &mut tt, &mut sc, w.as_mut_ptr());
+        let _ = sk_homogeneous_sample(
+            f.as_ptr(),
+            f.as_ptr().add(m),
+            m,
+            x(17),
+            x(18),
+            x(19),
+            &mut tt,
+            &mut sc,
+            w.as_mut_ptr(),
+        );
         // Grids of arbitrary dimensions over the data.
-        let mut g = sk_grid { density: core::ptr::null(), nx: 0, ny: 0, nz: 0, sigma_a: 0.0, sigma_s: 0.0, max_density: 0.0 };
+        let mut g = sk_grid {
+            density: core::ptr::null(),
+            nx: 0,
+            ny: 0,
+            nz: 0,
+            sigma_a: 0.0,
+            sigma_s: 0.0,
+            max_density: 0.0,
+        };
         let (nx, ny) = (word(6) % 8, word(7) % 8);
-        if (nx as usize) * (ny as usize) <= n && sk_grid_new(f.as_ptr(), nx, ny, 1, x(20), x(21), &mut g) == sk_status::SK_OK {
-            let tr = sk_ratio_track(&g, sk_vec3 { x: x(22), y: 0.5, z: 0.5 }, sk_vec3 { x: 1.0, y: x(23), z: 0.0 }, x(24), &mut rng);
+        if (nx as usize) * (ny as usize) <= n
+            && sk_grid_new(f.as_ptr(), nx, ny, 1, x(20), x(21), &mut g) == sk_status::SK_OK
+        {
+            let tr = sk_ratio_track(
+                &g,
+                sk_vec3 {
+                    x: x(22),
+                    y: 0.5,
+                    z: 0.5,
+                },
+                sk_vec3 {
+                    x: 1.0,
+                    y: x(23),
+                    z: 0.0,
+                },
+                x(24),
+                &mut rng,
+            );
             assert!(tr.is_nan() || (0.0..=1.0).contains(&tr), "{tr}");
         }
     }

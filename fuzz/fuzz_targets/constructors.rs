@@ -3,23 +3,36 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
+use rand_xoshiro::SplitMix64;
+use rand_xoshiro::rand_core::SeedableRng;
 use scatterkit::surface::{CrossingPolicy, Fraction, Surface, SurfaceModel};
 use scatterkit::{Grid, Phase, PhaseFunction, Table, Vec3};
 
 fn floats(data: &[u8]) -> Vec<f64> {
-    data.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect()
+    data.chunks_exact(8)
+        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+        .collect()
 }
 
 fn check(p: &Phase<f64>, u: f64) {
     let mu = p.sample_cos(u);
-    assert!(u.is_nan() || (mu.is_finite() && mu.abs() <= 1.0), "{p:?} u {u}: {mu}");
+    assert!(
+        u.is_nan() || (mu.is_finite() && mu.abs() <= 1.0),
+        "{p:?} u {u}: {mu}"
+    );
     let (d, pdf) = p.sample_dir(Vec3::new(0.0, 0.6, 0.8), u, 0.3);
-    assert!(u.is_nan() || ((d.length() - 1.0).abs() < 1e-9 && pdf >= 0.0), "{p:?}: {d:?}");
+    assert!(
+        u.is_nan() || ((d.length() - 1.0).abs() < 1e-9 && pdf >= 0.0),
+        "{p:?}: {d:?}"
+    );
     let c = p.cdf(u);
     assert!(c.is_nan() == u.is_nan() && (u.is_nan() || (0.0..=1.0).contains(&c)));
     let p32: Phase<f32> = p.cast();
     let m32 = p32.sample_cos(u as f32);
-    assert!(u.is_nan() || (m32.is_finite() && m32.abs() <= 1.0), "{p32:?}: {m32}");
+    assert!(
+        u.is_nan() || (m32.is_finite() && m32.abs() <= 1.0),
+        "{p32:?}: {m32}"
+    );
 }
 
 fuzz_target!(|data: &[u8]| {
@@ -43,15 +56,32 @@ fuzz_target!(|data: &[u8]| {
             check(&p, u);
         }
     }
-    if let Ok(s) = Surface::new(SurfaceModel::Phong, x(1), Fraction::Scalar(x(3).abs() * 1e-7), CrossingPolicy::Resample) {
+    if let Ok(s) = Surface::new(
+        SurfaceModel::Phong,
+        x(1),
+        Fraction::Scalar(x(3).abs() * 1e-7),
+        CrossingPolicy::Resample,
+    ) {
         let mut rng = scatterkit_fuzz_rng(data);
-        if let Ok((d, _)) = s.interact(Vec3::new(x(5), x(6), x(7)), Vec3::new(x(8), x(9), x(10)), 1.5, 3.9, 6e-7, &mut rng) {
+        if let Ok((d, _)) = s.interact(
+            Vec3::new(x(5), x(6), x(7)),
+            Vec3::new(x(8), x(9), x(10)),
+            1.5,
+            3.9,
+            6e-7,
+            &mut rng,
+        ) {
             assert!((d.length() - 1.0).abs() < 1e-9, "{d:?}");
         }
     }
     if let Ok(g) = Grid::new(&v, v.len().max(1), 1, 1, x(1).abs(), x(2).abs()) {
         let mut rng = scatterkit_fuzz_rng(data);
-        let r = g.ratio_track(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 3.0, &mut rng);
+        let r = g.ratio_track(
+            Vec3::new(-1.0, 0.5, 0.5),
+            Vec3::new(1.0, 0.0, 0.0),
+            3.0,
+            &mut rng,
+        );
         assert!(r.is_nan() || (0.0..=1.0).contains(&r), "{r}");
     }
     let n = v.len() / 2;
@@ -65,31 +95,9 @@ fuzz_target!(|data: &[u8]| {
 });
 
 /// A deterministic generator from the input bytes.
-fn scatterkit_fuzz_rng(data: &[u8]) -> impl rand_core_shim::Rng {
-    rand_core_shim::SplitMix(data.iter().fold(1u64, |h, &b| h.wrapping_mul(31).wrapping_add(b as u64)))
-}
-
-mod rand_core_shim {
-    pub use rand_core::Rng;
-    use rand_core::TryRng;
-    pub struct SplitMix(pub u64);
-    impl TryRng for SplitMix {
-        type Error = core::convert::Infallible;
-        fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
-            Ok((self.try_next_u64()? >> 32) as u32)
-        }
-        fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
-            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            Ok(z ^ (z >> 31))
-        }
-        fn try_fill_bytes(&mut self, d: &mut [u8]) -> Result<(), Self::Error> {
-            for b in d {
-                *b = self.try_next_u64()? as u8;
-            }
-            Ok(())
-        }
-    }
+fn scatterkit_fuzz_rng(data: &[u8]) -> SplitMix64 {
+    SplitMix64::seed_from_u64(
+        data.iter()
+            .fold(1u64, |h, &b| h.wrapping_mul(31).wrapping_add(b as u64)),
+    )
 }

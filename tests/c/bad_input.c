@@ -8,17 +8,7 @@
 
 #include "scatterkit.h"
 
-static int passed = 0, failed = 0;
-
-#define CHECK(cond)                                                    \
-    do {                                                               \
-        if (cond) {                                                    \
-            passed++;                                                  \
-        } else {                                                       \
-            failed++;                                                  \
-            printf("FAILED line %d: %s\n", __LINE__, #cond);           \
-        }                                                              \
-    } while (0)
+#include "check.h"
 
 static uint64_t counter(void *state) {
     uint64_t *s = (uint64_t *)state;

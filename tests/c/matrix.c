@@ -11,16 +11,8 @@
 
 #include "scatterkit.h"
 
-static int passed = 0, failed = 0;
-#define CHECK(cond)                                                          \
-    do {                                                                     \
-        if (cond) {                                                          \
-            passed++;                                                        \
-        } else {                                                             \
-            failed++;                                                        \
-            printf("FAILED line %d: %s (i = %d)\n", __LINE__, #cond, i);    \
-        }                                                                    \
-    } while (0)
+#define CHECK_CASE i
+#include "check.h"
 
 /* The special values each float argument is tried with. */
 static const float FS[] = {NAN, INFINITY, -INFINITY, -0.0f, 1e-40f, FLT_MAX, -FLT_MAX};

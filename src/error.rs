@@ -29,3 +29,26 @@ impl fmt::Display for Error {
 }
 
 impl core::error::Error for Error {}
+
+/// `TryFrom<u32>` for a fieldless `#[repr(u32)]` enum (how C passes enums):
+/// each listed variant matches its own discriminant, any other value is
+/// [`Error::Method`]. Leaving a variant out does not compile (and listing
+/// one twice is an unreachable-pattern warning).
+macro_rules! try_from_u32 {
+    ($ty:ident: $($v:ident),+ $(,)?) => {
+        impl TryFrom<u32> for $ty {
+            type Error = $crate::error::Error;
+            fn try_from(v: u32) -> Result<Self, Self::Error> {
+                // Exhaustive: a variant missing from the list is an error here.
+                const _: fn($ty) = |x| match x {
+                    $($ty::$v => (),)+
+                };
+                $(if v == $ty::$v as u32 {
+                    return Ok($ty::$v);
+                })+
+                Err($crate::error::Error::Method)
+            }
+        }
+    };
+}
+pub(crate) use try_from_u32;

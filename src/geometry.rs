@@ -59,7 +59,7 @@ impl<T: Real> Vec3<T> {
     /// vectors normalise too (their squared length would overflow or vanish).
     pub fn try_normalize(self) -> Option<Self> {
         let m = self.x.abs().max_of(self.y.abs()).max_of(self.z.abs());
-        if !(m > T::ZERO && m.is_finite() && self.is_finite()) {
+        if !(m > T::ZERO && self.is_finite()) {
             return None;
         }
         let v = Vec3::new(self.x / m, self.y / m, self.z / m);

@@ -31,7 +31,7 @@
 //!   plane, `d' = d − 2 (d·n) n`; the density above is the lobe's plus its
 //!   mirror image's.
 
-use crate::error::Error;
+use crate::error::{Error, try_from_u32};
 use crate::geometry::{Vec3, direction_about_sin, onb};
 use crate::real::Real;
 use rand_core::Rng;
@@ -145,17 +145,7 @@ pub enum CrossingPolicy {
     Mirror = 2,
 }
 
-impl TryFrom<u32> for CrossingPolicy {
-    type Error = Error;
-    fn try_from(v: u32) -> Result<Self, Error> {
-        match v {
-            0 => Ok(CrossingPolicy::Fold),
-            1 => Ok(CrossingPolicy::Resample),
-            2 => Ok(CrossingPolicy::Mirror),
-            _ => Err(Error::Method),
-        }
-    }
-}
+try_from_u32!(CrossingPolicy: Fold, Resample, Mirror);
 
 /// Draws [`CrossingPolicy::Resample`] makes before it mirrors.
 pub const RESAMPLE_ATTEMPTS: u32 = 16;
@@ -337,17 +327,7 @@ pub enum SurfaceModel {
     Phong = 2,
 }
 
-impl TryFrom<u32> for SurfaceModel {
-    type Error = Error;
-    fn try_from(v: u32) -> Result<Self, Error> {
-        match v {
-            0 => Ok(SurfaceModel::Specular),
-            1 => Ok(SurfaceModel::Lambert),
-            2 => Ok(SurfaceModel::Phong),
-            _ => Err(Error::Method),
-        }
-    }
-}
+try_from_u32!(SurfaceModel: Specular, Lambert, Phong);
 
 /// The share of rays that scatter (the C enum `sk_fraction_model` picks it).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -16,7 +16,7 @@
 //! Layout of the Hermite kinds: `2(n + 1)` values `μ_i, d_i` interleaved,
 //! `d_i = (dμ/du)(u_i) / n` (the slope per interval).
 
-use crate::error::Error;
+use crate::error::{Error, try_from_u32};
 use crate::phase::{PhaseFunction, Rayleigh};
 use crate::real::Real;
 
@@ -33,17 +33,7 @@ pub enum TableKind {
     Measured = 2,
 }
 
-impl TryFrom<u32> for TableKind {
-    type Error = Error;
-    fn try_from(v: u32) -> Result<Self, Error> {
-        match v {
-            0 => Ok(TableKind::RayleighCdf),
-            1 => Ok(TableKind::Inverse),
-            2 => Ok(TableKind::Measured),
-            _ => Err(Error::Method),
-        }
-    }
-}
+try_from_u32!(TableKind: RayleighCdf, Inverse, Measured);
 
 impl TableKind {
     /// Number of floats a table of resolution `n` occupies, or `None` if

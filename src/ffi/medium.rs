@@ -23,6 +23,13 @@ pub enum sk_track_event {
     SK_TRACK_COLLIDED = 3,
 }
 
+same_values!(sk_track_event = Event:
+    SK_TRACK_ESCAPED = Escaped,
+    SK_TRACK_SCATTERED = Scattered,
+    SK_TRACK_ABSORBED = Absorbed,
+    SK_TRACK_COLLIDED = Collided,
+);
+
 /// The caller's medium: sigma_t at point p (per length unit), which must stay
 /// in [0, sigma_maj] along the ray.
 pub type sk_density_fn = Option<unsafe extern "C" fn(ctx: *mut c_void, p: sk_vec3) -> f32>;

@@ -10,6 +10,23 @@
 //! called with its `state` and must not unwind.
 #![allow(non_camel_case_types, clippy::missing_safety_doc)]
 
+/// Compile-time proof that a C enum, written as literals so cbindgen can
+/// print them, carries the core enum's values: every variant of each is
+/// paired (an unpaired one does not compile) and each pair is equal.
+macro_rules! same_values {
+    ($c:ident = $core:ident: $($cv:ident = $rv:ident),+ $(,)?) => {
+        const _: () = {
+            let _: fn($c) = |x| match x {
+                $($c::$cv => (),)+
+            };
+            let _: fn($core) = |x| match x {
+                $($core::$rv => (),)+
+            };
+            assert!(true $(&& $c::$cv as u32 == $core::$rv as u32)+);
+        };
+    };
+}
+
 mod cbrt;
 mod geometry;
 mod medium;

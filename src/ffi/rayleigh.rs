@@ -32,6 +32,17 @@ pub enum sk_rayleigh_method {
     SK_RAYLEIGH_TABLE = 7,
 }
 
+same_values!(sk_rayleigh_method = RayleighMethod:
+    SK_RAYLEIGH_REJECT_CUBE = RejectCube,
+    SK_RAYLEIGH_REJECT_SPHERICAL = RejectSpherical,
+    SK_RAYLEIGH_BARANOSKI = Baranoski,
+    SK_RAYLEIGH_SIMPLIFIED = Simplified,
+    SK_RAYLEIGH_DIRECT = Direct,
+    SK_RAYLEIGH_DIRECT_FAST = DirectFast,
+    SK_RAYLEIGH_DIRECT_MINIMAX = DirectMinimax,
+    SK_RAYLEIGH_TABLE = Table,
+);
+
 unsafe fn sample_dir<V: CVec>(method: u32, w_in: V, rng: *mut sk_rng, out: *mut V) -> sk_status {
     let Ok(m) = RayleighMethod::try_from(method) else {
         return sk_status::SK_ERR_METHOD;

@@ -18,6 +18,12 @@ pub enum sk_surface_model {
     SK_SURFACE_PHONG = 2,
 }
 
+same_values!(sk_surface_model = SurfaceModel:
+    SK_SURFACE_SPECULAR = Specular,
+    SK_SURFACE_LAMBERT = Lambert,
+    SK_SURFACE_PHONG = Phong,
+);
+
 /// Which share of rays scatters (passed as uint32_t).
 #[repr(u32)]
 #[derive(Clone, Copy, Debug)]
@@ -42,6 +48,12 @@ pub enum sk_crossing_policy {
     /// Reflect the direction across the surface plane.
     SK_CROSSING_MIRROR = 2,
 }
+
+same_values!(sk_crossing_policy = CrossingPolicy:
+    SK_CROSSING_FOLD = Fold,
+    SK_CROSSING_RESAMPLE = Resample,
+    SK_CROSSING_MIRROR = Mirror,
+);
 
 /// Bit of `event_out`: the ray was transmitted (else reflected).
 pub const SK_EVENT_TRANSMITTED: u32 = 1;
@@ -134,6 +146,10 @@ macro_rules! impl_surface_store {
 impl_surface_store!(sk_surface, f32);
 impl_surface_store!(sk_surface_f64, f64);
 
+/// The `sk_fraction_model` values, for matching.
+const FRACTION_CONSTANT: u32 = sk_fraction_model::SK_FRACTION_CONSTANT as u32;
+const FRACTION_SCALAR: u32 = sk_fraction_model::SK_FRACTION_SCALAR as u32;
+
 /// The Rust surface from its C fields, validated.
 fn build<T: Real>(
     model: u32,
@@ -145,8 +161,8 @@ fn build<T: Real>(
     let model = SurfaceModel::try_from(model)?;
     let policy = CrossingPolicy::try_from(policy)?;
     let fraction = match fraction_model {
-        0 => Fraction::Constant(fraction),
-        1 => Fraction::Scalar(fraction),
+        FRACTION_CONSTANT => Fraction::Constant(fraction),
+        FRACTION_SCALAR => Fraction::Scalar(fraction),
         _ => return Err(Error::Method),
     };
     Surface::new(model, alpha, fraction, policy)
@@ -154,12 +170,7 @@ fn build<T: Real>(
 
 /// A unit vector from a C vector, or None for zero or non-finite input.
 fn unit<V: CVec>(v: V) -> Option<Vec3<V::T>> {
-    let v = v.to_vec();
-    if v.is_finite() {
-        v.try_normalize()
-    } else {
-        None
-    }
+    v.to_vec().try_normalize()
 }
 
 fn nan_vec<V: CVec>() -> V {
@@ -203,7 +214,7 @@ unsafe fn surface_new<S: SurfaceStore>(
     policy: u32,
     out: *mut S,
 ) -> sk_status {
-    let value = if fraction_model == 1 {
+    let value = if fraction_model == FRACTION_SCALAR {
         sigma_rms
     } else {
         fraction

@@ -17,6 +17,12 @@ pub enum sk_table_kind {
     SK_TABLE_MEASURED = 2,
 }
 
+same_values!(sk_table_kind = TableKind:
+    SK_TABLE_RAYLEIGH_CDF = RayleighCdf,
+    SK_TABLE_INVERSE = Inverse,
+    SK_TABLE_MEASURED = Measured,
+);
+
 /// A table sampler (float) over the caller's memory, which must outlive it.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]

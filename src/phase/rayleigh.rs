@@ -9,7 +9,7 @@
 //! (one that returns a constant) cannot hang the caller.
 
 use super::PhaseFunction;
-use crate::error::Error;
+use crate::error::{Error, try_from_u32};
 use crate::geometry::{Vec3, direction_about};
 use crate::real::Real;
 use rand_core::Rng;
@@ -82,15 +82,16 @@ impl RayleighMethod {
     }
 }
 
-impl TryFrom<u32> for RayleighMethod {
-    type Error = Error;
-    fn try_from(v: u32) -> Result<Self, Error> {
-        RayleighMethod::ALL
-            .get(v as usize)
-            .copied()
-            .ok_or(Error::Method)
-    }
-}
+try_from_u32!(
+    RayleighMethod: RejectCube,
+    RejectSpherical,
+    Baranoski,
+    Simplified,
+    Direct,
+    DirectFast,
+    DirectMinimax,
+    Table,
+);
 
 /// The real root of the depressed cubic `x³ + 3a·x = 2b` for `a > 0`
 /// (Cardano; the only real root since the cubic is increasing).

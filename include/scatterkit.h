@@ -615,7 +615,8 @@ sk_status sk_homogeneous_sample_f64(const double *sigma_t,
  interpolated trilinearly; sigma_t(p) = (sigma_a + sigma_s) density(p).
  Scans the values once. SK_ERR_NULL for NULL density or out; SK_ERR_SIZE
  for a zero dimension or a product that overflows; SK_ERR_DOMAIN for a
- negative or non-finite value or coefficient.
+ negative or non-finite value or coefficient, or a majorant
+ (sigma_a + sigma_s) * max(density) that overflows.
  */
 sk_status sk_grid_new(const float *density,
                       uint32_t nx,

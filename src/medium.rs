@@ -144,7 +144,8 @@ impl<'a, T: Real> Grid<'a, T> {
     /// Validates and borrows `density`. [`Error::Size`] for a zero dimension,
     /// a product that overflows, or a buffer shorter than `nx·ny·nz`;
     /// [`Error::Domain`] for a negative or non-finite density value or
-    /// coefficient.
+    /// coefficient, or a majorant `(σ_a + σ_s)·max(density)` that overflows
+    /// (tracking could not step through it).
     pub fn new(
         density: &'a [T],
         nx: usize,
@@ -178,16 +179,17 @@ impl<'a, T: Real> Grid<'a, T> {
             }
             max_density = max_density.max_of(v);
         }
-        Ok((
-            Grid {
-                density,
-                n: [nx, ny, nz],
-                sigma_a,
-                sigma_s,
-                max_density,
-            },
+        let grid = Grid {
+            density,
+            n: [nx, ny, nz],
+            sigma_a,
+            sigma_s,
             max_density,
-        ))
+        };
+        if !grid.majorant().is_finite() {
+            return Err(Error::Domain);
+        }
+        Ok((grid, max_density))
     }
 
     /// A grid from parts a previous [`Grid::new`] validated (the C layer

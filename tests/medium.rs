@@ -374,6 +374,14 @@ fn bad_input_is_rejected() {
         Grid::new(&v, 2, 2, 2, 1.0, f64::NAN).err(),
         Some(Error::Domain)
     );
+    // Each factor finite, the majorant (σ_a + σ_s)·max(density) not: tracking
+    // could not step through it (it used to report the ray as escaping).
+    assert_eq!(
+        Grid::new(&[1e200, 1.0], 2, 1, 1, 1e200, 0.0).err(),
+        Some(Error::Domain),
+        "overflowing majorant"
+    );
+    assert!(Grid::new(&[1e150, 1.0], 2, 1, 1, 1e150, 0.0).is_ok());
     let g = Grid::new(&v, 2, 2, 2, 1.0, 1.0).unwrap();
     let mut r = rng(9);
     let (o, d, z) = (

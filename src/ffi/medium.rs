@@ -425,7 +425,8 @@ pub unsafe extern "C" fn sk_homogeneous_sample_f64(
 /// interpolated trilinearly; sigma_t(p) = (sigma_a + sigma_s) density(p).
 /// Scans the values once. SK_ERR_NULL for NULL density or out; SK_ERR_SIZE
 /// for a zero dimension or a product that overflows; SK_ERR_DOMAIN for a
-/// negative or non-finite value or coefficient.
+/// negative or non-finite value or coefficient, or a majorant
+/// (sigma_a + sigma_s) * max(density) that overflows.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_grid_new(
     density: *const f32,

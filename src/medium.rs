@@ -35,6 +35,13 @@ pub fn free_path<T: Real>(sigma_t: T, u: T) -> T {
     if sigma_t == T::ZERO {
         return if u.is_nan() { T::NAN } else { T::INFINITY };
     }
+    exponential_step(sigma_t, u)
+}
+
+/// `−ln1p(−u)/σ_t` without [`free_path`]'s checks, for the tracking loops,
+/// whose majorant is checked once (`σ_t > 0`, finite) and whose `u ∈ [0, 1)`.
+#[inline(always)]
+fn exponential_step<T: Real>(sigma_t: T, u: T) -> T {
     -(-u).ln_1p() / sigma_t
 }
 
@@ -343,7 +350,7 @@ fn non_negative<T: Real>(x: T) -> bool {
 
 /// A validated ray: finite origin, unit direction.
 fn ray<T: Real>(o: Vec3<T>, d: Vec3<T>) -> Result<(Vec3<T>, Vec3<T>), Error> {
-    if !(o.is_finite() && d.is_finite()) {
+    if !o.is_finite() {
         return Err(Error::Domain);
     }
     Ok((o, d.try_normalize().ok_or(Error::Domain)?))
@@ -399,7 +406,7 @@ fn tentative<T: Real, R: Rng + ?Sized, X>(
 ) -> Result<Option<X>, Error> {
     let mut t = t0;
     for _ in 0..MAX_STEPS {
-        t += free_path(sigma_maj, T::uniform(rng));
+        t += exponential_step(sigma_maj, T::uniform(rng));
         if t.is_nan() || t >= t1 {
             return Ok(None);
         }

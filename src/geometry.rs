@@ -133,7 +133,9 @@ pub fn onb<T: Real>(n: Vec3<T>) -> (Vec3<T>, Vec3<T>) {
 
 /// The unit direction at polar cosine `mu` and azimuth `phi` (radians) about
 /// the unit vector `axis`: `sinθ cosφ b1 + sinθ sinφ b2 + μ axis` with
-/// `(b1, b2) = onb(axis)` (SPEC §0).
+/// `(b1, b2) = onb(axis)` (the crate's direction convention). For an azimuth
+/// drawn from a uniform, [`direction_about_turns`] is faster and more
+/// accurate.
 #[inline(always)]
 pub fn direction_about<T: Real>(axis: Vec3<T>, mu: T, phi: T) -> Vec3<T> {
     direction_about_sin(axis, mu, sin_from_cos(mu), phi)
@@ -152,6 +154,24 @@ pub fn sin_from_cos<T: Real>(mu: T) -> T {
 #[inline(always)]
 pub fn direction_about_sin<T: Real>(axis: Vec3<T>, mu: T, sin_theta: T, phi: T) -> Vec3<T> {
     let (sin_phi, cos_phi) = phi.sin_cos();
+    from_polar(axis, mu, sin_theta, sin_phi, cos_phi)
+}
+
+/// The unit direction at polar cosine `mu` (with `sin_theta` as in
+/// [`direction_about_sin`]) and azimuth `φ = 2π·turns` about the unit vector
+/// `axis`, for `turns ∈ [0, 1]` (a uniform, as every sampler draws it; NaN
+/// gives NaN). The azimuth's sine and cosine come from
+/// [`crate::azimuth`]: reduced exactly in turns, within 1 ULP, and without a
+/// library call.
+#[inline(always)]
+pub fn direction_about_turns<T: Real>(axis: Vec3<T>, mu: T, sin_theta: T, turns: T) -> Vec3<T> {
+    let (sin_phi, cos_phi) = turns.sin_cos_2pi();
+    from_polar(axis, mu, sin_theta, sin_phi, cos_phi)
+}
+
+/// `sinθ cosφ b1 + sinθ sinφ b2 + μ axis`, `(b1, b2) = onb(axis)`.
+#[inline(always)]
+fn from_polar<T: Real>(axis: Vec3<T>, mu: T, sin_theta: T, sin_phi: T, cos_phi: T) -> Vec3<T> {
     let (b1, b2) = onb(axis);
     Vec3::from_local(
         Vec3::new(sin_theta * cos_phi, sin_theta * sin_phi, mu),

@@ -47,6 +47,7 @@
 #![no_std]
 #![warn(missing_docs)]
 
+pub mod azimuth;
 pub mod cbrt;
 mod error;
 pub mod geometry;

@@ -80,6 +80,9 @@ pub trait Real:
     fn sin_cos(self) -> (Self, Self);
     /// Cosine of an angle in radians.
     fn cos(self) -> Self;
+    /// `(sin 2π·self, cos 2π·self)` for `self ∈ [0, 1]` (a fraction of a
+    /// turn), reduced exactly: see [`crate::azimuth`].
+    fn sin_cos_2pi(self) -> (Self, Self);
     /// Natural logarithm.
     fn ln(self) -> Self;
     /// `ln(1 + self)`, accurate for small `self`.
@@ -133,9 +136,9 @@ pub trait Real:
 }
 
 macro_rules! impl_real {
-    ($t:ty, $shift:expr, $scale:expr, $cbrt:path, $cbrt_fast:path,
-     $pick:expr, $sqrt:ident, $sincos:ident, $cos:ident, $log:ident, $log1p:ident,
-     $exp:ident, $expm1:ident, $pow:ident, $atan2:ident, $copysign:ident, $fabs:ident) => {
+    ($t:ty, $sign:expr, $shift:expr, $scale:expr, $cbrt:path, $cbrt_fast:path,
+     $pick:expr, $sc2pi:path, $sqrt:path, $sincos:ident, $cos:ident, $log:ident, $log1p:ident,
+     $exp:ident, $expm1:ident, $pow:ident, $atan2:ident) => {
         impl Real for $t {
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
@@ -166,15 +169,17 @@ macro_rules! impl_real {
             }
             #[inline(always)]
             fn sqrt(self) -> Self {
-                libm::$sqrt(self)
+                $sqrt(self)
             }
+            // abs and copysign on the bits: libm's are out-of-line calls, and
+            // copysign sits on every direction's path (the basis).
             #[inline(always)]
             fn abs(self) -> Self {
-                libm::$fabs(self)
+                <$t>::from_bits(self.to_bits() & !$sign)
             }
             #[inline(always)]
             fn copysign(self, sign: Self) -> Self {
-                libm::$copysign(self, sign)
+                <$t>::from_bits((self.to_bits() & !$sign) | (sign.to_bits() & $sign))
             }
             #[inline(always)]
             fn cbrt(self) -> Self {
@@ -191,6 +196,10 @@ macro_rules! impl_real {
             #[inline(always)]
             fn cos(self) -> Self {
                 libm::$cos(self)
+            }
+            #[inline(always)]
+            fn sin_cos_2pi(self) -> (Self, Self) {
+                $sc2pi(self)
             }
             #[inline(always)]
             fn ln(self) -> Self {
@@ -246,12 +255,14 @@ macro_rules! impl_real {
 
 impl_real!(
     f32,
+    1u32 << 31,
     40,
     1.0 / (1u64 << 24) as f32,
     crate::cbrt::cbrt_f32,
     crate::cbrt::cbrt_fast_f32,
     |a, _| a,
-    sqrtf,
+    crate::azimuth::sin_cos_2pi_f32,
+    sqrt_f32,
     sincosf,
     cosf,
     logf,
@@ -259,18 +270,18 @@ impl_real!(
     expf,
     expm1f,
     powf,
-    atan2f,
-    copysignf,
-    fabsf
+    atan2f
 );
 impl_real!(
     f64,
+    1u64 << 63,
     11,
     1.0 / (1u64 << 53) as f64,
     crate::cbrt::cbrt_f64,
     crate::cbrt::cbrt_fast_f64,
     |_, b| b,
-    sqrt,
+    crate::azimuth::sin_cos_2pi_f64,
+    sqrt_f64,
     sincos,
     cos,
     log,
@@ -278,10 +289,29 @@ impl_real!(
     exp,
     expm1,
     pow,
-    atan2,
-    copysign,
-    fabs
+    atan2
 );
+
+// Square roots. On x86-64 through the SSE2 intrinsics (part of the
+// baseline): libm's `sqrtf`/`sqrt` are inline assembly there, which the
+// compiler cannot vectorise, so a batch loop with a square root in it stayed
+// scalar. Both give the correctly rounded `sqrtss`/`sqrtsd` result.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn sqrt_f32(x: f32) -> f32 {
+    use core::arch::x86_64::{_mm_cvtss_f32, _mm_set_ss, _mm_sqrt_ss};
+    // SAFETY: SSE2 is part of every x86-64 target.
+    unsafe { _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x))) }
+}
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn sqrt_f64(x: f64) -> f64 {
+    use core::arch::x86_64::{_mm_cvtsd_f64, _mm_set_sd, _mm_sqrt_sd};
+    // SAFETY: as above.
+    unsafe { _mm_cvtsd_f64(_mm_sqrt_sd(_mm_set_sd(x), _mm_set_sd(x))) }
+}
+#[cfg(not(target_arch = "x86_64"))]
+use libm::{sqrt as sqrt_f64, sqrtf as sqrt_f32};
 
 #[cfg(test)]
 mod tests {

@@ -32,7 +32,7 @@
 //!   mirror image's.
 
 use crate::error::{Error, try_from_u32};
-use crate::geometry::{Vec3, direction_about_sin, onb};
+use crate::geometry::{Vec3, direction_about_turns, onb, sin_from_cos};
 use crate::real::Real;
 use rand_core::Rng;
 
@@ -122,14 +122,14 @@ pub fn fresnel_dielectric<T: Real>(cos_i: T, n_i: T, n_t: T) -> T {
 /// (SunSolve). Density `cos θ / π` per steradian.
 #[inline]
 pub fn lambert_sample<T: Real>(normal: Vec3<T>, u1: T, u2: T) -> Vec3<T> {
-    cone_sample(normal, u1.clamp01().sqrt(), T::TAU * u2.clamp01())
+    cone_sample(normal, u1.clamp01().sqrt(), u2)
 }
 
-/// The direction at polar cosine `c` and azimuth `phi` about `axis`.
+/// The direction at polar cosine `c` and azimuth `2π u` about `axis`
+/// (`u` clamped to `[0, 1]`).
 #[inline(always)]
-fn cone_sample<T: Real>(axis: Vec3<T>, c: T, phi: T) -> Vec3<T> {
-    let s = ((T::ONE - c) * (T::ONE + c)).max_of(T::ZERO).sqrt();
-    direction_about_sin(axis, c, s, phi)
+fn cone_sample<T: Real>(axis: Vec3<T>, c: T, u: T) -> Vec3<T> {
+    direction_about_turns(axis, c, sin_from_cos(c), u.clamp01())
 }
 
 /// What happens to a Phong direction that lands on the wrong side of the
@@ -162,7 +162,7 @@ fn phong_lobe<T: Real>(axis: Vec3<T>, alpha: T, u1: T, u2: T) -> Vec3<T> {
     // finer near the axis, but the direction is built from cos and sin below.
     let u1 = u1.clamp01();
     let c = u1.powf(T::ONE / (alpha + T::ONE));
-    cone_sample(axis, c, T::TAU * u2.clamp01())
+    cone_sample(axis, c, u2)
 }
 
 /// `d` moved to the leaving side of `normal` by `policy`'s deterministic

@@ -70,6 +70,13 @@ fn bad_input_from_c() {
 }
 
 #[test]
+fn direction_batches_agree_with_scalar_calls() {
+    let exe = common::cbuild::build_program(&root().join("tests/c/batch.c"), false);
+    let (code, out) = run(&exe);
+    assert!(code == 0 && out.contains(" 0 failed"), "{out}");
+}
+
+#[test]
 fn header_compiles_and_runs_as_cpp() {
     let out = run_source("tests/c/header.cpp", true);
     assert!(out.starts_with("C++: HG(0.5)"), "{out}");

@@ -7,7 +7,7 @@ mod common;
 use common::cbuild::{build_program, build_program_with, root};
 use std::process::Command;
 
-const PROGRAMS: [&str; 8] = [
+const PROGRAMS: [&str; 9] = [
     "c_examples/rayleigh_histogram.c",
     "c_examples/hg_stratified.c",
     "c_examples/fog_histogram.c",
@@ -16,6 +16,7 @@ const PROGRAMS: [&str; 8] = [
     "tests/c/bad_input.c",
     "tests/c/matrix.c",
     "tests/c/golden.c",
+    "tests/c/batch.c",
 ];
 
 #[test]

@@ -294,3 +294,75 @@ pub(crate) unsafe fn map_arrays<T: Real>(
 pub extern "C" fn sk_version() -> *const c_char {
     concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast()
 }
+
+/// Elements per block of the structure-of-arrays batches (stack buffers).
+pub(crate) const SOA_BLOCK: usize = 64;
+
+/// Checks the arrays of a structure-of-arrays batch of `n` elements: every
+/// input and every non-optional output non-NULL (`SK_ERR_NULL`), `n`
+/// elements possible (`SK_ERR_SIZE`); no output overlapping another output,
+/// nor an input unless it is that same array (`SK_ERR_DOMAIN`). `outputs`
+/// pairs each pointer with whether it may be NULL.
+pub(crate) fn check_soa<T>(
+    inputs: &[*const T],
+    outputs: &[(*mut T, bool)],
+    n: usize,
+) -> Result<(), sk_status> {
+    if n == 0 {
+        return Ok(());
+    }
+    let missing = inputs.iter().any(|p| p.is_null())
+        || outputs.iter().any(|(p, optional)| p.is_null() && !optional);
+    if missing {
+        return Err(sk_status::SK_ERR_NULL);
+    }
+    if !fits::<T>(n) {
+        return Err(sk_status::SK_ERR_SIZE);
+    }
+    let outs = outputs
+        .iter()
+        .map(|(p, _)| p.cast_const())
+        .filter(|p| !p.is_null());
+    for (k, o) in outs.clone().enumerate() {
+        let clash_out = outs.clone().skip(k + 1).any(|o2| overlaps(o, o2, n));
+        let clash_in = inputs.iter().any(|&i| i != o && overlaps(i, o, n));
+        if clash_out || clash_in {
+            return Err(sk_status::SK_ERR_DOMAIN);
+        }
+    }
+    Ok(())
+}
+
+/// Runs a checked structure-of-arrays batch block by block: each block's
+/// inputs are copied to the stack, `f(inputs, outputs, len)` fills the stack
+/// outputs, and those are copied out (NULL outputs are skipped). Since a
+/// block is read before any of it is written, an output may be the same
+/// array as an input.
+///
+/// # Safety
+/// The arrays passed [`check_soa`] for `n`.
+pub(crate) unsafe fn soa_blocks<T: Real, const I: usize, const O: usize>(
+    inputs: [*const T; I],
+    outputs: [*mut T; O],
+    n: usize,
+    mut f: impl FnMut(&[[T; SOA_BLOCK]; I], &mut [[T; SOA_BLOCK]; O], usize),
+) {
+    let mut ins = [[T::ZERO; SOA_BLOCK]; I];
+    let mut outs = [[T::ZERO; SOA_BLOCK]; O];
+    let mut start = 0;
+    while start < n {
+        let len = SOA_BLOCK.min(n - start);
+        for (buf, p) in ins.iter_mut().zip(inputs) {
+            // SAFETY: p is valid for n elements and start + len <= n.
+            unsafe { core::ptr::copy_nonoverlapping(p.add(start), buf.as_mut_ptr(), len) };
+        }
+        f(&ins, &mut outs, len);
+        for (buf, p) in outs.iter().zip(outputs) {
+            if !p.is_null() {
+                // SAFETY: as above; outputs do not overlap other outputs.
+                unsafe { core::ptr::copy_nonoverlapping(buf.as_ptr(), p.add(start), len) };
+            }
+        }
+        start += len;
+    }
+}

@@ -5,9 +5,12 @@
 //! value, so a NULL, zeroed or never-constructed phase gives NaN or an error
 //! rather than undefined behaviour.
 
-use super::{CVec, map_arrays, sk_status, sk_vec3, sk_vec3_f64, write_result};
+use super::{
+    CVec, SOA_BLOCK, check_soa, map_arrays, sk_status, sk_vec3, sk_vec3_f64, soa_blocks,
+    write_result,
+};
 use crate::error::Error;
-use crate::phase::{Phase, PhaseFunction, check_uniforms};
+use crate::phase::{Phase, PhaseFunction, check_uniforms, dispatch};
 use crate::real::Real;
 
 /// A phase function (float). A plain value with no pointers inside: build it
@@ -91,8 +94,38 @@ unsafe fn mean_cosine<S: PhaseStore>(p: *const S) -> S::T {
     unsafe { load(p) }.map_or(S::T::NAN, |ph| ph.mean_cosine())
 }
 
+// The scalar entry points check the pointer and the tag, then jump to one
+// function per model (`#[inline(never)]`): the entry stays a check and a
+// jump, and each model's code saves only the registers it needs, instead of
+// every call paying the prologue of the largest model.
+
+#[inline(never)]
+fn cos_of<T: Real, M: PhaseFunction<T>>(m: &M, u: T) -> T {
+    m.sample_cos(u)
+}
+
 unsafe fn sample_cos<S: PhaseStore>(p: *const S, u: S::T) -> S::T {
-    unsafe { load(p) }.map_or(S::T::NAN, |ph| ph.sample_cos(u))
+    match unsafe { load(p) } {
+        Some(ph) => dispatch!(ph, m => cos_of(m, u)),
+        None => S::T::NAN,
+    }
+}
+
+/// One model's direction; writes the density through a non-NULL `pdf_out`.
+#[inline(never)]
+unsafe fn dir_of<T: Real, M: PhaseFunction<T>, V: CVec<T = T>>(
+    m: &M,
+    w_in: V,
+    u1: T,
+    u2: T,
+    pdf_out: *mut T,
+) -> V {
+    let (dir, pdf) = m.sample_dir(w_in.to_vec(), u1, u2);
+    // SAFETY: a non-NULL pdf_out is writable (module contract).
+    if let Some(out) = unsafe { pdf_out.as_mut() } {
+        *out = pdf;
+    }
+    V::from_vec(dir)
 }
 
 unsafe fn sample_dir<S: PhaseStore, V: CVec<T = S::T>>(
@@ -102,16 +135,17 @@ unsafe fn sample_dir<S: PhaseStore, V: CVec<T = S::T>>(
     u2: S::T,
     pdf_out: *mut S::T,
 ) -> V {
-    let nan = S::T::NAN;
-    let (dir, pdf) = match unsafe { load(p) } {
-        Some(ph) => ph.sample_dir(w_in.to_vec(), u1, u2),
-        None => (crate::Vec3::new(nan, nan, nan), nan),
-    };
-    // SAFETY: a non-NULL pdf_out is writable (module contract).
-    if let Some(out) = unsafe { pdf_out.as_mut() } {
-        *out = pdf;
+    match unsafe { load(p) } {
+        Some(ph) => dispatch!(ph, m => unsafe { dir_of(m, w_in, u1, u2, pdf_out) }),
+        None => {
+            let nan = S::T::NAN;
+            // SAFETY: as in dir_of.
+            if let Some(out) = unsafe { pdf_out.as_mut() } {
+                *out = nan;
+            }
+            V::from_vec(crate::Vec3::new(nan, nan, nan))
+        }
     }
-    V::from_vec(dir)
 }
 
 unsafe fn sample_cos_n<S: PhaseStore>(
@@ -128,10 +162,54 @@ unsafe fn sample_cos_n<S: PhaseStore>(
     };
     unsafe {
         map_arrays(u, cos_out, n, check_uniforms, |u, out| {
-            ph.sample_cos_each(u, out);
+            ph.sample_cos_each_in_range(u, out);
             Ok(())
         })
     }
+}
+
+#[allow(clippy::too_many_arguments)]
+unsafe fn sample_dir_n<S: PhaseStore>(
+    p: *const S,
+    w: [*const S::T; 3],
+    u1: *const S::T,
+    u2: *const S::T,
+    out: [*mut S::T; 3],
+    pdf_out: *mut S::T,
+    n: usize,
+) -> sk_status {
+    if p.is_null() {
+        return sk_status::SK_ERR_NULL;
+    }
+    let Some(ph) = (unsafe { load(p) }) else {
+        return sk_status::SK_ERR_DOMAIN;
+    };
+    let [ox, oy, oz] = out;
+    let inputs = [w[0], w[1], w[2], u1, u2];
+    let outputs = [(ox, false), (oy, false), (oz, false), (pdf_out, true)];
+    if let Err(e) = check_soa(&inputs, &outputs, n) {
+        return e;
+    }
+    if n == 0 {
+        return sk_status::SK_OK;
+    }
+    // SAFETY: checked above: u1 and u2 hold n elements.
+    let (u1_s, u2_s) = unsafe {
+        (
+            core::slice::from_raw_parts(u1, n),
+            core::slice::from_raw_parts(u2, n),
+        )
+    };
+    if let Err(e) = check_uniforms(u1_s).and_then(|()| check_uniforms(u2_s)) {
+        return e.into();
+    }
+    let run = |i: &[[S::T; SOA_BLOCK]; 5], o: &mut [[S::T; SOA_BLOCK]; 4], len: usize| {
+        let [ix, iy, iz, a, b] = i.each_ref().map(|x| x.get(..len).unwrap_or(&[]));
+        let [ox, oy, oz, pdf] = o.each_mut().map(|x| x.get_mut(..len).unwrap_or(&mut []));
+        ph.sample_dir_each([ix, iy, iz], a, b, [ox, oy, oz], pdf);
+    };
+    unsafe { soa_blocks(inputs, [ox, oy, oz, pdf_out], n, run) };
+    sk_status::SK_OK
 }
 
 /// Isotropic scattering, p = 1/(4 pi).
@@ -405,4 +483,73 @@ pub unsafe extern "C" fn sk_phase_sample_cos_n_f64(
     n: usize,
 ) -> sk_status {
     unsafe { sample_cos_n(p, u, cos_out, n) }
+}
+
+/// Directions for n rays at once, structure of arrays (the layout of
+/// wavefront renderers): for each i < n, the direction
+/// sk_phase_sample_dir(p, (w_x[i], w_y[i], w_z[i]), u1[i], u2[i], &pdf)
+/// goes to (out_x[i], out_y[i], out_z[i]) and its density to pdf_out[i],
+/// bit for bit the scalar call's. pdf_out may be NULL. An output array may
+/// be the same array as an input (in place); any other overlap, or outputs
+/// overlapping each other, is SK_ERR_DOMAIN, as is any u1[i] or u2[i] NaN or
+/// outside [0, 1], or an unconstructed p. SK_ERR_NULL for a NULL p or a NULL
+/// array (other than pdf_out) with n > 0; SK_ERR_SIZE if n floats cannot
+/// exist. On error nothing is written; n = 0 is SK_OK. The loop runs in
+/// blocks of 64 through stack buffers and vectorises for the closed-form
+/// phase functions (isotropic, Rayleigh, HG).
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_phase_sample_dir_n(
+    p: *const sk_phase,
+    w_x: *const f32,
+    w_y: *const f32,
+    w_z: *const f32,
+    u1: *const f32,
+    u2: *const f32,
+    out_x: *mut f32,
+    out_y: *mut f32,
+    out_z: *mut f32,
+    pdf_out: *mut f32,
+    n: usize,
+) -> sk_status {
+    unsafe {
+        sample_dir_n(
+            p,
+            [w_x, w_y, w_z],
+            u1,
+            u2,
+            [out_x, out_y, out_z],
+            pdf_out,
+            n,
+        )
+    }
+}
+
+/// Double twin of `sk_phase_sample_dir_n`.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_phase_sample_dir_n_f64(
+    p: *const sk_phase_f64,
+    w_x: *const f64,
+    w_y: *const f64,
+    w_z: *const f64,
+    u1: *const f64,
+    u2: *const f64,
+    out_x: *mut f64,
+    out_y: *mut f64,
+    out_z: *mut f64,
+    pdf_out: *mut f64,
+    n: usize,
+) -> sk_status {
+    unsafe {
+        sample_dir_n(
+            p,
+            [w_x, w_y, w_z],
+            u1,
+            u2,
+            [out_x, out_y, out_z],
+            pdf_out,
+            n,
+        )
+    }
 }

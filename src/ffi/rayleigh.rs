@@ -1,6 +1,9 @@
 //! Rayleigh by each of Frisvad's methods, and the physical coefficients.
 
-use super::{CRng, CVec, sk_rng, sk_status, sk_vec3, sk_vec3_f64, slice_out, write_result};
+use super::{
+    CRng, CVec, SOA_BLOCK, check_soa, sk_rng, sk_status, sk_vec3, sk_vec3_f64, slice_out,
+    soa_blocks, write_result,
+};
 use crate::phase::rayleigh::{self, RayleighMethod};
 use crate::real::Real;
 
@@ -55,6 +58,31 @@ unsafe fn sample_dir<V: CVec>(method: u32, w_in: V, rng: *mut sk_rng, out: *mut 
     }
     let dir = rayleigh::sample_dir(m, w_in.to_vec(), &mut r);
     unsafe { write_result(out, Ok(V::from_vec(dir))) }
+}
+
+unsafe fn sample_dir_n<T: Real>(
+    method: u32,
+    w: [*const T; 3],
+    rng: *mut sk_rng,
+    out: [*mut T; 3],
+    n: usize,
+) -> sk_status {
+    let Ok(m) = RayleighMethod::try_from(method) else {
+        return sk_status::SK_ERR_METHOD;
+    };
+    let Some(mut r) = (unsafe { CRng::from_ptr(rng) }) else {
+        return sk_status::SK_ERR_NULL;
+    };
+    if let Err(e) = check_soa(&w, &out.map(|p| (p, false)), n) {
+        return e;
+    }
+    let run = |i: &[[T; SOA_BLOCK]; 3], o: &mut [[T; SOA_BLOCK]; 3], len: usize| {
+        let [ix, iy, iz] = i.each_ref().map(|x| x.get(..len).unwrap_or(&[]));
+        let [ox, oy, oz] = o.each_mut().map(|x| x.get_mut(..len).unwrap_or(&mut []));
+        rayleigh::sample_dir_fill(m, [ix, iy, iz], &mut r, [ox, oy, oz]);
+    };
+    unsafe { soa_blocks(w, out, n, run) };
+    sk_status::SK_OK
 }
 
 unsafe fn sample_cos_n<T: Real>(method: u32, rng: *mut sk_rng, out: *mut T, n: usize) -> sk_status {
@@ -142,4 +170,45 @@ pub extern "C" fn sk_rayleigh_scattering_coeff(
     rel_index: f64,
 ) -> f64 {
     rayleigh::scattering_coeff(number_density, wavelength, radius, rel_index).unwrap_or(f64::NAN)
+}
+
+/// Rayleigh directions for n rays, structure of arrays: for each i < n in
+/// order, (out_x[i], out_y[i], out_z[i]) is what sk_rayleigh_sample_dir
+/// would give for (w_x[i], w_y[i], w_z[i]) with the same rng, bit for bit
+/// (the generator is advanced exactly as by n scalar calls). An output may be
+/// the same array as an input (in place); other overlaps are SK_ERR_DOMAIN.
+/// SK_ERR_METHOD for an unknown method; SK_ERR_NULL for a NULL rng, NULL
+/// rng->next_u64 or a NULL array with n > 0; SK_ERR_SIZE if n floats cannot
+/// exist. On error nothing is written; n = 0 is SK_OK.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_rayleigh_sample_dir_n(
+    method: u32,
+    w_x: *const f32,
+    w_y: *const f32,
+    w_z: *const f32,
+    rng: *mut sk_rng,
+    out_x: *mut f32,
+    out_y: *mut f32,
+    out_z: *mut f32,
+    n: usize,
+) -> sk_status {
+    unsafe { sample_dir_n(method, [w_x, w_y, w_z], rng, [out_x, out_y, out_z], n) }
+}
+
+/// Double twin of `sk_rayleigh_sample_dir_n`.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_rayleigh_sample_dir_n_f64(
+    method: u32,
+    w_x: *const f64,
+    w_y: *const f64,
+    w_z: *const f64,
+    rng: *mut sk_rng,
+    out_x: *mut f64,
+    out_y: *mut f64,
+    out_z: *mut f64,
+    n: usize,
+) -> sk_status {
+    unsafe { sample_dir_n(method, [w_x, w_y, w_z], rng, [out_x, out_y, out_z], n) }
 }

@@ -301,7 +301,7 @@ pub(crate) fn from_tail(y: f64, mirrored: bool) -> (f64, f64) {
 /// `target ≤ 1/2`.
 pub(crate) fn inverse_tail<T: Real>(p: Params, target: f64) -> f64 {
     if p.alpha == 0.0 {
-        return HenyeyGreenstein { g: p.g }.one_plus_minus_mu(target).0;
+        return HenyeyGreenstein::from_g(p.g).one_plus_minus_mu(target).0;
     }
     if target.is_nan() {
         return f64::NAN;

@@ -176,7 +176,7 @@ impl<T: Real> Fog<T> {
             }
             .sample_cos(u / w)
         } else {
-            super::HenyeyGreenstein { g: self.g_hg }.sample_cos((u - w) / (T::ONE - w))
+            super::HenyeyGreenstein::from_g(self.g_hg).sample_cos((u - w) / (T::ONE - w))
         }
     }
 }

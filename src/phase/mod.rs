@@ -26,7 +26,7 @@ pub use rayleigh::{Rayleigh, RayleighMethod};
 pub use rayleigh_depolarized::RayleighDepolarized;
 
 use crate::error::Error;
-use crate::geometry::{Vec3, direction_about_sin, sin_from_cos};
+use crate::geometry::{Vec3, direction_about_turns, sin_from_cos};
 use crate::real::Real;
 
 /// A phase function over the cosine of the scattering angle.
@@ -60,8 +60,17 @@ pub trait PhaseFunction<T: Real> {
     #[inline]
     fn sample_dir(&self, w_in: Vec3<T>, u1: T, u2: T) -> (Vec3<T>, T) {
         let (mu, sin_theta) = self.sample_cos_sin(u1);
-        let dir = direction_about_sin(w_in, mu, sin_theta, T::TAU * u2.clamp01());
+        let dir = direction_about_turns(w_in, mu, sin_theta, u2.clamp01());
         (dir, self.pdf(mu))
+    }
+
+    /// [`sample_cos`](Self::sample_cos) for a `u` the caller has already
+    /// checked to lie in `[0, 1]` (not NaN): samplers may skip the clamp.
+    /// Outside `[0, 1]` the result is unspecified (but no undefined
+    /// behaviour).
+    #[inline]
+    fn sample_cos_in_range(&self, u: T) -> T {
+        self.sample_cos(u)
     }
 
     /// Fills `cos_out[i] = sample_cos(u[i])` over the common length, without
@@ -73,6 +82,16 @@ pub trait PhaseFunction<T: Real> {
         }
     }
 
+    /// [`sample_cos_each`](Self::sample_cos_each) for uniforms already
+    /// checked to lie in `[0, 1]` ([`check_uniforms`]), through
+    /// [`sample_cos_in_range`](Self::sample_cos_in_range).
+    #[inline]
+    fn sample_cos_each_in_range(&self, u: &[T], cos_out: &mut [T]) {
+        for (c, &ui) in cos_out.iter_mut().zip(u) {
+            *c = self.sample_cos_in_range(ui);
+        }
+    }
+
     /// Fills `cos_out[i] = sample_cos(u[i])`. Fails with [`Error::Size`] if
     /// the slices differ in length and with [`Error::Domain`] if any `u` is NaN
     /// or outside `[0, 1]`; on failure nothing is written.
@@ -81,8 +100,82 @@ pub trait PhaseFunction<T: Real> {
             return Err(Error::Size);
         }
         check_uniforms(u)?;
-        self.sample_cos_each(u, cos_out);
+        self.sample_cos_each_in_range(u, cos_out);
         Ok(())
+    }
+
+    /// Directions for many rays at once, in the structure-of-arrays layout
+    /// wavefront renderers keep their rays in: `w_in` and `out` are the
+    /// `[x, y, z]` component slices, and for every `i`
+    /// `(out[i], pdf_out[i]) = sample_dir(w_in[i], u1[i], u2[i])`, bit for
+    /// bit. Fails with [`Error::Size`] unless all nine slices have one
+    /// length, and with [`Error::Domain`] if any `u1` or `u2` is NaN or
+    /// outside `[0, 1]`; on failure nothing is written.
+    fn sample_dir_n(
+        &self,
+        w_in: [&[T]; 3],
+        u1: &[T],
+        u2: &[T],
+        out: [&mut [T]; 3],
+        pdf_out: &mut [T],
+    ) -> Result<(), Error> {
+        let n = u1.len();
+        let same = w_in.iter().all(|s| s.len() == n)
+            && out.iter().all(|s| s.len() == n)
+            && u2.len() == n
+            && pdf_out.len() == n;
+        if !same {
+            return Err(Error::Size);
+        }
+        check_uniforms(u1)?;
+        check_uniforms(u2)?;
+        self.sample_dir_each(w_in, u1, u2, out, pdf_out);
+        Ok(())
+    }
+
+    /// The loop of [`sample_dir_n`](Self::sample_dir_n) without its checks,
+    /// over the shortest slice's length. Written branch-free for the
+    /// closed-form samplers, so the compiler vectorises it.
+    #[inline]
+    fn sample_dir_each(
+        &self,
+        w_in: [&[T]; 3],
+        u1: &[T],
+        u2: &[T],
+        out: [&mut [T]; 3],
+        pdf_out: &mut [T],
+    ) {
+        let [wx, wy, wz] = w_in;
+        let [ox, oy, oz] = out;
+        let n = [wx.len(), wy.len(), wz.len(), u1.len(), u2.len()]
+            .into_iter()
+            .chain([ox.len(), oy.len(), oz.len(), pdf_out.len()])
+            .fold(usize::MAX, usize::min);
+        // Slices of exactly n elements: the indexing below needs no checks.
+        let (Some(wx), Some(wy), Some(wz), Some(u1), Some(u2)) = (
+            wx.get(..n),
+            wy.get(..n),
+            wz.get(..n),
+            u1.get(..n),
+            u2.get(..n),
+        ) else {
+            return;
+        };
+        let (Some(ox), Some(oy), Some(oz), Some(pdf)) = (
+            ox.get_mut(..n),
+            oy.get_mut(..n),
+            oz.get_mut(..n),
+            pdf_out.get_mut(..n),
+        ) else {
+            return;
+        };
+        for i in 0..n {
+            let (d, p) = self.sample_dir(Vec3::new(wx[i], wy[i], wz[i]), u1[i], u2[i]);
+            ox[i] = d.x;
+            oy[i] = d.y;
+            oz[i] = d.z;
+            pdf[i] = p;
+        }
     }
 }
 
@@ -183,6 +276,9 @@ macro_rules! dispatch {
         }
     };
 }
+/// `dispatch!(phase, m => expr)`: `expr` with `m` bound to the model inside.
+#[cfg_attr(not(feature = "ffi"), allow(unused_imports))]
+pub(crate) use dispatch;
 
 impl<T: Real> PhaseFunction<T> for Phase<T> {
     #[inline]
@@ -209,8 +305,27 @@ impl<T: Real> PhaseFunction<T> for Phase<T> {
     fn sample_dir(&self, w_in: Vec3<T>, u1: T, u2: T) -> (Vec3<T>, T) {
         dispatch!(self, m => m.sample_dir(w_in, u1, u2))
     }
+    #[inline]
+    fn sample_cos_in_range(&self, u: T) -> T {
+        dispatch!(self, m => m.sample_cos_in_range(u))
+    }
     /// Dispatches once, then runs the model's own loop.
     fn sample_cos_each(&self, u: &[T], cos_out: &mut [T]) {
         dispatch!(self, m => m.sample_cos_each(u, cos_out))
+    }
+    /// Dispatches once, then runs the model's own loop.
+    fn sample_cos_each_in_range(&self, u: &[T], cos_out: &mut [T]) {
+        dispatch!(self, m => m.sample_cos_each_in_range(u, cos_out))
+    }
+    /// Dispatches once, then runs the model's own loop.
+    fn sample_dir_each(
+        &self,
+        w_in: [&[T]; 3],
+        u1: &[T],
+        u2: &[T],
+        out: [&mut [T]; 3],
+        pdf_out: &mut [T],
+    ) {
+        dispatch!(self, m => m.sample_dir_each(w_in, u1, u2, out, pdf_out))
     }
 }

@@ -170,7 +170,7 @@ pub fn choose(diameter_um: f64, tolerance: f64) -> Result<(Phase<f64>, Model, f6
             }
             Model::HenyeyGreenstein => {
                 let (g, d) = fit_hg(&r);
-                (d <= accept).then_some((Phase::HenyeyGreenstein(HenyeyGreenstein { g }), d))
+                (d <= accept).then_some((Phase::HenyeyGreenstein(HenyeyGreenstein::from_g(g)), d))
             }
             Model::Draine => {
                 let (g, alpha, d) = fit_draine(&r);
@@ -217,7 +217,7 @@ impl<T: Real> Phase<T> {
                 Err(_) => Phase::Rayleigh(super::Rayleigh),
             },
             Phase::HenyeyGreenstein(h) => {
-                Phase::HenyeyGreenstein(HenyeyGreenstein { g: open(h.g) })
+                Phase::HenyeyGreenstein(HenyeyGreenstein::from_g(open(h.g())))
             }
             Phase::Draine(d) => Phase::Draine(Draine {
                 g: open(d.g),

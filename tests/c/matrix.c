@@ -215,6 +215,82 @@ static void phase_queries(void) {
     }
 }
 
+/* Direction batches (structure of arrays): special uniforms, NULL arrays,
+ * n = 0 and SIZE_MAX, overlaps, bad phases and methods. */
+static void direction_batches(void) {
+    int i, k;
+    sk_phase p, zero;
+    sk_phase_f64 q, zero64;
+    float wx[4] = {0, 0, 1, 0}, wy[4] = {0, 1, 0, 0}, wz[4] = {1, 0, 0, -1};
+    float u1[4] = {0.1f, 0.5f, 0.9f, 0.3f}, u2[4] = {0.2f, 0.4f, 0.6f, 0.8f};
+    float ox[4], oy[4], oz[4], pdf[4], big[8];
+    double dx[4] = {0, 0, 1, 0}, dy[4] = {0, 1, 0, 0}, dz[4] = {1, 0, 0, -1};
+    double v1[4] = {0.1, 0.5, 0.9, 0.3}, v2[4] = {0.2, 0.4, 0.6, 0.8};
+    double px[4], py[4], pz[4], pdfd[4];
+    uint64_t st = 1;
+    sk_rng rng = {&st, counter}, no_fn = {&st, NULL};
+    memset(&zero, 0, sizeof zero);
+    memset(&zero64, 0, sizeof zero64);
+    sk_phase_hg(0.5f, &p);
+    sk_phase_hg_f64(0.5, &q);
+    for (i = 0; i < NS; i++) {
+        float f = FS[i];
+        double d = DS[i];
+        int ok = f >= 0.0f && f <= 1.0f, okd = d >= 0.0 && d <= 1.0;
+        for (k = 0; k < 2; k++) {
+            float *uf = k ? u2 : u1;
+            double *ud = k ? v2 : v1;
+            float keep = uf[2];
+            double keepd = ud[2];
+            uf[2] = f;
+            ud[2] = d;
+            ox[0] = 7.0f;
+            px[0] = 7.0;
+            CHECK(sk_phase_sample_dir_n(&p, wx, wy, wz, u1, u2, ox, oy, oz, pdf, 4) == (ok ? SK_OK : SK_ERR_DOMAIN));
+            CHECK(ok || ox[0] == 7.0f);
+            CHECK(sk_phase_sample_dir_n_f64(&q, dx, dy, dz, v1, v2, px, py, pz, pdfd, 4) == (okd ? SK_OK : SK_ERR_DOMAIN));
+            CHECK(okd || px[0] == 7.0);
+            uf[2] = keep;
+            ud[2] = keepd;
+        }
+    }
+    i = 0;
+    /* NULL arrays (pdf_out may be NULL), sizes, bad phases. */
+    CHECK(sk_phase_sample_dir_n(&p, wx, wy, wz, u1, u2, ox, oy, oz, NULL, 4) == SK_OK);
+    CHECK(sk_phase_sample_dir_n(NULL, wx, wy, wz, u1, u2, ox, oy, oz, pdf, 4) == SK_ERR_NULL);
+    CHECK(sk_phase_sample_dir_n(&zero, wx, wy, wz, u1, u2, ox, oy, oz, pdf, 4) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_sample_dir_n_f64(&zero64, dx, dy, dz, v1, v2, px, py, pz, pdfd, 4) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_sample_dir_n(&p, NULL, wy, wz, u1, u2, ox, oy, oz, pdf, 4) == SK_ERR_NULL);
+    CHECK(sk_phase_sample_dir_n(&p, wx, wy, wz, NULL, u2, ox, oy, oz, pdf, 4) == SK_ERR_NULL);
+    CHECK(sk_phase_sample_dir_n(&p, wx, wy, wz, u1, u2, ox, NULL, oz, pdf, 4) == SK_ERR_NULL);
+    CHECK(sk_phase_sample_dir_n_f64(&q, dx, dy, dz, v1, NULL, px, py, pz, pdfd, 4) == SK_ERR_NULL);
+    CHECK(sk_phase_sample_dir_n(&p, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0) == SK_OK);
+    CHECK(sk_phase_sample_dir_n(&p, wx, wy, wz, u1, u2, ox, oy, oz, pdf, SIZE_MAX) == SK_ERR_SIZE);
+    CHECK(sk_phase_sample_dir_n_f64(&q, dx, dy, dz, v1, v2, px, py, pz, pdfd, SIZE_MAX) == SK_ERR_SIZE);
+    /* In place is allowed; partial overlaps and shared outputs are not. */
+    memcpy(big, wx, sizeof wx);
+    CHECK(sk_phase_sample_dir_n(&p, wx, wy, wz, u1, u2, wx, wy, wz, pdf, 4) == SK_OK);
+    CHECK(sk_phase_sample_dir_n(&p, big, wy, wz, u1, u2, big + 1, oy, oz, pdf, 4) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_sample_dir_n(&p, wx, wy, wz, u1, u2, ox, ox, oz, pdf, 4) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_sample_dir_n(&p, wx, wy, wz, u1, u2, ox, oy, oz, ox, 4) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_sample_dir_n_f64(&q, dx, dy, dz, v1, v2, px, py, px, pdfd, 4) == SK_ERR_DOMAIN);
+    /* Rayleigh batches with the caller's generator. */
+    CHECK(sk_rayleigh_sample_dir_n(SK_RAYLEIGH_TABLE, wx, wy, wz, &rng, ox, oy, oz, 4) == SK_OK);
+    CHECK(sk_rayleigh_sample_dir_n_f64(SK_RAYLEIGH_SIMPLIFIED, dx, dy, dz, &rng, px, py, pz, 4) == SK_OK);
+    CHECK(sk_rayleigh_sample_dir_n(8, wx, wy, wz, &rng, ox, oy, oz, 4) == SK_ERR_METHOD);
+    CHECK(sk_rayleigh_sample_dir_n_f64(UINT32_MAX, dx, dy, dz, &rng, px, py, pz, 4) == SK_ERR_METHOD);
+    CHECK(sk_rayleigh_sample_dir_n(SK_RAYLEIGH_TABLE, wx, wy, wz, NULL, ox, oy, oz, 4) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_dir_n(SK_RAYLEIGH_TABLE, wx, wy, wz, &no_fn, ox, oy, oz, 4) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_dir_n(SK_RAYLEIGH_TABLE, wx, NULL, wz, &rng, ox, oy, oz, 4) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_dir_n_f64(SK_RAYLEIGH_TABLE, dx, dy, dz, &rng, px, py, NULL, 4) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_sample_dir_n(SK_RAYLEIGH_TABLE, NULL, NULL, NULL, &rng, NULL, NULL, NULL, 0) == SK_OK);
+    CHECK(sk_rayleigh_sample_dir_n(SK_RAYLEIGH_TABLE, wx, wy, wz, &rng, ox, oy, oz, SIZE_MAX) == SK_ERR_SIZE);
+    CHECK(sk_rayleigh_sample_dir_n_f64(SK_RAYLEIGH_TABLE, dx, dy, dz, &rng, px, py, pz, SIZE_MAX) == SK_ERR_SIZE);
+    CHECK(sk_rayleigh_sample_dir_n(SK_RAYLEIGH_TABLE, wx, wy, wz, &rng, wx, wy, wz, 4) == SK_OK);
+    CHECK(sk_rayleigh_sample_dir_n(SK_RAYLEIGH_TABLE, big, wy, wz, &rng, big + 2, oy, oz, 4) == SK_ERR_DOMAIN);
+    CHECK(sk_rayleigh_sample_dir_n_f64(SK_RAYLEIGH_TABLE, dx, dy, dz, &rng, px, px, pz, 4) == SK_ERR_DOMAIN);
+}
+
 static void rayleigh_functions(void) {
     int i;
     uint64_t st = 1;
@@ -460,6 +536,7 @@ int main(void) {
     basis();
     phase_constructors();
     phase_queries();
+    direction_batches();
     rayleigh_functions();
     tables();
     surfaces();

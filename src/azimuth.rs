@@ -40,7 +40,7 @@ pub fn sin_cos_2pi_f32(u: f32) -> (f32, f32) {
     let t = r * r;
     // The leading coefficient in two parts: `r·C1_HI` is the only large
     // term, so the rounding of `C1` to f32 does not reach the result.
-    const C1_HI: f32 = 1.570_796_4;
+    const C1_HI: f32 = core::f32::consts::FRAC_PI_2;
     const C1_LO: f32 = -4.879_794_3e-8;
     // Estrin's scheme: the sine and cosine sit on a direction's critical
     // path, and pairing the terms shortens the chain of dependent operations.
@@ -66,7 +66,7 @@ pub fn sin_cos_2pi_f64(u: f64) -> (f64, f64) {
     let q = shifted.to_bits();
     let r = x - (shifted - MAGIC);
     let t = r * r;
-    const C1_HI: f64 = 1.570_796_326_794_896_6;
+    const C1_HI: f64 = core::f64::consts::FRAC_PI_2;
     const C1_LO: f64 = 5.602_979_726_572_79e-17;
     let s = r * C1_HI
         + r * (C1_LO
@@ -77,10 +77,10 @@ pub fn sin_cos_2pi_f64(u: f64) -> (f64, f64) {
                             + t * (-3.598_641_754_452_081_4e-6 + t * 5.633_721_012_912_246e-8))))));
     let c = 1.0
         + t * (-1.233_700_550_136_169_8
-            + t * (0.253_669_507_901_046_57
+            + t * (0.253_669_507_901_046_6
                 + t * (-0.020_863_480_763_308_003
                     + t * (0.000_919_260_274_146_769_6
-                        + t * (-2.520_203_655_820_191_2e-5
+                        + t * (-2.520_203_655_820_191e-5
                             + t * (4.710_603_581_114_098e-7 + t * -6.320_557_319_576_698e-9))))));
     let (s, c) = if q & 1 != 0 { (c, s) } else { (s, c) };
     (

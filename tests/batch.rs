@@ -123,7 +123,8 @@ fn rayleigh_direction_batches_agree_with_scalar_calls() {
 fn rayleigh_inverse_batches_agree_with_scalar_calls() {
     let u: Vec<f32> = (0..=1000).map(|i| i as f32 / 1000.0).collect();
     let mut out = vec![0.0f32; u.len()];
-    let cases: [(RayleighMethod, fn(f32) -> f32); 4] = [
+    type Inverse = fn(f32) -> f32;
+    let cases: [(RayleighMethod, Inverse); 4] = [
         (RayleighMethod::Direct, rayleigh::inverse_cdf_direct),
         (RayleighMethod::DirectFast, rayleigh::inverse_cdf_fast),
         (RayleighMethod::DirectMinimax, rayleigh::inverse_cdf_minimax),

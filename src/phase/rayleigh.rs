@@ -244,8 +244,9 @@ pub fn inverse_cdf_table<T: Real>(u: T) -> T {
         Some(&[a, b, c, d]) => [a, b, c, d],
         _ => return T::NAN,
     };
-    // Estrin's pairing: the lookup sits on a direction's critical path.
-    ((y0 + t * d0) + (t * t) * (c2 + t * c3)).clamp_unit()
+    // Horner: one rounding at the scale of μ (Estrin's pairing would add a
+    // second and cost 3·10⁻⁸ of accuracy in f32).
+    (y0 + t * (d0 + t * (c2 + t * c3))).clamp_unit()
 }
 
 impl<T: Real> PhaseFunction<T> for Rayleigh {

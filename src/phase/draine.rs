@@ -180,7 +180,7 @@ impl Params {
         } else {
             (1.0 + g) * (1.0 + g) - 2.0 * g * y
         };
-        libm::sqrt(d)
+        Real::sqrt(d)
     }
 
     /// Density of `μ = cos θ` (that is, `2π p(μ)`): `N (1 + αμ²)/s³`.
@@ -237,7 +237,7 @@ fn inverse_g0(alpha: f64, u: f64) -> f64 {
         return mu0 + alpha * (mu0 - mu0 * mu0 * mu0) / 3.0;
     }
     let alpha = alpha.min(1e30);
-    let ra = libm::sqrt(alpha);
+    let ra = Real::sqrt(alpha);
     let beta = (3.0 + alpha) * (2.0 * u - 1.0) * ra * 0.5;
     let y = super::rayleigh::depressed_cubic_root::<f64, false>(1.0, 1.0, beta);
     y / ra
@@ -248,6 +248,12 @@ fn inverse_g0(alpha: f64, u: f64) -> f64 {
 /// `t6³ / (t5 − sqrt(t5² − t6³))`) and `1 − g²` factored. It still divides
 /// by `g` and by `α`, so it is used where those are not small; NaN where its
 /// cube root's argument leaves `[1e-200, 1e200]`.
+///
+/// The chain `sqrt → cbrt → sqrt → sqrt` is the sampler's latency, so every
+/// division that does not depend on `u` (by `t0`, by `2g`, by `t6³`) is taken
+/// as a reciprocal computed beside it, and `t6/t7` as `t6 t7² / arg`
+/// (`t7³ = arg`, whose reciprocal is also ready before the cube root):
+/// two divisions remain on the chain instead of six.
 #[inline]
 fn seed_eq6(g: f64, a: f64, u: f64) -> f64 {
     let g2 = g * g;
@@ -255,37 +261,38 @@ fn seed_eq6(g: f64, a: f64, u: f64) -> f64 {
     let t0 = a * omg2;
     let t1 = -a * omg2 * (1.0 + g2);
     let t2 = -3.0 * (-4.0 * g2 * omg2 + t1 * (1.0 + g2));
+    let t6 = -4.0 * t0 * g2 * omg2;
+    let t6_3 = t6 * t6 * t6;
+    // Independent of u: off the critical path.
+    let (inv_t0, inv_2g, inv_t6_3) = (1.0 / t0, 0.5 / g, 1.0 / t6_3);
     let t3 = g * (2.0 * u - 1.0);
     let t4 = 3.0 * g2 * (1.0 + t3) + a * (2.0 + g2 * (1.0 + (1.0 + 2.0 * g2) * t3));
     let t5 = t0 * (t1 * t2 + t4 * t4) + t1 * t1 * t1;
-    let t6 = -4.0 * t0 * g2 * omg2;
-    let t6_3 = t6 * t6 * t6;
-    let root = libm::sqrt(t5 * t5 - t6_3);
-    let arg = if t5 >= 0.0 {
-        t5 + root
+    let root = Real::sqrt(t5 * t5 - t6_3);
+    let (arg, inv_arg) = if t5 >= 0.0 {
+        let arg = t5 + root;
+        (arg, 1.0 / arg)
     } else {
-        t6_3 / (t5 - root)
+        (t6_3 / (t5 - root), (t5 - root) * inv_t6_3)
     };
     if !(arg > 1e-200 && arg < 1e200) {
         return f64::NAN;
     }
     let t7 = crate::cbrt::cbrt_moderate_f64(arg);
-    let t8 = 2.0 * (t1 + t6 / t7 + t7) / t0;
+    let t8 = 2.0 * (t1 + t6 * t7 * t7 * inv_arg + t7) * inv_t0;
     let k = 6.0 * (1.0 + g2);
-    let t9 = libm::sqrt(k + t8);
-    let d = libm::sqrt(k - t8 + 8.0 * t4 / (t0 * t9)) - t9;
-    g / 2.0 + (1.0 / (2.0 * g) - d * d / (8.0 * g))
+    let t9 = Real::sqrt(k + t8);
+    let d = Real::sqrt(k - t8 + 8.0 * t4 * inv_t0 / t9) - t9;
+    // g/2 + 1/(2g) − d²/(8g)
+    g * 0.5 + (1.0 - 0.25 * d * d) * inv_2g
 }
 
 /// `F⁻¹(u)` in f64 for `u ∈ [0, 1]`, for results of precision `T` (module
 /// docs): `(cos θ, sin θ)`.
 pub(crate) fn inverse<T: Real>(g: f64, alpha: f64, u: f64) -> (f64, f64) {
-    let p = Params::new(g, alpha);
-    if u > 0.5 {
-        from_tail(inverse_tail::<T>(p.mirrored(), 1.0 - u), true)
-    } else {
-        from_tail(inverse_tail::<T>(p, u), false)
-    }
+    // The mirrored problem's parameters directly (one `Params` built).
+    let (g, target, mirrored) = if u > 0.5 { (-g, 1.0 - u, true) } else { (g, u, false) };
+    from_tail(inverse_tail::<T>(Params::new(g, alpha), target), mirrored)
 }
 
 /// `(cos θ, sin θ)` from a tail solution `y = 1 + μ_tail` (of the mirrored
@@ -294,7 +301,7 @@ pub(crate) fn inverse<T: Real>(g: f64, alpha: f64, u: f64) -> (f64, f64) {
 #[inline(always)]
 pub(crate) fn from_tail(y: f64, mirrored: bool) -> (f64, f64) {
     let mu = if mirrored { 1.0 - y } else { y - 1.0 };
-    (mu, libm::sqrt((y * (2.0 - y)).max(0.0)))
+    (mu, Real::sqrt((y * (2.0 - y)).max(0.0)))
 }
 
 /// `y = 1 + F⁻¹(target)` without the mirror step: accurate when

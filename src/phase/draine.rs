@@ -291,7 +291,11 @@ fn seed_eq6(g: f64, a: f64, u: f64) -> f64 {
 /// docs): `(cos θ, sin θ)`.
 pub(crate) fn inverse<T: Real>(g: f64, alpha: f64, u: f64) -> (f64, f64) {
     // The mirrored problem's parameters directly (one `Params` built).
-    let (g, target, mirrored) = if u > 0.5 { (-g, 1.0 - u, true) } else { (g, u, false) };
+    let (g, target, mirrored) = if u > 0.5 {
+        (-g, 1.0 - u, true)
+    } else {
+        (g, u, false)
+    };
     from_tail(inverse_tail::<T>(Params::new(g, alpha), target), mirrored)
 }
 

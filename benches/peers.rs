@@ -1,7 +1,7 @@
 //! Peer formulas, re-implemented from their published descriptions for
 //! side-by-side measurement (not copied code). Shared by `benches/samplers.rs`
 //! and `examples/speed_accuracy.rs`. Every function maps `u ∈ [0, 1)` to
-//! `cos θ` in this crate's orientation (SPEC §0: `u = 0 → −1`).
+//! `cos θ` in this crate's orientation (`u = 0 → −1`, `+1` forward).
 #![allow(dead_code)]
 
 /// Mitsuba 3's Rayleigh sampler (`rayleigh.cpp`, Mitsuba 3, Jakob et al.):

@@ -117,8 +117,10 @@ impl<T: Real> PhaseFunction<T> for Draine<T> {
 
 /// Halley's iteration stops after a step below this, relative to the
 /// variable (`1 + μ` near the pole): the error left is about curvature ×
-/// step³, far below f32's resolution.
-pub(crate) const TOL_F32: f64 = 1e-6;
+/// step³, far below f32's resolution. (10⁻⁵ rather than 10⁻⁶ saves a third
+/// step for a few per cent of fog samples; 10⁻⁴ was measured to cost
+/// accuracy at 10 µm, 3.2·10⁻⁸ instead of 3.0·10⁻⁸.)
+pub(crate) const TOL_F32: f64 = 1e-5;
 /// For f64, steps continue to the rounding level of `μ` (there is no speed
 /// target in f64, and the last steps buy digits where `F` is flat).
 pub(crate) const TOL_F64: f64 = 1e-15;
@@ -143,6 +145,8 @@ pub(crate) struct Params {
     n: f64,
     /// `1/(1 + g)`.
     inv_s0: f64,
+    /// `α/3`.
+    alpha_3: f64,
 }
 
 /// `F(μ)`, `F'(μ)` (the density of μ) and `F''(μ)` at one point.
@@ -161,6 +165,7 @@ impl Params {
             alpha,
             n: (1.0 - g) * (1.0 + g) / (2.0 * c),
             inv_s0: 1.0 / (1.0 + g),
+            alpha_3: alpha / 3.0,
         }
     }
 
@@ -218,9 +223,31 @@ impl Params {
         let inv_s3 = inv_s * inv_s * inv_s;
         let w = 1.0 + self.alpha * mu * mu;
         Eval {
-            cdf: self.n * i0 * (1.0 + self.alpha * p / 3.0),
+            // α/3 taken once in `new`: a division here would sit on the
+            // solver's chain at every step.
+            cdf: self.n * i0 * (1.0 + self.alpha_3 * p),
             density: self.n * w * inv_s3,
             slope: self.n * inv_s3 * (2.0 * self.alpha * mu + 3.0 * g * w * inv_s * inv_s),
+        }
+    }
+}
+
+impl Params {
+    /// [`eval_y`](Self::eval_y) for `α = 0` (Henyey–Greenstein): the same
+    /// terms without the `α` ones, for the fog mixture's HG lobe.
+    #[inline(always)]
+    pub(crate) fn eval_y_hg(&self, y: f64) -> Eval {
+        let g = self.g;
+        let s = self.s(y);
+        let sum = s + (1.0 + g);
+        let q = 1.0 / (s * sum);
+        let inv_s = q * sum;
+        let e = y * q * s;
+        let inv_s3 = inv_s * inv_s * inv_s;
+        Eval {
+            cdf: self.n * (2.0 * e * inv_s * self.inv_s0),
+            density: self.n * inv_s3,
+            slope: self.n * inv_s3 * (3.0 * g * inv_s * inv_s),
         }
     }
 }

@@ -6,9 +6,9 @@
 //!
 //! Two samplers:
 //! * [`PhaseFunction::sample_cos`] is the exact inverse of the mixture's CDF,
-//!   monotone in `u` as the crate promises: the mixture's quantile lies
-//!   between the two lobes' quantiles, which bracket a safeguarded Newton
-//!   iteration on the mixture CDF (f64, solved in the smaller tail).
+//!   monotone in `u` as the crate promises: a safeguarded Halley iteration
+//!   on the mixture's CDF (f64, solved in the smaller tail), seeded from a
+//!   table of the inverse built with the object.
 //! * [`Fog::sample_cos_by_lobe`] is the paper's sampler: one uniform picks
 //!   the lobe (Draine when `u < w_D`) and is rescaled and reused inside it.
 //!   Cheaper, exact in distribution, but not monotone in `u` and not the
@@ -20,14 +20,33 @@ use crate::error::Error;
 use crate::real::Real;
 
 /// The fog mixture. Built from its four parameters or from a droplet
-/// diameter ([`Fog::from_diameter`]).
+/// diameter ([`Fog::from_diameter`]); construction also tabulates the seeds
+/// of its inverse (a few microseconds).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Fog<T> {
     g_hg: T,
     g_d: T,
     alpha: T,
     w_d: T,
+    /// Seeds of the exact inverse (see [`Seeds`]).
+    seeds: Seeds,
 }
+
+/// Intervals of the seed table of each tail.
+const SEED_K: usize = 12;
+
+/// Seeds for the mixture's inverse, one row per tail (as is, and mirrored
+/// for `u > 1/2`): `z_k = y_k / t_k`, the tail solution `y = 1 + μ` over the
+/// tail probability `t`, at `t_k = k/(2K)`, with `z_0 = 1/f(pole)` its limit
+/// (`y/t` is bounded and smooth at `t → 0`, where `y` itself falls to zero
+/// like `t`). Linear interpolation gives a seed within a few per cent (3 %
+/// at 2 µm), from which the safeguarded Halley iteration on the mixture
+/// converges in two steps for 97 % of `u` at 2 µm (three otherwise): the
+/// lobes' own quantiles, one of them an iterative solve, are no longer
+/// needed as a bracket, and the sampler costs 1.8× the paper's lobe choice
+/// instead of 5×. 26 floats: the mixture still fits in `sk_phase`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Seeds([[f32; SEED_K + 1]; 2]);
 
 /// The four fitted parameters of the fog phase function at one diameter.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -98,12 +117,7 @@ impl<T: Real> Fog<T> {
             && w_d >= T::ZERO
             && w_d <= T::ONE;
         if ok {
-            Ok(Fog {
-                g_hg,
-                g_d,
-                alpha,
-                w_d,
-            })
+            Ok(Self::from_parts(g_hg, g_d, alpha, w_d))
         } else {
             Err(Error::Domain)
         }
@@ -119,12 +133,35 @@ impl<T: Real> Fog<T> {
 
     /// A mixture from parameters already known to be valid.
     pub(crate) fn from_parts(g_hg: T, g_d: T, alpha: T, w_d: T) -> Self {
-        Fog {
+        let mut fog = Fog {
             g_hg,
             g_d,
             alpha,
             w_d,
+            seeds: Seeds([[0.0; SEED_K + 1]; 2]),
+        };
+        let (h, d, w) = fog.lobes();
+        for (row, mirrored) in fog.seeds.0.iter_mut().zip([false, true]) {
+            let (h, d) = if mirrored {
+                (h.mirrored(), d.mirrored())
+            } else {
+                (h, d)
+            };
+            let pole = mixture(h, d, w, 0.0).density;
+            for (k, z) in row.iter_mut().enumerate() {
+                *z = if k == 0 {
+                    (1.0 / pole) as f32
+                } else {
+                    let t = 0.5 * k as f64 / SEED_K as f64;
+                    (tail_by_lobes::<f64>(h, d, w, t) / t) as f32
+                };
+            }
+            // A pole density of 0 or ∞ leaves no limit: take the next node.
+            if !(row[0].is_finite() && row[0] > 0.0) {
+                row[0] = row[1];
+            }
         }
+        fog
     }
 
     /// The four parameters `(g_hg, g_d, alpha, w_d)`.
@@ -142,25 +179,24 @@ impl<T: Real> Fog<T> {
     }
 
     /// The exact inverse of the mixture's CDF, in f64 (module docs):
-    /// `(cos θ, sin θ)`, solved for `1 + μ` in the smaller tail.
+    /// `(cos θ, sin θ)`, solved for `1 + μ` in the smaller tail from the
+    /// tabulated seed.
     fn inverse(&self, u: T) -> (f64, f64) {
-        let (h, d, w) = self.lobes();
         let u = u.clamp01().to_f64();
         // Solve in the smaller tail (mirror both lobes for u > 1/2).
-        let (h, d, target, mirrored) = if u > 0.5 {
-            (h.mirrored(), d.mirrored(), 1.0 - u, true)
+        let (sign, target, mirrored) = if u > 0.5 {
+            (-1.0, 1.0 - u, true)
         } else {
-            (h, d, u, false)
+            (1.0, u, false)
         };
+        let h = Params::new(sign * self.g_hg.to_f64(), 0.0);
+        let d = Params::new(sign * self.g_d.to_f64(), self.alpha.to_f64());
+        let w = self.w_d.to_f64();
         if target.is_nan() {
             return (f64::NAN, f64::NAN);
         }
-        // The mixture's quantile lies between the lobes' quantiles.
-        let a = inverse_tail::<T>(h, target);
-        let b = inverse_tail::<T>(d, target);
-        let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
-        let seed = (1.0 - w) * a + w * b;
-        let y = solve_bracketed::<T>(|y| mixture(h, d, w, y), target, seed, lo, hi);
+        let seed = target * self.seeds.z(mirrored, target);
+        let y = solve_bracketed::<T>(|y| mixture(h, d, w, y), target, seed, 0.0, 2.0);
         from_tail(y, mirrored)
     }
 
@@ -181,10 +217,38 @@ impl<T: Real> Fog<T> {
     }
 }
 
-/// `F`, `F'`, `F''` of the mixture at `y = 1 + μ`.
+impl Seeds {
+    /// `z ≈ y/t` at tail probability `t ∈ [0, ½]` for the tail `mirrored`,
+    /// linear between the nodes.
+    #[inline(always)]
+    fn z(&self, mirrored: bool, t: f64) -> f64 {
+        let row = &self.0[mirrored as usize];
+        let s = (2 * SEED_K) as f64 * t;
+        // Saturating conversion and the min keep k in bounds (NaN gives 0).
+        let k = s.to_index().min(SEED_K - 1);
+        let f = s - k as f64;
+        match (row.get(k), row.get(k + 1)) {
+            (Some(&a), Some(&b)) => a as f64 + f * (b as f64 - a as f64),
+            _ => f64::NAN,
+        }
+    }
+}
+
+/// The tail solution `y = 1 + F⁻¹(t)`, `t ≤ ½`, bracketed by the lobes' own
+/// quantiles (the mixture's quantile lies between them): the reference the
+/// seeds are built from.
+fn tail_by_lobes<T: Real>(h: Params, d: Params, w: f64, target: f64) -> f64 {
+    let a = inverse_tail::<T>(h, target);
+    let b = inverse_tail::<T>(d, target);
+    let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
+    let seed = (1.0 - w) * a + w * b;
+    solve_bracketed::<T>(|y| mixture(h, d, w, y), target, seed, lo, hi)
+}
+
+/// `F`, `F'`, `F''` of the mixture at `y = 1 + μ` (`h` has `α = 0`).
 #[inline(always)]
 fn mixture(h: Params, d: Params, w: f64, y: f64) -> Eval {
-    let (a, b) = (h.eval_y(y), d.eval_y(y));
+    let (a, b) = (h.eval_y_hg(y), d.eval_y(y));
     let mix = |p: f64, q: f64| (1.0 - w) * p + w * q;
     Eval {
         cdf: mix(a.cdf, b.cdf),

@@ -135,7 +135,13 @@ fn pairs() -> Pairs {
     let [simplified, table_dir, iso_dir] = interleaved([
         &mut || run_once(|| rayleigh::sample_dir(RayleighMethod::Simplified, w, &mut r1).z),
         &mut || run_once(|| rayleigh::sample_dir(RayleighMethod::Table, w, &mut r2).z),
-        &mut || run_once(|| iso.sample_dir(w, f32::uniform(&mut r3), f32::uniform(&mut r3)).0.z),
+        &mut || {
+            run_once(|| {
+                iso.sample_dir(w, f32::uniform(&mut r3), f32::uniform(&mut r3))
+                    .0
+                    .z
+            })
+        },
     ]);
     let (mut b64, mut b32) = (vec![0.0f32; 2 * 65], vec![0.0f32; 33]);
     let h64 = Table::inverse(&Phase::<f32>::rayleigh(), &mut b64, 64).unwrap();

@@ -1,5 +1,7 @@
 //! Cube roots: Kahan's bit-trick seed refined by Lancaster's iteration
-//! (SPEC §7; Frisvad 2011 §4 uses the same pair for Rayleigh's direct method).
+//! (Kahan, "Computing a real cube root", 1991; Lancaster, J. Am. Stat.
+//! Assoc. 37, 1942; Frisvad 2011 §4 uses the same pair for Rayleigh's direct
+//! method).
 //!
 //! Special values: `±0`, `±∞` and NaN are returned as they are; every other
 //! input, subnormals included, goes through the seed and the steps, and

@@ -1,6 +1,6 @@
 //! Vectors and the orthonormal basis around a direction.
 //!
-//! Directions are unit propagation directions (SPEC §0): the way light
+//! Directions are unit propagation directions (the crate's convention): the way light
 //! travels, not the way pbrt's `wo` points.
 
 use crate::real::Real;

@@ -1,4 +1,4 @@
-//! Participating media (SPEC §6; pbrt-v3 §15.2): free paths, homogeneous
+//! Participating media (pbrt-v3 §15.2): free paths, homogeneous
 //! media with spectral coefficients, and unbiased delta and ratio tracking
 //! through a density grid or a caller's density function.
 //!

@@ -1,5 +1,5 @@
 //! The float trait every algorithm is written against once, and uniform floats
-//! from the caller's RNG (SPEC §0).
+//! from the caller's RNG (the crate's conventions, see the crate docs).
 //!
 //! [`Real`] is implemented for `f32` and `f64` only (it is sealed). Its math
 //! functions are `libm`'s, except [`Real::cbrt`] and [`Real::cbrt_fast`],
@@ -60,7 +60,7 @@ pub trait Real:
     fn from_f64(x: f64) -> Self;
     /// Widens (or copies) to `f64`.
     fn to_f64(self) -> f64;
-    /// A uniform float in `[0, 1)` from one `next_u64` (SPEC §0):
+    /// A uniform float in `[0, 1)` from one `next_u64` (the crate's convention):
     /// f32 `(x >> 40)·2⁻²⁴`, f64 `(x >> 11)·2⁻⁵³`.
     fn uniform<R: Rng + ?Sized>(rng: &mut R) -> Self;
     /// The same conversion from a raw 64-bit word.
@@ -106,7 +106,7 @@ pub trait Real:
     /// True for NaN.
     fn is_nan(self) -> bool;
 
-    /// Clamps to `[0, 1]`; NaN stays NaN (API.md rule 4).
+    /// Clamps to `[0, 1]`; NaN stays NaN (the crate's rule for uniforms).
     #[inline(always)]
     fn clamp01(self) -> Self {
         if self < Self::ZERO {

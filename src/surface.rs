@@ -1,4 +1,4 @@
-//! Surface scattering as solar-cell ray tracers do it (SPEC §5; SunSolve's
+//! Surface scattering as solar-cell ray tracers do it (PV Lighthouse, SunSolve's
 //! "Optical scattering" models).
 //!
 //! At an interface a ray is first reflected or transmitted (Fresnel, chosen
@@ -268,7 +268,8 @@ impl HashStream {
 }
 
 /// The scalar-scattering model's share of scattered rays on reflection,
-/// `Λ = 1 − exp(−((2π/λ) σ_rms · 2 nᵢ cos θᵢ)²)` (SPEC §5). `wavelength` λ
+/// `Λ = 1 − exp(−((2π/λ) σ_rms · 2 nᵢ cos θᵢ)²)` (SunSolve, "Optical scattering",
+/// scalar scattering model). `wavelength` λ
 /// and `sigma_rms` in one length unit; λ > 0, σ ≥ 0, `n_i > 0` finite,
 /// `|cos_i| ≤ 1`; NaN otherwise.
 pub fn scatter_fraction_reflect<T: Real>(wavelength: T, sigma_rms: T, n_i: T, cos_i: T) -> T {

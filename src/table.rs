@@ -183,7 +183,7 @@ impl<'a, T: Real> Table<'a, T> {
     }
 
     /// Binary search for `F[i] ≤ u < F[i+1]`, then linear interpolation
-    /// (Frisvad 2011, §3C, in the orientation of SPEC §0). Kept out of line
+    /// (Frisvad 2011, §3C, in the crate's orientation). Kept out of line
     /// so the O(1) Hermite lookup beside it inlines into the caller's loop.
     #[inline(never)]
     fn sample_cdf_table(&self, u: T) -> T {

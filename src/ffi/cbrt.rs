@@ -1,4 +1,4 @@
-//! Cube roots (libm-style names, API.md "Cube root").
+//! Cube roots (libm-style names).
 
 use crate::cbrt;
 

@@ -1,4 +1,4 @@
-//! Participating media (API.md "Media").
+//! Participating media.
 
 use super::{
     CRng, CVec, fits, overlaps, sk_rng, sk_status, sk_vec3, sk_vec3_f64, slice_in, slice_out,

@@ -1,4 +1,4 @@
-//! Phase functions (API.md "Phase functions").
+//! Phase functions.
 //!
 //! `sk_phase` holds a [`Phase<f32>`] (`sk_phase_f64` a `Phase<f64>`) in
 //! private storage. Every call checks the stored tag before it reads the

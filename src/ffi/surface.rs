@@ -1,4 +1,4 @@
-//! Surface scattering (API.md "Surfaces").
+//! Surface scattering.
 
 use super::{CRng, CVec, sk_rng, sk_status, sk_vec3, sk_vec3_f64, write_result};
 use crate::error::Error;

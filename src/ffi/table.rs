@@ -1,4 +1,4 @@
-//! Tables over caller-owned memory (API.md "Tables").
+//! Tables over caller-owned memory.
 
 use super::phase::{PhaseStore, load};
 use super::{sk_status, slice_in, slice_out, write_result};

@@ -1,4 +1,4 @@
-//! Draine's phase function (SPEC §3; Jendersie & d'Eon 2023, supplemental
+//! Draine's phase function (Draine, ApJ 598, 2003; Jendersie & d'Eon 2023, supplemental
 //! §2.2), with Cornette–Shanks as α = 1 and Henyey–Greenstein as α = 0:
 //!
 //! `p(μ) = (1/4π) (1 − g²)/(1 + g² − 2gμ)^{3/2} · (1 + αμ²)/(1 + α(1 + 2g²)/3)`.
@@ -8,7 +8,8 @@
 //! `α`, cancels for small `|g|` and large `α`, and is NaN at `g = 0`, at
 //! `α = 0` and (in f32) from α ≈ 1000. We solve `F(μ) = u` instead, in f64:
 //!
-//! 1. **A CDF that does not cancel** (SPEC §7): with `s = sqrt(1 + g² − 2gμ)`,
+//! 1. **A CDF that does not cancel** (our rearrangement of the
+//!    supplemental's CDF): with `s = sqrt(1 + g² − 2gμ)`,
 //!    `s0 = 1 + g`, `e = (1 + μ)/(s + s0)`,
 //!    `F = N (I0 + α I2)`, `I0 = 2e/(s s0)`,
 //!    `I2 = 2e (3 − 6 s0 e + 4 s0² e² − 2g s0 e³)/(3 s s0)`,
@@ -206,7 +207,7 @@ impl Params {
     /// square root and one division. With `q = 1/(s (s + s0))`:
     /// `1/s = q (s + s0)`, `e = y/(s + s0) = y q s`,
     /// `F = N I0 (1 + α P/3)` with `I0 = 2e/(s s0)` and
-    /// `P = 3 − 6 s0 e + 4 (s0 e)² − 2g s0 e³` (SPEC §7's `I2 = I0 P/3`),
+    /// `P = 3 − 6 s0 e + 4 (s0 e)² − 2g s0 e³` (`I2 = I0 P/3`, item 1 of the module docs),
     /// `F' = N (1 + αμ²)/s³`, `F'' = N/s³ (2αμ + 3g (1 + αμ²)/s²)`.
     #[inline(always)]
     pub(crate) fn eval_y(&self, y: f64) -> Eval {

@@ -1,4 +1,5 @@
-//! The fog phase function of Jendersie & d'Eon (2023), SPEC §4: a mixture of
+//! The fog phase function of Jendersie & d'Eon (2023, SIGGRAPH Talks and its
+//! supplemental): a mixture of
 //! Henyey–Greenstein and Draine,
 //! `p_fog = (1 − w_D) p_HG(g_HG) + w_D p_D(g_D, α)`,
 //! with their fits of the four parameters to Mie scattering by water droplets
@@ -61,7 +62,7 @@ pub struct FogParams {
     pub w_d: f64,
 }
 
-/// Jendersie & d'Eon's fits (SPEC §4) for droplet diameter `d` in µm,
+/// Jendersie & d'Eon's fits (supplemental §3) for droplet diameter `d` in µm,
 /// `0 < d ≤ 50`; [`Error::Domain`] outside (or for NaN). Natural logarithms.
 pub fn fog_fit(d: f64) -> Result<FogParams, Error> {
     if !(d > 0.0 && d <= 50.0) {
@@ -200,7 +201,7 @@ impl<T: Real> Fog<T> {
         from_tail(y, mirrored)
     }
 
-    /// The paper's sampler (SPEC §4): the Draine lobe when `u < w_D`, with
+    /// The paper's sampler (Jendersie & d'Eon 2023): the Draine lobe when `u < w_D`, with
     /// `u/w_D` reused inside it, else HG with `(u − w_D)/(1 − w_D)`. Exact in
     /// distribution; not monotone in `u`. `u` is clamped to `[0, 1]`.
     pub fn sample_cos_by_lobe(&self, u: T) -> T {

@@ -1,4 +1,4 @@
-//! Henyey–Greenstein (SPEC §2):
+//! Henyey–Greenstein (Henyey & Greenstein, ApJ 93, 1941):
 //! `p(μ) = (1/4π) (1 − g²) / (1 + g² − 2gμ)^{3/2}`, mean cosine `g`.
 //!
 //! The textbook inverse `μ = (1 + g² − s²)/(2g)`, `s = (1 − g²)/(1 − g + 2gu)`

@@ -1,6 +1,6 @@
 //! Phase functions: densities of scattering directions per steradian.
 //!
-//! Conventions (SPEC §0): `cos θ = dot(w_in, w_out)` with both vectors
+//! Conventions (as in the crate docs): `cos θ = dot(w_in, w_out)` with both vectors
 //! propagation directions, so `+1` is forward. Every phase function `p`
 //! satisfies `2π ∫₋₁¹ p(μ) dμ = 1`. [`PhaseFunction::sample_cos`] is the
 //! inverse of [`PhaseFunction::cdf`] with `F(x) = P(cos θ ≤ x)`: `u = 0 → −1`,

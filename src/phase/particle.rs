@@ -1,6 +1,6 @@
 //! Model no more than the scene needs: the cheapest phase function whose
 //! density is within a total-variation distance of the fog fit for a droplet
-//! diameter (API.md `sk_phase_particle`).
+//! diameter (`sk_phase_particle` in C).
 //!
 //! Candidates, in order of measured sampling cost (f32 `sample_cos`, ns per
 //! sample on the project machine, `cargo run --release --example

@@ -1,4 +1,4 @@
-//! Rayleigh scattering (SPEC §1; Frisvad, "Importance sampling the Rayleigh
+//! Rayleigh scattering (Frisvad, "Importance sampling the Rayleigh
 //! phase function", JOSA A 28(12), 2011).
 //!
 //! `p(μ) = 3/(16π) (1 + μ²)`, `F(x) = 1/2 + 3x/8 + x³/8`, mean cosine 0.
@@ -254,7 +254,7 @@ impl<T: Real> PhaseFunction<T> for Rayleigh {
     fn pdf(&self, cos_theta: T) -> T {
         T::from_f64(3.0 / (16.0 * core::f64::consts::PI)) * (T::ONE + cos_theta * cos_theta)
     }
-    /// `(1 + x)(x² − x + 4)/8`: SPEC's `1/2 + 3x/8 + x³/8` factored so it does
+    /// `(1 + x)(x² − x + 4)/8`: the textbook `1/2 + 3x/8 + x³/8` factored so it does
     /// not cancel near `x = −1`.
     #[inline(always)]
     fn cdf(&self, cos_theta: T) -> T {
@@ -369,7 +369,7 @@ fn reject_isotropic<T: Real, R: Rng + ?Sized>(
 }
 
 /// A Rayleigh-distributed propagation direction about the unit vector `w_in`
-/// by `method`, drawing uniforms from `rng` (SPEC §0 conversion). Inlined
+/// by `method`, drawing uniforms from `rng` (the crate's uniform conversion). Inlined
 /// always: with a constant `method` only that method's code remains.
 #[inline(always)]
 pub fn sample_dir<T: Real, R: Rng + ?Sized>(
@@ -519,7 +519,8 @@ pub fn sample_cos_fill<T: Real, R: Rng + ?Sized>(
 
 /// Rayleigh scattering cross section of one small sphere,
 /// `C_s = 128 π⁵ α² / (3 λ⁴)` with polarizability `α = a³ (n² − 1)/(n² + 2)`
-/// (SPEC §1). `wavelength` λ and `radius` a in one length unit L (result in
+/// (Bohren & Huffman, "Absorption and Scattering of Light by Small
+/// Particles", 1983, ch. 5). `wavelength` λ and `radius` a in one length unit L (result in
 /// L²); `rel_index` n is the particle's refractive index over the medium's.
 /// Valid for `a ≪ λ`. Fails with [`Error::Domain`] unless all three are
 /// finite and positive.

@@ -1,4 +1,5 @@
-//! Rayleigh scattering with depolarisation (SPEC §1), as atmospheric codes
+//! Rayleigh scattering with depolarisation (Chandrasekhar, "Radiative Transfer",
+//! 1960, ch. I), as atmospheric codes
 //! use it for real air (depolarisation factor ρ ≈ 0.028):
 //! `p(μ) = 3 (1 + 3γ + (1 − γ) μ²) / (16π (1 + 2γ))`, `γ = ρ/(2 − ρ)`.
 //!

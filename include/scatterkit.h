@@ -579,7 +579,7 @@ double sk_transmittance_f64(double sigma_t, double distance);
  pbrt's spectral homogeneous sampling: a channel chosen by u_channel, its
  free path by u_dist; *t_out is the distance (t_max for the surface
  event), *scattered_out 1 for a medium event and 0 for the surface, and
- weight_out[c] the weight per channel (sigma_s Tr / mean(sigma_t Tr) or
+ `weight_out[c]` the weight per channel (sigma_s Tr / mean(sigma_t Tr) or
  Tr / mean(Tr)). sigma_t, sigma_s and weight_out hold `channels` values;
  weight_out must not overlap the inputs (SK_ERR_DOMAIN).
  SK_ERR_SIZE for channels = 0; SK_ERR_NULL for NULL pointers;
@@ -951,16 +951,16 @@ sk_status sk_phase_sample_cos_n_f64(const sk_phase_f64 *p,
 
 /*
  Directions for n rays at once, structure of arrays (the layout of
- wavefront renderers): for each i < n, the direction
- sk_phase_sample_dir(p, (w_x[i], w_y[i], w_z[i]), u1[i], u2[i], &pdf)
- goes to (out_x[i], out_y[i], out_z[i]) and its density to pdf_out[i],
+ wavefront renderers): for each `i < n`, the direction
+ `sk_phase_sample_dir(p, (w_x[i], w_y[i], w_z[i]), u1[i], u2[i], &pdf)`
+ goes to `(out_x[i], out_y[i], out_z[i])` and its density to `pdf_out[i]`,
  bit for bit the scalar call's. pdf_out may be NULL. An output array may
  be the same array as an input (in place); any other overlap, or outputs
- overlapping each other, is SK_ERR_DOMAIN, as is any u1[i] or u2[i] NaN or
- outside [0, 1], or an unconstructed p. SK_ERR_NULL for a NULL p or a NULL
- array (other than pdf_out) with n > 0; SK_ERR_SIZE if n floats cannot
- exist. On error nothing is written; n = 0 is SK_OK. The loop runs in
- blocks of 64 through stack buffers and vectorises for the closed-form
+ overlapping each other, is SK_ERR_DOMAIN, as is any `u1[i]` or `u2[i]` NaN
+ or outside [0, 1], or an unconstructed p. SK_ERR_NULL for a NULL p or a
+ NULL array (other than pdf_out) with n > 0; SK_ERR_SIZE if n floats
+ cannot exist. On error nothing is written; n = 0 is SK_OK. The loop runs
+ in blocks of 64 through stack buffers and vectorises for the closed-form
  phase functions (isotropic, Rayleigh, HG).
  */
 sk_status sk_phase_sample_dir_n(const sk_phase *p,
@@ -1037,9 +1037,9 @@ double sk_rayleigh_scattering_coeff(double number_density,
                                     double rel_index);
 
 /*
- Rayleigh directions for n rays, structure of arrays: for each i < n in
- order, (out_x[i], out_y[i], out_z[i]) is what sk_rayleigh_sample_dir
- would give for (w_x[i], w_y[i], w_z[i]) with the same rng, bit for bit
+ Rayleigh directions for n rays, structure of arrays: for each `i < n` in
+ order, `(out_x[i], out_y[i], out_z[i])` is what sk_rayleigh_sample_dir
+ would give for `(w_x[i], w_y[i], w_z[i])` with the same rng, bit for bit
  (the generator is advanced exactly as by n scalar calls). An output may be
  the same array as an input (in place); other overlaps are SK_ERR_DOMAIN.
  SK_ERR_METHOD for an unknown method; SK_ERR_NULL for a NULL rng, NULL

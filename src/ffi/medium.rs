@@ -359,7 +359,7 @@ pub extern "C" fn sk_transmittance_f64(sigma_t: f64, distance: f64) -> f64 {
 /// pbrt's spectral homogeneous sampling: a channel chosen by u_channel, its
 /// free path by u_dist; *t_out is the distance (t_max for the surface
 /// event), *scattered_out 1 for a medium event and 0 for the surface, and
-/// weight_out[c] the weight per channel (sigma_s Tr / mean(sigma_t Tr) or
+/// `weight_out[c]` the weight per channel (sigma_s Tr / mean(sigma_t Tr) or
 /// Tr / mean(Tr)). sigma_t, sigma_s and weight_out hold `channels` values;
 /// weight_out must not overlap the inputs (SK_ERR_DOMAIN).
 /// SK_ERR_SIZE for channels = 0; SK_ERR_NULL for NULL pointers;

@@ -489,16 +489,16 @@ pub unsafe extern "C" fn sk_phase_sample_cos_n_f64(
 }
 
 /// Directions for n rays at once, structure of arrays (the layout of
-/// wavefront renderers): for each i < n, the direction
-/// sk_phase_sample_dir(p, (w_x[i], w_y[i], w_z[i]), u1[i], u2[i], &pdf)
-/// goes to (out_x[i], out_y[i], out_z[i]) and its density to pdf_out[i],
+/// wavefront renderers): for each `i < n`, the direction
+/// `sk_phase_sample_dir(p, (w_x[i], w_y[i], w_z[i]), u1[i], u2[i], &pdf)`
+/// goes to `(out_x[i], out_y[i], out_z[i])` and its density to `pdf_out[i]`,
 /// bit for bit the scalar call's. pdf_out may be NULL. An output array may
 /// be the same array as an input (in place); any other overlap, or outputs
-/// overlapping each other, is SK_ERR_DOMAIN, as is any u1[i] or u2[i] NaN or
-/// outside [0, 1], or an unconstructed p. SK_ERR_NULL for a NULL p or a NULL
-/// array (other than pdf_out) with n > 0; SK_ERR_SIZE if n floats cannot
-/// exist. On error nothing is written; n = 0 is SK_OK. The loop runs in
-/// blocks of 64 through stack buffers and vectorises for the closed-form
+/// overlapping each other, is SK_ERR_DOMAIN, as is any `u1[i]` or `u2[i]` NaN
+/// or outside [0, 1], or an unconstructed p. SK_ERR_NULL for a NULL p or a
+/// NULL array (other than pdf_out) with n > 0; SK_ERR_SIZE if n floats
+/// cannot exist. On error nothing is written; n = 0 is SK_OK. The loop runs
+/// in blocks of 64 through stack buffers and vectorises for the closed-form
 /// phase functions (isotropic, Rayleigh, HG).
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]

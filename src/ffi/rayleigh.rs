@@ -172,9 +172,9 @@ pub extern "C" fn sk_rayleigh_scattering_coeff(
     rayleigh::scattering_coeff(number_density, wavelength, radius, rel_index).unwrap_or(f64::NAN)
 }
 
-/// Rayleigh directions for n rays, structure of arrays: for each i < n in
-/// order, (out_x[i], out_y[i], out_z[i]) is what sk_rayleigh_sample_dir
-/// would give for (w_x[i], w_y[i], w_z[i]) with the same rng, bit for bit
+/// Rayleigh directions for n rays, structure of arrays: for each `i < n` in
+/// order, `(out_x[i], out_y[i], out_z[i])` is what sk_rayleigh_sample_dir
+/// would give for `(w_x[i], w_y[i], w_z[i])` with the same rng, bit for bit
 /// (the generator is advanced exactly as by n scalar calls). An output may be
 /// the same array as an input (in place); other overlaps are SK_ERR_DOMAIN.
 /// SK_ERR_METHOD for an unknown method; SK_ERR_NULL for a NULL rng, NULL

@@ -158,8 +158,8 @@ fn cardano_w<T: Real>(a: T) -> T {
 
 /// Rayleigh's inverse CDF by [`RayleighMethod::DirectMinimax`]: the same
 /// stable Cardano root as [`inverse_cdf_direct`], `μ = 2s w²/(w⁴ + w² + 1)`,
-/// with `w` from [`cardano_w`]; branch-free so batches vectorise. `u` is
-/// clamped to `[0, 1]`.
+/// with `w` from `cardano_w` (a minimax seed and Halley steps); branch-free
+/// so batches vectorise. `u` is clamped to `[0, 1]`.
 #[inline(always)]
 pub fn inverse_cdf_minimax<T: Real>(u: T) -> T {
     let s = T::TWO * (T::TWO * u.clamp01() - T::ONE);

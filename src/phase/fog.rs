@@ -17,6 +17,7 @@
 
 use super::PhaseFunction;
 use super::draine::{Eval, Params, from_tail, inverse_tail, solve_bracketed};
+use super::seeds::Seeds;
 use crate::error::Error;
 use crate::real::Real;
 
@@ -29,25 +30,13 @@ pub struct Fog<T> {
     g_d: T,
     alpha: T,
     w_d: T,
-    /// Seeds of the exact inverse (see [`Seeds`]).
+    /// Seeds of the exact inverse (`phase::seeds`): with them the Halley
+    /// iteration on the mixture converges in two steps for 97 % of `u` at
+    /// 2 µm (three otherwise), and the lobes' own quantiles, one of them an
+    /// iterative solve, are no longer needed as a bracket: 1.8× the paper's
+    /// lobe choice instead of 5×.
     seeds: Seeds,
 }
-
-/// Intervals of the seed table of each tail.
-const SEED_K: usize = 12;
-
-/// Seeds for the mixture's inverse, one row per tail (as is, and mirrored
-/// for `u > 1/2`): `z_k = y_k / t_k`, the tail solution `y = 1 + μ` over the
-/// tail probability `t`, at `t_k = k/(2K)`, with `z_0 = 1/f(pole)` its limit
-/// (`y/t` is bounded and smooth at `t → 0`, where `y` itself falls to zero
-/// like `t`). Linear interpolation gives a seed within a few per cent (3 %
-/// at 2 µm), from which the safeguarded Halley iteration on the mixture
-/// converges in two steps for 97 % of `u` at 2 µm (three otherwise): the
-/// lobes' own quantiles, one of them an iterative solve, are no longer
-/// needed as a bracket, and the sampler costs 1.8× the paper's lobe choice
-/// instead of 5×. 26 floats: the mixture still fits in `sk_phase`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Seeds([[f32; SEED_K + 1]; 2]);
 
 /// The four fitted parameters of the fog phase function at one diameter.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -139,29 +128,26 @@ impl<T: Real> Fog<T> {
             g_d,
             alpha,
             w_d,
-            seeds: Seeds([[0.0; SEED_K + 1]; 2]),
+            seeds: Seeds::NONE,
         };
         let (h, d, w) = fog.lobes();
-        for (row, mirrored) in fog.seeds.0.iter_mut().zip([false, true]) {
-            let (h, d) = if mirrored {
+        let oriented = |m: bool| {
+            if m {
                 (h.mirrored(), d.mirrored())
             } else {
                 (h, d)
-            };
-            let pole = mixture(h, d, w, 0.0).density;
-            for (k, z) in row.iter_mut().enumerate() {
-                *z = if k == 0 {
-                    (1.0 / pole) as f32
-                } else {
-                    let t = 0.5 * k as f64 / SEED_K as f64;
-                    (tail_by_lobes::<f64>(h, d, w, t) / t) as f32
-                };
             }
-            // A pole density of 0 or ∞ leaves no limit: take the next node.
-            if !(row[0].is_finite() && row[0] > 0.0) {
-                row[0] = row[1];
-            }
-        }
+        };
+        fog.seeds = Seeds::build(
+            |m| {
+                let (h, d) = oriented(m);
+                mixture(h, d, w, 0.0).density
+            },
+            |m, t| {
+                let (h, d) = oriented(m);
+                tail_by_lobes::<f64>(h, d, w, t)
+            },
+        );
         fog
     }
 
@@ -196,7 +182,7 @@ impl<T: Real> Fog<T> {
         if target.is_nan() {
             return (f64::NAN, f64::NAN);
         }
-        let seed = target * self.seeds.z(mirrored, target);
+        let seed = self.seeds.y(mirrored, target);
         let y = solve_bracketed::<T>(|y| mixture(h, d, w, y), target, seed, 0.0, 2.0);
         from_tail(y, mirrored)
     }
@@ -207,30 +193,9 @@ impl<T: Real> Fog<T> {
     pub fn sample_cos_by_lobe(&self, u: T) -> T {
         let (u, w) = (u.clamp01(), self.w_d);
         if u < w {
-            super::Draine {
-                g: self.g_d,
-                alpha: self.alpha,
-            }
-            .sample_cos(u / w)
+            super::Draine::lobe(self.g_d, self.alpha).sample_cos(u / w)
         } else {
             super::HenyeyGreenstein::from_g(self.g_hg).sample_cos((u - w) / (T::ONE - w))
-        }
-    }
-}
-
-impl Seeds {
-    /// `z ≈ y/t` at tail probability `t ∈ [0, ½]` for the tail `mirrored`,
-    /// linear between the nodes.
-    #[inline(always)]
-    fn z(&self, mirrored: bool, t: f64) -> f64 {
-        let row = &self.0[mirrored as usize];
-        let s = (2 * SEED_K) as f64 * t;
-        // Saturating conversion and the min keep k in bounds (NaN gives 0).
-        let k = s.to_index().min(SEED_K - 1);
-        let f = s - k as f64;
-        match (row.get(k), row.get(k + 1)) {
-            (Some(&a), Some(&b)) => a as f64 + f * (b as f64 - a as f64),
-            _ => f64::NAN,
         }
     }
 }
@@ -284,10 +249,7 @@ impl<T: Real> PhaseFunction<T> for Fog<T> {
     }
     /// `(1 − w_D) g_HG + w_D ⟨cos θ⟩_Draine`.
     fn mean_cosine(&self) -> T {
-        let draine = super::Draine {
-            g: self.g_d,
-            alpha: self.alpha,
-        };
+        let draine = super::Draine::lobe(self.g_d, self.alpha);
         let w = self.w_d;
         (T::ONE - w) * self.g_hg + w * draine.mean_cosine()
     }

@@ -17,6 +17,7 @@ mod isotropic;
 pub mod particle;
 pub mod rayleigh;
 mod rayleigh_depolarized;
+mod seeds;
 
 pub use draine::Draine;
 pub use fog::{Fog, FogParams, fog_fit};

@@ -174,7 +174,7 @@ pub fn choose(diameter_um: f64, tolerance: f64) -> Result<(Phase<f64>, Model, f6
             }
             Model::Draine => {
                 let (g, alpha, d) = fit_draine(&r);
-                (d <= accept).then_some((Phase::Draine(Draine { g, alpha }), d))
+                (d <= accept).then_some((Phase::Draine(Draine::from_parts(g, alpha)), d))
             }
             Model::Fog => Some((Phase::Fog(fog), 0.0)),
         };
@@ -219,10 +219,7 @@ impl<T: Real> Phase<T> {
             Phase::HenyeyGreenstein(h) => {
                 Phase::HenyeyGreenstein(HenyeyGreenstein::from_g(open(h.g())))
             }
-            Phase::Draine(d) => Phase::Draine(Draine {
-                g: open(d.g),
-                alpha: c(d.alpha),
-            }),
+            Phase::Draine(d) => Phase::Draine(Draine::from_parts(open(d.g), c(d.alpha))),
             Phase::Fog(f) => {
                 let (a, b, al, w) = f.params();
                 Phase::Fog(Fog::from_parts(open(a), open(b), c(al), c(w)))

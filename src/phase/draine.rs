@@ -141,11 +141,7 @@ impl<T: Real> PhaseFunction<T> for Draine<T> {
     #[inline]
     fn sample_cos_sin(&self, u: T) -> (T, T) {
         let (g, alpha, u) = (self.g.to_f64(), self.alpha.to_f64(), u.clamp01().to_f64());
-        let (mu, sin) = if self.seeds.is_some() {
-            inverse_seeded::<T>(g, alpha, &self.seeds, u)
-        } else {
-            inverse::<T>(g, alpha, u)
-        };
+        let (mu, sin) = inverse::<T>(g, alpha, &self.seeds, u);
         (T::from_f64(mu), T::from_f64(sin))
     }
     /// `g (1 + α(3 + 2g²)/5) / (1 + α(1 + 2g²)/3)`.
@@ -357,31 +353,23 @@ fn seed_eq6(g: f64, a: f64, u: f64) -> f64 {
 }
 
 /// `F⁻¹(u)` in f64 for `u ∈ [0, 1]`, for results of precision `T` (module
-/// docs): `(cos θ, sin θ)`.
-pub(crate) fn inverse<T: Real>(g: f64, alpha: f64, u: f64) -> (f64, f64) {
+/// docs): `(cos θ, sin θ)`. With a seed table, Halley's iteration on
+/// `[0, 2]` starts from it; without, from eq. 6 (or the `g = 0` root).
+fn inverse<T: Real>(g: f64, alpha: f64, seeds: &Seeds, u: f64) -> (f64, f64) {
     // The mirrored problem's parameters directly (one `Params` built).
     let (g, target, mirrored) = if u > 0.5 {
         (-g, 1.0 - u, true)
     } else {
         (g, u, false)
     };
-    from_tail(inverse_tail::<T>(Params::new(g, alpha), target), mirrored)
-}
-
-/// [`inverse`] with a seed table in place of eq. 6 (and its region test):
-/// Halley's iteration on `[0, 2]` from the tabulated seed.
-fn inverse_seeded<T: Real>(g: f64, alpha: f64, seeds: &Seeds, u: f64) -> (f64, f64) {
-    let (g, target, mirrored) = if u > 0.5 {
-        (-g, 1.0 - u, true)
-    } else {
-        (g, u, false)
-    };
     let p = Params::new(g, alpha);
-    let seed = seeds.y(mirrored, target);
-    from_tail(
-        solve_bracketed::<T>(|y| p.eval_y(y), target, seed, 0.0, 2.0),
-        mirrored,
-    )
+    let y = if seeds.is_some() {
+        let seed = seeds.y(mirrored, target);
+        solve_bracketed::<T>(|y| p.eval_y(y), target, seed, 0.0, 2.0)
+    } else {
+        inverse_tail::<T>(p, target)
+    };
+    from_tail(y, mirrored)
 }
 
 /// `(cos θ, sin θ)` from a tail solution `y = 1 + μ_tail` (of the mirrored

@@ -107,26 +107,19 @@ pub trait Real:
     fn is_nan(self) -> bool;
 
     /// Clamps to `[0, 1]`; NaN stays NaN (the crate's rule for uniforms).
+    /// Upper bound first, then the lower bound on that result: each step is
+    /// then one `min`/`max` instruction that passes NaN through.
     #[inline(always)]
     fn clamp01(self) -> Self {
-        if self < Self::ZERO {
-            Self::ZERO
-        } else if self > Self::ONE {
-            Self::ONE
-        } else {
-            self
-        }
+        let y = if self > Self::ONE { Self::ONE } else { self };
+        if y < Self::ZERO { Self::ZERO } else { y }
     }
-    /// Clamps to `[-1, 1]`; NaN stays NaN.
+    /// Clamps to `[-1, 1]`; NaN stays NaN. Two branch-free instructions, as
+    /// [`clamp01`](Self::clamp01).
     #[inline(always)]
     fn clamp_unit(self) -> Self {
-        if self < -Self::ONE {
-            -Self::ONE
-        } else if self > Self::ONE {
-            Self::ONE
-        } else {
-            self
-        }
+        let y = if self > Self::ONE { Self::ONE } else { self };
+        if y < -Self::ONE { -Self::ONE } else { y }
     }
     /// The larger of two values; `b` if `self` is NaN.
     #[inline(always)]

@@ -309,15 +309,15 @@ fn inverse_g0(alpha: f64, u: f64) -> f64 {
 }
 
 /// Eq. 6 of Jendersie & d'Eon (2023) in f64, with the cancellation of
-/// `t5 + sqrt(t5² − t6³)` for `t5 < 0` removed (rewritten as
-/// `t6³ / (t5 − sqrt(t5² − t6³))`) and `1 − g²` factored. It still divides
+/// `t5 + sqrt(t5² − t6³)` for `t5 < 0` removed (the other cube root of the
+/// resolvent, as in Cardano's formula; below) and `1 − g²` factored. It still divides
 /// by `g` and by `α`, so it is used where those are not small; NaN where its
 /// cube root's argument leaves `[1e-200, 1e200]`.
 ///
 /// The chain `sqrt → cbrt → sqrt → sqrt` is the sampler's latency, so every
 /// division that does not depend on `u` (by `t0`, by `2g`, by `t6³`) is taken
-/// as a reciprocal computed beside it, and `t6/t7` as `t6 t7² / arg`
-/// (`t7³ = arg`, whose reciprocal is also ready before the cube root):
+/// as a reciprocal computed beside it, and `t6/c` as `t6 c² / m`
+/// (`c³ = m`, whose reciprocal is also ready before the cube root):
 /// two divisions remain on the chain instead of six.
 #[inline]
 fn seed_eq6(g: f64, a: f64, u: f64) -> f64 {
@@ -329,22 +329,24 @@ fn seed_eq6(g: f64, a: f64, u: f64) -> f64 {
     let t6 = -4.0 * t0 * g2 * omg2;
     let t6_3 = t6 * t6 * t6;
     // Independent of u: off the critical path.
-    let (inv_t0, inv_2g, inv_t6_3) = (1.0 / t0, 0.5 / g, 1.0 / t6_3);
+    let (inv_t0, inv_2g) = (1.0 / t0, 0.5 / g);
     let t3 = g * (2.0 * u - 1.0);
     let t4 = 3.0 * g2 * (1.0 + t3) + a * (2.0 + g2 * (1.0 + (1.0 + 2.0 * g2) * t3));
     let t5 = t0 * (t1 * t2 + t4 * t4) + t1 * t1 * t1;
     let root = Real::sqrt(t5 * t5 - t6_3);
-    let (arg, inv_arg) = if t5 >= 0.0 {
-        let arg = t5 + root;
-        (arg, 1.0 / arg)
-    } else {
-        (t6_3 / (t5 - root), (t5 - root) * inv_t6_3)
-    };
-    if !(arg > 1e-200 && arg < 1e200) {
+    // The resolvent's two cube roots `c± = cbrt(t5 ± root)` have the product
+    // `t6` (the cube of the product is `t5² − root² = t6³`), and eq. 6 needs
+    // their sum `c+ + t6/c+`. Taking `c = cbrt(t5 + sign(t5) root)` instead
+    // adds like signs, so the cancellation of `t5 + root` for `t5 < 0` is
+    // gone without a branch, and `t6/c = t6 c²/m` with `1/m` computed
+    // beside the cube root.
+    let m = t5 + root.copysign(t5);
+    let inv_m = 1.0 / m;
+    if !(m.abs() > 1e-200 && m.abs() < 1e200) {
         return f64::NAN;
     }
-    let t7 = crate::cbrt::cbrt_moderate_f64(arg);
-    let t8 = 2.0 * (t1 + t6 * t7 * t7 * inv_arg + t7) * inv_t0;
+    let c = crate::cbrt::cbrt_moderate_f64(m);
+    let t8 = 2.0 * (t1 + t6 * c * c * inv_m + c) * inv_t0;
     let k = 6.0 * (1.0 + g2);
     let t9 = Real::sqrt(k + t8);
     let d = Real::sqrt(k - t8 + 8.0 * t4 * inv_t0 / t9) - t9;
@@ -356,20 +358,22 @@ fn seed_eq6(g: f64, a: f64, u: f64) -> f64 {
 /// docs): `(cos θ, sin θ)`. With a seed table, Halley's iteration on
 /// `[0, 2]` starts from it; without, from eq. 6 (or the `g = 0` root).
 fn inverse<T: Real>(g: f64, alpha: f64, seeds: &Seeds, u: f64) -> (f64, f64) {
-    // The mirrored problem's parameters directly (one `Params` built).
-    let (g, target, mirrored) = if u > 0.5 {
-        (-g, 1.0 - u, true)
-    } else {
-        (g, u, false)
-    };
-    let p = Params::new(g, alpha);
+    // The mirrored problem's parameters directly (one `Params` built),
+    // without a branch: with random u a branch on `u > 1/2` mispredicts
+    // half the time, and each miss discards the next samples' work that
+    // the processor had started. The mirror flips the sign of g and of μ.
+    let mirrored = u > 0.5;
+    let flip = (mirrored as u64) << 63;
+    let target = u.min(1.0 - u);
+    let p = Params::new(f64::from_bits(g.to_bits() ^ flip), alpha);
     let y = if seeds.is_some() {
         let seed = seeds.y(mirrored, target);
         solve_bracketed::<T>(|y| p.eval_y(y), target, seed, 0.0, 2.0)
     } else {
         inverse_tail::<T>(p, target)
     };
-    from_tail(y, mirrored)
+    let (mu, sin) = from_tail(y, false);
+    (f64::from_bits(mu.to_bits() ^ flip), sin)
 }
 
 /// `(cos θ, sin θ)` from a tail solution `y = 1 + μ_tail` (of the mirrored

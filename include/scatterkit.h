@@ -263,6 +263,22 @@ typedef uint32_t sk_track_event;
 #endif // __cplusplus
 
 /*
+ The caller's random number generator: `next_u64(state)` returns 64
+ uniformly random bits. Uniform floats are taken from the top 24 (float) or
+ 53 (double) bits.
+ */
+typedef struct {
+    /*
+     Passed to `next_u64` unchanged; may be NULL if the callback allows.
+     */
+    void *state;
+    /*
+     The generator. Must not be NULL.
+     */
+    uint64_t (*next_u64)(void *state);
+} sk_rng;
+
+/*
  A 3-vector of floats (a unit propagation direction where one is expected).
  */
 typedef struct {
@@ -367,22 +383,6 @@ typedef struct {
      */
     double max_density;
 } sk_grid_f64;
-
-/*
- The caller's random number generator: `next_u64(state)` returns 64
- uniformly random bits. Uniform floats are taken from the top 24 (float) or
- 53 (double) bits.
- */
-typedef struct {
-    /*
-     Passed to `next_u64` unchanged; may be NULL if the callback allows.
-     */
-    void *state;
-    /*
-     The generator. Must not be NULL.
-     */
-    uint64_t (*next_u64)(void *state);
-} sk_rng;
 
 /*
  The caller's medium: sigma_t at point p (per length unit), which must stay
@@ -510,6 +510,20 @@ typedef struct {
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
+
+/*
+ A uniform float in [0, 1) from one draw of `rng`, taken exactly as the
+ library's samplers take theirs: the top 24 bits of the 64-bit word times
+ 2^-24. For a caller's own decisions (Russian roulette, a lobe or light
+ choice) from the generator it also passes to the library. NaN if `rng`
+ or its callback is NULL (nothing is drawn).
+ */
+float sk_uniform(sk_rng *rng);
+
+/*
+ Double twin of `sk_uniform`: the top 53 bits times 2^-53.
+ */
+double sk_uniform_f64(sk_rng *rng);
 
 /*
  The library version, `"MAJOR.MINOR.PATCH"`, as a static NUL-terminated
@@ -678,8 +692,10 @@ sk_status sk_delta_track_f64(const sk_grid_f64 *g,
 
 /*
  Ratio tracking through the grid: an unbiased estimate of the
- transmittance from o along d over [0, t_max]. 1 for a ray that misses the
- cube; NaN for NULL or invalid arguments or after 2^20 steps.
+ transmittance from o along d over [0, t_max], with Russian roulette once
+ the weight falls below 0.05 (it survives with probability 1/4, times 4).
+ 1 for a ray that misses the cube; NaN for NULL or invalid arguments or
+ after 2^20 steps.
  */
 float sk_ratio_track(const sk_grid *g, sk_vec3 o, sk_vec3 d, float t_max, sk_rng *rng);
 
@@ -729,7 +745,7 @@ sk_status sk_delta_track_fn_f64(sk_density_fn_f64 f,
 /*
  Ratio tracking through the caller's medium (arguments as
  sk_delta_track_fn): an unbiased transmittance estimate over
- [t_min, t_max]. NaN for NULL or invalid arguments, a density outside
+ [t_min, t_max], with the roulette of sk_ratio_track. NaN for NULL or invalid arguments, a density outside
  [0, sigma_maj], or after 2^20 steps.
  */
 float sk_ratio_track_fn(sk_density_fn f,

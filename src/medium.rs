@@ -307,8 +307,10 @@ impl<'a, T: Real> Grid<'a, T> {
     }
 
     /// Ratio tracking: an unbiased estimate of the transmittance from `o`
-    /// along `d` over `[0, t_max]` (clipped to the cube). NaN for invalid
-    /// input or when [`MAX_STEPS`] is reached.
+    /// along `d` over `[0, t_max]` (clipped to the cube), with Russian
+    /// roulette once the weight falls below 0.05 (survival 1/4, weight ×4,
+    /// as pbrt-v4), so the walk ends soon after the transmittance is gone.
+    /// NaN for invalid input or when [`MAX_STEPS`] is reached.
     pub fn ratio_track<R: Rng + ?Sized>(&self, o: Vec3<T>, d: Vec3<T>, t_max: T, rng: &mut R) -> T {
         let Ok((o, d)) = ray(o, d) else {
             return T::NAN;
@@ -436,8 +438,18 @@ fn delta<T: Real, R: Rng + ?Sized>(
     Ok(tentative(sigma_t, sigma_maj, o, d, t0, t1, rng, real)?.map_or((t1, false), |t| (t, true)))
 }
 
+/// Below this weight ratio tracking plays Russian roulette (pbrt-v4's rule
+/// for transmittance: a weight under 0.05 survives with probability 1/4
+/// and is then multiplied by 4, so its expectation is unchanged).
+const ROULETTE_BELOW: f64 = 0.05;
+
 /// Ratio tracking over `[t0, t1]`: the product of `1 − σ_t/σ_maj` at the
-/// tentative collisions (stopping early once it is 0).
+/// tentative collisions, with Russian roulette once it falls below
+/// [`ROULETTE_BELOW`]. Without it, wherever `σ_maj > 2σ_t` the product
+/// decays to the smallest subnormal, rounds back onto it at every step and
+/// never reaches 0, so the walk ran on to `t1` or the step cap; with it the
+/// walk ends a few steps after the transmittance is gone (an expected
+/// `1/(1 − 1/4)` roulette draws), and the estimate stays unbiased.
 fn ratio<T: Real, R: Rng + ?Sized>(
     sigma_t: impl Fn(Vec3<T>) -> T,
     sigma_maj: T,
@@ -450,9 +462,21 @@ fn ratio<T: Real, R: Rng + ?Sized>(
     if sigma_maj.is_nan() || sigma_maj <= T::ZERO {
         return Ok(T::ONE);
     }
+    let (floor, quarter, four) = (
+        T::from_f64(ROULETTE_BELOW),
+        T::from_f64(0.25),
+        T::from_f64(4.0),
+    );
     let mut tr = T::ONE;
-    tentative(sigma_t, sigma_maj, o, d, t0, t1, rng, |_, st, _| {
+    tentative(sigma_t, sigma_maj, o, d, t0, t1, rng, |_, st, r| {
         tr *= T::ONE - st / sigma_maj;
+        if tr < floor {
+            if T::uniform(r) < quarter {
+                tr *= four;
+            } else {
+                tr = T::ZERO;
+            }
+        }
         (tr == T::ZERO).then_some(())
     })?;
     Ok(tr)
@@ -492,7 +516,8 @@ pub fn delta_track_fn<T: Real, R: Rng + ?Sized>(
 
 /// Ratio tracking through a caller's medium (arguments as
 /// [`delta_track_fn`]): an unbiased transmittance estimate over
-/// `[t_min, t_max]`. [`Error::Domain`] for invalid arguments or a density
+/// `[t_min, t_max]`, with the roulette of [`Grid::ratio_track`].
+/// [`Error::Domain`] for invalid arguments or a density
 /// outside `[0, sigma_maj]`; [`Error::Size`] at [`MAX_STEPS`].
 pub fn ratio_track_fn<T: Real, R: Rng + ?Sized>(
     sigma_t: impl Fn(Vec3<T>) -> T,

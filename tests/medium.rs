@@ -436,3 +436,69 @@ fn bad_input_is_rejected() {
     assert_eq!(w, [7.0; 2], "nothing written on error");
     let _ = medium::grid_len(1, 1, 1);
 }
+
+#[test]
+fn ratio_tracking_stops_once_the_transmittance_is_gone() {
+    // σ_maj = 10 σ_t over 10⁵ mean free paths: each tentative collision
+    // keeps 0.9 of the weight, so without roulette the product sank to the
+    // smallest subnormal and the walk ran to the step cap (10⁶ calls).
+    fn check<T: Real>() {
+        let mut r = rng(41);
+        let (o, d) = (
+            Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+            Vec3::new(T::ONE, T::ZERO, T::ZERO),
+        );
+        let (sigma_t, sigma_maj) = (T::ONE, T::from_f64(10.0));
+        for _ in 0..200 {
+            let calls = core::cell::Cell::new(0u32);
+            let density = |_| {
+                calls.set(calls.get() + 1);
+                sigma_t
+            };
+            let t_max = T::from_f64(1e5);
+            let tr = ratio_track_fn(density, sigma_maj, o, d, T::ZERO, t_max, &mut r).unwrap();
+            assert_eq!(tr, T::ZERO, "e^-1e5 is 0 in any precision");
+            assert!(calls.get() < 10_000, "{} density calls", calls.get());
+        }
+    }
+    check::<f32>();
+    check::<f64>();
+}
+
+#[test]
+fn no_valid_ray_yields_nan() {
+    // Random media (thin to dense, 2–5 nodes per axis), random rays inside,
+    // outside and axis-parallel, random lengths (some infinite): every
+    // ratio tracking estimate is finite and non-negative, every delta
+    // tracking result a distance in range.
+    let mut r = rng(42);
+    let mut u = move || f64::uniform(&mut r);
+    let mut r2 = rng(43);
+    for case in 0..2000 {
+        let n = [
+            2 + (u() * 4.0) as usize,
+            2 + (u() * 4.0) as usize,
+            2 + (u() * 4.0) as usize,
+        ];
+        let scale = 10f64.powf(4.0 * u() - 1.0);
+        let mut values = [0.0f64; 125];
+        for v in values.iter_mut() {
+            *v = if u() < 0.3 { 0.0 } else { scale * u() * u() };
+        }
+        let grid = Grid::new(&values, n[0], n[1], n[2], u(), u()).unwrap();
+        let axis = |x: f64| if x < 0.2 { 0.0 } else { 2.0 * x - 1.0 };
+        let o = Vec3::new(3.0 * u() - 1.0, 3.0 * u() - 1.0, 3.0 * u() - 1.0);
+        let d = Vec3::new(axis(u()), axis(u()), axis(u()));
+        if d.x == 0.0 && d.y == 0.0 && d.z == 0.0 {
+            continue;
+        }
+        let t_max = if u() < 0.1 { f64::INFINITY } else { 5.0 * u() };
+        let tr = grid.ratio_track(o, d, t_max, &mut r2);
+        assert!(
+            tr.is_finite() && tr >= 0.0,
+            "case {case}: transmittance {tr}"
+        );
+        let (t, _) = grid.delta_track(o, d, t_max, &mut r2).unwrap();
+        assert!(t >= 0.0 && t <= t_max, "case {case}: t = {t}");
+    }
+}

@@ -502,8 +502,10 @@ pub unsafe extern "C" fn sk_delta_track_f64(
 }
 
 /// Ratio tracking through the grid: an unbiased estimate of the
-/// transmittance from o along d over [0, t_max]. 1 for a ray that misses the
-/// cube; NaN for NULL or invalid arguments or after 2^20 steps.
+/// transmittance from o along d over [0, t_max], with Russian roulette once
+/// the weight falls below 0.05 (it survives with probability 1/4, times 4).
+/// 1 for a ray that misses the cube; NaN for NULL or invalid arguments or
+/// after 2^20 steps.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_ratio_track(
     g: *const sk_grid,
@@ -601,7 +603,7 @@ pub unsafe extern "C" fn sk_delta_track_fn_f64(
 
 /// Ratio tracking through the caller's medium (arguments as
 /// sk_delta_track_fn): an unbiased transmittance estimate over
-/// [t_min, t_max]. NaN for NULL or invalid arguments, a density outside
+/// [t_min, t_max], with the roulette of sk_ratio_track. NaN for NULL or invalid arguments, a density outside
 /// [0, sigma_maj], or after 2^20 steps.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_ratio_track_fn(

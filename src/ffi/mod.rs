@@ -174,6 +174,24 @@ impl rand_core::TryRng for CRng {
     }
 }
 
+/// A uniform float in [0, 1) from one draw of `rng`, taken exactly as the
+/// library's samplers take theirs: the top 24 bits of the 64-bit word times
+/// 2^-24. For a caller's own decisions (Russian roulette, a lobe or light
+/// choice) from the generator it also passes to the library. NaN if `rng`
+/// or its callback is NULL (nothing is drawn).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_uniform(rng: *mut sk_rng) -> f32 {
+    // SAFETY: `rng` is NULL or points to an sk_rng (module contract).
+    unsafe { CRng::from_ptr(rng) }.map_or(f32::NAN, |mut r| f32::uniform(&mut r))
+}
+
+/// Double twin of `sk_uniform`: the top 53 bits times 2^-53.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_uniform_f64(rng: *mut sk_rng) -> f64 {
+    // SAFETY: as `sk_uniform`.
+    unsafe { CRng::from_ptr(rng) }.map_or(f64::NAN, |mut r| f64::uniform(&mut r))
+}
+
 /// Writes `r`'s value through `out` on success; the status either way.
 #[inline(always)]
 pub(crate) unsafe fn write_result<V>(out: *mut V, r: Result<V, Error>) -> sk_status {

@@ -472,6 +472,20 @@ static void media(void) {
     sk_grid_f64 gd;
     sk_vec3 o = {-1, 0.5f, 0.5f}, d = {1, 0, 0};
     sk_vec3_f64 od = {-1, 0.5, 0.5}, dd = {1, 0, 0};
+    {
+        /* sk_uniform: NULL rng or callback gives NaN without drawing; one
+         * draw otherwise, converted as the samplers convert. */
+        sk_rng no_fn = {&st, NULL};
+        uint64_t before, word;
+        i = 0;
+        before = st;
+        word = before + 0x9e3779b97f4a7c15ULL;
+        CHECK(isnan(sk_uniform(NULL)) && isnan(sk_uniform_f64(NULL)));
+        CHECK(isnan(sk_uniform(&no_fn)) && isnan(sk_uniform_f64(&no_fn)) && st == before);
+        CHECK(sk_uniform(&rng) == (float)(word >> 40) * 0x1p-24f && st == word);
+        word += 0x9e3779b97f4a7c15ULL;
+        CHECK(sk_uniform_f64(&rng) == (double)(word >> 11) * 0x1p-53 && st == word);
+    }
     sk_grid_new(values, 2, 2, 2, 1, 1, &g);
     sk_grid_new_f64(valuesd, 2, 2, 2, 1, 1, &gd);
     for (i = 0; i < NS; i++) {

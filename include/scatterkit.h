@@ -57,6 +57,10 @@ typedef enum {
      An enum-valued argument was out of range.
      */
     SK_ERR_METHOD = 4,
+    /*
+     Volume tracking used up its step budget before it could answer.
+     */
+    SK_ERR_BUDGET = 5,
 } sk_status;
 
 /*
@@ -263,6 +267,33 @@ typedef uint32_t sk_track_event;
 #endif // __cplusplus
 
 /*
+ Where a grid's values sit in its box.
+ */
+enum sk_sampling
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+    /*
+     At the nodes lo + (hi - lo) i/(n - 1): the faces carry the outermost
+     values, a linear density is exact. The default.
+     */
+    SK_SAMPLING_NODES = 0,
+    /*
+     At the cell centres lo + (hi - lo)(i + 1/2)/n, as pbrt-v4 and
+     OpenVDB place voxels; held at the outermost value out to the faces.
+     */
+    SK_SAMPLING_CELLS = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_sampling sk_sampling;
+#else
+typedef uint32_t sk_sampling;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/*
  The caller's random number generator: `next_u64(state)` returns 64
  uniformly random bits. Uniform floats are taken from the top 24 (float) or
  53 (double) bits.
@@ -315,9 +346,10 @@ typedef struct {
 } sk_vec3_f64;
 
 /*
- A density grid over the unit cube (float), borrowing the caller's buffer
- of nx*ny*nz values (x fastest), which must outlive it. Build it with
- sk_grid_new; the fields are what that validated.
+ A density grid over a world box (float; the unit cube unless
+ sk_grid_set_box moves it), borrowing the caller's buffer of nx*ny*nz
+ values (x fastest), which must outlive it. Build it with sk_grid_new;
+ the fields are what that validated.
  */
 typedef struct {
     /*
@@ -348,7 +380,53 @@ typedef struct {
      The largest density value (found by sk_grid_new).
      */
     float max_density;
+    /*
+     The world box's low corner ((0, 0, 0) unless sk_grid_set_box moved it).
+     */
+    sk_vec3 lo;
+    /*
+     The world box's high corner ((1, 1, 1) by default).
+     */
+    sk_vec3 hi;
+    /*
+     Where the values sit: an sk_sampling (SK_SAMPLING_NODES by default).
+     */
+    uint32_t sampling;
 } sk_grid;
+
+/*
+ A grid of majorants (sigma_maj per length unit, >= 0) over a world box,
+ one per cell of an mx*my*mz division of it, borrowing the caller's array
+ (x fastest), which must outlive it. Build it with sk_majorants_build
+ (from a grid) or sk_majorants_new (your own bounds); the fields are what
+ that validated.
+ */
+typedef struct {
+    /*
+     The caller's majorants.
+     */
+    const float *sigma;
+    /*
+     Cells along x.
+     */
+    uint32_t mx;
+    /*
+     Cells along y.
+     */
+    uint32_t my;
+    /*
+     Cells along z.
+     */
+    uint32_t mz;
+    /*
+     The world box's low corner.
+     */
+    sk_vec3 lo;
+    /*
+     The world box's high corner.
+     */
+    sk_vec3 hi;
+} sk_majorants;
 
 /*
  A density grid (double); see `sk_grid`.
@@ -382,7 +460,157 @@ typedef struct {
      The largest density value (found by sk_grid_new_f64).
      */
     double max_density;
+    /*
+     The world box's low corner ((0, 0, 0) unless sk_grid_set_box moved it).
+     */
+    sk_vec3_f64 lo;
+    /*
+     The world box's high corner ((1, 1, 1) by default).
+     */
+    sk_vec3_f64 hi;
+    /*
+     Where the values sit: an sk_sampling (SK_SAMPLING_NODES by default).
+     */
+    uint32_t sampling;
 } sk_grid_f64;
+
+/*
+ A grid of majorants (double); see `sk_majorants`.
+ */
+typedef struct {
+    /*
+     The caller's majorants.
+     */
+    const double *sigma;
+    /*
+     Cells along x.
+     */
+    uint32_t mx;
+    /*
+     Cells along y.
+     */
+    uint32_t my;
+    /*
+     Cells along z.
+     */
+    uint32_t mz;
+    /*
+     The world box's low corner.
+     */
+    sk_vec3_f64 lo;
+    /*
+     The world box's high corner.
+     */
+    sk_vec3_f64 hi;
+} sk_majorants_f64;
+
+/*
+ What delta tracking through majorants found.
+ */
+typedef struct {
+    /*
+     Distance along d/|d|: of the real collision, or for
+     SK_TRACK_ESCAPED where the ray leaves the medium's box (within
+     [t_min, t_max]; t_min if it never enters the box).
+     */
+    float t;
+    /*
+     An sk_track_event: ESCAPED, SCATTERED or ABSORBED.
+     */
+    uint32_t event;
+    /*
+     Tentative collisions drawn (density evaluations), the real one
+     included: the cost of the walk.
+     */
+    uint32_t steps;
+} sk_track_result;
+
+/*
+ What delta tracking through majorants found (double); see `sk_track_result`.
+ */
+typedef struct {
+    /*
+     As in `sk_track_result`.
+     */
+    double t;
+    /*
+     An sk_track_event.
+     */
+    uint32_t event;
+    /*
+     Tentative collisions drawn.
+     */
+    uint32_t steps;
+} sk_track_result_f64;
+
+/*
+ What ratio tracking through majorants found.
+ */
+typedef struct {
+    /*
+     The unbiased transmittance estimate (>= 0; Russian roulette can raise
+     one estimate above the true value).
+     */
+    float tr;
+    /*
+     Tentative collisions drawn (density evaluations).
+     */
+    uint32_t steps;
+} sk_ratio_result;
+
+/*
+ What ratio tracking through majorants found (double).
+ */
+typedef struct {
+    /*
+     As in `sk_ratio_result`.
+     */
+    double tr;
+    /*
+     Tentative collisions drawn.
+     */
+    uint32_t steps;
+} sk_ratio_result_f64;
+
+/*
+ Absorption and scattering coefficients at a point (per length unit).
+ */
+typedef struct {
+    /*
+     sigma_a >= 0.
+     */
+    float sigma_a;
+    /*
+     sigma_s >= 0.
+     */
+    float sigma_s;
+} sk_coefficients;
+
+/*
+ The caller's medium for tracking through majorants: sigma_a and sigma_s
+ at point p, both >= 0 with a sum within the majorant of the cell holding
+ p. Tracking decides absorption, scattering or a null collision itself.
+ */
+typedef sk_coefficients (*sk_medium_fn)(void *ctx, sk_vec3 p);
+
+/*
+ Absorption and scattering coefficients (double).
+ */
+typedef struct {
+    /*
+     sigma_a >= 0.
+     */
+    double sigma_a;
+    /*
+     sigma_s >= 0.
+     */
+    double sigma_s;
+} sk_coefficients_f64;
+
+/*
+ The caller's medium (double); see `sk_medium_fn`.
+ */
+typedef sk_coefficients_f64 (*sk_medium_fn_f64)(void *ctx, sk_vec3_f64 p);
 
 /*
  The caller's medium: sigma_t at point p (per length unit), which must stay
@@ -566,6 +794,186 @@ void sk_onb(sk_vec3 n, sk_vec3 *b1, sk_vec3 *b2);
 void sk_onb_f64(sk_vec3_f64 n, sk_vec3_f64 *b1, sk_vec3_f64 *b2);
 
 /*
+ The number of majorants of an mx*my*mz grid (pbrt-v4 uses 16*16*16);
+ 0 for a zero dimension or a count that overflows size_t.
+ */
+size_t sk_majorant_len(uint32_t mx, uint32_t my, uint32_t mz);
+
+/*
+ Fills out[0 .. mx*my*mz] with the majorants of grid g on an mx*my*mz
+ division of its box, in one pass over the grid: each cell gets
+ (sigma_a + sigma_s) times the largest grid value whose interpolation
+ reaches into it, so the majorants bound the density everywhere. Writes
+ *maj_out borrowing out. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE for a
+ zero dimension, out_len < sk_majorant_len(mx, my, mz) or a malformed
+ grid.
+ */
+sk_status sk_majorants_build(const sk_grid *g,
+                             uint32_t mx,
+                             uint32_t my,
+                             uint32_t mz,
+                             float *out,
+                             size_t out_len,
+                             sk_majorants *maj_out);
+
+/*
+ Double twin of `sk_majorants_build`.
+ */
+sk_status sk_majorants_build_f64(const sk_grid_f64 *g,
+                                 uint32_t mx,
+                                 uint32_t my,
+                                 uint32_t mz,
+                                 double *out,
+                                 size_t out_len,
+                                 sk_majorants_f64 *maj_out);
+
+/*
+ Your own majorants over the box [lo, hi]: sigma holds mx*my*mz values
+ (x fastest), each finite and >= 0 and bounding sigma_t over its closed
+ cell (tracking reports SK_ERR_DOMAIN where it meets one that does not).
+ SK_ERR_NULL for NULL pointers; SK_ERR_SIZE for a zero dimension;
+ SK_ERR_DOMAIN for a bad value or box (see sk_grid_set_box).
+ */
+sk_status sk_majorants_new(const float *sigma,
+                           uint32_t mx,
+                           uint32_t my,
+                           uint32_t mz,
+                           sk_vec3 lo,
+                           sk_vec3 hi,
+                           sk_majorants *out);
+
+/*
+ Double twin of `sk_majorants_new`.
+ */
+sk_status sk_majorants_new_f64(const double *sigma,
+                               uint32_t mx,
+                               uint32_t my,
+                               uint32_t mz,
+                               sk_vec3_f64 lo,
+                               sk_vec3_f64 hi,
+                               sk_majorants_f64 *out);
+
+/*
+ Delta tracking through grid g walking its majorants m cell by cell, from
+ o along d (any non-zero length; distances along d/|d|) over [0, t_max]:
+ one uniform per tentative collision decides absorption
+ (xi sigma_maj < sigma_a), scattering (< sigma_a + sigma_s) or a null
+ collision. Writes *out. SK_ERR_NULL for NULL pointers or callback;
+ SK_ERR_DOMAIN for zero or non-finite vectors, t_max negative or NaN,
+ majorants over another box than the grid's, or a density above its
+ cell's majorant; SK_ERR_BUDGET after `budget` tentative collisions;
+ SK_ERR_SIZE for a malformed grid or majorants.
+ */
+sk_status sk_delta_track_majorants(const sk_majorants *m,
+                                   const sk_grid *g,
+                                   sk_vec3 o,
+                                   sk_vec3 d,
+                                   float t_max,
+                                   uint32_t budget,
+                                   sk_rng *rng,
+                                   sk_track_result *out);
+
+/*
+ Double twin of `sk_delta_track_majorants`.
+ */
+sk_status sk_delta_track_majorants_f64(const sk_majorants_f64 *m,
+                                       const sk_grid_f64 *g,
+                                       sk_vec3_f64 o,
+                                       sk_vec3_f64 d,
+                                       double t_max,
+                                       uint32_t budget,
+                                       sk_rng *rng,
+                                       sk_track_result_f64 *out);
+
+/*
+ Ratio tracking through grid g walking its majorants m (arguments and
+ errors as sk_delta_track_majorants): an unbiased transmittance estimate
+ over [0, t_max], with Russian roulette below a weight of 0.05.
+ */
+sk_status sk_ratio_track_majorants(const sk_majorants *m,
+                                   const sk_grid *g,
+                                   sk_vec3 o,
+                                   sk_vec3 d,
+                                   float t_max,
+                                   uint32_t budget,
+                                   sk_rng *rng,
+                                   sk_ratio_result *out);
+
+/*
+ Double twin of `sk_ratio_track_majorants`.
+ */
+sk_status sk_ratio_track_majorants_f64(const sk_majorants_f64 *m,
+                                       const sk_grid_f64 *g,
+                                       sk_vec3_f64 o,
+                                       sk_vec3_f64 d,
+                                       double t_max,
+                                       uint32_t budget,
+                                       sk_rng *rng,
+                                       sk_ratio_result_f64 *out);
+
+/*
+ Delta tracking through the caller's medium f(ctx, p) = (sigma_a,
+ sigma_s) walking the caller's majorants m, over [t_min, t_max]
+ (0 <= t_min <= t_max) from o along d. Events, budget and errors as
+ sk_delta_track_majorants (SK_ERR_DOMAIN also for negative coefficients
+ or t_min, t_max out of order).
+ */
+sk_status sk_delta_track_majorants_fn(sk_medium_fn f,
+                                      void *ctx,
+                                      const sk_majorants *m,
+                                      sk_vec3 o,
+                                      sk_vec3 d,
+                                      float t_min,
+                                      float t_max,
+                                      uint32_t budget,
+                                      sk_rng *rng,
+                                      sk_track_result *out);
+
+/*
+ Double twin of `sk_delta_track_majorants_fn`.
+ */
+sk_status sk_delta_track_majorants_fn_f64(sk_medium_fn_f64 f,
+                                          void *ctx,
+                                          const sk_majorants_f64 *m,
+                                          sk_vec3_f64 o,
+                                          sk_vec3_f64 d,
+                                          double t_min,
+                                          double t_max,
+                                          uint32_t budget,
+                                          sk_rng *rng,
+                                          sk_track_result_f64 *out);
+
+/*
+ Ratio tracking through the caller's medium (arguments and errors as
+ sk_delta_track_majorants_fn): an unbiased transmittance estimate over
+ [t_min, t_max].
+ */
+sk_status sk_ratio_track_majorants_fn(sk_medium_fn f,
+                                      void *ctx,
+                                      const sk_majorants *m,
+                                      sk_vec3 o,
+                                      sk_vec3 d,
+                                      float t_min,
+                                      float t_max,
+                                      uint32_t budget,
+                                      sk_rng *rng,
+                                      sk_ratio_result *out);
+
+/*
+ Double twin of `sk_ratio_track_majorants_fn`.
+ */
+sk_status sk_ratio_track_majorants_fn_f64(sk_medium_fn_f64 f,
+                                          void *ctx,
+                                          const sk_majorants_f64 *m,
+                                          sk_vec3_f64 o,
+                                          sk_vec3_f64 d,
+                                          double t_min,
+                                          double t_max,
+                                          uint32_t budget,
+                                          sk_rng *rng,
+                                          sk_ratio_result_f64 *out);
+
+/*
  Distance to the next interaction in a homogeneous medium:
  -ln(1 - u)/sigma_t (u clamped to [0, 1]; u = 1 or sigma_t = 0 gives +inf).
  NaN for a negative or non-finite sigma_t or NaN u.
@@ -624,7 +1032,8 @@ sk_status sk_homogeneous_sample_f64(const double *sigma_t,
                                     double *weight_out);
 
 /*
- A density grid over the unit cube from the caller's nx*ny*nz values (x
+ A density grid over the unit cube (sk_grid_set_box and
+ sk_grid_set_sampling change that) from the caller's nx*ny*nz values (x
  fastest; borrowed, not copied), sampled at the grid nodes and
  interpolated trilinearly; sigma_t(p) = (sigma_a + sigma_s) density(p).
  Scans the values once. SK_ERR_NULL for NULL density or out; SK_ERR_SIZE
@@ -652,8 +1061,32 @@ sk_status sk_grid_new_f64(const double *density,
                           sk_grid_f64 *out);
 
 /*
- The interpolated density at p (0 outside the unit cube); NaN for a NULL
- or malformed grid.
+ Places the grid in the world box [lo, hi] (from the unit cube). On
+ failure the grid is unchanged: SK_ERR_NULL for NULL g; SK_ERR_DOMAIN
+ unless every coordinate is finite and lo < hi on every axis with a
+ finite extent whose reciprocal is finite.
+ */
+sk_status sk_grid_set_box(sk_grid *g, sk_vec3 lo, sk_vec3 hi);
+
+/*
+ Double twin of `sk_grid_set_box`.
+ */
+sk_status sk_grid_set_box_f64(sk_grid_f64 *g, sk_vec3_f64 lo, sk_vec3_f64 hi);
+
+/*
+ Sets where the values sit (an sk_sampling). SK_ERR_NULL for NULL g;
+ SK_ERR_METHOD for an unknown value (the grid is then unchanged).
+ */
+sk_status sk_grid_set_sampling(sk_grid *g, uint32_t sampling);
+
+/*
+ Double twin of `sk_grid_set_sampling`.
+ */
+sk_status sk_grid_set_sampling_f64(sk_grid_f64 *g, uint32_t sampling);
+
+/*
+ The interpolated density at p (0 outside the grid's box); NaN for a
+ NULL or malformed grid.
  */
 float sk_grid_density(const sk_grid *g, sk_vec3 p);
 
@@ -664,9 +1097,9 @@ double sk_grid_density_f64(const sk_grid_f64 *g, sk_vec3_f64 p);
 
 /*
  Delta (Woodcock) tracking through the grid from o along d (any non-zero
- length; distances along d/|d|) over [0, t_max], clipped to the unit cube.
+ length; distances along d/|d|) over [0, t_max], clipped to the grid's box.
  Writes the distance and an sk_track_event (ESCAPED with t_max, SCATTERED
- or ABSORBED). A zero majorant or a ray that misses the cube escapes at
+ or ABSORBED). A zero majorant or a ray that misses the box escapes at
  once. SK_ERR_NULL for NULL pointers or callback; SK_ERR_DOMAIN for zero
  or non-finite vectors or t_max negative or NaN; SK_ERR_SIZE after 2^20
  steps or for a malformed grid.
@@ -694,7 +1127,7 @@ sk_status sk_delta_track_f64(const sk_grid_f64 *g,
  Ratio tracking through the grid: an unbiased estimate of the
  transmittance from o along d over [0, t_max], with Russian roulette once
  the weight falls below 0.05 (it survives with probability 1/4, times 4).
- 1 for a ray that misses the cube; NaN for NULL or invalid arguments or
+ 1 for a ray that misses the box; NaN for NULL or invalid arguments or
  after 2^20 steps.
  */
 float sk_ratio_track(const sk_grid *g, sk_vec3 o, sk_vec3 d, float t_max, sk_rng *rng);

@@ -16,6 +16,10 @@ pub enum Error {
     Size,
     /// An enum-valued input (sampling method, table kind, ...) is out of range.
     Method,
+    /// An iterative walk (volume tracking) used up its step budget before it
+    /// could answer: the medium is optically too thick for the budget along
+    /// this ray, or its majorant too loose. No result is biased by a cut.
+    Budget,
 }
 
 impl fmt::Display for Error {
@@ -24,6 +28,7 @@ impl fmt::Display for Error {
             Error::Domain => "parameter outside its domain",
             Error::Size => "buffer or count of the wrong size",
             Error::Method => "unknown method or kind",
+            Error::Budget => "step budget used up",
         })
     }
 }

@@ -51,6 +51,7 @@ pub mod azimuth;
 pub mod cbrt;
 mod error;
 pub mod geometry;
+pub mod majorant;
 pub mod medium;
 pub mod phase;
 pub mod real;
@@ -62,7 +63,8 @@ pub mod ffi;
 
 pub use error::Error;
 pub use geometry::{Vec3, onb};
-pub use medium::Grid;
+pub use majorant::Majorants;
+pub use medium::{Grid, Sampling};
 pub use phase::rayleigh;
 pub use phase::{
     Draine, Fog, HenyeyGreenstein, Isotropic, Phase, PhaseFunction, Rayleigh, RayleighDepolarized,

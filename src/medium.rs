@@ -12,7 +12,7 @@
 //! (ratio tracking) rather than a biased answer. A zero majorant, or a ray
 //! that misses the medium, returns at once: no interaction, transmittance 1.
 
-use crate::error::Error;
+use crate::error::{Error, try_from_u32};
 use crate::geometry::Vec3;
 use crate::real::Real;
 use rand_core::Rng;
@@ -41,7 +41,7 @@ pub fn free_path<T: Real>(sigma_t: T, u: T) -> T {
 /// `−ln1p(−u)/σ_t` without [`free_path`]'s checks, for the tracking loops,
 /// whose majorant is checked once (`σ_t > 0`, finite) and whose `u ∈ [0, 1)`.
 #[inline(always)]
-fn exponential_step<T: Real>(sigma_t: T, u: T) -> T {
+pub(crate) fn exponential_step<T: Real>(sigma_t: T, u: T) -> T {
     -(-u).ln_1p() / sigma_t
 }
 
@@ -132,12 +132,29 @@ pub enum Event {
     Collided = 3,
 }
 
-/// A density grid over the unit cube `[0, 1]³`, borrowed from the caller:
-/// `nx·ny·nz` non-negative values, x fastest (`i + nx (j + ny k)`), sampled
-/// at the grid nodes (`x_i = i/(nx − 1)`; a dimension of 1 is constant along
-/// its axis) and interpolated trilinearly, so a density linear in x, y, z is
-/// represented exactly. (pbrt samples at cell centres instead.) Zero outside
-/// the cube. `σ_t(p) = (σ_a + σ_s) density(p)`.
+/// Where a grid's values sit in its box.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Sampling {
+    /// At the nodes: value `i` at `lo + (hi − lo) i/(n − 1)`, so the faces
+    /// carry the outermost values and a density linear in x, y, z is
+    /// represented exactly. The default.
+    Nodes = 0,
+    /// At the cell centres: value `i` at `lo + (hi − lo)(i + ½)/n`, as
+    /// pbrt-v4 and OpenVDB place voxel values. Between the outermost centres
+    /// and the faces the density is held at the outermost value (pbrt-v4
+    /// instead blends towards 0 there).
+    Cells = 1,
+}
+
+try_from_u32!(Sampling: Nodes, Cells);
+
+/// A density grid over an axis-aligned box (the unit cube `[0, 1]³` unless
+/// [`Grid::with_box`] says otherwise), borrowed from the caller:
+/// `nx·ny·nz` non-negative values, x fastest (`i + nx (j + ny k)`), placed
+/// at the nodes of the box or at its cell centres ([`Sampling`]; a
+/// dimension of 1 is constant along its axis) and interpolated
+/// trilinearly. Zero outside the box. `σ_t(p) = (σ_a + σ_s) density(p)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Grid<'a, T> {
     density: &'a [T],
@@ -145,6 +162,9 @@ pub struct Grid<'a, T> {
     sigma_a: T,
     sigma_s: T,
     max_density: T,
+    lo: Vec3<T>,
+    hi: Vec3<T>,
+    sampling: Sampling,
 }
 
 impl<'a, T: Real> Grid<'a, T> {
@@ -192,6 +212,9 @@ impl<'a, T: Real> Grid<'a, T> {
             sigma_a,
             sigma_s,
             max_density,
+            lo: Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+            hi: Vec3::new(T::ONE, T::ONE, T::ONE),
+            sampling: Sampling::Nodes,
         };
         if !grid.majorant().is_finite() {
             return Err(Error::Domain);
@@ -202,12 +225,15 @@ impl<'a, T: Real> Grid<'a, T> {
     /// A grid from parts a previous [`Grid::new`] validated (the C layer
     /// keeps them in `sk_grid`). `density` must hold `nx·ny·nz` values.
     #[cfg_attr(not(feature = "ffi"), allow(dead_code))]
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn from_parts(
         density: &'a [T],
         n: [usize; 3],
         sigma_a: T,
         sigma_s: T,
         max_density: T,
+        (lo, hi): (Vec3<T>, Vec3<T>),
+        sampling: Sampling,
     ) -> Self {
         Grid {
             density,
@@ -215,34 +241,92 @@ impl<'a, T: Real> Grid<'a, T> {
             sigma_a,
             sigma_s,
             max_density,
+            lo,
+            hi,
+            sampling,
         }
     }
 
-    /// The interpolated density at `p` (0 outside the unit cube, NaN for a
-    /// NaN coordinate).
+    /// The grid placed in the world box `[lo, hi]` instead of the unit cube.
+    /// [`Error::Domain`] unless every coordinate is finite and `lo < hi` on
+    /// every axis with a finite extent whose reciprocal is finite.
+    pub fn with_box(self, lo: Vec3<T>, hi: Vec3<T>) -> Result<Self, Error> {
+        if valid_box(lo, hi) {
+            Ok(Grid { lo, hi, ..self })
+        } else {
+            Err(Error::Domain)
+        }
+    }
+
+    /// The grid with its values placed as `sampling` says.
+    pub fn with_sampling(self, sampling: Sampling) -> Self {
+        Grid { sampling, ..self }
+    }
+
+    /// The world box `(lo, hi)` the grid spans.
+    pub fn bounds(&self) -> (Vec3<T>, Vec3<T>) {
+        (self.lo, self.hi)
+    }
+
+    /// Where the values sit.
+    pub fn sampling(&self) -> Sampling {
+        self.sampling
+    }
+
+    /// Values per axis `[nx, ny, nz]`.
+    pub fn dims(&self) -> [usize; 3] {
+        self.n
+    }
+
+    /// The coefficients per unit density `(σ_a, σ_s)`.
+    pub fn coefficients(&self) -> (T, T) {
+        (self.sigma_a, self.sigma_s)
+    }
+
+    /// The value at lattice index `(i, j, k)` (in bounds).
+    #[inline(always)]
+    pub(crate) fn value(&self, i: usize, j: usize, k: usize) -> T {
+        let [nx, ny, _] = self.n;
+        // In bounds by construction; `get` lets the compiler see it.
+        self.density
+            .get(i + nx * (j + ny * k))
+            .copied()
+            .unwrap_or(T::NAN)
+    }
+
+    /// The lattice coordinate of local coordinate `x ∈ [0, 1]` on `n`
+    /// values: `x (n − 1)` for nodes, `x n − ½` held inside `[0, n − 1]`
+    /// for cell centres.
+    #[inline(always)]
+    pub(crate) fn lattice(&self, x: T, n: usize) -> T {
+        let top = T::from_index(n - 1);
+        match self.sampling {
+            Sampling::Nodes => x * top,
+            Sampling::Cells => (x * T::from_index(n) - T::HALF).max_of(T::ZERO).min_of(top),
+        }
+    }
+
+    /// The interpolated density at `p` (0 outside the box, NaN for a NaN
+    /// coordinate).
     pub fn density(&self, p: Vec3<T>) -> T {
         if p.x.is_nan() || p.y.is_nan() || p.z.is_nan() {
             return T::NAN;
         }
+        let l = to_local(p, self.lo, self.hi);
         let inside = |x: T| x >= T::ZERO && x <= T::ONE;
-        if !(inside(p.x) && inside(p.y) && inside(p.z)) {
+        if !(inside(l.x) && inside(l.y) && inside(l.z)) {
             return T::ZERO;
         }
         let [nx, ny, nz] = self.n;
-        let (ix, fx) = node(p.x, nx);
-        let (iy, fy) = node(p.y, ny);
-        let (iz, fz) = node(p.z, nz);
+        let (ix, fx) = node(self.lattice(l.x, nx), nx);
+        let (iy, fy) = node(self.lattice(l.y, ny), ny);
+        let (iz, fz) = node(self.lattice(l.z, nz), nz);
         let at = |i: usize, j: usize, k: usize| {
-            let (i, j, k) = (
+            self.value(
                 (ix + i).min(nx - 1),
                 (iy + j).min(ny - 1),
                 (iz + k).min(nz - 1),
-            );
-            // In bounds by construction; `get` lets the compiler see it.
-            self.density
-                .get(i + nx * (j + ny * k))
-                .copied()
-                .unwrap_or(T::NAN)
+            )
         };
         let lerp = |a: T, b: T, t: T| a + (b - a) * t;
         let x00 = lerp(at(0, 0, 0), at(1, 0, 0), fx);
@@ -276,7 +360,7 @@ impl<'a, T: Real> Grid<'a, T> {
     }
 
     /// Delta (Woodcock) tracking from `o` along `d` over `[0, t_max]`, the
-    /// ray first clipped to the unit cube. Returns the distance and the event
+    /// ray first clipped to the grid's box. Returns the distance and the event
     /// (a real collision scatters with probability σ_s/σ_t). [`Error::Domain`]
     /// for a zero or non-finite `d` or `o`, or `t_max` negative or NaN;
     /// [`Error::Size`] when [`MAX_STEPS`] is reached.
@@ -291,7 +375,7 @@ impl<'a, T: Real> Grid<'a, T> {
         if !non_negative(t_max) {
             return Err(Error::Domain);
         }
-        let Some((t0, t1)) = clip_unit_cube(o, d, T::ZERO, t_max) else {
+        let Some((t0, t1)) = clip_box(o, d, self.lo, self.hi, T::ZERO, t_max) else {
             return Ok((t_max, Event::Escaped));
         };
         let (t, hit) = delta(|p| self.sigma_t(p), self.majorant(), o, d, t0, t1, rng)?;
@@ -307,7 +391,7 @@ impl<'a, T: Real> Grid<'a, T> {
     }
 
     /// Ratio tracking: an unbiased estimate of the transmittance from `o`
-    /// along `d` over `[0, t_max]` (clipped to the cube), with Russian
+    /// along `d` over `[0, t_max]` (clipped to the box), with Russian
     /// roulette once the weight falls below 0.05 (survival 1/4, weight ×4,
     /// as pbrt-v4), so the walk ends soon after the transmittance is gone.
     /// NaN for invalid input or when [`MAX_STEPS`] is reached.
@@ -318,7 +402,7 @@ impl<'a, T: Real> Grid<'a, T> {
         if !non_negative(t_max) {
             return T::NAN;
         }
-        let Some((t0, t1)) = clip_unit_cube(o, d, T::ZERO, t_max) else {
+        let Some((t0, t1)) = clip_box(o, d, self.lo, self.hi, T::ZERO, t_max) else {
             return T::ONE;
         };
         ratio(|p| self.sigma_t(p), self.majorant(), o, d, t0, t1, rng).unwrap_or(T::NAN)
@@ -333,15 +417,35 @@ pub fn grid_len(nx: usize, ny: usize, nz: usize) -> Option<usize> {
     nx.checked_mul(ny)?.checked_mul(nz)
 }
 
-/// Node index and fraction of coordinate `x ∈ [0, 1]` on `n` nodes.
+/// Index and fraction of lattice coordinate `s ∈ [0, n − 1]` on `n` values.
 #[inline(always)]
-fn node<T: Real>(x: T, n: usize) -> (usize, T) {
+fn node<T: Real>(s: T, n: usize) -> (usize, T) {
     if n == 1 {
         return (0, T::ZERO);
     }
-    let s = x * T::from_index(n - 1);
     let i = s.to_index().min(n - 2);
     (i, s - T::from_index(i))
+}
+
+/// `p` in the coordinates of the box `[lo, hi]` (the box is `[0, 1]³`
+/// there; exact at the faces).
+#[inline(always)]
+pub(crate) fn to_local<T: Real>(p: Vec3<T>, lo: Vec3<T>, hi: Vec3<T>) -> Vec3<T> {
+    Vec3::new(
+        (p.x - lo.x) / (hi.x - lo.x),
+        (p.y - lo.y) / (hi.y - lo.y),
+        (p.z - lo.z) / (hi.z - lo.z),
+    )
+}
+
+/// Finite corners with `lo < hi` on every axis and a finite extent whose
+/// reciprocal is finite too.
+pub(crate) fn valid_box<T: Real>(lo: Vec3<T>, hi: Vec3<T>) -> bool {
+    let axis = |a: T, b: T| {
+        let e = b - a;
+        a.is_finite() && b.is_finite() && e > T::ZERO && e.is_finite() && (T::ONE / e).is_finite()
+    };
+    axis(lo.x, hi.x) && axis(lo.y, hi.y) && axis(lo.z, hi.z)
 }
 
 /// `x ≥ 0`, false for NaN.
@@ -361,16 +465,38 @@ fn ray<T: Real>(o: Vec3<T>, d: Vec3<T>) -> Result<(Vec3<T>, Vec3<T>), Error> {
 /// The part `[t0, t1]` of `[t_min, t_max]` inside the unit cube (slab
 /// method), or `None` if the ray misses it there.
 pub fn clip_unit_cube<T: Real>(o: Vec3<T>, d: Vec3<T>, t_min: T, t_max: T) -> Option<(T, T)> {
+    let (lo, hi) = (
+        Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+        Vec3::new(T::ONE, T::ONE, T::ONE),
+    );
+    clip_box(o, d, lo, hi, t_min, t_max)
+}
+
+/// The part `[t0, t1]` of `[t_min, t_max]` inside the box `[lo, hi]` (slab
+/// method), or `None` if the ray misses it there. A direction component of
+/// 0 keeps its axis only if the origin lies within that slab.
+pub fn clip_box<T: Real>(
+    o: Vec3<T>,
+    d: Vec3<T>,
+    lo: Vec3<T>,
+    hi: Vec3<T>,
+    t_min: T,
+    t_max: T,
+) -> Option<(T, T)> {
     let (mut t0, mut t1) = (t_min, t_max);
-    for (oc, dc) in [(o.x, d.x), (o.y, d.y), (o.z, d.z)] {
+    for (oc, dc, l, h) in [
+        (o.x, d.x, lo.x, hi.x),
+        (o.y, d.y, lo.y, hi.y),
+        (o.z, d.z, lo.z, hi.z),
+    ] {
         if dc == T::ZERO {
-            if !(oc >= T::ZERO && oc <= T::ONE) {
+            if !(oc >= l && oc <= h) {
                 return None;
             }
             continue;
         }
         let inv = T::ONE / dc;
-        let (a, b) = ((T::ZERO - oc) * inv, (T::ONE - oc) * inv);
+        let (a, b) = ((l - oc) * inv, (h - oc) * inv);
         let (near, far) = if a < b { (a, b) } else { (b, a) };
         t0 = t0.max_of(near);
         if far < t1 {
@@ -441,7 +567,7 @@ fn delta<T: Real, R: Rng + ?Sized>(
 /// Below this weight ratio tracking plays Russian roulette (pbrt-v4's rule
 /// for transmittance: a weight under 0.05 survives with probability 1/4
 /// and is then multiplied by 4, so its expectation is unchanged).
-const ROULETTE_BELOW: f64 = 0.05;
+pub(crate) const ROULETTE_BELOW: f64 = 0.05;
 
 /// Ratio tracking over `[t0, t1]`: the product of `1 − σ_t/σ_maj` at the
 /// tentative collisions, with Russian roulette once it falls below

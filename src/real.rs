@@ -126,6 +126,11 @@ pub trait Real:
     fn max_of(self, b: Self) -> Self {
         if self > b { self } else { b }
     }
+    /// The smaller of two values; `b` if `self` is NaN.
+    #[inline(always)]
+    fn min_of(self, b: Self) -> Self {
+        if self < b { self } else { b }
+    }
 }
 
 macro_rules! impl_real {

@@ -62,6 +62,13 @@ fn example_fog_slab() {
 }
 
 #[test]
+fn example_cloud_majorants() {
+    let out = run_source("c_examples/cloud_majorants.c", false);
+    assert!(out.contains("fewer density evaluations"), "{out}");
+    assert!(out.trim_end().ends_with("ok"), "{out}");
+}
+
+#[test]
 fn bad_input_from_c() {
     let exe = common::cbuild::build_program(&root().join("tests/c/bad_input.c"), false);
     let (code, out) = run(&exe);

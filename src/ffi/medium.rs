@@ -5,7 +5,8 @@ use super::{
     write_result,
 };
 use crate::error::Error;
-use crate::medium::{self, Event, Grid, grid_len};
+use crate::geometry::Vec3;
+use crate::medium::{self, Event, Grid, Sampling, grid_len, valid_box};
 use crate::real::Real;
 use core::ffi::c_void;
 
@@ -36,9 +37,27 @@ pub type sk_density_fn = Option<unsafe extern "C" fn(ctx: *mut c_void, p: sk_vec
 /// The caller's medium (double); see `sk_density_fn`.
 pub type sk_density_fn_f64 = Option<unsafe extern "C" fn(ctx: *mut c_void, p: sk_vec3_f64) -> f64>;
 
-/// A density grid over the unit cube (float), borrowing the caller's buffer
-/// of nx*ny*nz values (x fastest), which must outlive it. Build it with
-/// sk_grid_new; the fields are what that validated.
+/// Where a grid's values sit in its box.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug)]
+pub enum sk_sampling {
+    /// At the nodes lo + (hi - lo) i/(n - 1): the faces carry the outermost
+    /// values, a linear density is exact. The default.
+    SK_SAMPLING_NODES = 0,
+    /// At the cell centres lo + (hi - lo)(i + 1/2)/n, as pbrt-v4 and
+    /// OpenVDB place voxels; held at the outermost value out to the faces.
+    SK_SAMPLING_CELLS = 1,
+}
+
+same_values!(sk_sampling = Sampling:
+    SK_SAMPLING_NODES = Nodes,
+    SK_SAMPLING_CELLS = Cells,
+);
+
+/// A density grid over a world box (float; the unit cube unless
+/// sk_grid_set_box moves it), borrowing the caller's buffer of nx*ny*nz
+/// values (x fastest), which must outlive it. Build it with sk_grid_new;
+/// the fields are what that validated.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct sk_grid {
@@ -56,6 +75,12 @@ pub struct sk_grid {
     pub sigma_s: f32,
     /// The largest density value (found by sk_grid_new).
     pub max_density: f32,
+    /// The world box's low corner ((0, 0, 0) unless sk_grid_set_box moved it).
+    pub lo: sk_vec3,
+    /// The world box's high corner ((1, 1, 1) by default).
+    pub hi: sk_vec3,
+    /// Where the values sit: an sk_sampling (SK_SAMPLING_NODES by default).
+    pub sampling: u32,
 }
 
 /// A density grid (double); see `sk_grid`.
@@ -76,21 +101,25 @@ pub struct sk_grid_f64 {
     pub sigma_s: f64,
     /// The largest density value (found by sk_grid_new_f64).
     pub max_density: f64,
+    /// The world box's low corner ((0, 0, 0) unless sk_grid_set_box moved it).
+    pub lo: sk_vec3_f64,
+    /// The world box's high corner ((1, 1, 1) by default).
+    pub hi: sk_vec3_f64,
+    /// Where the values sit: an sk_sampling (SK_SAMPLING_NODES by default).
+    pub sampling: u32,
 }
 
 /// A C grid type and its float.
 pub(crate) trait GridStore: Copy {
     type T: Real;
     type V: CVec<T = Self::T>;
-    fn pack(
-        density: *const Self::T,
-        n: [u32; 3],
-        sigma_a: Self::T,
-        sigma_s: Self::T,
-        max: Self::T,
-    ) -> Self;
+    fn pack(density: *const Self::T, n: [u32; 3], sigma: (Self::T, Self::T), max: Self::T) -> Self;
     #[allow(clippy::type_complexity)]
     fn unpack(&self) -> (*const Self::T, [u32; 3], Self::T, Self::T, Self::T);
+    /// The box and the sampling field.
+    fn placement(&self) -> (Self::V, Self::V, u32);
+    fn set_box(&mut self, lo: Self::V, hi: Self::V);
+    fn set_sampling(&mut self, s: u32);
 }
 
 macro_rules! impl_grid_store {
@@ -98,21 +127,18 @@ macro_rules! impl_grid_store {
         impl GridStore for $c {
             type T = $t;
             type V = $v;
-            fn pack(
-                density: *const $t,
-                n: [u32; 3],
-                sigma_a: $t,
-                sigma_s: $t,
-                max_density: $t,
-            ) -> Self {
+            fn pack(density: *const $t, n: [u32; 3], sigma: ($t, $t), max_density: $t) -> Self {
                 Self {
                     density,
                     nx: n[0],
                     ny: n[1],
                     nz: n[2],
-                    sigma_a,
-                    sigma_s,
+                    sigma_a: sigma.0,
+                    sigma_s: sigma.1,
                     max_density,
+                    lo: <$v>::from_vec(Vec3::new(0.0, 0.0, 0.0)),
+                    hi: <$v>::from_vec(Vec3::new(1.0, 1.0, 1.0)),
+                    sampling: sk_sampling::SK_SAMPLING_NODES as u32,
                 }
             }
             fn unpack(&self) -> (*const $t, [u32; 3], $t, $t, $t) {
@@ -124,6 +150,16 @@ macro_rules! impl_grid_store {
                     self.max_density,
                 )
             }
+            fn placement(&self) -> ($v, $v, u32) {
+                (self.lo, self.hi, self.sampling)
+            }
+            fn set_box(&mut self, lo: $v, hi: $v) {
+                self.lo = lo;
+                self.hi = hi;
+            }
+            fn set_sampling(&mut self, s: u32) {
+                self.sampling = s;
+            }
         }
     };
 }
@@ -131,14 +167,29 @@ impl_grid_store!(sk_grid, f32, sk_vec3);
 impl_grid_store!(sk_grid_f64, f64, sk_vec3_f64);
 
 /// The Rust grid behind a C grid, or None for NULL or malformed fields.
-unsafe fn load<'a, S: GridStore>(g: *const S) -> Option<Grid<'a, S::T>> {
+pub(crate) unsafe fn load<'a, S: GridStore>(g: *const S) -> Option<Grid<'a, S::T>> {
     // SAFETY: a non-NULL g points to a grid built by sk_grid_new, whose
     // buffer holds nx*ny*nz values (module contract).
-    let (ptr, n, sa, ss, max) = unsafe { g.as_ref() }?.unpack();
+    let g = unsafe { g.as_ref() }?;
+    let (ptr, n, sa, ss, max) = g.unpack();
+    let (lo, hi, sampling) = g.placement();
+    let (lo, hi) = (lo.to_vec(), hi.to_vec());
+    let sampling = Sampling::try_from(sampling).ok()?;
+    if !valid_box(lo, hi) {
+        return None;
+    }
     let count = grid_len(n[0] as usize, n[1] as usize, n[2] as usize)?;
     let density = unsafe { slice_in(ptr, count) }.ok()?;
     let n = [n[0] as usize, n[1] as usize, n[2] as usize];
-    Some(Grid::from_parts(density, n, sa, ss, max))
+    Some(Grid::from_parts(
+        density,
+        n,
+        sa,
+        ss,
+        max,
+        (lo, hi),
+        sampling,
+    ))
 }
 
 unsafe fn grid_new<S: GridStore>(
@@ -166,8 +217,32 @@ unsafe fn grid_new<S: GridStore>(
         sigma_a,
         sigma_s,
     )
-    .map(|(_, max)| S::pack(density, n, sigma_a, sigma_s, max));
+    .map(|(_, max)| S::pack(density, n, (sigma_a, sigma_s), max));
     unsafe { write_result(out, r) }
+}
+
+unsafe fn grid_set_box<S: GridStore>(g: *mut S, lo: S::V, hi: S::V) -> sk_status {
+    // SAFETY: a non-NULL g points to a writable grid (module contract).
+    let Some(g) = (unsafe { g.as_mut() }) else {
+        return sk_status::SK_ERR_NULL;
+    };
+    if !valid_box(lo.to_vec(), hi.to_vec()) {
+        return sk_status::SK_ERR_DOMAIN;
+    }
+    g.set_box(lo, hi);
+    sk_status::SK_OK
+}
+
+unsafe fn grid_set_sampling<S: GridStore>(g: *mut S, sampling: u32) -> sk_status {
+    // SAFETY: as in grid_set_box.
+    let Some(g) = (unsafe { g.as_mut() }) else {
+        return sk_status::SK_ERR_NULL;
+    };
+    if Sampling::try_from(sampling).is_err() {
+        return sk_status::SK_ERR_METHOD;
+    }
+    g.set_sampling(sampling);
+    sk_status::SK_OK
 }
 
 /// Writes a tracking result.
@@ -420,7 +495,8 @@ pub unsafe extern "C" fn sk_homogeneous_sample_f64(
     }
 }
 
-/// A density grid over the unit cube from the caller's nx*ny*nz values (x
+/// A density grid over the unit cube (sk_grid_set_box and
+/// sk_grid_set_sampling change that) from the caller's nx*ny*nz values (x
 /// fastest; borrowed, not copied), sampled at the grid nodes and
 /// interpolated trilinearly; sigma_t(p) = (sigma_a + sigma_s) density(p).
 /// Scans the values once. SK_ERR_NULL for NULL density or out; SK_ERR_SIZE
@@ -454,8 +530,40 @@ pub unsafe extern "C" fn sk_grid_new_f64(
     unsafe { grid_new(density, [nx, ny, nz], sigma_a, sigma_s, out) }
 }
 
-/// The interpolated density at p (0 outside the unit cube); NaN for a NULL
-/// or malformed grid.
+/// Places the grid in the world box [lo, hi] (from the unit cube). On
+/// failure the grid is unchanged: SK_ERR_NULL for NULL g; SK_ERR_DOMAIN
+/// unless every coordinate is finite and lo < hi on every axis with a
+/// finite extent whose reciprocal is finite.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_grid_set_box(g: *mut sk_grid, lo: sk_vec3, hi: sk_vec3) -> sk_status {
+    unsafe { grid_set_box(g, lo, hi) }
+}
+
+/// Double twin of `sk_grid_set_box`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_grid_set_box_f64(
+    g: *mut sk_grid_f64,
+    lo: sk_vec3_f64,
+    hi: sk_vec3_f64,
+) -> sk_status {
+    unsafe { grid_set_box(g, lo, hi) }
+}
+
+/// Sets where the values sit (an sk_sampling). SK_ERR_NULL for NULL g;
+/// SK_ERR_METHOD for an unknown value (the grid is then unchanged).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_grid_set_sampling(g: *mut sk_grid, sampling: u32) -> sk_status {
+    unsafe { grid_set_sampling(g, sampling) }
+}
+
+/// Double twin of `sk_grid_set_sampling`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_grid_set_sampling_f64(g: *mut sk_grid_f64, sampling: u32) -> sk_status {
+    unsafe { grid_set_sampling(g, sampling) }
+}
+
+/// The interpolated density at p (0 outside the grid's box); NaN for a
+/// NULL or malformed grid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_grid_density(g: *const sk_grid, p: sk_vec3) -> f32 {
     unsafe { load(g) }.map_or(f32::NAN, |grid| grid.density(p.to_vec()))
@@ -468,9 +576,9 @@ pub unsafe extern "C" fn sk_grid_density_f64(g: *const sk_grid_f64, p: sk_vec3_f
 }
 
 /// Delta (Woodcock) tracking through the grid from o along d (any non-zero
-/// length; distances along d/|d|) over [0, t_max], clipped to the unit cube.
+/// length; distances along d/|d|) over [0, t_max], clipped to the grid's box.
 /// Writes the distance and an sk_track_event (ESCAPED with t_max, SCATTERED
-/// or ABSORBED). A zero majorant or a ray that misses the cube escapes at
+/// or ABSORBED). A zero majorant or a ray that misses the box escapes at
 /// once. SK_ERR_NULL for NULL pointers or callback; SK_ERR_DOMAIN for zero
 /// or non-finite vectors or t_max negative or NaN; SK_ERR_SIZE after 2^20
 /// steps or for a malformed grid.
@@ -504,7 +612,7 @@ pub unsafe extern "C" fn sk_delta_track_f64(
 /// Ratio tracking through the grid: an unbiased estimate of the
 /// transmittance from o along d over [0, t_max], with Russian roulette once
 /// the weight falls below 0.05 (it survives with probability 1/4, times 4).
-/// 1 for a ray that misses the cube; NaN for NULL or invalid arguments or
+/// 1 for a ray that misses the box; NaN for NULL or invalid arguments or
 /// after 2^20 steps.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_ratio_track(

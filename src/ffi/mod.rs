@@ -29,6 +29,7 @@ macro_rules! same_values {
 
 mod cbrt;
 mod geometry;
+mod majorant;
 mod medium;
 mod phase;
 mod rayleigh;
@@ -37,6 +38,7 @@ mod table;
 
 pub use cbrt::*;
 pub use geometry::*;
+pub use majorant::*;
 pub use medium::*;
 pub use phase::*;
 pub use rayleigh::*;
@@ -63,6 +65,8 @@ pub enum sk_status {
     SK_ERR_SIZE = 3,
     /// An enum-valued argument was out of range.
     SK_ERR_METHOD = 4,
+    /// Volume tracking used up its step budget before it could answer.
+    SK_ERR_BUDGET = 5,
 }
 
 impl From<Error> for sk_status {
@@ -71,6 +75,7 @@ impl From<Error> for sk_status {
             Error::Domain => sk_status::SK_ERR_DOMAIN,
             Error::Size => sk_status::SK_ERR_SIZE,
             Error::Method => sk_status::SK_ERR_METHOD,
+            Error::Budget => sk_status::SK_ERR_BUDGET,
         }
     }
 }

@@ -545,6 +545,141 @@ static void media(void) {
     CHECK(isnan(sk_ratio_track_fn(NULL, NULL, 1, o, d, 0, 1, &rng)) && isnan(sk_ratio_track_fn_f64(dens64, NULL, 1, od, dd, 0, 1, NULL)));
 }
 
+static sk_coefficients coeff32(void *ctx, sk_vec3 p) {
+    sk_coefficients c = {0.25f, 0.25f};
+    (void)p;
+    if (ctx) c.sigma_a = *(float *)ctx;
+    return c;
+}
+static sk_coefficients_f64 coeff64(void *ctx, sk_vec3_f64 p) {
+    sk_coefficients_f64 c = {0.25, 0.25};
+    (void)p;
+    if (ctx) c.sigma_s = *(double *)ctx;
+    return c;
+}
+
+/* Grid boxes and sampling, majorant grids and tracking through them. */
+static void majorants(void) {
+    int i;
+    uint64_t st = 5;
+    sk_rng rng = {&st, counter}, no_fn = {&st, NULL};
+    const float values[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+    const double valuesd[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+    float store[8], neg[8] = {1, 1, 1, 1, 1, 1, 1, -1}, ctxf;
+    /* Majorants of 50 over a unit path: a tentative collision is certain
+     * (but for e^-50), so the coefficient checks below always run. */
+    const float fifty[8] = {50, 50, 50, 50, 50, 50, 50, 50};
+    const double fiftyd[8] = {50, 50, 50, 50, 50, 50, 50, 50};
+    double stored[8], ctxd;
+    sk_grid g, g2;
+    sk_grid_f64 gd;
+    sk_majorants m, mine, big;
+    sk_majorants_f64 md, mined, bigd;
+    sk_track_result tr;
+    sk_track_result_f64 trd;
+    sk_ratio_result rr;
+    sk_ratio_result_f64 rrd;
+    sk_vec3 o = {-1, 0.5f, 0.5f}, d = {1, 0, 0}, zero = {0, 0, 0}, one = {1, 1, 1};
+    sk_vec3_f64 od = {-1, 0.5, 0.5}, dd = {1, 0, 0}, zerod = {0, 0, 0}, oned = {1, 1, 1};
+    sk_grid_new(values, 2, 2, 2, 0.5f, 0.5f, &g);
+    sk_grid_new_f64(valuesd, 2, 2, 2, 0.5, 0.5, &gd);
+    i = 0;
+    CHECK(sk_majorants_new(fifty, 2, 2, 2, zero, one, &big) == SK_OK);
+    CHECK(sk_majorants_new_f64(fiftyd, 2, 2, 2, zerod, oned, &bigd) == SK_OK);
+    CHECK(sk_majorant_len(0, 1, 1) == 0 && sk_majorant_len(16, 16, 16) == 4096);
+    CHECK(sizeof(size_t) < 8 || sk_majorant_len(UINT32_MAX, UINT32_MAX, UINT32_MAX) == 0);
+    CHECK(sk_grid_set_sampling(NULL, 0) == SK_ERR_NULL && sk_grid_set_sampling_f64(NULL, 0) == SK_ERR_NULL);
+    CHECK(sk_grid_set_sampling(&g, 2) == SK_ERR_METHOD && g.sampling == SK_SAMPLING_NODES);
+    CHECK(sk_grid_set_sampling_f64(&gd, UINT32_MAX) == SK_ERR_METHOD);
+    CHECK(sk_grid_set_sampling(&g, SK_SAMPLING_CELLS) == SK_OK && g.sampling == SK_SAMPLING_CELLS);
+    CHECK(sk_grid_set_box(NULL, zero, one) == SK_ERR_NULL && sk_grid_set_box_f64(NULL, zerod, oned) == SK_ERR_NULL);
+    CHECK(sk_grid_set_box(&g, one, one) == SK_ERR_DOMAIN && sk_grid_set_box_f64(&gd, oned, zerod) == SK_ERR_DOMAIN);
+    for (i = 0; i < NS; i++) {
+        float f = FS[i];
+        double x = DS[i];
+        sk_vec3 lo = {f, 0, 0}, v = {f, 0.5f, 0.5f};
+        sk_vec3_f64 lod = {0, x, 0}, vd = {0.5, 0.5, x};
+        /* A box from lo to (1, 1, 1): valid only for finite lo.x < 1. */
+        g2 = g;
+        CHECK(sk_grid_set_box(&g2, lo, one) == (isfinite(f) && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_grid_set_box_f64(&gd, lod, oned) == (isfinite(x) && x < 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        sk_grid_set_box_f64(&gd, zerod, oned);
+        CHECK(sk_majorants_build(&g, 2, 2, 2, store, 8, &m) == SK_OK);
+        CHECK(sk_majorants_build_f64(&gd, 2, 2, 2, stored, 8, &md) == SK_OK);
+        /* Your own majorants: a bad value is DOMAIN. */
+        store[3] = f;
+        CHECK(sk_majorants_new(store, 2, 2, 2, zero, one, &mine) == (isfinite(f) && f >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
+        stored[5] = x;
+        CHECK(sk_majorants_new_f64(stored, 2, 2, 2, lod, oned, &mined) ==
+              (isfinite(x) && x >= 0.0 && x < 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        sk_majorants_build(&g, 2, 2, 2, store, 8, &m);
+        sk_majorants_build_f64(&gd, 2, 2, 2, stored, 8, &md);
+        /* Tracking: a bad origin or t_max is DOMAIN; out untouched then. */
+        tr.t = 7.0f;
+        CHECK(sk_delta_track_majorants(&m, &g, v, d, 3.0f, 1000, &rng, &tr) == (bad(f) ? SK_ERR_DOMAIN : SK_OK));
+        CHECK(!bad(f) || tr.t == 7.0f);
+        CHECK(sk_delta_track_majorants(&m, &g, o, d, f, 1000, &rng, &tr) == (f >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_delta_track_majorants_f64(&md, &gd, vd, dd, 3.0, 1000, &rng, &trd) == (bad(x) ? SK_ERR_DOMAIN : SK_OK));
+        rr.tr = 7.0f;
+        CHECK(sk_ratio_track_majorants(&m, &g, o, v, 3.0f, 1000, &rng, &rr) == (bad(f) ? SK_ERR_DOMAIN : SK_OK));
+        CHECK(!bad(f) || rr.tr == 7.0f);
+        CHECK(sk_ratio_track_majorants_f64(&md, &gd, od, dd, x, 1000, &rng, &rrd) == (x >= 0.0 ? SK_OK : SK_ERR_DOMAIN));
+        /* The caller's medium: sigma_a = f against the cell majorant 1. */
+        ctxf = f;
+        CHECK(sk_delta_track_majorants_fn(coeff32, &ctxf, &big, o, d, 0, 3, 1000, &rng, &tr) ==
+              (f >= 0.0f && f <= 49.0f ? SK_OK : SK_ERR_DOMAIN));
+        ctxd = x;
+        CHECK(sk_ratio_track_majorants_fn_f64(coeff64, &ctxd, &bigd, od, dd, 0, 3, 1000, &rng, &rrd) ==
+              (x >= 0.0 && x <= 49.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_ratio_track_majorants_fn(coeff32, NULL, &m, o, d, f, 3, 1000, &rng, &rr) ==
+              (f >= 0.0f && f <= 3.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_delta_track_majorants_fn_f64(coeff64, NULL, &md, od, dd, 0, x, 1000, &rng, &trd) ==
+              (x >= 0.0 ? SK_OK : SK_ERR_DOMAIN));
+    }
+    i = 0;
+    /* NULL pointers and callbacks. */
+    CHECK(sk_majorants_build(NULL, 2, 2, 2, store, 8, &m) == SK_ERR_NULL);
+    CHECK(sk_majorants_build(&g, 2, 2, 2, NULL, 8, &m) == SK_ERR_NULL);
+    CHECK(sk_majorants_build_f64(&gd, 2, 2, 2, stored, 8, NULL) == SK_ERR_NULL);
+    CHECK(sk_majorants_new(NULL, 2, 2, 2, zero, one, &m) == SK_ERR_NULL);
+    CHECK(sk_majorants_new_f64(stored, 2, 2, 2, zerod, oned, NULL) == SK_ERR_NULL);
+    CHECK(sk_delta_track_majorants(NULL, &g, o, d, 3, 10, &rng, &tr) == SK_ERR_NULL);
+    CHECK(sk_delta_track_majorants(&m, NULL, o, d, 3, 10, &rng, &tr) == SK_ERR_NULL);
+    CHECK(sk_delta_track_majorants(&m, &g, o, d, 3, 10, NULL, &tr) == SK_ERR_NULL);
+    CHECK(sk_delta_track_majorants(&m, &g, o, d, 3, 10, &no_fn, &tr) == SK_ERR_NULL);
+    CHECK(sk_delta_track_majorants_f64(&md, &gd, od, dd, 3, 10, &rng, NULL) == SK_ERR_NULL);
+    CHECK(sk_ratio_track_majorants(&m, &g, o, d, 3, 10, &rng, NULL) == SK_ERR_NULL);
+    CHECK(sk_ratio_track_majorants_f64(NULL, &gd, od, dd, 3, 10, &rng, &rrd) == SK_ERR_NULL);
+    CHECK(sk_delta_track_majorants_fn(NULL, NULL, &m, o, d, 0, 3, 10, &rng, &tr) == SK_ERR_NULL);
+    CHECK(sk_delta_track_majorants_fn_f64(coeff64, NULL, NULL, od, dd, 0, 3, 10, &rng, &trd) == SK_ERR_NULL);
+    CHECK(sk_ratio_track_majorants_fn(coeff32, NULL, &m, o, d, 0, 3, 10, &no_fn, &rr) == SK_ERR_NULL);
+    CHECK(sk_ratio_track_majorants_fn_f64(NULL, NULL, &md, od, dd, 0, 3, 10, &rng, &rrd) == SK_ERR_NULL);
+    /* Sizes: zero dimensions, a short buffer, malformed values. */
+    CHECK(sk_majorants_build(&g, 0, 2, 2, store, 8, &m) == SK_ERR_SIZE);
+    CHECK(sk_majorants_build(&g, 2, 2, 2, store, 7, &m) == SK_ERR_SIZE);
+    CHECK(sk_majorants_build_f64(&gd, 3, 3, 3, stored, 8, &md) == SK_ERR_SIZE);
+    CHECK(sk_majorants_new(store, 2, 0, 2, zero, one, &mine) == SK_ERR_SIZE);
+    CHECK(sk_majorants_new(neg, 2, 2, 2, zero, one, &mine) == SK_ERR_DOMAIN);
+    sk_majorants_build(&g, 2, 2, 2, store, 8, &m);
+    mine = m;
+    mine.mx = 0;
+    CHECK(sk_delta_track_majorants(&mine, &g, o, d, 3, 10, &rng, &tr) == SK_ERR_SIZE);
+    g2 = g;
+    g2.sampling = 9;
+    CHECK(sk_delta_track_majorants(&m, &g2, o, d, 3, 10, &rng, &tr) == SK_ERR_SIZE);
+    /* Majorants over another box than the grid's; a zero direction. */
+    g2 = g;
+    sk_grid_set_box(&g2, zero, (sk_vec3){2, 1, 1});
+    CHECK(sk_delta_track_majorants(&m, &g2, o, d, 3, 10, &rng, &tr) == SK_ERR_DOMAIN);
+    CHECK(sk_ratio_track_majorants(&m, &g, o, zero, 3, 10, &rng, &rr) == SK_ERR_DOMAIN);
+    /* The budget: 0 steps through a medium that has collisions. */
+    CHECK(sk_delta_track_majorants(&big, &g, o, d, 1e6f, 0, &rng, &tr) == SK_ERR_BUDGET);
+    CHECK(sk_ratio_track_majorants_fn_f64(coeff64, NULL, &bigd, od, dd, 0, 1e6, 0, &rng, &rrd) == SK_ERR_BUDGET);
+    /* An escape reports where the ray leaves the box. */
+    CHECK(sk_delta_track_majorants(&m, &g, o, d, 1.5f, 0, &rng, &tr) == SK_ERR_BUDGET ||
+          (tr.event == SK_TRACK_ESCAPED && tr.t == 1.5f));
+}
+
 int main(void) {
     cube_roots_and_version();
     basis();
@@ -555,6 +690,7 @@ int main(void) {
     tables();
     surfaces();
     media();
+    majorants();
     printf("matrix: %d checks passed, %d failed\n", passed, failed);
     return failed;
 }

@@ -1,0 +1,498 @@
+//! Majorant grids: tracking that costs what the medium along the ray holds,
+//! not its densest voxel.
+//!
+//! Delta and ratio tracking draw tentative collisions at the rate of a
+//! majorant `σ_maj ≥ σ_t` (Woodcock et al. 1965; the null-collision
+//! formulation of Galtier et al. 2013 and Novák et al., Computer Graphics
+//! Forum 37(2), 2018). With one majorant for the whole medium, a cloud that
+//! is thin almost everywhere but dense in its core makes almost every
+//! tentative collision a null one. A coarse grid of local majorants, walked
+//! cell by cell along the ray (pbrt-v4's `MajorantGrid` and
+//! `DDAMajorantIterator`, §11.4 of the 4th edition), bounds the density
+//! where the ray actually is; empty cells cost nothing.
+//!
+//! Within a cell the majorant is constant and free paths are exponential;
+//! at a cell face the walk restarts with a fresh exponential draw (the
+//! exponential distribution is memoryless, so this is exact). Any majorant
+//! that bounds `σ_t` keeps both estimators unbiased; a `σ_t` above its
+//! cell's majorant is reported as [`Error::Domain`], never clamped.
+//!
+//! A [`Majorants`] value borrows the caller's array of `mx·my·mz`
+//! majorants (x fastest) over a world box; [`Majorants::build`] fills one
+//! from a density [`Grid`] in one pass, conservatively under the grid's
+//! trilinear interpolation. No allocation, and every loop is bounded: the
+//! walk visits at most `mx + my + mz` cells, and the number of tentative
+//! collisions is the caller's budget ([`Error::Budget`] when it runs out).
+
+use crate::error::Error;
+use crate::geometry::Vec3;
+use crate::medium::{
+    Event, Grid, ROULETTE_BELOW, clip_box, exponential_step, grid_len, to_local, valid_box,
+};
+use crate::real::Real;
+use rand_core::Rng;
+
+/// pbrt-v4's default majorant resolution per axis (16³ cells).
+pub const DEFAULT_RES: usize = 16;
+
+/// The number of majorants of an `m[0]·m[1]·m[2]` grid, or `None` for a
+/// zero dimension or a product that overflows `usize`.
+pub fn majorant_len(m: [usize; 3]) -> Option<usize> {
+    grid_len(m[0], m[1], m[2])
+}
+
+/// A grid of majorants (per length unit, `≥ 0`) over the world box
+/// `[lo, hi]`, one per cell of an `m[0]×m[1]×m[2]` division of the box,
+/// borrowed from the caller (x fastest). Outside the box the medium is
+/// taken to be empty.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Majorants<'a, T> {
+    sigma: &'a [T],
+    m: [usize; 3],
+    lo: Vec3<T>,
+    hi: Vec3<T>,
+}
+
+/// What delta tracking found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Track<T> {
+    /// Distance along the unit direction: of the real collision, or for
+    /// [`Event::Escaped`] where the ray leaves the medium's box (clipped to
+    /// `[t_min, t_max]`; `t_min` for a ray that never enters it).
+    pub t: T,
+    /// [`Event::Escaped`], [`Event::Scattered`] or [`Event::Absorbed`].
+    pub event: Event,
+    /// Tentative collisions drawn (density evaluations), real one included.
+    pub steps: u32,
+}
+
+/// What ratio tracking found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Transmittance<T> {
+    /// The unbiased transmittance estimate (≥ 0; Russian roulette can
+    /// raise a single estimate above the true value).
+    pub tr: T,
+    /// Tentative collisions drawn (density evaluations).
+    pub steps: u32,
+}
+
+impl<'a, T: Real> Majorants<'a, T> {
+    /// The caller's majorants: `sigma` holds at least `m[0]·m[1]·m[2]`
+    /// values, each finite and `≥ 0`, and each must bound `σ_t` over its
+    /// closed cell (tracking reports [`Error::Domain`] where it finds one
+    /// that does not). [`Error::Size`] for a zero dimension, an overflowing
+    /// product or a short buffer; [`Error::Domain`] for a bad value or box
+    /// (see [`Grid::with_box`]).
+    pub fn new(sigma: &'a [T], m: [usize; 3], lo: Vec3<T>, hi: Vec3<T>) -> Result<Self, Error> {
+        let count = majorant_len(m).ok_or(Error::Size)?;
+        let sigma = sigma.get(..count).ok_or(Error::Size)?;
+        if !valid_box(lo, hi) || !sigma.iter().all(|&s| s >= T::ZERO && s.is_finite()) {
+            return Err(Error::Domain);
+        }
+        Ok(Majorants { sigma, m, lo, hi })
+    }
+
+    /// Fills `out` with the majorants of `grid` on an `m` division of its
+    /// box, in one pass over the grid, and borrows them: each cell gets
+    /// `(σ_a + σ_s)` times the largest grid value whose interpolation
+    /// reaches into the cell (the cell widened by a thousandth of itself,
+    /// so the walk's rounding at faces stays covered), with the grid
+    /// majorant's few ULP of slack. Errors as [`Majorants::new`].
+    pub fn build(grid: &Grid<'_, T>, m: [usize; 3], out: &'a mut [T]) -> Result<Self, Error> {
+        let count = majorant_len(m).ok_or(Error::Size)?;
+        let cells = out.get_mut(..count).ok_or(Error::Size)?;
+        let (sa, ss) = grid.coefficients();
+        let scale = (sa + ss) * (T::ONE + T::from_f64(4.0) * T::EPSILON);
+        let [nx, ny, nz] = grid.dims();
+        let mut cells = cells.iter_mut();
+        for c in 0..m[2] {
+            let (k0, k1) = reach(grid, c, m[2], nz);
+            for b in 0..m[1] {
+                let (j0, j1) = reach(grid, b, m[1], ny);
+                for a in 0..m[0] {
+                    let (i0, i1) = reach(grid, a, m[0], nx);
+                    let mut max = T::ZERO;
+                    for k in k0..=k1 {
+                        for j in j0..=j1 {
+                            for i in i0..=i1 {
+                                max = max.max_of(grid.value(i, j, k));
+                            }
+                        }
+                    }
+                    if let Some(cell) = cells.next() {
+                        *cell = scale * max;
+                    }
+                }
+            }
+        }
+        let (lo, hi) = grid.bounds();
+        Majorants::new(out, m, lo, hi)
+    }
+
+    /// Cells per axis.
+    pub fn dims(&self) -> [usize; 3] {
+        self.m
+    }
+
+    /// The world box `(lo, hi)`.
+    pub fn bounds(&self) -> (Vec3<T>, Vec3<T>) {
+        (self.lo, self.hi)
+    }
+
+    /// The majorant of cell `(i, j, k)` (0 outside the grid).
+    pub fn get(&self, i: usize, j: usize, k: usize) -> T {
+        let [mx, my, mz] = self.m;
+        if i >= mx || j >= my || k >= mz {
+            return T::ZERO;
+        }
+        self.sigma
+            .get(i + mx * (j + my * k))
+            .copied()
+            .unwrap_or(T::ZERO)
+    }
+
+    /// Delta tracking through `grid` (whose majorants these must be: same
+    /// box, else [`Error::Domain`]) from `o` along `d` over `[0, t_max]`:
+    /// at each tentative collision one uniform `ξ` decides, absorption if
+    /// `ξ σ_maj < σ_a`, scattering if `ξ σ_maj < σ_a + σ_s`, else a null
+    /// collision. At most `budget` tentative collisions
+    /// ([`Error::Budget`]); [`Error::Domain`] for a zero or non-finite `d`
+    /// or `o`, `t_max` negative or NaN.
+    pub fn delta_track<R: Rng + ?Sized>(
+        &self,
+        grid: &Grid<'_, T>,
+        o: Vec3<T>,
+        d: Vec3<T>,
+        t_max: T,
+        budget: u32,
+        rng: &mut R,
+    ) -> Result<Track<T>, Error> {
+        self.same_box(grid)?;
+        self.delta_track_fn(
+            |p| grid_coefficients(grid, p),
+            o,
+            d,
+            T::ZERO,
+            t_max,
+            budget,
+            rng,
+        )
+    }
+
+    /// Ratio tracking through `grid` (arguments as
+    /// [`delta_track`](Self::delta_track)): the transmittance over
+    /// `[0, t_max]`, with the Russian roulette of [`Grid::ratio_track`].
+    pub fn ratio_track<R: Rng + ?Sized>(
+        &self,
+        grid: &Grid<'_, T>,
+        o: Vec3<T>,
+        d: Vec3<T>,
+        t_max: T,
+        budget: u32,
+        rng: &mut R,
+    ) -> Result<Transmittance<T>, Error> {
+        self.same_box(grid)?;
+        self.ratio_track_fn(
+            |p| grid_coefficients(grid, p),
+            o,
+            d,
+            T::ZERO,
+            t_max,
+            budget,
+            rng,
+        )
+    }
+
+    /// Delta tracking through a caller's medium, `coefficients(p) = (σ_a,
+    /// σ_s)` at a world point (both `≥ 0`, their sum within the majorant of
+    /// the cell holding `p`, else [`Error::Domain`]), over `[t_min, t_max]`
+    /// (`0 ≤ t_min ≤ t_max`). Events and budget as
+    /// [`delta_track`](Self::delta_track).
+    #[allow(clippy::too_many_arguments)]
+    pub fn delta_track_fn<R: Rng + ?Sized>(
+        &self,
+        coefficients: impl Fn(Vec3<T>) -> (T, T),
+        o: Vec3<T>,
+        d: Vec3<T>,
+        t_min: T,
+        t_max: T,
+        budget: u32,
+        rng: &mut R,
+    ) -> Result<Track<T>, Error> {
+        let (o, d) = checked_ray(o, d, t_min, t_max)?;
+        let mut event = Event::Escaped;
+        let real = |p: Vec3<T>, sigma_maj: T, r: &mut R| {
+            let st = within(coefficients(p), sigma_maj)?;
+            let x = T::uniform(r) * sigma_maj;
+            Ok(if x < st.0 {
+                Some(Event::Absorbed)
+            } else if x < st.0 + st.1 {
+                Some(Event::Scattered)
+            } else {
+                None
+            })
+        };
+        let walk = self.walk(o, d, t_min, t_max, budget, rng, real)?;
+        let t = match walk.found {
+            Some((t, e)) => {
+                event = e;
+                t
+            }
+            None => walk.exit,
+        };
+        Ok(Track {
+            t,
+            event,
+            steps: walk.steps,
+        })
+    }
+
+    /// Ratio tracking through a caller's medium (arguments as
+    /// [`delta_track_fn`](Self::delta_track_fn)): the transmittance over
+    /// `[t_min, t_max]`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn ratio_track_fn<R: Rng + ?Sized>(
+        &self,
+        coefficients: impl Fn(Vec3<T>) -> (T, T),
+        o: Vec3<T>,
+        d: Vec3<T>,
+        t_min: T,
+        t_max: T,
+        budget: u32,
+        rng: &mut R,
+    ) -> Result<Transmittance<T>, Error> {
+        let (o, d) = checked_ray(o, d, t_min, t_max)?;
+        let (floor, quarter, four) = (
+            T::from_f64(ROULETTE_BELOW),
+            T::from_f64(0.25),
+            T::from_f64(4.0),
+        );
+        let mut tr = T::ONE;
+        let visit = |p: Vec3<T>, sigma_maj: T, r: &mut R| {
+            let (sa, ss) = within(coefficients(p), sigma_maj)?;
+            tr *= T::ONE - (sa + ss) / sigma_maj;
+            if tr < floor {
+                tr = if T::uniform(r) < quarter {
+                    tr * four
+                } else {
+                    T::ZERO
+                };
+            }
+            Ok((tr == T::ZERO).then_some(()))
+        };
+        let walk = self.walk(o, d, t_min, t_max, budget, rng, visit)?;
+        Ok(Transmittance {
+            tr: if walk.found.is_some() { T::ZERO } else { tr },
+            steps: walk.steps,
+        })
+    }
+
+    /// [`Error::Domain`] unless `grid` spans this grid's box.
+    fn same_box(&self, grid: &Grid<'_, T>) -> Result<(), Error> {
+        if grid.bounds() == (self.lo, self.hi) {
+            Ok(())
+        } else {
+            Err(Error::Domain)
+        }
+    }
+
+    /// Walks the ray through the cells (a DDA, Amanatides & Woo 1987)
+    /// over `[t_min, t_max]` ∩ box, drawing tentative collisions at each
+    /// cell's majorant; `visit(p, σ_maj, rng)` decides at each whether the
+    /// walk ends there.
+    #[allow(clippy::too_many_arguments)]
+    fn walk<R: Rng + ?Sized, X>(
+        &self,
+        o: Vec3<T>,
+        d: Vec3<T>,
+        t_min: T,
+        t_max: T,
+        budget: u32,
+        rng: &mut R,
+        mut visit: impl FnMut(Vec3<T>, T, &mut R) -> Result<Option<X>, Error>,
+    ) -> Result<Walk<T, X>, Error> {
+        let mut walk = Walk {
+            found: None,
+            exit: t_min,
+            steps: 0,
+        };
+        // In box coordinates the box is [0, 1]³ and t is unchanged.
+        let ol = to_local(o, self.lo, self.hi);
+        let (lo, hi) = (self.lo, self.hi);
+        let dl = Vec3::new(
+            d.x / (hi.x - lo.x),
+            d.y / (hi.y - lo.y),
+            d.z / (hi.z - lo.z),
+        );
+        let unit = Vec3::new(T::ZERO, T::ZERO, T::ZERO);
+        let one = Vec3::new(T::ONE, T::ONE, T::ONE);
+        let Some((ta, tb)) = clip_box(ol, dl, unit, one, t_min, t_max) else {
+            return Ok(walk);
+        };
+        walk.exit = tb;
+        let mut dda = Dda::new(ol, dl, ta, self.m);
+        let mut t_cell = ta;
+        for _ in 0..=(self.m[0] + self.m[1] + self.m[2]) {
+            let t_end = dda.next_face().min_of(tb).max_of(t_cell);
+            let sigma_maj = self.get(dda.cell[0], dda.cell[1], dda.cell[2]);
+            let mut t = t_cell;
+            // An empty cell (majorant 0) is crossed without a draw.
+            while sigma_maj > T::ZERO && t < t_end {
+                t += exponential_step(sigma_maj, T::uniform(rng));
+                if t >= t_end || t.is_nan() {
+                    break;
+                }
+                if walk.steps >= budget {
+                    return Err(Error::Budget);
+                }
+                walk.steps += 1;
+                if let Some(x) = visit(o + d * t, sigma_maj, rng)? {
+                    walk.found = Some((t, x));
+                    return Ok(walk);
+                }
+            }
+            if t_end >= tb || !dda.step() {
+                break;
+            }
+            t_cell = t_end;
+        }
+        Ok(walk)
+    }
+}
+
+/// The outcome of a walk: what ended it and where, or where the ray left.
+struct Walk<T, X> {
+    found: Option<(T, X)>,
+    exit: T,
+    steps: u32,
+}
+
+/// Amanatides–Woo cell stepping on the `m` division of `[0, 1]³`. The time
+/// of each next face is computed from the cell index, not accumulated, so
+/// it does not drift over many cells; the start cell is clamped into the
+/// grid, so a start on a face or rounded just outside stays valid.
+struct Dda<T> {
+    o: Vec3<T>,
+    d: Vec3<T>,
+    m: [usize; 3],
+    cell: [usize; 3],
+    next: [T; 3],
+}
+
+impl<T: Real> Dda<T> {
+    fn new(o: Vec3<T>, d: Vec3<T>, t: T, m: [usize; 3]) -> Self {
+        let p = o + d * t;
+        let start = |x: T, n: usize| (x * T::from_index(n)).max_of(T::ZERO).to_index().min(n - 1);
+        let cell = [start(p.x, m[0]), start(p.y, m[1]), start(p.z, m[2])];
+        let mut dda = Dda {
+            o,
+            d,
+            m,
+            cell,
+            next: [T::INFINITY; 3],
+        };
+        for a in 0..3 {
+            dda.next[a] = dda.face(a);
+        }
+        dda
+    }
+
+    /// Component `a` of a vector.
+    fn comp(v: Vec3<T>, a: usize) -> T {
+        match a {
+            0 => v.x,
+            1 => v.y,
+            _ => v.z,
+        }
+    }
+
+    /// When the ray reaches the face of the current cell it moves towards
+    /// along axis `a` (+∞ if it does not move along `a`).
+    fn face(&self, a: usize) -> T {
+        let (o, d) = (Self::comp(self.o, a), Self::comp(self.d, a));
+        let i = self.cell[a] + usize::from(d > T::ZERO);
+        if d == T::ZERO {
+            T::INFINITY
+        } else {
+            (T::from_index(i) / T::from_index(self.m[a]) - o) / d
+        }
+    }
+
+    /// The time of the nearest face ahead.
+    fn next_face(&self) -> T {
+        self.next[0].min_of(self.next[1]).min_of(self.next[2])
+    }
+
+    /// Crosses the nearest face; false when that leaves the grid.
+    fn step(&mut self) -> bool {
+        let mut a = 0;
+        for b in 1..3 {
+            if self.next[b] < self.next[a] {
+                a = b;
+            }
+        }
+        let d = Self::comp(self.d, a);
+        if d > T::ZERO {
+            if self.cell[a] + 1 >= self.m[a] {
+                return false;
+            }
+            self.cell[a] += 1;
+        } else {
+            if self.cell[a] == 0 || d == T::ZERO {
+                return false;
+            }
+            self.cell[a] -= 1;
+        }
+        self.next[a] = self.face(a);
+        true
+    }
+}
+
+/// The lattice indices whose interpolation reaches into cell `c` of `m`
+/// along an axis of `n` grid values.
+fn reach<T: Real>(grid: &Grid<'_, T>, c: usize, m: usize, n: usize) -> (usize, usize) {
+    if n == 1 {
+        return (0, 0);
+    }
+    let (mf, slop) = (T::from_index(m), T::from_f64(1e-3));
+    let x0 = ((T::from_index(c) - slop) / mf).max_of(T::ZERO);
+    let x1 = ((T::from_index(c + 1) + slop) / mf).min_of(T::ONE);
+    let (s0, s1) = (grid.lattice(x0, n), grid.lattice(x1, n));
+    let i0 = s0.to_index().min(n - 1);
+    let i1 = (s1.to_index() + 1).min(n - 1);
+    (i0, i1)
+}
+
+/// `(σ_a, σ_s)` of the grid at `p`.
+#[inline(always)]
+fn grid_coefficients<T: Real>(grid: &Grid<'_, T>, p: Vec3<T>) -> (T, T) {
+    let (sa, ss) = grid.coefficients();
+    let rho = grid.density(p);
+    (sa * rho, ss * rho)
+}
+
+/// The coefficients if both are `≥ 0` with a sum within `sigma_maj`.
+#[inline(always)]
+fn within<T: Real>((sa, ss): (T, T), sigma_maj: T) -> Result<(T, T), Error> {
+    if sa >= T::ZERO && ss >= T::ZERO && sa + ss <= sigma_maj {
+        Ok((sa, ss))
+    } else {
+        Err(Error::Domain)
+    }
+}
+
+/// A finite origin and unit direction, `0 ≤ t_min ≤ t_max` (t_max may be
+/// +∞).
+fn checked_ray<T: Real>(
+    o: Vec3<T>,
+    d: Vec3<T>,
+    t_min: T,
+    t_max: T,
+) -> Result<(Vec3<T>, Vec3<T>), Error> {
+    let d = d.try_normalize().ok_or(Error::Domain)?;
+    if o.is_finite() && t_min >= T::ZERO && t_max >= t_min && t_min.is_finite() {
+        Ok((o, d))
+    } else {
+        Err(Error::Domain)
+    }
+}

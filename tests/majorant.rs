@@ -1,0 +1,272 @@
+//! Majorant grids: delta and ratio tracking through them are unbiased
+//! against the optical depth integrated along the ray (rays that start
+//! inside, graze cell faces, run along them, pass through empty cells; node
+//! and cell-centred grids; a world box), a majorant that does not bound the
+//! density is caught, the budget is its own error, escapes report where the
+//! ray leaves the box, and the built majorants bound the interpolated
+//! density everywhere.
+
+mod common;
+
+use common::rng;
+use scatterkit::majorant::{DEFAULT_RES, Majorants, majorant_len};
+use scatterkit::medium::Event;
+use scatterkit::{Error, Grid, Real, Sampling, Vec3};
+
+/// A cloud-like 12×10×9 density: a dense core, a thin shell, and empty
+/// regions (a slab of zeros and a zero corner).
+fn cloud() -> Vec<f64> {
+    let n = [12usize, 10, 9];
+    let mut v = Vec::with_capacity(n[0] * n[1] * n[2]);
+    for k in 0..n[2] {
+        for j in 0..n[1] {
+            for i in 0..n[0] {
+                let p = [i, j, k].map(|x| x as f64);
+                let c = [5.5, 4.5, 4.0];
+                let r2: f64 = (0..3).map(|a| (p[a] - c[a]) * (p[a] - c[a])).sum();
+                let core = 8.0 * (-r2 / 4.0).exp();
+                let shell = 0.05 * (1.0 + (p[0] * 0.7).sin());
+                let empty = i < 2 || (j > 7 && k > 6);
+                v.push(if empty { 0.0 } else { core + shell });
+            }
+        }
+    }
+    v
+}
+
+/// `∫ σ_t` along the ray over `[0, t]` by composite Simpson (the
+/// interpolated density is piecewise cubic along a ray; 40 000 panels).
+fn optical_depth(g: &Grid<'_, f64>, o: Vec3<f64>, d: Vec3<f64>, t: f64) -> f64 {
+    let d = d * (1.0 / d.length());
+    let (sa, ss) = g.coefficients();
+    let n = 40_000;
+    let h = t / n as f64;
+    let f = |s: f64| (sa + ss) * g.density(o + d * s);
+    let mut sum = f(0.0) + f(t);
+    for i in 1..n {
+        sum += f(i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 };
+    }
+    sum * h / 3.0
+}
+
+fn mean_se(xs: &[f64]) -> (f64, f64) {
+    let n = xs.len() as f64;
+    let m = xs.iter().sum::<f64>() / n;
+    let v = xs.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0);
+    (m, (v / n).sqrt())
+}
+
+/// The rays: (origin, direction, t_max).
+fn rays() -> Vec<(Vec3<f64>, Vec3<f64>, f64)> {
+    vec![
+        // From outside, through the core.
+        (Vec3::new(-0.3, 0.45, 0.5), Vec3::new(1.0, 0.05, -0.02), 2.0),
+        // Starting inside, ending inside.
+        (Vec3::new(0.4, 0.5, 0.45), Vec3::new(0.3, -1.0, 0.4), 0.35),
+        // Along a majorant face (y = 8/16 exactly) and a grid node plane.
+        (Vec3::new(-0.1, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 3.0),
+        // Grazing: nearly parallel to the z faces, crossing many x cells.
+        (Vec3::new(0.0, 0.2, 0.25), Vec3::new(1.0, 0.3, 1e-7), 5.0),
+        // Through the empty slab x < 2/11 and the empty corner.
+        (Vec3::new(0.05, 0.95, 0.95), Vec3::new(0.0, -0.2, -1.0), 4.0),
+        // Backwards along every axis, from a corner on a face.
+        (Vec3::new(1.0, 1.0, 1.0), Vec3::new(-0.6, -0.5, -0.7), 9.0),
+    ]
+}
+
+#[test]
+fn tracking_through_majorants_is_unbiased() {
+    let values = cloud();
+    let lo = Vec3::new(-0.5, -1.0, 0.25);
+    let hi = Vec3::new(1.5, 0.5, 1.0);
+    let mut cases = 0;
+    for sampling in [Sampling::Nodes, Sampling::Cells] {
+        for boxed in [false, true] {
+            let mut g = Grid::new(&values, 12, 10, 9, 0.4, 1.1)
+                .unwrap()
+                .with_sampling(sampling);
+            if boxed {
+                g = g.with_box(lo, hi).unwrap();
+            }
+            let mut store = [0.0; 16 * 16 * 16];
+            let maj = Majorants::build(&g, [DEFAULT_RES; 3], &mut store).unwrap();
+            let mut r = rng(7 + cases);
+            for (o, d, t_max) in rays() {
+                // The rays are written for the unit cube; map them into the box.
+                let (o, d) = if boxed {
+                    let e = hi - lo;
+                    (
+                        Vec3::new(lo.x + o.x * e.x, lo.y + o.y * e.y, lo.z + o.z * e.z),
+                        Vec3::new(d.x * e.x, d.y * e.y, d.z * e.z),
+                    )
+                } else {
+                    (o, d)
+                };
+                let p = (-optical_depth(&g, o, d, t_max)).exp();
+                let n = 40_000;
+                let mut hits = 0usize;
+                let mut absorbed = 0usize;
+                let mut tr = Vec::with_capacity(n);
+                for _ in 0..n {
+                    let tk = maj.delta_track(&g, o, d, t_max, 1 << 20, &mut r).unwrap();
+                    match tk.event {
+                        Event::Escaped => {}
+                        Event::Absorbed => {
+                            hits += 1;
+                            absorbed += 1;
+                        }
+                        _ => hits += 1,
+                    }
+                    tr.push(
+                        maj.ratio_track(&g, o, d, t_max, 1 << 20, &mut r)
+                            .unwrap()
+                            .tr,
+                    );
+                }
+                let q = 1.0 - hits as f64 / n as f64;
+                let se = (p * (1.0 - p) / n as f64).sqrt().max(1e-12);
+                assert!(
+                    (q - p).abs() <= 4.0 * se,
+                    "{sampling:?} box {boxed}: P(escape) {q} vs {p} ± {se}, ray {o:?}"
+                );
+                let (m, se_r) = mean_se(&tr);
+                assert!(
+                    (m - p).abs() <= 4.0 * se_r + 1e-12,
+                    "{sampling:?} box {boxed}: ratio {m} ± {se_r} vs {p}, ray {o:?}"
+                );
+                if hits > 1000 {
+                    let share = absorbed as f64 / hits as f64;
+                    let a = 0.4 / 1.5;
+                    assert!(
+                        (share - a).abs() <= 4.0 * (a * (1.0 - a) / hits as f64).sqrt(),
+                        "absorbed share {share}"
+                    );
+                }
+            }
+            cases += 1;
+        }
+    }
+}
+
+#[test]
+fn built_majorants_bound_the_density() {
+    let values = cloud();
+    for sampling in [Sampling::Nodes, Sampling::Cells] {
+        for m in [[1, 1, 1], [3, 5, 7], [16, 16, 16], [40, 3, 20]] {
+            let g = Grid::new(&values, 12, 10, 9, 0.4, 1.1)
+                .unwrap()
+                .with_sampling(sampling);
+            let mut store = vec![0.0; majorant_len(m).unwrap()];
+            let maj = Majorants::build(&g, m, &mut store).unwrap();
+            let mut r = rng(3);
+            for _ in 0..200_000 {
+                let p = Vec3::new(
+                    f64::uniform(&mut r),
+                    f64::uniform(&mut r),
+                    f64::uniform(&mut r),
+                );
+                let c = [p.x, p.y, p.z];
+                let idx = [0, 1, 2].map(|a| ((c[a] * m[a] as f64) as usize).min(m[a] - 1));
+                assert!(
+                    1.5 * g.density(p) <= maj.get(idx[0], idx[1], idx[2]),
+                    "{sampling:?} {m:?} at {p:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_majorant_that_does_not_bound_is_caught() {
+    // Mutation check: the built majorants scaled by 0.9 no longer bound the
+    // core; tracking must report it rather than return a biased answer.
+    let values = cloud();
+    let g = Grid::new(&values, 12, 10, 9, 0.4, 1.1).unwrap();
+    let mut store = [0.0; 16 * 16 * 16];
+    Majorants::build(&g, [16; 3], &mut store).unwrap();
+    for s in store.iter_mut() {
+        *s *= 0.9;
+    }
+    let low = Majorants::new(
+        &store,
+        [16; 3],
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(1.0, 1.0, 1.0),
+    )
+    .unwrap();
+    let (o, d) = (Vec3::new(-0.3, 0.45, 0.45), Vec3::new(1.0, 0.0, 0.0));
+    let mut r = rng(9);
+    let caught = (0..2000)
+        .filter(|_| low.ratio_track(&g, o, d, 2.0, 1 << 20, &mut r) == Err(Error::Domain))
+        .count();
+    assert!(caught > 100, "caught {caught} of 2000");
+    // A majorant grid over another box is refused for the grid.
+    let other = Majorants::new(
+        &store,
+        [16; 3],
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(2.0, 1.0, 1.0),
+    )
+    .unwrap();
+    assert_eq!(
+        other.delta_track(&g, o, d, 2.0, 100, &mut r).err(),
+        Some(Error::Domain)
+    );
+}
+
+#[test]
+fn escapes_report_the_exit_and_budgets_run_out() {
+    let values = [0.0f64; 8];
+    let g = Grid::new(&values, 2, 2, 2, 1.0, 1.0)
+        .unwrap()
+        .with_box(Vec3::new(0.0, 0.0, 0.0), Vec3::new(2.0, 1.0, 1.0))
+        .unwrap();
+    let mut store = [0.0; 8];
+    let maj = Majorants::build(&g, [2; 3], &mut store).unwrap();
+    let mut r = rng(1);
+    let (o, d) = (Vec3::new(-1.0, 0.5, 0.5), Vec3::new(2.0, 0.0, 0.0));
+    let tk = maj.delta_track(&g, o, d, 10.0, 0, &mut r).unwrap();
+    assert_eq!((tk.t, tk.event, tk.steps), (3.0, Event::Escaped, 0));
+    // Ends inside: the exit is t_max; misses: t_min (0 for grids).
+    assert_eq!(maj.delta_track(&g, o, d, 2.5, 0, &mut r).unwrap().t, 2.5);
+    let miss = maj.delta_track(&g, Vec3::new(-1.0, 5.0, 0.5), d, 10.0, 0, &mut r);
+    assert_eq!(miss.unwrap().t, 0.0);
+    // A dense medium and a small budget: its own error, not NaN.
+    let dense = [1e3f64; 8];
+    let g = Grid::new(&dense, 2, 2, 2, 1.0, 1.0).unwrap();
+    let maj = Majorants::build(&g, [2; 3], &mut store).unwrap();
+    let o = Vec3::new(-1.0, 0.5, 0.5);
+    let d = Vec3::new(1.0, 0.0, 0.0);
+    // Ratio tracking through σ_t = σ_maj stops at the first collision.
+    assert_eq!(maj.ratio_track(&g, o, d, 10.0, 5, &mut r).unwrap().tr, 0.0);
+    let thin = [1e3f64, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3];
+    let g = Grid::new(&thin, 2, 2, 2, 1.0, 1.0).unwrap();
+    let maj1 = Majorants::build(&g, [1; 3], &mut store).unwrap();
+    let far = Vec3::new(-1.0, 0.9, 0.9);
+    assert_eq!(
+        maj1.delta_track(&g, far, d, 10.0, 3, &mut r).err(),
+        Some(Error::Budget)
+    );
+    // Bad input.
+    let z = Vec3::new(0.0, 0.0, 0.0);
+    assert_eq!(
+        maj1.delta_track(&g, far, z, 1.0, 3, &mut r).err(),
+        Some(Error::Domain)
+    );
+    assert_eq!(
+        maj1.delta_track(&g, far, d, f64::NAN, 3, &mut r).err(),
+        Some(Error::Domain)
+    );
+    assert_eq!(
+        Majorants::new(&store, [0, 1, 1], z, d).err(),
+        Some(Error::Size)
+    );
+    assert_eq!(
+        Majorants::new(&store, [1, 1, 1], z, z).err(),
+        Some(Error::Domain)
+    );
+    assert_eq!(
+        Majorants::<f64>::build(&g, [9, 9, 9], &mut store).err(),
+        Some(Error::Size)
+    );
+}

@@ -1,6 +1,8 @@
 //! criterion benchmarks: every sampler of the foundation, f32 and f64, as
 //! elements per second (`cargo bench`; `cargo bench --no-run` to only build).
 
+#[path = "cloud.rs"]
+mod cloud;
 #[path = "peers.rs"]
 mod peers;
 
@@ -279,6 +281,48 @@ fn media<T: Real>(c: &mut Criterion, label: &str) {
     g.finish();
 }
 
+/// Rays through a 64³ cloud (`cloud.rs`), per ray: delta and ratio tracking
+/// walking 16³ local majorants against one global majorant (a 1³ grid).
+fn majorants(c: &mut Criterion) {
+    use scatterkit::majorant::{DEFAULT_RES, Majorants};
+    let (lo, hi) = (Vec3::new(-1.0f32, -1.0, -1.0), Vec3::new(1.0f32, 1.0, 1.0));
+    let values = cloud::cloud(64, 60.0);
+    let grid = Grid::new(&values, 64, 64, 64, cloud::SIGMA.0, cloud::SIGMA.1)
+        .unwrap()
+        .with_box(lo, hi)
+        .unwrap();
+    let (mut ls, mut gs) = (vec![0.0f32; DEFAULT_RES.pow(3)], [0.0f32; 1]);
+    let local = Majorants::build(&grid, [DEFAULT_RES; 3], &mut ls).unwrap();
+    let global = Majorants::build(&grid, [1; 3], &mut gs).unwrap();
+    let rays = cloud::rays(256);
+    let mut g = c.benchmark_group("majorants_cloud64");
+    g.throughput(Throughput::Elements(rays.len() as u64));
+    let mut r = rng();
+    for (name, maj) in [("local16", &local), ("global", &global)] {
+        g.bench_function(BenchmarkId::new("delta_track_ray", name), |b| {
+            b.iter(|| {
+                for &(o, d) in &rays {
+                    black_box(
+                        maj.delta_track(&grid, o, d, f32::INFINITY, 1 << 24, &mut r)
+                            .unwrap(),
+                    );
+                }
+            })
+        });
+        g.bench_function(BenchmarkId::new("ratio_track_ray", name), |b| {
+            b.iter(|| {
+                for &(o, d) in &rays {
+                    black_box(
+                        maj.ratio_track(&grid, o, d, f32::INFINITY, 1 << 24, &mut r)
+                            .unwrap(),
+                    );
+                }
+            })
+        });
+    }
+    g.finish();
+}
+
 fn cube_roots(c: &mut Criterion) {
     let xs: Vec<f32> = (0..BATCH)
         .map(|i| 1e-6 * 1.0068f32.powi(i as i32))
@@ -341,6 +385,7 @@ fn all(c: &mut Criterion) {
     surfaces::<f64>(c, "f64");
     media::<f32>(c, "f32");
     media::<f64>(c, "f64");
+    majorants(c);
     tables(c);
     cube_roots(c);
 }

@@ -1,0 +1,59 @@
+//! A cloud-like medium for the majorant-grid measurements (the main
+//! example's media report and the criterion bench): an `n³` grid over
+//! `[−1, 1]³` with a Gaussian core of density `peak` and a haze of density at
+//! most 1 (so for `peak ≥ 20` every voxel outside the core holds at most 5 %
+//! of the maximum), empty where `x + y + z > 1.5`; and a fixed set of rays
+//! from a sphere of radius 3 aimed at points inside the box.
+#![allow(dead_code)]
+
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::rand_core::SeedableRng;
+use scatterkit::{Real, Vec3};
+
+/// Coefficients per unit density: σ_a, σ_s.
+pub const SIGMA: (f32, f32) = (0.2, 0.8);
+
+/// The `n³` densities (x fastest).
+pub fn cloud(n: usize, peak: f32) -> Vec<f32> {
+    let mut v = Vec::with_capacity(n * n * n);
+    let c = |i: usize| 2.0 * i as f32 / (n - 1) as f32 - 1.0;
+    for k in 0..n {
+        for j in 0..n {
+            for i in 0..n {
+                let (x, y, z) = (c(i), c(j), c(k));
+                let r2 = (x - 0.1) * (x - 0.1) + (y + 0.2) * (y + 0.2) + 2.0 * z * z;
+                let haze = 0.5 * (1.0 + (5.0 * x).sin() * (4.0 * y).cos() * (3.0 * z).sin());
+                let rho = if x + y + z > 1.5 {
+                    0.0
+                } else {
+                    peak * (-r2 / 0.04).exp() + haze
+                };
+                v.push(rho);
+            }
+        }
+    }
+    v
+}
+
+/// The largest density over the mean.
+pub fn peak_over_mean(v: &[f32]) -> f64 {
+    let max = v.iter().fold(0.0f32, |a, &b| a.max(b)) as f64;
+    let mean = v.iter().map(|&x| x as f64).sum::<f64>() / v.len() as f64;
+    max / mean
+}
+
+/// `count` rays `(origin, direction)`, the same for every caller.
+pub fn rays(count: usize) -> Vec<(Vec3<f32>, Vec3<f32>)> {
+    let mut r = Xoshiro256PlusPlus::seed_from_u64(11);
+    let mut u = move || f32::uniform(&mut r);
+    (0..count)
+        .map(|_| {
+            let zc = 2.0 * u() - 1.0;
+            let ph = core::f32::consts::TAU * u();
+            let s = (1.0 - zc * zc).sqrt();
+            let o = Vec3::new(3.0 * s * ph.cos(), 3.0 * s * ph.sin(), 3.0 * zc);
+            let aim = Vec3::new(1.6 * u() - 0.8, 1.6 * u() - 0.8, 1.6 * u() - 0.8);
+            (o, aim - o)
+        })
+        .collect()
+}

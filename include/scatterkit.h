@@ -646,6 +646,52 @@ typedef struct {
 } sk_phase_f64;
 
 /*
+ The channels (wavelength samples) of a spectral medium: coefficients per
+ unit density, `channels` of each (1 to 16), and the hero channel whose
+ majorant draws the free paths.
+ */
+typedef struct {
+    /*
+     sigma_a per unit density, one per channel, finite and >= 0.
+     */
+    const float *sigma_a;
+    /*
+     sigma_s per unit density, one per channel, finite and >= 0.
+     */
+    const float *sigma_s;
+    /*
+     Number of channels, 1 to 16.
+     */
+    size_t channels;
+    /*
+     The hero channel, < channels.
+     */
+    uint32_t hero;
+} sk_spectrum;
+
+/*
+ The channels of a spectral medium (double); see `sk_spectrum`.
+ */
+typedef struct {
+    /*
+     sigma_a per unit density.
+     */
+    const double *sigma_a;
+    /*
+     sigma_s per unit density.
+     */
+    const double *sigma_s;
+    /*
+     Number of channels, 1 to 16.
+     */
+    size_t channels;
+    /*
+     The hero channel, < channels.
+     */
+    uint32_t hero;
+} sk_spectrum_f64;
+
+/*
  A surface's scattering behaviour (float). Build it with sk_surface_new;
  every call checks its fields again, so a value not built that way gives
  an error rather than undefined behaviour.
@@ -1517,6 +1563,87 @@ sk_status sk_rayleigh_sample_dir_n_f64(uint32_t method,
                                        double *out_y,
                                        double *out_z,
                                        size_t n);
+
+/*
+ Spectral delta tracking (pbrt-v4's hero-wavelength tracking) through
+ grid g's density, walking density majorants m (sk_majorants_build on a
+ grid with sigma_a + sigma_s = 1, or sk_majorants_new; same box as g),
+ with the channels of *s: free paths at the hero's majorant; one uniform
+ picks absorption, scattering or a null collision with the hero's
+ probabilities; every channel's ratios are updated as pbrt-v4 does.
+ Writes *out (the event, its distance or the exit, the tentative
+ collisions) and weight[c], r_u[c], r_l[c] for each channel c: with the
+ hero drawn uniformly among the channels, weight[c] / mean(r_u) on each
+ event is an unbiased estimate for channel c. Errors as
+ sk_delta_track_majorants, and SK_ERR_SIZE for 0 or more than 16
+ channels; SK_ERR_DOMAIN for a negative or non-finite coefficient, a hero
+ out of range, or output arrays that overlap an input or each other.
+ Nothing is written on failure.
+ */
+sk_status sk_delta_track_spectral(const sk_majorants *m,
+                                  const sk_grid *g,
+                                  const sk_spectrum *s,
+                                  sk_vec3 o,
+                                  sk_vec3 d,
+                                  float t_max,
+                                  uint32_t budget,
+                                  sk_rng *rng,
+                                  sk_track_result *out,
+                                  float *weight,
+                                  float *r_u,
+                                  float *r_l);
+
+/*
+ Double twin of `sk_delta_track_spectral`.
+ */
+sk_status sk_delta_track_spectral_f64(const sk_majorants_f64 *m,
+                                      const sk_grid_f64 *g,
+                                      const sk_spectrum_f64 *s,
+                                      sk_vec3_f64 o,
+                                      sk_vec3_f64 d,
+                                      double t_max,
+                                      uint32_t budget,
+                                      sk_rng *rng,
+                                      sk_track_result_f64 *out,
+                                      double *weight,
+                                      double *r_u,
+                                      double *r_l);
+
+/*
+ Spectral ratio tracking (arguments as sk_delta_track_spectral): every
+ tentative collision is a null one; weight is pbrt-v4's T_ray (with its
+ Russian roulette), and with the hero drawn uniformly among the channels
+ weight[c] / mean(r_l) is an unbiased transmittance estimate for channel
+ c. Writes the tentative collisions to *steps_out unless it is NULL.
+ */
+sk_status sk_ratio_track_spectral(const sk_majorants *m,
+                                  const sk_grid *g,
+                                  const sk_spectrum *s,
+                                  sk_vec3 o,
+                                  sk_vec3 d,
+                                  float t_max,
+                                  uint32_t budget,
+                                  sk_rng *rng,
+                                  uint32_t *steps_out,
+                                  float *weight,
+                                  float *r_u,
+                                  float *r_l);
+
+/*
+ Double twin of `sk_ratio_track_spectral`.
+ */
+sk_status sk_ratio_track_spectral_f64(const sk_majorants_f64 *m,
+                                      const sk_grid_f64 *g,
+                                      const sk_spectrum_f64 *s,
+                                      sk_vec3_f64 o,
+                                      sk_vec3_f64 d,
+                                      double t_max,
+                                      uint32_t budget,
+                                      sk_rng *rng,
+                                      uint32_t *steps_out,
+                                      double *weight,
+                                      double *r_u,
+                                      double *r_l);
 
 /*
  Mirror reflection of direction d at a surface of normal n (either side,

@@ -55,6 +55,7 @@ pub mod majorant;
 pub mod medium;
 pub mod phase;
 pub mod real;
+pub mod spectral;
 pub mod surface;
 pub mod table;
 

@@ -99,10 +99,31 @@ impl<'a, T: Real> Majorants<'a, T> {
     /// so the walk's rounding at faces stays covered), with the grid
     /// majorant's few ULP of slack. Errors as [`Majorants::new`].
     pub fn build(grid: &Grid<'_, T>, m: [usize; 3], out: &'a mut [T]) -> Result<Self, Error> {
+        let (sa, ss) = grid.coefficients();
+        Self::build_scaled(grid, m, out, sa + ss)
+    }
+
+    /// [`build`](Self::build) for the density itself: each cell holds the
+    /// largest density that reaches into it (with the same slack), whatever
+    /// the grid's coefficients. The majorants spectral tracking takes
+    /// (`spectral`), where each channel scales them by its own `σ_a + σ_s`.
+    pub fn build_density(
+        grid: &Grid<'_, T>,
+        m: [usize; 3],
+        out: &'a mut [T],
+    ) -> Result<Self, Error> {
+        Self::build_scaled(grid, m, out, T::ONE)
+    }
+
+    fn build_scaled(
+        grid: &Grid<'_, T>,
+        m: [usize; 3],
+        out: &'a mut [T],
+        coefficient: T,
+    ) -> Result<Self, Error> {
         let count = majorant_len(m).ok_or(Error::Size)?;
         let cells = out.get_mut(..count).ok_or(Error::Size)?;
-        let (sa, ss) = grid.coefficients();
-        let scale = (sa + ss) * (T::ONE + T::from_f64(4.0) * T::EPSILON);
+        let scale = coefficient * (T::ONE + T::from_f64(4.0) * T::EPSILON);
         let [nx, ny, nz] = grid.dims();
         let mut cells = cells.iter_mut();
         for c in 0..m[2] {
@@ -311,10 +332,33 @@ impl<'a, T: Real> Majorants<'a, T> {
         rng: &mut R,
         mut visit: impl FnMut(Vec3<T>, T, &mut R) -> Result<Option<X>, Error>,
     ) -> Result<Walk<T, X>, Error> {
+        self.walk_at_rate(o, d, (t_min, t_max), T::ONE, budget, rng, |c, r| {
+            visit(c.p, c.value, r)
+        })
+    }
+
+    /// [`walk`](Self::walk) with free paths drawn at `rate` times each
+    /// cell's value (0 draws none), telling `visit` the cell value and the
+    /// integral of the cell values along the ray since the previous
+    /// tentative collision (or the start); the walk's `tail` is that
+    /// integral from the last one to the exit. Spectral tracking needs
+    /// these for every channel's majorant transmittance.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn walk_at_rate<R: Rng + ?Sized, X>(
+        &self,
+        o: Vec3<T>,
+        d: Vec3<T>,
+        (t_min, t_max): (T, T),
+        rate: T,
+        budget: u32,
+        rng: &mut R,
+        mut visit: impl FnMut(Tentative<T>, &mut R) -> Result<Option<X>, Error>,
+    ) -> Result<Walk<T, X>, Error> {
         let mut walk = Walk {
             found: None,
             exit: t_min,
             steps: 0,
+            tail: T::ZERO,
         };
         // In box coordinates the box is [0, 1]³ and t is unchanged.
         let ol = to_local(o, self.lo, self.hi);
@@ -332,39 +376,64 @@ impl<'a, T: Real> Majorants<'a, T> {
         walk.exit = tb;
         let mut dda = Dda::new(ol, dl, ta, self.m);
         let mut t_cell = ta;
+        let mut since = T::ZERO;
         for _ in 0..=(self.m[0] + self.m[1] + self.m[2]) {
             let t_end = dda.next_face().min_of(tb).max_of(t_cell);
-            let sigma_maj = self.get(dda.cell[0], dda.cell[1], dda.cell[2]);
+            let value = self.get(dda.cell[0], dda.cell[1], dda.cell[2]);
+            let sigma_maj = rate * value;
             let mut t = t_cell;
             // An empty cell (majorant 0) is crossed without a draw.
             while sigma_maj > T::ZERO && t < t_end {
-                t += exponential_step(sigma_maj, T::uniform(rng));
-                if t >= t_end || t.is_nan() {
+                let next = t + exponential_step(sigma_maj, T::uniform(rng));
+                if next >= t_end || next.is_nan() {
                     break;
                 }
                 if walk.steps >= budget {
                     return Err(Error::Budget);
                 }
                 walk.steps += 1;
-                if let Some(x) = visit(o + d * t, sigma_maj, rng)? {
+                since += value * (next - t);
+                t = next;
+                let c = Tentative {
+                    p: o + d * t,
+                    value,
+                    since,
+                };
+                since = T::ZERO;
+                if let Some(x) = visit(c, rng)? {
                     walk.found = Some((t, x));
                     return Ok(walk);
                 }
             }
+            since += value * (t_end - t);
             if t_end >= tb || !dda.step() {
                 break;
             }
             t_cell = t_end;
         }
+        walk.tail = since;
         Ok(walk)
     }
 }
 
+/// A tentative collision as [`Majorants::walk_at_rate`] reports it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Tentative<T> {
+    /// Where.
+    pub(crate) p: Vec3<T>,
+    /// The value of the cell it lies in.
+    pub(crate) value: T,
+    /// `∫ value dt` along the ray since the previous tentative collision.
+    pub(crate) since: T,
+}
+
 /// The outcome of a walk: what ended it and where, or where the ray left.
-struct Walk<T, X> {
-    found: Option<(T, X)>,
-    exit: T,
-    steps: u32,
+pub(crate) struct Walk<T, X> {
+    pub(crate) found: Option<(T, X)>,
+    pub(crate) exit: T,
+    pub(crate) steps: u32,
+    /// `∫ value dt` from the last tentative collision to the exit.
+    pub(crate) tail: T,
 }
 
 /// Amanatides–Woo cell stepping on the `m` division of `[0, 1]³`. The time

@@ -188,7 +188,9 @@ fn dims(m: [u32; 3]) -> [usize; 3] {
 }
 
 /// The Rust majorants behind a C value: `Err` for NULL or malformed fields.
-unsafe fn load_maj<'a, S: MajStore>(m: *const S) -> Result<Majorants<'a, S::T>, sk_status> {
+pub(crate) unsafe fn load_maj<'a, S: MajStore>(
+    m: *const S,
+) -> Result<Majorants<'a, S::T>, sk_status> {
     // SAFETY: a non-NULL m points to majorants built by this library, whose
     // array holds mx*my*mz values (module contract).
     let (ptr, n, lo, hi) = unsafe { m.as_ref() }

@@ -33,6 +33,7 @@ mod majorant;
 mod medium;
 mod phase;
 mod rayleigh;
+mod spectral;
 mod surface;
 mod table;
 
@@ -42,6 +43,7 @@ pub use majorant::*;
 pub use medium::*;
 pub use phase::*;
 pub use rayleigh::*;
+pub use spectral::*;
 pub use surface::*;
 pub use table::*;
 

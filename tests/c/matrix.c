@@ -675,6 +675,65 @@ static void majorants(void) {
     /* The budget: 0 steps through a medium that has collisions. */
     CHECK(sk_delta_track_majorants(&big, &g, o, d, 1e6f, 0, &rng, &tr) == SK_ERR_BUDGET);
     CHECK(sk_ratio_track_majorants_fn_f64(coeff64, NULL, &bigd, od, dd, 0, 1e6, 0, &rng, &rrd) == SK_ERR_BUDGET);
+    {
+        /* Spectral tracking: density majorants (the grid's coefficients sum
+         * to 1), three channels, hero 1. */
+        float sa[3] = {0.1f, 0.2f, 0.0f}, ss[3] = {0.3f, 0.0f, 0.5f}, w[3], u[3], l[3];
+        double sad[3] = {0.1, 0.2, 0.0}, ssd[3] = {0.3, 0.0, 0.5}, wd[3], ud[3], ld[3];
+        sk_spectrum sp = {sa, ss, 3, 1};
+        sk_spectrum_f64 spd = {sad, ssd, 3, 1};
+        uint32_t steps;
+        int k;
+        CHECK(sk_delta_track_spectral(&m, &g, &sp, o, d, 3, 1000, &rng, &tr, w, u, l) == SK_OK);
+        CHECK(sk_ratio_track_spectral_f64(&md, &gd, &spd, od, dd, 3, 1000, &rng, &steps, wd, ud, ld) == SK_OK);
+        CHECK(sk_ratio_track_spectral(&m, &g, &sp, o, d, 3, 1000, &rng, NULL, w, u, l) == SK_OK);
+        CHECK(sk_delta_track_spectral_f64(&md, &gd, &spd, od, dd, 3, 1000, &rng, &trd, wd, ud, ld) == SK_OK);
+        CHECK(sk_delta_track_spectral(NULL, &g, &sp, o, d, 3, 10, &rng, &tr, w, u, l) == SK_ERR_NULL);
+        CHECK(sk_delta_track_spectral(&m, NULL, &sp, o, d, 3, 10, &rng, &tr, w, u, l) == SK_ERR_NULL);
+        CHECK(sk_delta_track_spectral(&m, &g, NULL, o, d, 3, 10, &rng, &tr, w, u, l) == SK_ERR_NULL);
+        CHECK(sk_delta_track_spectral(&m, &g, &sp, o, d, 3, 10, NULL, &tr, w, u, l) == SK_ERR_NULL);
+        CHECK(sk_delta_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, NULL, w, u, l) == SK_ERR_NULL);
+        CHECK(sk_delta_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, &tr, NULL, u, l) == SK_ERR_NULL);
+        CHECK(sk_ratio_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, &steps, w, NULL, l) == SK_ERR_NULL);
+        CHECK(sk_ratio_track_spectral_f64(&md, &gd, &spd, od, dd, 3, 10, &rng, &steps, wd, ud, NULL) == SK_ERR_NULL);
+        /* Aliased outputs; an output over an input. */
+        CHECK(sk_ratio_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, &steps, w, w, l) == SK_ERR_DOMAIN);
+        CHECK(sk_delta_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, &tr, sa, u, l) == SK_ERR_DOMAIN);
+        /* Channel counts, hero, coefficients. */
+        sp.channels = 0;
+        CHECK(sk_ratio_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, &steps, w, u, l) == SK_ERR_SIZE);
+        spd.channels = 17;
+        CHECK(sk_ratio_track_spectral_f64(&md, &gd, &spd, od, dd, 3, 10, &rng, &steps, wd, ud, ld) == SK_ERR_SIZE);
+        spd.channels = SIZE_MAX;
+        CHECK(sk_delta_track_spectral_f64(&md, &gd, &spd, od, dd, 3, 10, &rng, &trd, wd, ud, ld) == SK_ERR_SIZE);
+        sp.channels = 3;
+        spd.channels = 3;
+        sp.hero = 3;
+        CHECK(sk_ratio_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, &steps, w, u, l) == SK_ERR_DOMAIN);
+        sp.hero = UINT32_MAX;
+        CHECK(sk_delta_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, &tr, w, u, l) == SK_ERR_DOMAIN);
+        sp.hero = 0;
+        for (k = 0; k < NS; k++) {
+            float keep = sa[2];
+            double keepd = ssd[0];
+            i = k;
+            sa[2] = FS[k];
+            ssd[0] = DS[k];
+            w[0] = 7.0f;
+            CHECK(sk_ratio_track_spectral(&m, &g, &sp, o, d, 3, 1000, &rng, &steps, w, u, l) ==
+                  (isfinite(FS[k]) && FS[k] >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
+            CHECK(isfinite(FS[k]) && FS[k] >= 0.0f ? 1 : w[0] == 7.0f);
+            CHECK(sk_delta_track_spectral_f64(&md, &gd, &spd, od, dd, 3, 1000, &rng, &trd, wd, ud, ld) ==
+                  (isfinite(DS[k]) && DS[k] >= 0.0 ? SK_OK : SK_ERR_DOMAIN));
+            sa[2] = keep;
+            ssd[0] = keepd;
+            CHECK(sk_delta_track_spectral(&m, &g, &sp, o, d, FS[k], 1000, &rng, &tr, w, u, l) ==
+                  (FS[k] >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
+        }
+        i = 0;
+        /* Majorants over another box. */
+        CHECK(sk_ratio_track_spectral(&m, &g2, &sp, o, d, 3, 10, &rng, &steps, w, u, l) == SK_ERR_DOMAIN);
+    }
     /* An escape reports where the ray leaves the box. */
     CHECK(sk_delta_track_majorants(&m, &g, o, d, 1.5f, 0, &rng, &tr) == SK_ERR_BUDGET ||
           (tr.event == SK_TRACK_ESCAPED && tr.t == 1.5f));

@@ -1,0 +1,217 @@
+//! Spectral media (hero-wavelength tracking): with the hero drawn uniformly
+//! among four channels (one of them purely absorbing, one with no
+//! scattering), every channel's one-sample-MIS estimates equal its own
+//! single-wavelength values integrated along the ray: transmittance from
+//! ratio tracking (`weight / mean(r_l)`), and from delta tracking the
+//! escape, absorption and scattering shares (`weight / mean(r_u)` on each
+//! event). Plus bad input.
+
+mod common;
+
+use common::rng;
+use scatterkit::majorant::Majorants;
+use scatterkit::medium::Event;
+use scatterkit::spectral::{MAX_CHANNELS, Ratios, Spectrum};
+use scatterkit::{Error, Grid, Real, Vec3};
+
+const SA: [f64; 4] = [0.1, 0.4, 0.0, 0.02];
+const SS: [f64; 4] = [0.5, 1.1, 2.0, 0.0];
+
+/// A 6×5×4 density with a dense middle, thin edges and a zero corner.
+fn density() -> Vec<f64> {
+    let mut v = Vec::new();
+    for k in 0..4 {
+        for j in 0..5 {
+            for i in 0..6 {
+                let r2 = ((i as f64 - 2.5).powi(2)
+                    + (j as f64 - 2.0).powi(2)
+                    + (k as f64 - 1.5).powi(2))
+                    / 4.0;
+                v.push(if i == 0 && j == 0 {
+                    0.0
+                } else {
+                    3.0 * (-r2).exp() + 0.1
+                });
+            }
+        }
+    }
+    v
+}
+
+/// Along the ray (unit `d`) over `[0, t]`: `(∫ρ, ∫ e^{−k τ(s)} ρ(s) ds)` per
+/// channel coefficient `k`, τ the density integral so far (trapezoids,
+/// 2·10⁵ panels).
+fn along(g: &Grid<'_, f64>, o: Vec3<f64>, d: Vec3<f64>, t: f64, k: f64) -> (f64, f64) {
+    let n = 200_000;
+    let h = t / n as f64;
+    let (mut tau, mut hit) = (0.0, 0.0);
+    let mut prev = g.density(o);
+    for i in 1..=n {
+        let rho = g.density(o + d * (i as f64 * h));
+        let step = 0.5 * (prev + rho) * h;
+        // e^{−kτ} ρ over the panel, to second order.
+        hit += (-k * (tau + 0.5 * step)).exp() * step;
+        tau += step;
+        prev = rho;
+    }
+    (tau, hit)
+}
+
+fn mean_se(xs: &[f64]) -> (f64, f64) {
+    let n = xs.len() as f64;
+    let m = xs.iter().sum::<f64>() / n;
+    let v = xs.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0);
+    (m, (v / n).sqrt())
+}
+
+#[test]
+fn hero_tracking_matches_every_channel_alone() {
+    let values = density();
+    let g = Grid::new(&values, 6, 5, 4, 1.0, 0.0).unwrap();
+    let mut store = [0.0; 4 * 4 * 4];
+    let maj = Majorants::build_density(&g, [4; 3], &mut store).unwrap();
+    let mut r = rng(21);
+    let rays = [
+        (Vec3::new(-0.5, 0.45, 0.5), Vec3::new(1.0, 0.1, 0.0), 3.0),
+        (Vec3::new(0.5, 0.5, 0.5), Vec3::new(-0.3, 0.2, 1.0), 0.4),
+        (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0), 5.0),
+    ];
+    let n = 60_000;
+    for (o, d, t_max) in rays {
+        let d = d * (1.0 / d.length());
+        let mut ratio: Vec<Vec<f64>> = (0..4).map(|_| Vec::with_capacity(n)).collect();
+        let mut events = vec![
+            [
+                Vec::with_capacity(n),
+                Vec::with_capacity(n),
+                Vec::with_capacity(n)
+            ];
+            4
+        ];
+        for _ in 0..n {
+            let hero = ((f64::uniform(&mut r) * 4.0) as usize).min(3);
+            let s = Spectrum {
+                sigma_a: &SA,
+                sigma_s: &SS,
+                hero,
+            };
+            let (mut w, mut u, mut l) = ([0.0; 4], [0.0; 4], [0.0; 4]);
+            let mut out = Ratios {
+                weight: &mut w,
+                r_u: &mut u,
+                r_l: &mut l,
+            };
+            maj.ratio_track_spectral(&g, &s, o, d, t_max, 1 << 20, &mut r, &mut out)
+                .unwrap();
+            let ml = l.iter().sum::<f64>() / 4.0;
+            for c in 0..4 {
+                ratio[c].push(w[c] / ml);
+            }
+            let mut out = Ratios {
+                weight: &mut w,
+                r_u: &mut u,
+                r_l: &mut l,
+            };
+            let tk = maj
+                .delta_track_spectral(&g, &s, o, d, t_max, 1 << 20, &mut r, &mut out)
+                .unwrap();
+            let mu = u.iter().sum::<f64>() / 4.0;
+            for c in 0..4 {
+                let e = w[c] / mu;
+                let which = match tk.event {
+                    Event::Escaped => 0,
+                    Event::Absorbed => 1,
+                    _ => 2,
+                };
+                for (k, list) in events[c].iter_mut().enumerate() {
+                    list.push(if k == which { e } else { 0.0 });
+                }
+            }
+        }
+        for c in 0..4 {
+            let k = SA[c] + SS[c];
+            let (tau, hit) = along(&g, o, d, t_max, k);
+            let tr = (-k * tau).exp();
+            let expected = [tr, SA[c] * hit, SS[c] * hit];
+            let (m, se) = mean_se(&ratio[c]);
+            assert!(
+                (m - tr).abs() <= 4.0 * se + 1e-12,
+                "ray {o:?} channel {c}: ratio {m} ± {se} vs {tr}"
+            );
+            for (e, (list, name)) in expected
+                .iter()
+                .zip(events[c].iter().zip(["escape", "absorb", "scatter"]))
+            {
+                let (m, se) = mean_se(list);
+                assert!(
+                    (m - e).abs() <= 4.0 * se + 1e-12,
+                    "ray {o:?} channel {c}: {name} {m} ± {se} vs {e}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn spectral_bad_input() {
+    let values = density();
+    let g = Grid::new(&values, 6, 5, 4, 1.0, 0.0).unwrap();
+    let mut store = [0.0; 8];
+    let maj = Majorants::build_density(&g, [2; 3], &mut store).unwrap();
+    let mut r = rng(1);
+    let (o, d) = (Vec3::new(-0.5, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0));
+    let (mut w, mut u, mut l) = (
+        [7.0; MAX_CHANNELS + 1],
+        [7.0; MAX_CHANNELS + 1],
+        [7.0; MAX_CHANNELS + 1],
+    );
+    let big = [0.5; MAX_CHANNELS + 1];
+    let mut run = |sa: &[f64], ss: &[f64], hero: usize, n_out: usize, d: Vec3<f64>| {
+        let s = Spectrum {
+            sigma_a: sa,
+            sigma_s: ss,
+            hero,
+        };
+        let mut out = Ratios {
+            weight: &mut w[..n_out],
+            r_u: &mut u[..n_out],
+            r_l: &mut l[..n_out],
+        };
+        maj.ratio_track_spectral(&g, &s, o, d, 2.0, 1 << 20, &mut r, &mut out)
+            .err()
+    };
+    assert_eq!(run(&[], &[], 0, 4, d), Some(Error::Size));
+    assert_eq!(run(&big, &big, 0, MAX_CHANNELS + 1, d), Some(Error::Size));
+    assert_eq!(run(&SA, &SS[..3], 0, 4, d), Some(Error::Size));
+    assert_eq!(run(&SA, &SS, 0, 3, d), Some(Error::Size));
+    assert_eq!(run(&SA, &SS, 4, 4, d), Some(Error::Domain));
+    assert_eq!(
+        run(&[0.1, -0.1, 0.0, 0.0], &SS, 0, 4, d),
+        Some(Error::Domain)
+    );
+    assert_eq!(
+        run(&SA, &[0.1, f64::NAN, 0.0, 0.0], 0, 4, d),
+        Some(Error::Domain)
+    );
+    assert_eq!(
+        run(&SA, &SS, 0, 4, Vec3::new(0.0, 0.0, 0.0)),
+        Some(Error::Domain)
+    );
+    // The failures wrote nothing.
+    assert!(w.iter().chain(&u).chain(&l).all(|&x| x == 7.0));
+    let s = Spectrum {
+        sigma_a: &SA,
+        sigma_s: &SS,
+        hero: 1,
+    };
+    let mut out = Ratios {
+        weight: &mut w,
+        r_u: &mut u,
+        r_l: &mut l,
+    };
+    assert!(
+        maj.ratio_track_spectral(&g, &s, o, d, 2.0, 1 << 20, &mut r, &mut out)
+            .is_ok()
+    );
+    assert!(w[..4].iter().all(|&x| x != 7.0) && w[4..].iter().all(|&x| x == 7.0));
+}

@@ -270,3 +270,81 @@ fn escapes_report_the_exit_and_budgets_run_out() {
         Some(Error::Size)
     );
 }
+
+#[test]
+fn no_valid_ray_or_budget_yields_nan() {
+    // Random media (2–5 values per axis, thin to dense, empty parts, node or
+    // cell sampling, a random world box), random majorant resolutions, rays
+    // (inside, outside, axis-parallel, some infinite) and budgets: every
+    // result is finite and in range, or the budget error.
+    let mut r = rng(77);
+    let mut u = move || f64::uniform(&mut r);
+    let mut r2 = rng(78);
+    let mut store = [0.0f64; 6 * 6 * 6];
+    for case in 0..3000 {
+        let n = [0, 1, 2].map(|_| 2 + (u() * 4.0) as usize);
+        let scale = 10f64.powf(5.0 * u() - 2.0);
+        let mut values = [0.0f64; 125];
+        for v in values.iter_mut() {
+            *v = if u() < 0.3 { 0.0 } else { scale * u() * u() };
+        }
+        let lo = Vec3::new(4.0 * u() - 2.0, 4.0 * u() - 2.0, 4.0 * u() - 2.0);
+        let hi = lo + Vec3::new(0.1 + 3.0 * u(), 0.1 + 3.0 * u(), 0.1 + 3.0 * u());
+        let sampling = if u() < 0.5 {
+            Sampling::Nodes
+        } else {
+            Sampling::Cells
+        };
+        let g = Grid::new(&values, n[0], n[1], n[2], u(), u())
+            .unwrap()
+            .with_box(lo, hi)
+            .unwrap()
+            .with_sampling(sampling);
+        let m = [0, 1, 2].map(|_| 1 + (u() * 6.0) as usize);
+        let maj = Majorants::build(&g, m, &mut store).unwrap();
+        let axis = |x: f64| if x < 0.2 { 0.0 } else { 2.0 * x - 1.0 };
+        let o = Vec3::new(8.0 * u() - 4.0, 8.0 * u() - 4.0, 8.0 * u() - 4.0);
+        let d = Vec3::new(axis(u()), axis(u()), axis(u()));
+        if d.x == 0.0 && d.y == 0.0 && d.z == 0.0 {
+            continue;
+        }
+        let t_max = if u() < 0.1 { f64::INFINITY } else { 10.0 * u() };
+        let budget = if u() < 0.2 {
+            (u() * 5.0) as u32
+        } else {
+            1 << 20
+        };
+        match maj.ratio_track(&g, o, d, t_max, budget, &mut r2) {
+            Ok(tr) => assert!(tr.tr.is_finite() && tr.tr >= 0.0, "case {case}: {tr:?}"),
+            Err(e) => assert_eq!(e, Error::Budget, "case {case}"),
+        }
+        match maj.delta_track(&g, o, d, t_max, budget, &mut r2) {
+            Ok(tk) => assert!(tk.t >= 0.0 && tk.t <= t_max, "case {case}: {tk:?}"),
+            Err(e) => assert_eq!(e, Error::Budget, "case {case}"),
+        }
+    }
+}
+
+#[test]
+fn ratio_tracking_through_majorants_ends_once_the_transmittance_is_gone() {
+    // σ_maj = 10 σ_t over 10⁵ mean free paths, through a caller's medium.
+    let sigma = [10.0f64];
+    let big = Vec3::new(2e5, 1.0, 1.0);
+    let maj = Majorants::new(&sigma, [1; 3], Vec3::new(-1.0, 0.0, 0.0), big).unwrap();
+    let mut r = rng(5);
+    for _ in 0..200 {
+        let tr = maj
+            .ratio_track_fn(
+                |_| (0.5, 0.5),
+                Vec3::new(0.0, 0.5, 0.5),
+                Vec3::new(1.0, 0.0, 0.0),
+                0.0,
+                1e5,
+                10_000,
+                &mut r,
+            )
+            .unwrap();
+        assert_eq!(tr.tr, 0.0);
+        assert!(tr.steps < 10_000);
+    }
+}

@@ -242,7 +242,8 @@ enum sk_track_event
 #endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
  {
     /*
-     No collision in the interval: t_out is t_max.
+     No collision in the interval: t_out is t_max (the majorant-grid calls
+     report where the ray leaves the medium's box instead).
      */
     SK_TRACK_ESCAPED = 0,
     /*
@@ -1147,8 +1148,8 @@ double sk_grid_density_f64(const sk_grid_f64 *g, sk_vec3_f64 p);
  Writes the distance and an sk_track_event (ESCAPED with t_max, SCATTERED
  or ABSORBED). A zero majorant or a ray that misses the box escapes at
  once. SK_ERR_NULL for NULL pointers or callback; SK_ERR_DOMAIN for zero
- or non-finite vectors or t_max negative or NaN; SK_ERR_SIZE after 2^20
- steps or for a malformed grid.
+ or non-finite vectors or t_max negative or NaN; SK_ERR_BUDGET after 2^20
+ steps; SK_ERR_SIZE for a malformed grid.
  */
 sk_status sk_delta_track(const sk_grid *g,
                          sk_vec3 o,
@@ -1174,7 +1175,9 @@ sk_status sk_delta_track_f64(const sk_grid_f64 *g,
  transmittance from o along d over [0, t_max], with Russian roulette once
  the weight falls below 0.05 (it survives with probability 1/4, times 4).
  1 for a ray that misses the box; NaN for NULL or invalid arguments or
- after 2^20 steps.
+ after 2^20 steps (a medium far below its majorant over a long ray:
+ sk_ratio_track_majorants walks local majorants and reports a used-up
+ budget as SK_ERR_BUDGET instead).
  */
 float sk_ratio_track(const sk_grid *g, sk_vec3 o, sk_vec3 d, float t_max, sk_rng *rng);
 
@@ -1194,7 +1197,7 @@ double sk_ratio_track_f64(const sk_grid_f64 *g,
  SK_ERR_DOMAIN when f returns a value outside [0, sigma_maj] (reported,
  not clamped: clamping would bias), for zero or non-finite vectors,
  sigma_maj negative or non-finite, or t_min < 0 or t_max < t_min;
- SK_ERR_NULL for NULL f, rng or outputs; SK_ERR_SIZE after 2^20 steps.
+ SK_ERR_NULL for NULL f, rng or outputs; SK_ERR_BUDGET after 2^20 steps.
  */
 sk_status sk_delta_track_fn(sk_density_fn f,
                             void *ctx,
@@ -1224,8 +1227,9 @@ sk_status sk_delta_track_fn_f64(sk_density_fn_f64 f,
 /*
  Ratio tracking through the caller's medium (arguments as
  sk_delta_track_fn): an unbiased transmittance estimate over
- [t_min, t_max], with the roulette of sk_ratio_track. NaN for NULL or invalid arguments, a density outside
- [0, sigma_maj], or after 2^20 steps.
+ [t_min, t_max], with the roulette of sk_ratio_track. NaN for NULL or
+ invalid arguments, a density outside [0, sigma_maj], or after 2^20
+ steps (sk_ratio_track_majorants_fn reports each as a status).
  */
 float sk_ratio_track_fn(sk_density_fn f,
                         void *ctx,

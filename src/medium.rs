@@ -8,7 +8,7 @@
 //! cannot go wrong).
 //!
 //! Every loop is bounded: tracking stops after [`MAX_STEPS`] tentative
-//! collisions and then reports [`Error::Size`] (delta tracking) or NaN
+//! collisions and then reports [`Error::Budget`]
 //! (ratio tracking) rather than a biased answer. A zero majorant, or a ray
 //! that misses the medium, returns at once: no interaction, transmittance 1.
 
@@ -18,7 +18,9 @@ use crate::real::Real;
 use rand_core::Rng;
 
 /// The most tentative collisions one tracking call takes (2²⁰); a medium of
-/// majorant optical depth beyond ~10⁶ along one ray reports [`Error::Size`].
+/// majorant optical depth beyond ~10⁶ along one ray reports
+/// [`Error::Budget`]. The majorant-grid calls ([`crate::majorant`]) take
+/// the caller's budget instead.
 pub const MAX_STEPS: u32 = 1 << 20;
 
 /// Distance to the next interaction in a homogeneous medium of extinction
@@ -363,7 +365,7 @@ impl<'a, T: Real> Grid<'a, T> {
     /// ray first clipped to the grid's box. Returns the distance and the event
     /// (a real collision scatters with probability σ_s/σ_t). [`Error::Domain`]
     /// for a zero or non-finite `d` or `o`, or `t_max` negative or NaN;
-    /// [`Error::Size`] when [`MAX_STEPS`] is reached.
+    /// [`Error::Budget`] when [`MAX_STEPS`] is reached.
     pub fn delta_track<R: Rng + ?Sized>(
         &self,
         o: Vec3<T>,
@@ -394,18 +396,25 @@ impl<'a, T: Real> Grid<'a, T> {
     /// along `d` over `[0, t_max]` (clipped to the box), with Russian
     /// roulette once the weight falls below 0.05 (survival 1/4, weight ×4,
     /// as pbrt-v4), so the walk ends soon after the transmittance is gone.
-    /// NaN for invalid input or when [`MAX_STEPS`] is reached.
-    pub fn ratio_track<R: Rng + ?Sized>(&self, o: Vec3<T>, d: Vec3<T>, t_max: T, rng: &mut R) -> T {
-        let Ok((o, d)) = ray(o, d) else {
-            return T::NAN;
-        };
+    /// [`Error::Domain`] for a zero or non-finite `d` or `o`, or `t_max`
+    /// negative or NaN; [`Error::Budget`] when [`MAX_STEPS`] is reached (a
+    /// medium far below its one majorant over a long ray: walk
+    /// [`crate::majorant::Majorants`] instead).
+    pub fn ratio_track<R: Rng + ?Sized>(
+        &self,
+        o: Vec3<T>,
+        d: Vec3<T>,
+        t_max: T,
+        rng: &mut R,
+    ) -> Result<T, Error> {
+        let (o, d) = ray(o, d)?;
         if !non_negative(t_max) {
-            return T::NAN;
+            return Err(Error::Domain);
         }
         let Some((t0, t1)) = clip_box(o, d, self.lo, self.hi, T::ZERO, t_max) else {
-            return T::ONE;
+            return Ok(T::ONE);
         };
-        ratio(|p| self.sigma_t(p), self.majorant(), o, d, t0, t1, rng).unwrap_or(T::NAN)
+        ratio(|p| self.sigma_t(p), self.majorant(), o, d, t0, t1, rng)
     }
 }
 
@@ -520,7 +529,7 @@ fn checked<T: Real>(sigma_t: T, sigma_maj: T) -> Result<T, Error> {
 /// (the loop delta and ratio tracking share): at each, `visit(t, σ_t, rng)`
 /// may end the walk with a result. `Ok(None)` when the walk leaves the
 /// interval, [`Error::Domain`] for a σ_t outside `[0, σ_maj]`,
-/// [`Error::Size`] after [`MAX_STEPS`].
+/// [`Error::Budget`] after [`MAX_STEPS`].
 #[allow(clippy::too_many_arguments)]
 fn tentative<T: Real, R: Rng + ?Sized, X>(
     sigma_t: impl Fn(Vec3<T>) -> T,
@@ -543,7 +552,7 @@ fn tentative<T: Real, R: Rng + ?Sized, X>(
             return Ok(Some(x));
         }
     }
-    Err(Error::Size)
+    Err(Error::Budget)
 }
 
 /// Delta tracking over `[t0, t1]`: `(t, true)` at a real collision (chosen
@@ -619,7 +628,7 @@ fn check_fn_args<T: Real>(sigma_maj: T, t_min: T, t_max: T) -> Result<(), Error>
 /// `d` from `o`. Returns the distance and [`Event::Collided`] or
 /// [`Event::Escaped`] (at `t_max`). [`Error::Domain`] for invalid arguments
 /// or a density outside `[0, sigma_maj]` met on the way (reported, not
-/// clamped: clamping would bias); [`Error::Size`] at [`MAX_STEPS`].
+/// clamped: clamping would bias); [`Error::Budget`] at [`MAX_STEPS`].
 #[allow(clippy::too_many_arguments)]
 pub fn delta_track_fn<T: Real, R: Rng + ?Sized>(
     sigma_t: impl Fn(Vec3<T>) -> T,
@@ -644,7 +653,7 @@ pub fn delta_track_fn<T: Real, R: Rng + ?Sized>(
 /// [`delta_track_fn`]): an unbiased transmittance estimate over
 /// `[t_min, t_max]`, with the roulette of [`Grid::ratio_track`].
 /// [`Error::Domain`] for invalid arguments or a density
-/// outside `[0, sigma_maj]`; [`Error::Size`] at [`MAX_STEPS`].
+/// outside `[0, sigma_maj]`; [`Error::Budget`] at [`MAX_STEPS`].
 pub fn ratio_track_fn<T: Real, R: Rng + ?Sized>(
     sigma_t: impl Fn(Vec3<T>) -> T,
     sigma_maj: T,

@@ -219,7 +219,7 @@ fn rust_lines() -> String {
     }
     s += "\nratio_track f32";
     for _ in 0..K {
-        write!(s, " {}", h32(g.ratio_track(o, d, 3.0, &mut r))).unwrap();
+        write!(s, " {}", h32(g.ratio_track(o, d, 3.0, &mut r).unwrap())).unwrap();
     }
     s.push('\n');
     s

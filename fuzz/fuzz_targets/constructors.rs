@@ -82,7 +82,8 @@ fuzz_target!(|data: &[u8]| {
             3.0,
             &mut rng,
         );
-        assert!(r.is_nan() || (0.0..=1.0).contains(&r), "{r}");
+        // Roulette raises a weight below 0.05 at most 4 times: it stays in [0, 1].
+        assert!(r.map_or(true, |r| (0.0..=1.0).contains(&r)), "{r:?}");
     }
     let n = v.len() / 2;
     if n >= 2 {

@@ -14,7 +14,8 @@ use core::ffi::c_void;
 #[repr(u32)]
 #[derive(Clone, Copy, Debug)]
 pub enum sk_track_event {
-    /// No collision in the interval: t_out is t_max.
+    /// No collision in the interval: t_out is t_max (the majorant-grid calls
+    /// report where the ray leaves the medium's box instead).
     SK_TRACK_ESCAPED = 0,
     /// A real collision that scatters (grid: probability sigma_s/sigma_t).
     SK_TRACK_SCATTERED = 1,
@@ -342,7 +343,9 @@ unsafe fn ratio_grid<S: GridStore>(
     rng: *mut sk_rng,
 ) -> S::T {
     match unsafe { (load(g), CRng::from_ptr(rng)) } {
-        (Some(grid), Some(mut r)) => grid.ratio_track(o.to_vec(), d.to_vec(), t_max, &mut r),
+        (Some(grid), Some(mut r)) => grid
+            .ratio_track(o.to_vec(), d.to_vec(), t_max, &mut r)
+            .unwrap_or(S::T::NAN),
         _ => S::T::NAN,
     }
 }
@@ -580,8 +583,8 @@ pub unsafe extern "C" fn sk_grid_density_f64(g: *const sk_grid_f64, p: sk_vec3_f
 /// Writes the distance and an sk_track_event (ESCAPED with t_max, SCATTERED
 /// or ABSORBED). A zero majorant or a ray that misses the box escapes at
 /// once. SK_ERR_NULL for NULL pointers or callback; SK_ERR_DOMAIN for zero
-/// or non-finite vectors or t_max negative or NaN; SK_ERR_SIZE after 2^20
-/// steps or for a malformed grid.
+/// or non-finite vectors or t_max negative or NaN; SK_ERR_BUDGET after 2^20
+/// steps; SK_ERR_SIZE for a malformed grid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_delta_track(
     g: *const sk_grid,
@@ -613,7 +616,9 @@ pub unsafe extern "C" fn sk_delta_track_f64(
 /// transmittance from o along d over [0, t_max], with Russian roulette once
 /// the weight falls below 0.05 (it survives with probability 1/4, times 4).
 /// 1 for a ray that misses the box; NaN for NULL or invalid arguments or
-/// after 2^20 steps.
+/// after 2^20 steps (a medium far below its majorant over a long ray:
+/// sk_ratio_track_majorants walks local majorants and reports a used-up
+/// budget as SK_ERR_BUDGET instead).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_ratio_track(
     g: *const sk_grid,
@@ -643,7 +648,7 @@ pub unsafe extern "C" fn sk_ratio_track_f64(
 /// SK_ERR_DOMAIN when f returns a value outside [0, sigma_maj] (reported,
 /// not clamped: clamping would bias), for zero or non-finite vectors,
 /// sigma_maj negative or non-finite, or t_min < 0 or t_max < t_min;
-/// SK_ERR_NULL for NULL f, rng or outputs; SK_ERR_SIZE after 2^20 steps.
+/// SK_ERR_NULL for NULL f, rng or outputs; SK_ERR_BUDGET after 2^20 steps.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_delta_track_fn(
     f: sk_density_fn,
@@ -711,8 +716,9 @@ pub unsafe extern "C" fn sk_delta_track_fn_f64(
 
 /// Ratio tracking through the caller's medium (arguments as
 /// sk_delta_track_fn): an unbiased transmittance estimate over
-/// [t_min, t_max], with the roulette of sk_ratio_track. NaN for NULL or invalid arguments, a density outside
-/// [0, sigma_maj], or after 2^20 steps.
+/// [t_min, t_max], with the roulette of sk_ratio_track. NaN for NULL or
+/// invalid arguments, a density outside [0, sigma_maj], or after 2^20
+/// steps (sk_ratio_track_majorants_fn reports each as a status).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_ratio_track_fn(
     f: sk_density_fn,

@@ -521,9 +521,9 @@ static void media(void) {
         CHECK(bad(f) ? isnan(sk_ratio_track(&g, v, d, 3.0f, &rng)) : sk_ratio_track(&g, v, d, 3.0f, &rng) >= 0.0f);
         CHECK(!(x >= 0.0) ? isnan(sk_ratio_track_f64(&gd, od, dd, x, &rng)) : sk_ratio_track_f64(&gd, od, dd, x, &rng) >= 0.0);
         /* Majorant: invalid -> DOMAIN; 0 or subnormal -> no tentative collision
-         * in [0, 3], so no density check -> OK; FLT_MAX -> 2^20 tiny steps -> SIZE. */
+         * in [0, 3], so no density check -> OK; FLT_MAX -> 2^20 tiny steps -> BUDGET. */
         CHECK(sk_delta_track_fn(dens32, NULL, f, o, d, 0, 3, &rng, &t, &ev) ==
-              (isnan(f) || isinf(f) || f < 0.0f ? SK_ERR_DOMAIN : f > 1e30f ? SK_ERR_SIZE : SK_OK));
+              (isnan(f) || isinf(f) || f < 0.0f ? SK_ERR_DOMAIN : f > 1e30f ? SK_ERR_BUDGET : SK_OK));
         CHECK(sk_delta_track_fn_f64(dens64, NULL, 1, od, dd, 0, x, &rng, &td, &ev) == (x >= 0.0 ? SK_OK : SK_ERR_DOMAIN));
         CHECK(isnan(sk_ratio_track_fn(dens32, NULL, 1, o, d, f, 3, &rng)) == !(f >= 0.0f && f <= 3.0f));
         CHECK(isnan(sk_ratio_track_fn_f64(dens64, NULL, 1, vd, dd, 0, 3, &rng)) == bad(x));

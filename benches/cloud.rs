@@ -8,7 +8,8 @@
 
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
-use scatterkit::{Real, Vec3};
+use scatterkit::majorant::{DEFAULT_RES, Majorants};
+use scatterkit::{Grid, Real, Vec3};
 
 /// Coefficients per unit density: σ_a, σ_s.
 pub const SIGMA: (f32, f32) = (0.2, 0.8);
@@ -33,6 +34,26 @@ pub fn cloud(n: usize, peak: f32) -> Vec<f32> {
         }
     }
     v
+}
+
+/// The grid of `n³` cloud `values` over `[−1, 1]³` with [`SIGMA`].
+pub fn grid(values: &[f32], n: usize) -> Grid<'_, f32> {
+    let (lo, hi) = (Vec3::new(-1.0, -1.0, -1.0), Vec3::new(1.0, 1.0, 1.0));
+    Grid::new(values, n, n, n, SIGMA.0, SIGMA.1)
+        .and_then(|g| g.with_box(lo, hi))
+        .expect("the cloud grid is valid")
+}
+
+/// Its 16³ local majorants in `local` (`DEFAULT_RES³` values) and its one
+/// global majorant (a 1³ grid) in `global`.
+pub fn majorants<'a>(
+    grid: &Grid<'_, f32>,
+    local: &'a mut [f32],
+    global: &'a mut [f32; 1],
+) -> (Majorants<'a, f32>, Majorants<'a, f32>) {
+    let l = Majorants::build(grid, [DEFAULT_RES; 3], local).expect("local majorants");
+    let g = Majorants::build(grid, [1; 3], global).expect("global majorant");
+    (l, g)
 }
 
 /// The largest density over the mean.

@@ -284,16 +284,11 @@ fn media<T: Real>(c: &mut Criterion, label: &str) {
 /// Rays through a 64³ cloud (`cloud.rs`), per ray: delta and ratio tracking
 /// walking 16³ local majorants against one global majorant (a 1³ grid).
 fn majorants(c: &mut Criterion) {
-    use scatterkit::majorant::{DEFAULT_RES, Majorants};
-    let (lo, hi) = (Vec3::new(-1.0f32, -1.0, -1.0), Vec3::new(1.0f32, 1.0, 1.0));
+    use scatterkit::majorant::DEFAULT_RES;
     let values = cloud::cloud(64, 60.0);
-    let grid = Grid::new(&values, 64, 64, 64, cloud::SIGMA.0, cloud::SIGMA.1)
-        .unwrap()
-        .with_box(lo, hi)
-        .unwrap();
+    let grid = cloud::grid(&values, 64);
     let (mut ls, mut gs) = (vec![0.0f32; DEFAULT_RES.pow(3)], [0.0f32; 1]);
-    let local = Majorants::build(&grid, [DEFAULT_RES; 3], &mut ls).unwrap();
-    let global = Majorants::build(&grid, [1; 3], &mut gs).unwrap();
+    let (local, global) = cloud::majorants(&grid, &mut ls, &mut gs);
     let rays = cloud::rays(256);
     let mut g = c.benchmark_group("majorants_cloud64");
     g.throughput(Throughput::Elements(rays.len() as u64));

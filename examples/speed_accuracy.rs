@@ -1551,8 +1551,6 @@ fn performance(
 fn media_report() -> String {
     use scatterkit::majorant::{DEFAULT_RES, Majorants};
     use scatterkit::medium::Event;
-    let (lo, hi) = (Vec3::new(-1.0f32, -1.0, -1.0), Vec3::new(1.0f32, 1.0, 1.0));
-    let (sa, ss) = cloud::SIGMA;
     let budget = 1 << 24;
     // Per ray: (tentative collisions of delta tracking, real collisions,
     // tentative collisions of ratio tracking).
@@ -1576,13 +1574,9 @@ fn media_report() -> String {
         };
     let n = 128;
     let values = cloud::cloud(n, 60.0);
-    let grid = Grid::new(&values, n, n, n, sa, ss)
-        .unwrap()
-        .with_box(lo, hi)
-        .unwrap();
+    let grid = cloud::grid(&values, n);
     let (mut local_store, mut global_store) = (vec![0.0f32; DEFAULT_RES.pow(3)], [0.0f32; 1]);
-    let local = Majorants::build(&grid, [DEFAULT_RES; 3], &mut local_store).unwrap();
-    let global = Majorants::build(&grid, [1; 3], &mut global_store).unwrap();
+    let (local, global) = cloud::majorants(&grid, &mut local_store, &mut global_store);
     let rays = cloud::rays(2000);
     let (cl, cg) = (counts(&grid, &local, &rays), counts(&grid, &global, &rays));
     let timer = |maj: &Majorants<'_, f32>, ratio: bool| {
@@ -1668,13 +1662,9 @@ fn media_report() -> String {
     let rays = cloud::rays(1000);
     for peak in [2.0f32, 10.0, 50.0, 250.0, 1000.0] {
         let values = cloud::cloud(64, peak);
-        let grid = Grid::new(&values, 64, 64, 64, sa, ss)
-            .unwrap()
-            .with_box(lo, hi)
-            .unwrap();
+        let grid = cloud::grid(&values, 64);
         let (mut ls, mut gs) = (vec![0.0f32; DEFAULT_RES.pow(3)], [0.0f32; 1]);
-        let local = Majorants::build(&grid, [DEFAULT_RES; 3], &mut ls).unwrap();
-        let global = Majorants::build(&grid, [1; 3], &mut gs).unwrap();
+        let (local, global) = cloud::majorants(&grid, &mut ls, &mut gs);
         let (a, b) = (counts(&grid, &local, &rays), counts(&grid, &global, &rays));
         writeln!(
             md,

@@ -139,6 +139,9 @@ fuzz_target!(|data: &[u8]| {
             sigma_a: 0.0,
             sigma_s: 0.0,
             max_density: 0.0,
+            lo: sk_vec3 { x: 0.0, y: 0.0, z: 0.0 },
+            hi: sk_vec3 { x: 1.0, y: 1.0, z: 1.0 },
+            sampling: 0,
         };
         let (nx, ny) = (word(6) % 8, word(7) % 8);
         if (nx as usize) * (ny as usize) <= n
@@ -160,6 +163,37 @@ fuzz_target!(|data: &[u8]| {
                 &mut rng,
             );
             assert!(tr.is_nan() || (0.0..=1.0).contains(&tr), "{tr}");
+            // The same grid in a fuzzed box and sampling, through majorants
+            // of a fuzzed resolution with a fuzzed budget.
+            let lo = sk_vec3 { x: x(25), y: x(26), z: -1.0 };
+            let hi = sk_vec3 { x: x(27), y: 2.0, z: 1.0 };
+            let _ = sk_grid_set_box(&mut g, lo, hi);
+            let _ = sk_grid_set_sampling(&mut g, word(8) % 3);
+            let mut store = [0.0f32; 64];
+            let (mx, my, mz) = (1 + word(9) % 4, 1 + word(10) % 4, 1 + word(11) % 4);
+            let mut maj = core::mem::MaybeUninit::<sk_majorants>::uninit();
+            if sk_majorants_build(&g, mx, my, mz, store.as_mut_ptr(), 64, maj.as_mut_ptr())
+                == sk_status::SK_OK
+            {
+                let maj = maj.assume_init();
+                let o = sk_vec3 { x: x(28), y: x(29), z: 0.25 };
+                let d = sk_vec3 { x: x(30), y: 1.0, z: x(31) };
+                let budget = word(12) % 5000;
+                let mut out = core::mem::MaybeUninit::<sk_ratio_result>::uninit();
+                if sk_ratio_track_majorants(&maj, &g, o, d, x(32), budget, &mut rng, out.as_mut_ptr())
+                    == sk_status::SK_OK
+                {
+                    let r = out.assume_init();
+                    assert!((0.0..=1.0).contains(&r.tr) && r.steps <= budget, "{r:?}");
+                }
+                let mut tk = core::mem::MaybeUninit::<sk_track_result>::uninit();
+                if sk_delta_track_majorants(&maj, &g, o, d, x(32), budget, &mut rng, tk.as_mut_ptr())
+                    == sk_status::SK_OK
+                {
+                    let t = tk.assume_init();
+                    assert!(t.t >= 0.0 && t.event <= 2 && t.steps <= budget, "{t:?}");
+                }
+            }
         }
     }
 });

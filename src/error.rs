@@ -5,9 +5,11 @@ use core::fmt;
 /// Why a constructor or checked call refused its input.
 ///
 /// Rust returns `Result<_, Error>` where C returns `sk_status`: `Domain` is
-/// `SK_ERR_DOMAIN`, `Size` is `SK_ERR_SIZE`, `Method` is `SK_ERR_METHOD`
-/// (`SK_ERR_NULL` exists only in C).
+/// `SK_ERR_DOMAIN`, `Size` is `SK_ERR_SIZE`, `Method` is `SK_ERR_METHOD`,
+/// `Budget` is `SK_ERR_BUDGET` (`SK_ERR_NULL` exists only in C). Variants
+/// may be added: match with a wildcard arm.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum Error {
     /// A parameter is NaN, infinite, or outside the documented domain.
     Domain,

@@ -46,6 +46,11 @@
 //! ```
 #![no_std]
 #![warn(missing_docs)]
+// The boundaries the compiler holds: `unsafe` only in the C layer and the
+// x86-64 square root (`real.rs`), each allowed where it is; every public
+// type can be printed.
+#![deny(unsafe_code)]
+#![deny(missing_debug_implementations)]
 
 pub mod azimuth;
 pub mod cbrt;
@@ -60,6 +65,7 @@ pub mod surface;
 pub mod table;
 
 #[cfg(feature = "ffi")]
+#[allow(unsafe_code)]
 pub mod ffi;
 
 pub use error::Error;

@@ -123,6 +123,7 @@ pub fn homogeneous_sample<T: Real>(
 /// The outcome of delta tracking.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Event {
     /// No collision in `[t_min, t_max]`: the ray leaves the medium.
     Escaped = 0,
@@ -137,6 +138,7 @@ pub enum Event {
 /// Where a grid's values sit in its box.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Sampling {
     /// At the nodes: value `i` at `lo + (hi − lo) i/(n − 1)`, so the faces
     /// carry the outermost values and a density linear in x, y, z is

@@ -296,6 +296,7 @@ impl_real!(
 // scalar. Both give the correctly rounded `sqrtss`/`sqrtsd` result.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
+#[allow(unsafe_code)]
 fn sqrt_f32(x: f32) -> f32 {
     use core::arch::x86_64::{_mm_cvtss_f32, _mm_set_ss, _mm_sqrt_ss};
     // SAFETY: SSE2 is part of every x86-64 target.
@@ -303,6 +304,7 @@ fn sqrt_f32(x: f32) -> f32 {
 }
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
+#[allow(unsafe_code)]
 fn sqrt_f64(x: f64) -> f64 {
     use core::arch::x86_64::{_mm_cvtsd_f64, _mm_set_sd, _mm_sqrt_sd};
     // SAFETY: as above.

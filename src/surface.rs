@@ -136,6 +136,7 @@ fn cone_sample<T: Real>(axis: Vec3<T>, c: T, u: T) -> Vec3<T> {
 /// surface (module docs). The C enum `sk_crossing_policy`.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum CrossingPolicy {
     /// SunSolve's rule: polar angle θ > 90° becomes θ − 90°, same azimuth.
     Fold = 0,
@@ -319,6 +320,7 @@ fn one_minus_exp_neg_sq<T: Real>(x: T) -> T {
 /// How a surface scatters (the C enum `sk_surface_model`).
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum SurfaceModel {
     /// No scattering: every ray goes on specularly.
     Specular = 0,
@@ -332,6 +334,7 @@ try_from_u32!(SurfaceModel: Specular, Lambert, Phong);
 
 /// The share of rays that scatter (the C enum `sk_fraction_model` picks it).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Fraction<T> {
     /// A constant share Λ ∈ [0, 1].
     Constant(T),
@@ -340,12 +343,15 @@ pub enum Fraction<T> {
     Scalar(T),
 }
 
-/// Bits of the event [`Surface::interact`] reports.
-pub mod event {
-    /// The ray was transmitted (else reflected).
-    pub const TRANSMITTED: u32 = 1;
-    /// The ray was scattered by the surface model (else specular).
-    pub const SCATTERED: u32 = 2;
+/// What one interaction did ([`Surface::interact`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Interaction<T> {
+    /// The new unit propagation direction.
+    pub dir: Vec3<T>,
+    /// True if the ray crossed into the second medium (else reflected).
+    pub transmitted: bool,
+    /// True if the surface model scattered it (else specular).
+    pub scattered: bool,
 }
 
 /// An interface's scattering behaviour, validated once. A plain `Copy` value.
@@ -391,7 +397,7 @@ impl<T: Real> Surface<T> {
     /// any length), from index `n_i` into `n_t`, at `wavelength` (used by the
     /// scalar model only; same length unit as σ_rms). Fresnel picks reflection
     /// or transmission, Λ picks scattered or specular, the model picks the
-    /// direction. Returns the new unit direction and the [`event`] bits.
+    /// direction. Returns the new unit direction and what happened.
     ///
     /// [`Error::Domain`] for zero or non-finite vectors, indices that are not
     /// finite and positive, or (scalar model) a wavelength that is not.
@@ -403,7 +409,7 @@ impl<T: Real> Surface<T> {
         n_t: T,
         wavelength: T,
         rng: &mut R,
-    ) -> Result<(Vec3<T>, u32), Error> {
+    ) -> Result<Interaction<T>, Error> {
         let (Some(d), Some(n)) = (d.try_normalize(), normal.try_normalize()) else {
             return Err(Error::Domain);
         };
@@ -445,11 +451,7 @@ impl<T: Real> Surface<T> {
                 (reflect(d, nf), nf, l)
             }
         };
-        let transmitted = if refracted.is_some() {
-            event::TRANSMITTED
-        } else {
-            0
-        };
+        let transmitted = refracted.is_some();
         let scattered = self.model != SurfaceModel::Specular && T::uniform(rng) < lambda;
         let dir = if !scattered {
             specular
@@ -458,9 +460,10 @@ impl<T: Real> Surface<T> {
         } else {
             phong_sample_rng(specular, leaving, self.phong_alpha, self.policy, rng)
         };
-        Ok((
+        Ok(Interaction {
             dir,
-            transmitted | if scattered { event::SCATTERED } else { 0 },
-        ))
+            transmitted,
+            scattered,
+        })
     }
 }

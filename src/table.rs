@@ -23,6 +23,7 @@ use crate::real::Real;
 /// What a table holds (the C enum `sk_table_kind`).
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum TableKind {
     /// Frisvad's tabulated Rayleigh CDF: `n + 1` values `F(x_i)`,
     /// `x_i = −1 + 2i/n`.

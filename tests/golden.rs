@@ -174,7 +174,7 @@ fn rust_lines() -> String {
     let mut r = SplitMix(11);
     s += "interact f32";
     for _ in 0..K {
-        let (d, ev) = surf
+        let x = surf
             .interact(
                 Vec3::new(0.6, 0.0, -0.8),
                 Vec3::new(0.0, 0.0, 1.0),
@@ -184,6 +184,8 @@ fn rust_lines() -> String {
                 &mut r,
             )
             .unwrap();
+        // The C layer's event bits: 1 transmitted, 2 scattered.
+        let (d, ev) = (x.dir, x.transmitted as u32 | (x.scattered as u32) << 1);
         write!(s, " {}:{}:{}:{ev}", h32(d.x), h32(d.y), h32(d.z)).unwrap();
     }
     s += "\nfree_path f32";

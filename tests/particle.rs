@@ -75,6 +75,7 @@ fn name(m: Model) -> &'static str {
         Model::Rayleigh => "Rayleigh",
         Model::Draine => "Draine",
         Model::Fog => "fog",
+        _ => unreachable!("a model this test does not know: extend the table"),
     }
 }
 

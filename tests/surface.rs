@@ -8,8 +8,8 @@ use common::chi2::{chi2_directions, threshold};
 use common::ks::{ks_critical, ks_statistic};
 use common::{CHI2_SAMPLES, rng, test_directions};
 use scatterkit::surface::{
-    self, CrossingPolicy, Fraction, Surface, SurfaceModel, event, fresnel_dielectric,
-    lambert_sample, phong_sample, phong_sample_rng, reflect, refract, scatter_fraction_reflect,
+    self, CrossingPolicy, Fraction, Surface, SurfaceModel, fresnel_dielectric, lambert_sample,
+    phong_sample, phong_sample_rng, reflect, refract, scatter_fraction_reflect,
     scatter_fraction_transmit,
 };
 use scatterkit::{Real, Vec3};
@@ -331,9 +331,9 @@ fn interact_shares(model: SurfaceModel, theta_deg: f64, n: usize) {
     let mut r = rng(123);
     let (mut refl, mut refl_scat, mut trans_scat) = (0usize, 0usize, 0usize);
     for _ in 0..n {
-        let (dir, ev) = s.interact(d, normal, ni, nt, lambda, &mut r).unwrap();
-        let transmitted = ev & event::TRANSMITTED != 0;
-        let scattered = ev & event::SCATTERED != 0;
+        let x = s.interact(d, normal, ni, nt, lambda, &mut r).unwrap();
+        let dir = x.dir;
+        let (transmitted, scattered) = (x.transmitted, x.scattered);
         if transmitted {
             assert!(dir.z < 0.0, "a transmission must cross: {dir:?}");
             trans_scat += scattered as usize;
@@ -395,8 +395,9 @@ fn total_internal_reflection_always_reflects() {
     let n = Vec3::new(0.0, 0.0, 1.0);
     let mut r = rng(2);
     for _ in 0..10_000 {
-        let (dir, ev) = s.interact(d, n, 1.5, 1.0, 600e-9, &mut r).unwrap();
-        assert_eq!(ev & event::TRANSMITTED, 0);
+        let x = s.interact(d, n, 1.5, 1.0, 600e-9, &mut r).unwrap();
+        let dir = x.dir;
+        assert!(!x.transmitted);
         assert!(dir.z <= 0.0, "stays in the glass: {dir:?}");
     }
 }

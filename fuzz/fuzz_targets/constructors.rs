@@ -63,7 +63,7 @@ fuzz_target!(|data: &[u8]| {
         CrossingPolicy::Resample,
     ) {
         let mut rng = scatterkit_fuzz_rng(data);
-        if let Ok((d, _)) = s.interact(
+        if let Ok(scatterkit::surface::Interaction { dir: d, .. }) = s.interact(
             Vec3::new(x(5), x(6), x(7)),
             Vec3::new(x(8), x(9), x(10)),
             1.5,

@@ -203,8 +203,8 @@ where
 /// picks absorption, scattering or a null collision with the hero's
 /// probabilities; every channel's ratios are updated as pbrt-v4 does.
 /// Writes *out (the event, its distance or the exit, the tentative
-/// collisions) and weight[c], r_u[c], r_l[c] for each channel c: with the
-/// hero drawn uniformly among the channels, weight[c] / mean(r_u) on each
+/// collisions) and `weight[c]`, `r_u[c]`, `r_l[c]` for each channel c: with the
+/// hero drawn uniformly among the channels, `weight[c]` / mean(r_u) on each
 /// event is an unbiased estimate for channel c. Errors as
 /// sk_delta_track_majorants, and SK_ERR_SIZE for 0 or more than 16
 /// channels; SK_ERR_DOMAIN for a negative or non-finite coefficient, a hero
@@ -250,7 +250,7 @@ pub unsafe extern "C" fn sk_delta_track_spectral_f64(
 /// Spectral ratio tracking (arguments as sk_delta_track_spectral): every
 /// tentative collision is a null one; weight is pbrt-v4's T_ray (with its
 /// Russian roulette), and with the hero drawn uniformly among the channels
-/// weight[c] / mean(r_l) is an unbiased transmittance estimate for channel
+/// `weight[c]` / mean(r_l) is an unbiased transmittance estimate for channel
 /// c. Writes the tentative collisions to *steps_out unless it is NULL.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_ratio_track_spectral(

@@ -59,11 +59,6 @@ same_values!(sk_crossing_policy = CrossingPolicy:
 pub const SK_EVENT_TRANSMITTED: u32 = 1;
 /// Bit of `event_out`: the ray was scattered by the model (else specular).
 pub const SK_EVENT_SCATTERED: u32 = 2;
-// Literals so cbindgen can write them; the core's values must agree.
-const _: () = assert!(
-    SK_EVENT_TRANSMITTED == surface::event::TRANSMITTED
-        && SK_EVENT_SCATTERED == surface::event::SCATTERED
-);
 
 /// A surface's scattering behaviour (float). Build it with sk_surface_new;
 /// every call checks its fields again, so a value not built that way gives
@@ -251,9 +246,12 @@ unsafe fn interact<S: SurfaceStore, V: CVec<T = S::T>>(
         .and_then(|surf| surf.interact(d.to_vec(), normal.to_vec(), n_i, n_t, wavelength, &mut r));
     match result {
         // SAFETY: both out-pointers were checked non-NULL above.
-        Ok((dir, event)) => unsafe {
-            dir_out.write(V::from_vec(dir));
-            event_out.write(event);
+        Ok(x) => unsafe {
+            let bits = |on: bool, bit: u32| if on { bit } else { 0 };
+            dir_out.write(V::from_vec(x.dir));
+            event_out.write(
+                bits(x.transmitted, SK_EVENT_TRANSMITTED) | bits(x.scattered, SK_EVENT_SCATTERED),
+            );
             sk_status::SK_OK
         },
         Err(e) => e.into(),

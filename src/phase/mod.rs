@@ -198,6 +198,7 @@ pub fn check_uniforms<T: Real>(u: &[T]) -> Result<(), Error> {
 /// reads the payload.
 #[repr(C, u32)]
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Phase<T> {
     /// Uniform over the sphere.
     Isotropic(Isotropic) = 1,

@@ -29,6 +29,7 @@ pub const MARGIN: f64 = 0.05;
 
 /// The candidate models, cheapest first.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Model {
     /// Uniform over the sphere.
     Isotropic,

@@ -27,6 +27,7 @@ pub struct Rayleigh;
 /// The sampling methods of Frisvad (2011), with the C enum's values.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum RayleighMethod {
     /// Isotropic direction from the von Neumann cube (points in `[-1,1]³`
     /// kept inside the unit ball, normalised), accepted with probability

@@ -17,6 +17,14 @@
 //! * Constructors validate; built objects are valid, and their hot paths do
 //!   not re-check.
 //!
+//! ## Results
+//! One rule: a pure formula of floats returns a float, and NaN in gives NaN
+//! out, as libm does ([`medium::free_path`], `pdf`, `cdf`, `sample_cos`);
+//! anything that validates structure (buffers, dimensions, enums, boxes) or
+//! can hit an iteration cap returns `Result<_, `[`Error`]`>`, and the cap
+//! is its own error ([`Error::Budget`]: the tracking calls). Nothing panics
+//! on any input.
+//!
 //! ## Features
 //! | feature | default | what |
 //! |---|---|---|

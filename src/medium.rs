@@ -159,6 +159,34 @@ try_from_u32!(Sampling: Nodes, Cells);
 /// at the nodes of the box or at its cell centres ([`Sampling`]; a
 /// dimension of 1 is constant along its axis) and interpolated
 /// trilinearly. Zero outside the box. `σ_t(p) = (σ_a + σ_s) density(p)`.
+///
+/// # Example
+///
+/// A 2×2×2 grid over a world box, tracked directly with its one majorant
+/// and through 4³ local majorants (`crate::majorant`) in caller memory:
+///
+/// ```
+/// use scatterkit::majorant::Majorants;
+/// use scatterkit::{Grid, Sampling, Vec3};
+/// use rand_xoshiro::Xoshiro256PlusPlus;
+/// use rand_xoshiro::rand_core::SeedableRng;
+///
+/// let density = [0.0f64, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 8.0];
+/// let grid = Grid::new(&density, 2, 2, 2, 0.2, 0.8)
+///     .unwrap()
+///     .with_box(Vec3::new(-1.0, -1.0, -1.0), Vec3::new(1.0, 1.0, 1.0))
+///     .unwrap()
+///     .with_sampling(Sampling::Cells);
+/// let mut rng = Xoshiro256PlusPlus::seed_from_u64(7);
+/// let (o, d) = (Vec3::new(-3.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0));
+/// let tr = grid.ratio_track(o, d, 10.0, &mut rng).unwrap();
+/// assert!((0.0..=1.0).contains(&tr));
+///
+/// let mut store = [0.0; 4 * 4 * 4];
+/// let maj = Majorants::build(&grid, [4; 3], &mut store).unwrap();
+/// let hit = maj.delta_track(&grid, o, d, 10.0, 1 << 20, &mut rng).unwrap();
+/// assert!(hit.t >= 0.0 && hit.t <= 10.0);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Grid<'a, T> {
     density: &'a [T],

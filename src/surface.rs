@@ -355,6 +355,27 @@ pub struct Interaction<T> {
 }
 
 /// An interface's scattering behaviour, validated once. A plain `Copy` value.
+///
+/// # Example
+///
+/// A textured glass–silicon interface as a solar-cell ray tracer sees it:
+/// Fresnel decides reflection, a constant share of rays scatters with a
+/// Phong lobe of exponent 20.
+///
+/// ```
+/// use scatterkit::{CrossingPolicy, Fraction, Surface, SurfaceModel, Vec3};
+/// use rand_xoshiro::Xoshiro256PlusPlus;
+/// use rand_xoshiro::rand_core::SeedableRng;
+///
+/// let s = Surface::new(SurfaceModel::Phong, 20.0f64, Fraction::Constant(0.3), CrossingPolicy::Resample)
+///     .unwrap();
+/// let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
+/// let (d, normal) = (Vec3::new(0.6, 0.0, -0.8), Vec3::new(0.0, 0.0, 1.0));
+/// let x = s.interact(d, normal, 1.5, 3.9, 600e-9, &mut rng).unwrap();
+/// assert!((x.dir.length() - 1.0).abs() < 1e-12);
+/// // Transmitted rays leave on the far side of the interface.
+/// assert_eq!(x.transmitted, x.dir.z < 0.0);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Surface<T> {
     model: SurfaceModel,

@@ -115,6 +115,20 @@ impl<T: Real> Fog<T> {
 
     /// The fitted fog phase function for water droplets of diameter
     /// `diameter_um` µm, `0 < d ≤ 50` ([`fog_fit`]).
+    ///
+    /// # Example
+    ///
+    /// ```
+    /// use scatterkit::{Fog, PhaseFunction};
+    ///
+    /// let fog = Fog::<f64>::from_diameter(2.0).unwrap();
+    /// // Strongly forward, like the Mie phase function it fits.
+    /// assert!(fog.mean_cosine() > 0.5);
+    /// // The monotone inverse CDF: F(μ(u)) = u.
+    /// let mu = fog.sample_cos(0.3);
+    /// assert!((fog.cdf(mu) - 0.3).abs() < 1e-12);
+    /// assert!(Fog::<f64>::from_diameter(60.0).is_err());
+    /// ```
     pub fn from_diameter(diameter_um: T) -> Result<Self, Error> {
         let p = fog_fit(diameter_um.to_f64())?;
         let t = T::from_f64;

@@ -196,6 +196,25 @@ pub fn check_uniforms<T: Real>(u: &[T]) -> Result<(), Error> {
 /// `#[repr(C, u32)]` with discriminants from 1, so that the C layer can check
 /// the tag of a caller's `sk_phase` (an all-zero value is invalid) before it
 /// reads the payload.
+///
+/// # Example
+///
+/// Henyey–Greenstein with `g = 0.7`: a direction about the incoming one,
+/// its density, and the inverse CDF that stratified or quasi-random
+/// uniforms keep stratified.
+///
+/// ```
+/// use scatterkit::{Phase, PhaseFunction, Vec3};
+///
+/// let hg = Phase::<f32>::henyey_greenstein(0.7).unwrap();
+/// let w_in = Vec3::new(0.0, 0.0, 1.0);
+/// let (w_out, pdf) = hg.sample_dir(w_in, 0.25, 0.5);
+/// assert!((w_out.length() - 1.0).abs() < 1e-6);
+/// assert!((pdf - hg.pdf(w_out.dot(w_in))).abs() < 1e-3 * pdf);
+/// // Monotone in u: the median direction, and F(μ(u)) = u.
+/// let mu = hg.sample_cos(0.5);
+/// assert!((hg.cdf(mu) - 0.5).abs() < 1e-6);
+/// ```
 #[repr(C, u32)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]

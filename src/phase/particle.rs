@@ -152,6 +152,20 @@ fn fit_draine(r: &Reference) -> (f64, f64, f64) {
 /// of the fog fit for droplets of `diameter_um` µm (`0 < d ≤ 50`), with its
 /// fitted parameters and estimated distance. [`Error::Domain`] outside those
 /// ranges.
+///
+/// # Example
+///
+/// ```
+/// use scatterkit::phase::particle::{Model, choose};
+///
+/// // Droplets far below the wavelength: Rayleigh is close enough.
+/// let (_, model, _) = choose(0.01, 0.01).unwrap();
+/// assert_eq!(model, Model::Rayleigh);
+/// // Cloud droplets: the chooser returns a model within the tolerance.
+/// let (phase, _, distance) = choose(10.0, 0.05).unwrap();
+/// assert!(distance <= 0.05);
+/// let _ = phase; // a Phase<f64>, ready to sample
+/// ```
 pub fn choose(diameter_um: f64, tolerance: f64) -> Result<(Phase<f64>, Model, f64), Error> {
     if !(tolerance > 0.0 && tolerance < 1.0) {
         return Err(Error::Domain);

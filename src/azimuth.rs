@@ -25,8 +25,6 @@
 //! points next to each quadrant boundary, against a double-double reference;
 //! `|sin² + cos² − 1|` ≤ 2.1·10⁻⁷ (f32) and 3.5·10⁻¹⁶ (f64).
 
-use crate::real::Real;
-
 /// `(sin 2πu, cos 2πu)` for `u ∈ [0, 1]` in f32 (module docs). Outside
 /// `[0, 1]` the result is still a unit pair, though not of `2πu` for
 /// `|u| ≥ 2²¹`; NaN gives NaN.
@@ -87,10 +85,4 @@ pub fn sin_cos_2pi_f64(u: f64) -> (f64, f64) {
         f64::from_bits(s.to_bits() ^ ((q & 2) << 62)),
         f64::from_bits(c.to_bits() ^ ((q.wrapping_add(1) & 2) << 62)),
     )
-}
-
-/// `(sin 2πu, cos 2πu)` in the precision of `T`.
-#[inline(always)]
-pub fn sin_cos_2pi<T: Real>(u: T) -> (T, T) {
-    T::sin_cos_2pi(u)
 }

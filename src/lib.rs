@@ -66,6 +66,7 @@ mod error;
 pub mod geometry;
 pub mod majorant;
 pub mod medium;
+mod numeric;
 pub mod phase;
 pub mod real;
 pub mod spectral;

@@ -177,7 +177,7 @@ fn uncross<T: Real>(d: Vec3<T>, normal: Vec3<T>, policy: CrossingPolicy) -> Vec3
             // of d and the normal.
             let tangential = d - normal * c;
             let t = tangential.try_normalize().unwrap_or_else(|| onb(normal).0);
-            let s = ((T::ONE - c) * (T::ONE + c)).max_of(T::ZERO).sqrt();
+            let s = sin_from_cos(c);
             t * (-c) + normal * s
         }
         CrossingPolicy::Resample | CrossingPolicy::Mirror => d - normal * (T::TWO * c),

@@ -17,6 +17,7 @@
 //! `d_i = (dμ/du)(u_i) / n` (the slope per interval).
 
 use crate::error::{Error, try_from_u32};
+use crate::numeric::hermite;
 use crate::phase::{PhaseFunction, Rayleigh};
 use crate::real::Real;
 
@@ -221,25 +222,6 @@ impl<'a, T: Real> Table<'a, T> {
         let dx = T::TWO / T::from_f64(self.n as f64);
         ((T::from_f64(lo as f64) + t) * dx - T::ONE).clamp_unit()
     }
-}
-
-/// Cubic Hermite interpolation of a tabulated inverse CDF (`μ_i, d_i`
-/// interleaved, `n` intervals, `n_t = n` as a float) at `u ∈ [0, 1]`: the
-/// interval `i = ⌊u n⌋` found by arithmetic, no search.
-#[inline(always)]
-pub(crate) fn hermite<T: Real>(data: &[T], n: usize, n_t: T, u: T) -> T {
-    let x = u * n_t;
-    // Saturating conversion (NaN → 0) and the min keep i in bounds.
-    let i = x.to_index().min(n - 1);
-    let t = x - T::from_index(i);
-    let [y0, d0, y1, d1] = match data.get(2 * i..2 * i + 4) {
-        Some(&[a, b, c, d]) => [a, b, c, d],
-        _ => return T::NAN,
-    };
-    let dy = y1 - y0;
-    let c2 = T::from_f64(3.0) * dy - T::TWO * d0 - d1;
-    let c3 = d0 + d1 - T::TWO * dy;
-    (y0 + t * (d0 + t * (c2 + t * c3))).clamp_unit()
 }
 
 /// Fritsch–Carlson: each node's slope is clamped to `[0, 3Δ]` for the secants

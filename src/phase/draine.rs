@@ -34,7 +34,7 @@
 //!    from any seed; it stops when a step and Newton's `|r/F'|` fall below
 //!    the precision's tolerance, relative to the variable and (for the step,
 //!    its square root) to the distance to the nearer pole (at most
-//!    [`MAX_NEWTON`] steps). `F`, `F'` and `F''` cost one
+//!    64 steps). `F`, `F'` and `F''` cost one
 //!    square root and one division together.
 //!
 //! f32 objects run the same f64 code and round once at the end.
@@ -47,11 +47,8 @@ use super::PhaseFunction;
 use super::hg::HenyeyGreenstein;
 use super::seeds::Seeds;
 use crate::error::Error;
+use crate::numeric::{Eval, depressed_cubic_root, solve_bracketed};
 use crate::real::Real;
-
-/// The most Halley/bisection steps one sample may take (bisection alone
-/// narrows `[−1, 1]` to below 10⁻¹⁸ in 61 steps).
-pub const MAX_NEWTON: u32 = 64;
 
 /// Draine's phase function with asymmetry-like parameter `g ∈ (−1, 1)` and
 /// `α ≥ 0` (finite). `α = 1` is Cornette–Shanks; `α = 0` is HG.
@@ -153,26 +150,6 @@ impl<T: Real> PhaseFunction<T> for Draine<T> {
     }
 }
 
-/// Halley's iteration stops after a step below this, relative to the
-/// variable (`1 + μ` near the pole): the error left is about curvature ×
-/// step³, far below f32's resolution. (10⁻⁵ rather than 10⁻⁶ saves a third
-/// step for a few per cent of fog samples; 10⁻⁴ was measured to cost
-/// accuracy at 10 µm, 3.2·10⁻⁸ instead of 3.0·10⁻⁸.)
-pub(crate) const TOL_F32: f64 = 1e-5;
-/// For f64, steps continue to the rounding level of `μ` (there is no speed
-/// target in f64, and the last steps buy digits where `F` is flat).
-pub(crate) const TOL_F64: f64 = 1e-15;
-
-/// The iteration tolerance for results of precision `T`.
-#[inline(always)]
-pub(crate) fn tol<T: Real>() -> f64 {
-    if core::mem::size_of::<T>() == 4 {
-        TOL_F32
-    } else {
-        TOL_F64
-    }
-}
-
 /// Draine's parameters in f64 with the normalisation `c = 1 + α(1 + 2g²)/3`
 /// and the constants every evaluation needs.
 #[derive(Clone, Copy, Debug)]
@@ -185,14 +162,6 @@ pub(crate) struct Params {
     inv_s0: f64,
     /// `α/3`.
     alpha_3: f64,
-}
-
-/// `F(μ)`, `F'(μ)` (the density of μ) and `F''(μ)` at one point.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Eval {
-    pub(crate) cdf: f64,
-    pub(crate) density: f64,
-    pub(crate) slope: f64,
 }
 
 impl Params {
@@ -304,7 +273,7 @@ fn inverse_g0(alpha: f64, u: f64) -> f64 {
     let alpha = alpha.min(1e30);
     let ra = Real::sqrt(alpha);
     let beta = (3.0 + alpha) * (2.0 * u - 1.0) * ra * 0.5;
-    let y = super::rayleigh::depressed_cubic_root::<f64, false>(1.0, 1.0, beta);
+    let y = depressed_cubic_root::<f64, false>(1.0, 1.0, beta);
     y / ra
 }
 
@@ -436,79 +405,6 @@ const EQ6_MIN_Y: f64 = 1e-5;
 const EQ6_MIN_G: f64 = 0.05;
 const EQ6_MIN_ALPHA: f64 = 1e-4;
 const EQ6_MAX_ALPHA: f64 = 10.0;
-
-/// Solves `F(x) = target` for an increasing `F` on `[lo, hi] ⊆ [0, 2]` (the
-/// variable is `y = 1 + μ`; `F(lo) ≤ target ≤ F(hi)`), where `f(x)` gives
-/// `F`, `F'` and `F''`: Halley's method (cubic convergence) from `seed`, kept
-/// inside a shrinking bracket and replaced by bisection whenever a step
-/// would leave it. Stops once a Halley step and Newton's estimate `|r/F'|`
-/// are both below `tol::<T>()` relative to `x`, and the step below
-/// `sqrt(tol)` relative to the distance to the nearer pole (the next error
-/// is then about `curvature · step³`), or when a step no longer moves `x`,
-/// or after [`MAX_NEWTON`] steps.
-pub(crate) fn solve_bracketed<T: Real>(
-    f: impl Fn(f64) -> Eval,
-    target: f64,
-    seed: f64,
-    mut lo: f64,
-    mut hi: f64,
-) -> f64 {
-    if target.is_nan() {
-        return f64::NAN;
-    }
-    if target <= 0.0 {
-        return lo;
-    }
-    let tol = tol::<T>();
-    let mut x = if seed > lo && seed < hi {
-        seed
-    } else {
-        0.5 * (lo + hi)
-    };
-    for _ in 0..MAX_NEWTON {
-        let e = f(x);
-        let r = e.cdf - target;
-        if r == 0.0 {
-            break;
-        }
-        if r > 0.0 {
-            hi = x;
-        } else {
-            lo = x;
-        }
-        let mut next = x - 2.0 * r * e.density / (2.0 * e.density * e.density - r * e.slope);
-        if next == x {
-            // The correction is below the resolution of x: converged. (x is
-            // also a bracket end now, so the test below would bisect away.)
-            break;
-        }
-        let halley = next > lo && next < hi;
-        if !halley {
-            next = 0.5 * (lo + hi);
-        }
-        let step = (next - x).abs();
-        // Newton's estimate of the distance to the root, |r/F'|, must be
-        // small too (a Halley step far from the root, where r F'' dominates
-        // its denominator, can be small without x being near the root).
-        let near = r.abs() <= 4.0 * tol * x.abs() * e.density;
-        // Near a pole the density's own scale is the distance to it, and
-        // Halley's next error is about step³ over that distance squared: a
-        // step within tol of x is not enough for a sharp forward lobe whose
-        // smaller tail lies near y = 2 (measured: 1.5e-5 at g = 0.999,
-        // α = 20). The step must also be within sqrt(tol) of the distance
-        // to the nearer pole, which leaves an error below tol^1.5 of it.
-        let pole = x.abs().min((2.0 - x).abs());
-        let small = step <= tol * x.abs() && step * step <= tol * pole * pole;
-        x = next;
-        // Stop after a small Halley step (a bisection step says nothing
-        // about the error), or when the bracket has shrunk to adjacent
-        // floats.
-        if (halley && near && small) || hi - lo <= 2.0 * f64::EPSILON * hi.abs().max(lo.abs()) {
-            break;
-        }
-    }
-    x
-}
 
 /// Eq. 6 of Jendersie & d'Eon (2023) exactly as published, in the precision
 /// `T`: the reference the accuracy map and benchmarks compare against. It is

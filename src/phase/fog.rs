@@ -16,9 +16,10 @@
 //!   inverse of [`PhaseFunction::cdf`].
 
 use super::PhaseFunction;
-use super::draine::{Eval, Params, from_tail, inverse_tail, solve_bracketed};
+use super::draine::{Params, from_tail, inverse_tail};
 use super::seeds::Seeds;
 use crate::error::Error;
+use crate::numeric::{Eval, solve_bracketed};
 use crate::real::Real;
 
 /// The fog mixture. Built from its four parameters or from a droplet

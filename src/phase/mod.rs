@@ -234,6 +234,36 @@ pub enum Phase<T> {
 }
 
 impl<T: Real> Phase<T> {
+    /// The same phase function in another precision (parameters rounded;
+    /// a parameter that must stay below 1 in magnitude stays below it).
+    pub fn cast<U: Real>(&self) -> Phase<U> {
+        let c = |x: T| U::from_f64(x.to_f64());
+        let open = |x: T| {
+            let y = U::from_f64(x.to_f64());
+            if y.abs() < U::ONE {
+                y
+            } else {
+                (U::ONE - U::EPSILON * U::HALF).copysign(y)
+            }
+        };
+        match *self {
+            Phase::Isotropic(i) => Phase::Isotropic(i),
+            Phase::Rayleigh(r) => Phase::Rayleigh(r),
+            Phase::RayleighDepolarized(r) => match RayleighDepolarized::new(open(r.rho())) {
+                Ok(d) => Phase::RayleighDepolarized(d),
+                Err(_) => Phase::Rayleigh(Rayleigh),
+            },
+            Phase::HenyeyGreenstein(h) => {
+                Phase::HenyeyGreenstein(HenyeyGreenstein::from_g(open(h.g())))
+            }
+            Phase::Draine(d) => Phase::Draine(Draine::from_parts(open(d.g), c(d.alpha))),
+            Phase::Fog(f) => {
+                let (a, b, al, w) = f.params();
+                Phase::Fog(Fog::from_parts(open(a), open(b), c(al), c(w)))
+            }
+        }
+    }
+
     /// `cos θ` by lobe: for the fog mixture, the paper's sampler
     /// ([`Fog::sample_cos_by_lobe`]: one uniform picks the lobe and is reused
     /// inside it; exact in distribution, cheaper, not monotone in `u`); for

@@ -211,34 +211,4 @@ impl<T: Real> Phase<T> {
         let (p, _, _) = choose(diameter_um.to_f64(), tolerance.to_f64())?;
         Ok(p.cast())
     }
-
-    /// The same phase function in another precision (parameters rounded;
-    /// a parameter that must stay below 1 in magnitude stays below it).
-    pub fn cast<U: Real>(&self) -> Phase<U> {
-        let c = |x: T| U::from_f64(x.to_f64());
-        let open = |x: T| {
-            let y = U::from_f64(x.to_f64());
-            if y.abs() < U::ONE {
-                y
-            } else {
-                (U::ONE - U::EPSILON * U::HALF).copysign(y)
-            }
-        };
-        match *self {
-            Phase::Isotropic(i) => Phase::Isotropic(i),
-            Phase::Rayleigh(r) => Phase::Rayleigh(r),
-            Phase::RayleighDepolarized(r) => match super::RayleighDepolarized::new(open(r.rho())) {
-                Ok(d) => Phase::RayleighDepolarized(d),
-                Err(_) => Phase::Rayleigh(super::Rayleigh),
-            },
-            Phase::HenyeyGreenstein(h) => {
-                Phase::HenyeyGreenstein(HenyeyGreenstein::from_g(open(h.g())))
-            }
-            Phase::Draine(d) => Phase::Draine(Draine::from_parts(open(d.g), c(d.alpha))),
-            Phase::Fog(f) => {
-                let (a, b, al, w) = f.params();
-                Phase::Fog(Fog::from_parts(open(a), open(b), c(al), c(w)))
-            }
-        }
-    }
 }

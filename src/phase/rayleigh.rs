@@ -11,6 +11,7 @@
 use super::PhaseFunction;
 use crate::error::{Error, try_from_u32};
 use crate::geometry::{Vec3, direction_about_turns, sin_from_cos};
+use crate::numeric::depressed_cubic_root;
 use crate::real::Real;
 use rand_core::Rng;
 
@@ -94,23 +95,6 @@ try_from_u32!(
     DirectMinimax,
     Table,
 );
-
-/// The real root of the depressed cubic `x³ + 3a·x = 2b` for `a > 0`
-/// (Cardano; the only real root since the cubic is increasing).
-///
-/// Cardano's `x = w − a/w`, `w = cbrt(b + sqrt(b² + a³))`, loses digits twice:
-/// `b + sqrt(b² + a³)` cancels for `b < 0`, and `w − a/w` cancels for
-/// `|b| ≪ a^{3/2}` (near the median). We take `w` from `|b|` and use
-/// `x = 2b w² / (w⁴ + a w² + a²)`, which follows from `w³ + (−a/w)³ = 2b`,
-/// has only positive terms in the denominator, and carries `b`'s sign.
-#[inline(always)]
-pub(crate) fn depressed_cubic_root<T: Real, const FAST: bool>(a: T, a2: T, b: T) -> T {
-    let r = (b * b + a2 * a).sqrt();
-    let v = b.abs() + r;
-    let w = if FAST { v.cbrt_fast() } else { v.cbrt() };
-    let w2 = w * w;
-    T::TWO * b * w2 / (w2 * w2 + a * w2 + a2)
-}
 
 /// Rayleigh's inverse CDF, `F(μ) = u` ⇔ `μ³ + 3μ = 4(2u − 1)`.
 #[inline(always)]
@@ -292,7 +276,7 @@ fn accept_isotropic<T: Real>(mu: T, xi: T) -> bool {
 #[inline(always)]
 fn accept_baranoski<T: Real>(mu: T, xi: T) -> bool {
     let c = T::from_f64(9.0 / (4.0 * 2.449_489_742_783_178));
-    let sin_theta = ((T::ONE - mu) * (T::ONE + mu)).max_of(T::ZERO).sqrt();
+    let sin_theta = sin_from_cos(mu);
     xi <= c * (T::ONE + mu * mu) * sin_theta
 }
 

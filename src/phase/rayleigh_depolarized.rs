@@ -10,8 +10,8 @@
 //! solved by the same cancellation-free Cardano root as plain Rayleigh.
 
 use super::PhaseFunction;
-use super::rayleigh::depressed_cubic_root;
 use crate::error::Error;
+use crate::numeric::depressed_cubic_root;
 use crate::real::Real;
 
 /// Depolarised Rayleigh scattering; `rho = 0` is plain Rayleigh. Mean cosine 0.

@@ -1,6 +1,6 @@
 //! Peer formulas, re-implemented from their published descriptions for
 //! side-by-side measurement (not copied code). Shared by `benches/samplers.rs`
-//! and `examples/speed_accuracy.rs`. Every function maps `u ∈ [0, 1)` to
+//! and the main example (`examples/speed_accuracy/`). Every function maps `u ∈ [0, 1)` to
 //! `cos θ` in this crate's orientation (`u = 0 → −1`, `+1` forward).
 #![allow(dead_code)]
 

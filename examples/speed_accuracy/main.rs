@@ -1,0 +1,188 @@
+//! Speed against accuracy: every sampler of scatterkit beside the peers'
+//! formulas (Mitsuba 3, Cycles, pbrt-v4, Draine eq. 6, Draine by rejection)
+//! and Frisvad's Table 1 (JOSA A 2011) re-run today, in one run.
+//!
+//!     cargo run --release --example speed_accuracy
+//!
+//! Prints markdown tables and writes `docs/speed_accuracy.csv`,
+//! `docs/speed_accuracy.svg` (one log-log panel per family: ns per sample
+//! against max error, Rust calls and calls through the C ABI, the Pareto
+//! frontier drawn) and `docs/PERFORMANCE.md` (Frisvad's ratios, the
+//! project's speed targets and the C view, computed from this run). The C
+//! view is `benches/c_abi.c`, built here with the `cc` crate at `-O2` against
+//! `libscatterkit.a` and run once.
+//!
+//! Speed: ns per sample, the fastest of 15 runs of 2¹⁸ samples, f32, xoshiro256++
+//! (and a deliberately slow generator in the spirit of the paper's C
+//! `rand()`). Accuracy: max |cos θ − exact| and max |F(μ(u)) − u| over 2²⁰ + 1
+//! evenly spaced u including 0 and 1, against an f64 evaluation of the exact
+//! inverse (itself within 10⁻¹³ of double-double; see the tests). Rejection
+//! methods are exact in distribution; they are plotted at f32's rounding
+//! floor (half an ULP of 1) and marked so.
+//!
+//! Layout: `measure` (timing and accuracy), `entries` (the measured
+//! points), `c_view` (the C benchmark), `chart` (CSV and SVG), `report`
+//! (PERFORMANCE.md), `media` (majorant grids).
+
+#[path = "../../benches/cloud.rs"]
+mod cloud;
+#[path = "../../benches/peers.rs"]
+mod peers;
+
+mod c_view;
+mod chart;
+mod entries;
+mod measure;
+mod media;
+mod report;
+
+pub(crate) use c_view::*;
+pub(crate) use chart::*;
+pub(crate) use entries::*;
+pub(crate) use measure::*;
+pub(crate) use media::*;
+pub(crate) use report::*;
+
+pub(crate) use rand_xoshiro::Xoshiro256PlusPlus;
+pub(crate) use rand_xoshiro::rand_core::{SeedableRng, TryRng};
+pub(crate) use scatterkit::{
+    Grid, Phase, PhaseFunction, RayleighMethod, Real, Table, Vec3, rayleigh,
+};
+pub(crate) use std::convert::Infallible;
+use std::fmt::Write as _;
+pub(crate) use std::hint::black_box;
+pub(crate) use std::time::Instant;
+
+fn main() -> std::io::Result<()> {
+    let start = Instant::now();
+    let mut es = Vec::new();
+    rayleigh_entries(&mut es);
+    hg_entries(&mut es);
+    draine_entries(&mut es);
+    cbrt_entries(&mut es);
+    let minimax = RayleighMethod::DirectMinimax;
+    let rayleigh_batch = batch_ratio(
+        |u, out| rayleigh::inverse_cdf_fill(minimax, u, out),
+        rayleigh::inverse_cdf_minimax,
+    );
+    let hg = Phase::<f32>::henyey_greenstein(0.7).unwrap();
+    let hg_batch = batch_ratio(
+        |u, out| hg.sample_cos_n(u, out).unwrap(),
+        |u| hg.sample_cos(u),
+    );
+    let c = c_abi();
+    for (key, family, label, is_cos) in C_KEYS {
+        let &(ns, err) = c
+            .get(key)
+            .unwrap_or_else(|| panic!("the C benchmark gave no {key}"));
+        if !is_cos {
+            continue;
+        }
+        let mut e = if err < 0.0 {
+            Entry::rejection(family, format!("C ABI: {label}"), ns)
+        } else {
+            Entry::new(family, format!("C ABI: {label}"), ns, (err, f64::NAN))
+        };
+        e.c_abi = true;
+        es.push(e);
+    }
+
+    let mut md = String::new();
+    writeln!(
+        md,
+        "### Directions (f32): ns per direction, and speed relative to simplified rejection\n"
+    )
+    .unwrap();
+    writeln!(md, "| method | ns, xoshiro256++ | × simplified | ns, slow rand() | × simplified | max abs error in cos θ |").unwrap();
+    writeln!(md, "|---|---:|---:|---:|---:|---|").unwrap();
+    let simp = find(&es, Key::Simplified).dir_ns.unwrap();
+    for e in es.iter().filter(|e| e.dir_ns.is_some()) {
+        let (f, s) = e.dir_ns.unwrap();
+        writeln!(
+            md,
+            "| {} | {f:.2} | {:.2} | {s:.2} | {:.2} | {} |",
+            e.name,
+            simp.0 / f,
+            simp.1 / s,
+            fmt_err(e)
+        )
+        .unwrap();
+    }
+    writeln!(
+        md,
+        "\n### Cosines (f32): ns per cos θ, max |cos θ error|, max |F(μ(u)) − u|\n"
+    )
+    .unwrap();
+    writeln!(
+        md,
+        "| family | method | ns | max abs error | max CDF error |"
+    )
+    .unwrap();
+    writeln!(md, "|---|---|---:|---:|---:|").unwrap();
+    for e in es.iter().filter(|e| e.family != "cbrt") {
+        let cdf = if e.rejection {
+            "exact (rejection)".into()
+        } else {
+            format!("{:.1e}", e.cdf_err)
+        };
+        writeln!(
+            md,
+            "| {} | {} | {:.2} | {} | {} |",
+            e.family,
+            e.name,
+            e.ns,
+            fmt_err(e),
+            cdf
+        )
+        .unwrap();
+    }
+    writeln!(
+        md,
+        "\n### Cube roots (f32): ns per call, max error in ULP\n"
+    )
+    .unwrap();
+    writeln!(md, "| cube root | ns | max ULP |").unwrap();
+    writeln!(md, "|---|---:|---:|").unwrap();
+    for e in es.iter().filter(|e| e.family == "cbrt") {
+        writeln!(md, "| {} | {:.2} | {:.2} |", e.name, e.ns, e.err).unwrap();
+    }
+    writeln!(
+        md,
+        "\n### Batches (f32, 4096 uniforms): ns per element\n\n| sampler | batch | scalar calls | batch speed-up |\n|---|---:|---:|---:|\n\
+         | Rayleigh direct (sqrt-free minimax, `rayleigh::inverse_cdf_fill`) | {:.2} | {:.2} | {:.2}× |\n| HG g = 0.7 | {:.2} | {:.2} | {:.2}× |",
+        rayleigh_batch.0,
+        rayleigh_batch.1,
+        rayleigh_batch.1 / rayleigh_batch.0,
+        hg_batch.0,
+        hg_batch.1,
+        hg_batch.1 / hg_batch.0
+    )
+    .unwrap();
+    print!("{md}");
+
+    let docs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs");
+    std::fs::create_dir_all(&docs)?;
+    std::fs::write(docs.join("speed_accuracy.csv"), csv(&es))?;
+    std::fs::write(docs.join("speed_accuracy.svg"), svg(&es))?;
+    let pairs = pairs();
+    let c_md = c_tables(&c, &pairs);
+    print!("{c_md}");
+    let media_md = media_report();
+    print!("{media_md}");
+    let perf = performance(&es, rayleigh_batch, hg_batch, &pairs)
+        + &c_md
+        + &frontier_peers(&es)
+        + &media_md;
+    std::fs::write(docs.join("PERFORMANCE.md"), &perf)?;
+    println!(
+        "\n{}",
+        perf.split_once("## Targets")
+            .map_or("", |(_, t)| t)
+            .trim_start_matches(|c| c != '|')
+    );
+    println!(
+        "wrote docs/speed_accuracy.csv, docs/speed_accuracy.svg, docs/PERFORMANCE.md in {:.1} s",
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}

@@ -9,7 +9,7 @@
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 use scatterkit::majorant::{DEFAULT_RES, Majorants};
-use scatterkit::{Grid, Real, Vec3};
+use scatterkit::{Grid, Ray, Real, Vec3};
 
 /// Coefficients per unit density: σ_a, σ_s.
 pub const SIGMA: (f32, f32) = (0.2, 0.8);
@@ -63,8 +63,8 @@ pub fn peak_over_mean(v: &[f32]) -> f64 {
     max / mean
 }
 
-/// `count` rays `(origin, direction)`, the same for every caller.
-pub fn rays(count: usize) -> Vec<(Vec3<f32>, Vec3<f32>)> {
+/// `count` rays over `[0, ∞)`, the same for every caller.
+pub fn rays(count: usize) -> Vec<Ray<f32>> {
     let mut r = Xoshiro256PlusPlus::seed_from_u64(11);
     let mut u = move || f32::uniform(&mut r);
     (0..count)
@@ -74,7 +74,7 @@ pub fn rays(count: usize) -> Vec<(Vec3<f32>, Vec3<f32>)> {
             let s = (1.0 - zc * zc).sqrt();
             let o = Vec3::new(3.0 * s * ph.cos(), 3.0 * s * ph.sin(), 3.0 * zc);
             let aim = Vec3::new(1.6 * u() - 0.8, 1.6 * u() - 0.8, 1.6 * u() - 0.8);
-            (o, aim - o)
+            Ray::new(o, aim - o, f32::INFINITY)
         })
         .collect()
 }

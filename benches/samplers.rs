@@ -11,7 +11,9 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::Rng;
 use rand_xoshiro::rand_core::SeedableRng;
 use scatterkit::phase::draine::sample_cos_eq6;
-use scatterkit::{Draine, Grid, Phase, PhaseFunction, RayleighMethod, Real, Table, Vec3, rayleigh};
+use scatterkit::{
+    Draine, Grid, Phase, PhaseFunction, Ray, RayleighMethod, Real, Table, Vec3, rayleigh,
+};
 use std::hint::black_box;
 
 const BATCH: usize = 4096;
@@ -264,7 +266,7 @@ fn media<T: Real>(c: &mut Criterion, label: &str) {
     let maj = grid.majorant().to_f64();
     g.throughput(Throughput::Elements(maj as u64));
     g.bench_function("ratio_track_grid_steps", |b| {
-        b.iter(|| grid.ratio_track(black_box(o), d, t(2.0), &mut r))
+        b.iter(|| grid.ratio_track(Ray::new(black_box(o), d, t(2.0)), &mut r))
     });
     let blob = |p: Vec3<T>| {
         let q = p - Vec3::new(t(0.5), t(0.5), t(0.5));
@@ -272,11 +274,25 @@ fn media<T: Real>(c: &mut Criterion, label: &str) {
     };
     g.throughput(Throughput::Elements(16));
     g.bench_function("ratio_track_fn_steps", |b| {
-        b.iter(|| ratio_track_fn(blob, t(16.0), black_box(o), d, t(0.5), t(1.5), &mut r))
+        b.iter(|| {
+            ratio_track_fn(
+                blob,
+                t(16.0),
+                Ray::new(black_box(o), d, t(1.5)).segment(t(0.5), t(1.5)),
+                &mut r,
+            )
+        })
     });
     g.throughput(Throughput::Elements(1));
     g.bench_function("delta_track_fn_event", |b| {
-        b.iter(|| delta_track_fn(blob, t(16.0), black_box(o), d, t(0.5), t(1.5), &mut r))
+        b.iter(|| {
+            delta_track_fn(
+                blob,
+                t(16.0),
+                Ray::new(black_box(o), d, t(1.5)).segment(t(0.5), t(1.5)),
+                &mut r,
+            )
+        })
     });
     g.finish();
 }
@@ -296,21 +312,15 @@ fn majorants(c: &mut Criterion) {
     for (name, maj) in [("local16", &local), ("global", &global)] {
         g.bench_function(BenchmarkId::new("delta_track_ray", name), |b| {
             b.iter(|| {
-                for &(o, d) in &rays {
-                    black_box(
-                        maj.delta_track(&grid, o, d, f32::INFINITY, 1 << 24, &mut r)
-                            .unwrap(),
-                    );
+                for &ray in &rays {
+                    black_box(maj.delta_track(&grid, ray, 1 << 24, &mut r).unwrap());
                 }
             })
         });
         g.bench_function(BenchmarkId::new("ratio_track_ray", name), |b| {
             b.iter(|| {
-                for &(o, d) in &rays {
-                    black_box(
-                        maj.ratio_track(&grid, o, d, f32::INFINITY, 1 << 24, &mut r)
-                            .unwrap(),
-                    );
+                for &ray in &rays {
+                    black_box(maj.ratio_track(&grid, ray, 1 << 24, &mut r).unwrap());
                 }
             })
         });

@@ -80,7 +80,7 @@ pub mod ffi;
 pub use error::Error;
 pub use geometry::{Vec3, onb};
 pub use majorant::Majorants;
-pub use medium::{Grid, Sampling};
+pub use medium::{Grid, Ray, Sampling};
 pub use phase::rayleigh;
 pub use phase::{
     Draine, Fog, HenyeyGreenstein, Isotropic, Phase, PhaseFunction, Rayleigh, RayleighDepolarized,

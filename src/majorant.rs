@@ -27,7 +27,7 @@
 use crate::error::Error;
 use crate::geometry::Vec3;
 use crate::medium::{
-    Event, Grid, ROULETTE_BELOW, clip_box, exponential_step, grid_len, to_local, valid_box,
+    Event, Grid, ROULETTE_BELOW, Ray, clip_box, exponential_step, grid_len, to_local, valid_box,
 };
 use crate::real::Real;
 use rand_core::Rng;
@@ -173,75 +173,47 @@ impl<'a, T: Real> Majorants<'a, T> {
     }
 
     /// Delta tracking through `grid` (whose majorants these must be: same
-    /// box, else [`Error::Domain`]) from `o` along `d` over `[0, t_max]`:
-    /// at each tentative collision one uniform `ξ` decides, absorption if
-    /// `ξ σ_maj < σ_a`, scattering if `ξ σ_maj < σ_a + σ_s`, else a null
-    /// collision. At most `budget` tentative collisions
-    /// ([`Error::Budget`]); [`Error::Domain`] for a zero or non-finite `d`
-    /// or `o`, `t_max` negative or NaN.
+    /// box, else [`Error::Domain`]) along `ray`: at each tentative
+    /// collision one uniform `ξ` decides, absorption if `ξ σ_maj < σ_a`,
+    /// scattering if `ξ σ_maj < σ_a + σ_s`, else a null collision. At most
+    /// `budget` tentative collisions ([`Error::Budget`]); [`Error::Domain`]
+    /// for a ray [`Ray`] does not accept.
     pub fn delta_track<R: Rng + ?Sized>(
         &self,
         grid: &Grid<'_, T>,
-        o: Vec3<T>,
-        d: Vec3<T>,
-        t_max: T,
+        ray: Ray<T>,
         budget: u32,
         rng: &mut R,
     ) -> Result<Track<T>, Error> {
         self.same_box(grid)?;
-        self.delta_track_fn(
-            |p| grid_coefficients(grid, p),
-            o,
-            d,
-            T::ZERO,
-            t_max,
-            budget,
-            rng,
-        )
+        self.delta_track_fn(|p| grid_coefficients(grid, p), ray, budget, rng)
     }
 
     /// Ratio tracking through `grid` (arguments as
-    /// [`delta_track`](Self::delta_track)): the transmittance over
-    /// `[0, t_max]`, with the Russian roulette of [`Grid::ratio_track`].
+    /// [`delta_track`](Self::delta_track)): the transmittance along `ray`,
+    /// with the Russian roulette of [`Grid::ratio_track`].
     pub fn ratio_track<R: Rng + ?Sized>(
         &self,
         grid: &Grid<'_, T>,
-        o: Vec3<T>,
-        d: Vec3<T>,
-        t_max: T,
+        ray: Ray<T>,
         budget: u32,
         rng: &mut R,
     ) -> Result<Transmittance<T>, Error> {
         self.same_box(grid)?;
-        self.ratio_track_fn(
-            |p| grid_coefficients(grid, p),
-            o,
-            d,
-            T::ZERO,
-            t_max,
-            budget,
-            rng,
-        )
+        self.ratio_track_fn(|p| grid_coefficients(grid, p), ray, budget, rng)
     }
 
     /// Delta tracking through a caller's medium, `coefficients(p) = (σ_a,
     /// σ_s)` at a world point (both `≥ 0`, their sum within the majorant of
-    /// the cell holding `p`, else [`Error::Domain`]), over `[t_min, t_max]`
-    /// (`0 ≤ t_min ≤ t_max`). Events and budget as
-    /// [`delta_track`](Self::delta_track).
-    #[allow(clippy::too_many_arguments)]
+    /// the cell holding `p`, else [`Error::Domain`]), along `ray`. Events
+    /// and budget as [`delta_track`](Self::delta_track).
     pub fn delta_track_fn<R: Rng + ?Sized>(
         &self,
         coefficients: impl Fn(Vec3<T>) -> (T, T),
-        o: Vec3<T>,
-        d: Vec3<T>,
-        t_min: T,
-        t_max: T,
+        ray: Ray<T>,
         budget: u32,
         rng: &mut R,
     ) -> Result<Track<T>, Error> {
-        let (o, d) = checked_ray(o, d, t_min, t_max)?;
-        let mut event = Event::Escaped;
         let real = |p: Vec3<T>, sigma_maj: T, r: &mut R| {
             let st = within(coefficients(p), sigma_maj)?;
             let x = T::uniform(r) * sigma_maj;
@@ -253,14 +225,8 @@ impl<'a, T: Real> Majorants<'a, T> {
                 None
             })
         };
-        let walk = self.walk(o, d, t_min, t_max, budget, rng, real)?;
-        let t = match walk.found {
-            Some((t, e)) => {
-                event = e;
-                t
-            }
-            None => walk.exit,
-        };
+        let walk = self.walk(ray, budget, rng, real)?;
+        let (t, event) = walk.found.unwrap_or((walk.exit, Event::Escaped));
         Ok(Track {
             t,
             event,
@@ -269,20 +235,15 @@ impl<'a, T: Real> Majorants<'a, T> {
     }
 
     /// Ratio tracking through a caller's medium (arguments as
-    /// [`delta_track_fn`](Self::delta_track_fn)): the transmittance over
-    /// `[t_min, t_max]`.
-    #[allow(clippy::too_many_arguments)]
+    /// [`delta_track_fn`](Self::delta_track_fn)): the transmittance along
+    /// `ray`.
     pub fn ratio_track_fn<R: Rng + ?Sized>(
         &self,
         coefficients: impl Fn(Vec3<T>) -> (T, T),
-        o: Vec3<T>,
-        d: Vec3<T>,
-        t_min: T,
-        t_max: T,
+        ray: Ray<T>,
         budget: u32,
         rng: &mut R,
     ) -> Result<Transmittance<T>, Error> {
-        let (o, d) = checked_ray(o, d, t_min, t_max)?;
         let (floor, quarter, four) = (
             T::from_f64(ROULETTE_BELOW),
             T::from_f64(0.25),
@@ -301,7 +262,7 @@ impl<'a, T: Real> Majorants<'a, T> {
             }
             Ok((tr == T::ZERO).then_some(()))
         };
-        let walk = self.walk(o, d, t_min, t_max, budget, rng, visit)?;
+        let walk = self.walk(ray, budget, rng, visit)?;
         Ok(Transmittance {
             tr: if walk.found.is_some() { T::ZERO } else { tr },
             steps: walk.steps,
@@ -321,20 +282,14 @@ impl<'a, T: Real> Majorants<'a, T> {
     /// over `[t_min, t_max]` ∩ box, drawing tentative collisions at each
     /// cell's majorant; `visit(p, σ_maj, rng)` decides at each whether the
     /// walk ends there.
-    #[allow(clippy::too_many_arguments)]
     fn walk<R: Rng + ?Sized, X>(
         &self,
-        o: Vec3<T>,
-        d: Vec3<T>,
-        t_min: T,
-        t_max: T,
+        ray: Ray<T>,
         budget: u32,
         rng: &mut R,
         mut visit: impl FnMut(Vec3<T>, T, &mut R) -> Result<Option<X>, Error>,
     ) -> Result<Walk<T, X>, Error> {
-        self.walk_at_rate(o, d, (t_min, t_max), T::ONE, budget, rng, |c, r| {
-            visit(c.p, c.value, r)
-        })
+        self.walk_at_rate(ray, T::ONE, budget, rng, |c, r| visit(c.p, c.value, r))
     }
 
     /// [`walk`](Self::walk) with free paths drawn at `rate` times each
@@ -343,17 +298,16 @@ impl<'a, T: Real> Majorants<'a, T> {
     /// tentative collision (or the start); the walk's `tail` is that
     /// integral from the last one to the exit. Spectral tracking needs
     /// these for every channel's majorant transmittance.
-    #[allow(clippy::too_many_arguments)]
     pub(crate) fn walk_at_rate<R: Rng + ?Sized, X>(
         &self,
-        o: Vec3<T>,
-        d: Vec3<T>,
-        (t_min, t_max): (T, T),
+        ray: Ray<T>,
         rate: T,
         budget: u32,
         rng: &mut R,
         mut visit: impl FnMut(Tentative<T>, &mut R) -> Result<Option<X>, Error>,
     ) -> Result<Walk<T, X>, Error> {
+        let (o, d) = ray.checked()?;
+        let (t_min, t_max) = (ray.t_min, ray.t_max);
         let mut walk = Walk {
             found: None,
             exit: t_min,
@@ -545,22 +499,6 @@ fn grid_coefficients<T: Real>(grid: &Grid<'_, T>, p: Vec3<T>) -> (T, T) {
 fn within<T: Real>((sa, ss): (T, T), sigma_maj: T) -> Result<(T, T), Error> {
     if sa >= T::ZERO && ss >= T::ZERO && sa + ss <= sigma_maj {
         Ok((sa, ss))
-    } else {
-        Err(Error::Domain)
-    }
-}
-
-/// A finite origin and unit direction, `0 ≤ t_min ≤ t_max` (t_max may be
-/// +∞).
-fn checked_ray<T: Real>(
-    o: Vec3<T>,
-    d: Vec3<T>,
-    t_min: T,
-    t_max: T,
-) -> Result<(Vec3<T>, Vec3<T>), Error> {
-    let d = d.try_normalize().ok_or(Error::Domain)?;
-    if o.is_finite() && t_min >= T::ZERO && t_max >= t_min && t_min.is_finite() {
-        Ok((o, d))
     } else {
         Err(Error::Domain)
     }

@@ -135,6 +135,55 @@ pub enum Event {
     Collided = 3,
 }
 
+/// A ray segment for tracking: from `origin` along `dir` (any non-zero
+/// length; distances are measured along `dir/|dir|`, in the coefficients'
+/// length unit) over `[t_min, t_max]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray<T> {
+    /// Where the ray starts (finite).
+    pub origin: Vec3<T>,
+    /// Its direction (finite, non-zero; only the direction is used).
+    pub dir: Vec3<T>,
+    /// Where the segment starts (finite, `≥ 0`).
+    pub t_min: T,
+    /// Where it ends (`≥ t_min`; +∞ allowed).
+    pub t_max: T,
+}
+
+impl<T: Real> Ray<T> {
+    /// The segment `[0, t_max]` from `origin` along `dir`.
+    pub fn new(origin: Vec3<T>, dir: Vec3<T>, t_max: T) -> Self {
+        Ray {
+            origin,
+            dir,
+            t_min: T::ZERO,
+            t_max,
+        }
+    }
+
+    /// The same ray over `[t_min, t_max]`.
+    pub fn segment(self, t_min: T, t_max: T) -> Self {
+        Ray {
+            t_min,
+            t_max,
+            ..self
+        }
+    }
+
+    /// The origin and unit direction, with the interval checked:
+    /// [`Error::Domain`] unless the origin is finite, the direction finite
+    /// and non-zero, `t_min` finite and `≥ 0`, and `t_max ≥ t_min`.
+    pub(crate) fn checked(&self) -> Result<(Vec3<T>, Vec3<T>), Error> {
+        let d = self.dir.try_normalize().ok_or(Error::Domain)?;
+        let interval = self.t_min >= T::ZERO && self.t_min.is_finite() && self.t_max >= self.t_min;
+        if self.origin.is_finite() && interval {
+            Ok((self.origin, d))
+        } else {
+            Err(Error::Domain)
+        }
+    }
+}
+
 /// Where a grid's values sit in its box.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -167,7 +216,7 @@ try_from_u32!(Sampling: Nodes, Cells);
 ///
 /// ```
 /// use scatterkit::majorant::Majorants;
-/// use scatterkit::{Grid, Sampling, Vec3};
+/// use scatterkit::{Grid, Ray, Sampling, Vec3};
 /// use rand_xoshiro::Xoshiro256PlusPlus;
 /// use rand_xoshiro::rand_core::SeedableRng;
 ///
@@ -179,12 +228,12 @@ try_from_u32!(Sampling: Nodes, Cells);
 ///     .with_sampling(Sampling::Cells);
 /// let mut rng = Xoshiro256PlusPlus::seed_from_u64(7);
 /// let (o, d) = (Vec3::new(-3.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0));
-/// let tr = grid.ratio_track(o, d, 10.0, &mut rng).unwrap();
+/// let tr = grid.ratio_track(Ray::new(o, d, 10.0), &mut rng).unwrap();
 /// assert!((0.0..=1.0).contains(&tr));
 ///
 /// let mut store = [0.0; 4 * 4 * 4];
 /// let maj = Majorants::build(&grid, [4; 3], &mut store).unwrap();
-/// let hit = maj.delta_track(&grid, o, d, 10.0, 1 << 20, &mut rng).unwrap();
+/// let hit = maj.delta_track(&grid, Ray::new(o, d, 10.0), 1 << 20, &mut rng).unwrap();
 /// assert!(hit.t >= 0.0 && hit.t <= 10.0);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -391,23 +440,20 @@ impl<'a, T: Real> Grid<'a, T> {
         }
     }
 
-    /// Delta (Woodcock) tracking from `o` along `d` over `[0, t_max]`, the
-    /// ray first clipped to the grid's box. Returns the distance and the event
-    /// (a real collision scatters with probability σ_s/σ_t). [`Error::Domain`]
-    /// for a zero or non-finite `d` or `o`, or `t_max` negative or NaN;
+    /// Delta (Woodcock) tracking along `ray`, first clipped to the grid's
+    /// box. Returns the distance and the event (a real collision scatters
+    /// with probability σ_s/σ_t; an escape reports `ray.t_max`).
+    /// [`Error::Domain`] for a ray [`Ray`] does not accept (a zero or
+    /// non-finite direction, a non-finite origin, a bad interval);
     /// [`Error::Budget`] when [`MAX_STEPS`] is reached.
     pub fn delta_track<R: Rng + ?Sized>(
         &self,
-        o: Vec3<T>,
-        d: Vec3<T>,
-        t_max: T,
+        ray: Ray<T>,
         rng: &mut R,
     ) -> Result<(T, Event), Error> {
-        let (o, d) = ray(o, d)?;
-        if !non_negative(t_max) {
-            return Err(Error::Domain);
-        }
-        let Some((t0, t1)) = clip_box(o, d, self.lo, self.hi, T::ZERO, t_max) else {
+        let (o, d) = ray.checked()?;
+        let t_max = ray.t_max;
+        let Some((t0, t1)) = clip_box(o, d, self.lo, self.hi, ray.t_min, t_max) else {
             return Ok((t_max, Event::Escaped));
         };
         let (t, hit) = delta(|p| self.sigma_t(p), self.majorant(), o, d, t0, t1, rng)?;
@@ -422,26 +468,16 @@ impl<'a, T: Real> Grid<'a, T> {
         Ok((t, event))
     }
 
-    /// Ratio tracking: an unbiased estimate of the transmittance from `o`
-    /// along `d` over `[0, t_max]` (clipped to the box), with Russian
-    /// roulette once the weight falls below 0.05 (survival 1/4, weight ×4,
-    /// as pbrt-v4), so the walk ends soon after the transmittance is gone.
-    /// [`Error::Domain`] for a zero or non-finite `d` or `o`, or `t_max`
-    /// negative or NaN; [`Error::Budget`] when [`MAX_STEPS`] is reached (a
+    /// Ratio tracking: an unbiased estimate of the transmittance along
+    /// `ray` (clipped to the box), with Russian roulette once the weight
+    /// falls below 0.05 (survival 1/4, weight ×4, as pbrt-v4), so the walk
+    /// ends soon after the transmittance is gone. [`Error::Domain`] for a
+    /// ray [`Ray`] does not accept; [`Error::Budget`] when [`MAX_STEPS`] is reached (a
     /// medium far below its one majorant over a long ray: walk
     /// [`crate::majorant::Majorants`] instead).
-    pub fn ratio_track<R: Rng + ?Sized>(
-        &self,
-        o: Vec3<T>,
-        d: Vec3<T>,
-        t_max: T,
-        rng: &mut R,
-    ) -> Result<T, Error> {
-        let (o, d) = ray(o, d)?;
-        if !non_negative(t_max) {
-            return Err(Error::Domain);
-        }
-        let Some((t0, t1)) = clip_box(o, d, self.lo, self.hi, T::ZERO, t_max) else {
+    pub fn ratio_track<R: Rng + ?Sized>(&self, ray: Ray<T>, rng: &mut R) -> Result<T, Error> {
+        let (o, d) = ray.checked()?;
+        let Some((t0, t1)) = clip_box(o, d, self.lo, self.hi, ray.t_min, ray.t_max) else {
             return Ok(T::ONE);
         };
         ratio(|p| self.sigma_t(p), self.majorant(), o, d, t0, t1, rng)
@@ -491,14 +527,6 @@ pub(crate) fn valid_box<T: Real>(lo: Vec3<T>, hi: Vec3<T>) -> bool {
 #[inline(always)]
 fn non_negative<T: Real>(x: T) -> bool {
     x >= T::ZERO
-}
-
-/// A validated ray: finite origin, unit direction.
-fn ray<T: Real>(o: Vec3<T>, d: Vec3<T>) -> Result<(Vec3<T>, Vec3<T>), Error> {
-    if !o.is_finite() {
-        return Err(Error::Domain);
-    }
-    Ok((o, d.try_normalize().ok_or(Error::Domain)?))
 }
 
 /// The part `[t0, t1]` of `[t_min, t_max]` inside the unit cube (slab
@@ -647,30 +675,30 @@ fn ratio<T: Real, R: Rng + ?Sized>(
     Ok(tr)
 }
 
-/// Validates the interval and majorant of the callback versions.
-fn check_fn_args<T: Real>(sigma_maj: T, t_min: T, t_max: T) -> Result<(), Error> {
-    let ok = sigma_maj >= T::ZERO && sigma_maj.is_finite() && t_min >= T::ZERO && t_max >= t_min;
-    if ok { Ok(()) } else { Err(Error::Domain) }
+/// Validates the majorant of the callback versions.
+fn check_majorant<T: Real>(sigma_maj: T) -> Result<(), Error> {
+    if sigma_maj >= T::ZERO && sigma_maj.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::Domain)
+    }
 }
 
 /// Delta tracking through a caller's medium: `sigma_t(p)` gives σ_t at a
-/// point (it must stay in `[0, sigma_maj]`), over `[t_min, t_max]` along
-/// `d` from `o`. Returns the distance and [`Event::Collided`] or
-/// [`Event::Escaped`] (at `t_max`). [`Error::Domain`] for invalid arguments
+/// point (it must stay in `[0, sigma_maj]`), along `ray`. Returns the
+/// distance and [`Event::Collided`] or [`Event::Escaped`] (at
+/// `ray.t_max`). [`Error::Domain`] for a bad ray or majorant
 /// or a density outside `[0, sigma_maj]` met on the way (reported, not
 /// clamped: clamping would bias); [`Error::Budget`] at [`MAX_STEPS`].
-#[allow(clippy::too_many_arguments)]
 pub fn delta_track_fn<T: Real, R: Rng + ?Sized>(
     sigma_t: impl Fn(Vec3<T>) -> T,
     sigma_maj: T,
-    o: Vec3<T>,
-    d: Vec3<T>,
-    t_min: T,
-    t_max: T,
+    ray: Ray<T>,
     rng: &mut R,
 ) -> Result<(T, Event), Error> {
-    let (o, d) = ray(o, d)?;
-    check_fn_args(sigma_maj, t_min, t_max)?;
+    let (o, d) = ray.checked()?;
+    check_majorant(sigma_maj)?;
+    let (t_min, t_max) = (ray.t_min, ray.t_max);
     let (t, hit) = delta(sigma_t, sigma_maj, o, d, t_min, t_max, rng)?;
     Ok(if hit {
         (t, Event::Collided)
@@ -680,20 +708,17 @@ pub fn delta_track_fn<T: Real, R: Rng + ?Sized>(
 }
 
 /// Ratio tracking through a caller's medium (arguments as
-/// [`delta_track_fn`]): an unbiased transmittance estimate over
-/// `[t_min, t_max]`, with the roulette of [`Grid::ratio_track`].
-/// [`Error::Domain`] for invalid arguments or a density
+/// [`delta_track_fn`]): an unbiased transmittance estimate along `ray`,
+/// with the roulette of [`Grid::ratio_track`]. [`Error::Domain`] for a bad
+/// ray or majorant or a density
 /// outside `[0, sigma_maj]`; [`Error::Budget`] at [`MAX_STEPS`].
 pub fn ratio_track_fn<T: Real, R: Rng + ?Sized>(
     sigma_t: impl Fn(Vec3<T>) -> T,
     sigma_maj: T,
-    o: Vec3<T>,
-    d: Vec3<T>,
-    t_min: T,
-    t_max: T,
+    ray: Ray<T>,
     rng: &mut R,
 ) -> Result<T, Error> {
-    let (o, d) = ray(o, d)?;
-    check_fn_args(sigma_maj, t_min, t_max)?;
-    ratio(sigma_t, sigma_maj, o, d, t_min, t_max, rng)
+    let (o, d) = ray.checked()?;
+    check_majorant(sigma_maj)?;
+    ratio(sigma_t, sigma_maj, o, d, ray.t_min, ray.t_max, rng)
 }

@@ -31,7 +31,7 @@
 use crate::error::Error;
 use crate::geometry::Vec3;
 use crate::majorant::{Majorants, Tentative, Track};
-use crate::medium::{Event, Grid, ROULETTE_BELOW};
+use crate::medium::{Event, Grid, ROULETTE_BELOW, Ray};
 use crate::real::Real;
 use rand_core::Rng;
 
@@ -169,8 +169,7 @@ fn check_out<T>(out: &Ratios<'_, T>, n: usize) -> Result<(), Error> {
 impl<T: Real> Majorants<'_, T> {
     /// Spectral delta tracking through `grid`'s density with the channels
     /// of `spectrum`, walking these density majorants
-    /// ([`Majorants::build_density`]; same box as the grid) from `o` along
-    /// `d` over `[0, t_max]`. At each tentative collision one uniform picks
+    /// ([`Majorants::build_density`]; same box as the grid) along `ray`. At each tentative collision one uniform picks
     /// absorption, scattering or a null collision with the hero's
     /// probabilities; null collisions and the real event update every
     /// channel's ratios as pbrt-v4 does. Returns the event (the distance,
@@ -186,14 +185,12 @@ impl<T: Real> Majorants<'_, T> {
         &self,
         grid: &Grid<'_, T>,
         spectrum: &Spectrum<'_, T>,
-        o: Vec3<T>,
-        d: Vec3<T>,
-        t_max: T,
+        ray: Ray<T>,
         budget: u32,
         rng: &mut R,
         out: &mut Ratios<'_, T>,
     ) -> Result<Track<T>, Error> {
-        let (o, d, mut acc) = self.prepare(grid, spectrum, o, d, t_max, out)?;
+        let mut acc = self.prepare(grid, spectrum, ray, out)?;
         let (h, sa, ss) = (spectrum.hero, spectrum.sigma_a, spectrum.sigma_s);
         let rate = acc.k(h);
         let visit = |c: Tentative<T>, r: &mut R| {
@@ -230,7 +227,7 @@ impl<T: Real> Majorants<'_, T> {
             let alive = acc.weights().any(|w| *w > T::ZERO);
             Ok((!alive).then_some(Event::Absorbed))
         };
-        let walk = self.walk_at_rate(o, d, (T::ZERO, t_max), rate, budget, rng, visit)?;
+        let walk = self.walk_at_rate(ray, rate, budget, rng, visit)?;
         let (t, event) = match walk.found {
             Some((t, e)) => (t, e),
             None => {
@@ -258,14 +255,12 @@ impl<T: Real> Majorants<'_, T> {
         &self,
         grid: &Grid<'_, T>,
         spectrum: &Spectrum<'_, T>,
-        o: Vec3<T>,
-        d: Vec3<T>,
-        t_max: T,
+        ray: Ray<T>,
         budget: u32,
         rng: &mut R,
         out: &mut Ratios<'_, T>,
     ) -> Result<u32, Error> {
-        let (o, d, mut acc) = self.prepare(grid, spectrum, o, d, t_max, out)?;
+        let mut acc = self.prepare(grid, spectrum, ray, out)?;
         let h = spectrum.hero;
         let floor = T::from_f64(ROULETTE_BELOW);
         let rate = acc.k(h);
@@ -288,7 +283,7 @@ impl<T: Real> Majorants<'_, T> {
             }
             Ok(acc.weights().all(|w| *w == T::ZERO).then_some(()))
         };
-        let walk = self.walk_at_rate(o, d, (T::ZERO, t_max), rate, budget, rng, visit)?;
+        let walk = self.walk_at_rate(ray, rate, budget, rng, visit)?;
         if walk.found.is_none() {
             let tm_h = (-(rate * walk.tail)).exp();
             acc.scale(walk.tail, tm_h, |_, _| (T::ONE, T::ONE, T::ONE));
@@ -297,27 +292,22 @@ impl<T: Real> Majorants<'_, T> {
         Ok(walk.steps)
     }
 
-    /// Validates what both spectral calls take.
-    #[allow(clippy::type_complexity)]
+    /// Validates what both spectral calls take (the ray is checked by the
+    /// walk).
     fn prepare(
         &self,
         grid: &Grid<'_, T>,
         spectrum: &Spectrum<'_, T>,
-        o: Vec3<T>,
-        d: Vec3<T>,
-        t_max: T,
+        ray: Ray<T>,
         out: &Ratios<'_, T>,
-    ) -> Result<(Vec3<T>, Vec3<T>, Acc<T>), Error> {
+    ) -> Result<Acc<T>, Error> {
         if grid.bounds() != self.bounds() {
             return Err(Error::Domain);
         }
         let acc = Acc::new(spectrum)?;
         check_out(out, acc.n)?;
-        let d = d.try_normalize().ok_or(Error::Domain)?;
-        if !(o.is_finite() && t_max >= T::ZERO) {
-            return Err(Error::Domain);
-        }
-        Ok((o, d, acc))
+        ray.checked()?;
+        Ok(acc)
     }
 }
 

@@ -12,7 +12,7 @@ use rand_xoshiro::rand_core::TryRng;
 use scatterkit::surface::{
     CrossingPolicy, Fraction, Surface, SurfaceModel, lambert_sample, phong_sample,
 };
-use scatterkit::{Grid, Phase, PhaseFunction, RayleighMethod, Vec3, medium, rayleigh};
+use scatterkit::{Grid, Phase, PhaseFunction, Ray, RayleighMethod, Vec3, medium, rayleigh};
 use std::fmt::Write;
 
 /// The generator the C program uses: splitmix64.
@@ -216,12 +216,17 @@ fn rust_lines() -> String {
     let mut r = SplitMix(13);
     s += "\ndelta_track f32";
     for _ in 0..K {
-        let (t, ev) = g.delta_track(o, d, 3.0, &mut r).unwrap();
+        let (t, ev) = g.delta_track(Ray::new(o, d, 3.0), &mut r).unwrap();
         write!(s, " {}:{}", h32(t), ev as u32).unwrap();
     }
     s += "\nratio_track f32";
     for _ in 0..K {
-        write!(s, " {}", h32(g.ratio_track(o, d, 3.0, &mut r).unwrap())).unwrap();
+        write!(
+            s,
+            " {}",
+            h32(g.ratio_track(Ray::new(o, d, 3.0), &mut r).unwrap())
+        )
+        .unwrap();
     }
     s.push('\n');
     s

@@ -11,7 +11,7 @@ mod common;
 use common::rng;
 use scatterkit::majorant::{DEFAULT_RES, Majorants, majorant_len};
 use scatterkit::medium::Event;
-use scatterkit::{Error, Grid, Real, Sampling, Vec3};
+use scatterkit::{Error, Grid, Ray, Real, Sampling, Vec3};
 
 /// A cloud-like 12×10×9 density: a dense core, a thin shell, and empty
 /// regions (a slab of zeros and a zero corner).
@@ -108,7 +108,9 @@ fn tracking_through_majorants_is_unbiased() {
                 let mut absorbed = 0usize;
                 let mut tr = Vec::with_capacity(n);
                 for _ in 0..n {
-                    let tk = maj.delta_track(&g, o, d, t_max, 1 << 20, &mut r).unwrap();
+                    let tk = maj
+                        .delta_track(&g, Ray::new(o, d, t_max), 1 << 20, &mut r)
+                        .unwrap();
                     match tk.event {
                         Event::Escaped => {}
                         Event::Absorbed => {
@@ -118,7 +120,7 @@ fn tracking_through_majorants_is_unbiased() {
                         _ => hits += 1,
                     }
                     tr.push(
-                        maj.ratio_track(&g, o, d, t_max, 1 << 20, &mut r)
+                        maj.ratio_track(&g, Ray::new(o, d, t_max), 1 << 20, &mut r)
                             .unwrap()
                             .tr,
                     );
@@ -197,7 +199,7 @@ fn a_majorant_that_does_not_bound_is_caught() {
     let (o, d) = (Vec3::new(-0.3, 0.45, 0.45), Vec3::new(1.0, 0.0, 0.0));
     let mut r = rng(9);
     let caught = (0..2000)
-        .filter(|_| low.ratio_track(&g, o, d, 2.0, 1 << 20, &mut r) == Err(Error::Domain))
+        .filter(|_| low.ratio_track(&g, Ray::new(o, d, 2.0), 1 << 20, &mut r) == Err(Error::Domain))
         .count();
     assert!(caught > 100, "caught {caught} of 2000");
     // A majorant grid over another box is refused for the grid.
@@ -209,7 +211,9 @@ fn a_majorant_that_does_not_bound_is_caught() {
     )
     .unwrap();
     assert_eq!(
-        other.delta_track(&g, o, d, 2.0, 100, &mut r).err(),
+        other
+            .delta_track(&g, Ray::new(o, d, 2.0), 100, &mut r)
+            .err(),
         Some(Error::Domain)
     );
 }
@@ -225,11 +229,18 @@ fn escapes_report_the_exit_and_budgets_run_out() {
     let maj = Majorants::build(&g, [2; 3], &mut store).unwrap();
     let mut r = rng(1);
     let (o, d) = (Vec3::new(-1.0, 0.5, 0.5), Vec3::new(2.0, 0.0, 0.0));
-    let tk = maj.delta_track(&g, o, d, 10.0, 0, &mut r).unwrap();
+    let tk = maj
+        .delta_track(&g, Ray::new(o, d, 10.0), 0, &mut r)
+        .unwrap();
     assert_eq!((tk.t, tk.event, tk.steps), (3.0, Event::Escaped, 0));
     // Ends inside: the exit is t_max; misses: t_min (0 for grids).
-    assert_eq!(maj.delta_track(&g, o, d, 2.5, 0, &mut r).unwrap().t, 2.5);
-    let miss = maj.delta_track(&g, Vec3::new(-1.0, 5.0, 0.5), d, 10.0, 0, &mut r);
+    assert_eq!(
+        maj.delta_track(&g, Ray::new(o, d, 2.5), 0, &mut r)
+            .unwrap()
+            .t,
+        2.5
+    );
+    let miss = maj.delta_track(&g, Ray::new(Vec3::new(-1.0, 5.0, 0.5), d, 10.0), 0, &mut r);
     assert_eq!(miss.unwrap().t, 0.0);
     // A dense medium and a small budget: its own error, not NaN.
     let dense = [1e3f64; 8];
@@ -238,23 +249,30 @@ fn escapes_report_the_exit_and_budgets_run_out() {
     let o = Vec3::new(-1.0, 0.5, 0.5);
     let d = Vec3::new(1.0, 0.0, 0.0);
     // Ratio tracking through σ_t = σ_maj stops at the first collision.
-    assert_eq!(maj.ratio_track(&g, o, d, 10.0, 5, &mut r).unwrap().tr, 0.0);
+    assert_eq!(
+        maj.ratio_track(&g, Ray::new(o, d, 10.0), 5, &mut r)
+            .unwrap()
+            .tr,
+        0.0
+    );
     let thin = [1e3f64, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3];
     let g = Grid::new(&thin, 2, 2, 2, 1.0, 1.0).unwrap();
     let maj1 = Majorants::build(&g, [1; 3], &mut store).unwrap();
     let far = Vec3::new(-1.0, 0.9, 0.9);
     assert_eq!(
-        maj1.delta_track(&g, far, d, 10.0, 3, &mut r).err(),
+        maj1.delta_track(&g, Ray::new(far, d, 10.0), 3, &mut r)
+            .err(),
         Some(Error::Budget)
     );
     // Bad input.
     let z = Vec3::new(0.0, 0.0, 0.0);
     assert_eq!(
-        maj1.delta_track(&g, far, z, 1.0, 3, &mut r).err(),
+        maj1.delta_track(&g, Ray::new(far, z, 1.0), 3, &mut r).err(),
         Some(Error::Domain)
     );
     assert_eq!(
-        maj1.delta_track(&g, far, d, f64::NAN, 3, &mut r).err(),
+        maj1.delta_track(&g, Ray::new(far, d, f64::NAN), 3, &mut r)
+            .err(),
         Some(Error::Domain)
     );
     assert_eq!(
@@ -314,11 +332,11 @@ fn no_valid_ray_or_budget_yields_nan() {
         } else {
             1 << 20
         };
-        match maj.ratio_track(&g, o, d, t_max, budget, &mut r2) {
+        match maj.ratio_track(&g, Ray::new(o, d, t_max), budget, &mut r2) {
             Ok(tr) => assert!(tr.tr.is_finite() && tr.tr >= 0.0, "case {case}: {tr:?}"),
             Err(e) => assert_eq!(e, Error::Budget, "case {case}"),
         }
-        match maj.delta_track(&g, o, d, t_max, budget, &mut r2) {
+        match maj.delta_track(&g, Ray::new(o, d, t_max), budget, &mut r2) {
             Ok(tk) => assert!(tk.t >= 0.0 && tk.t <= t_max, "case {case}: {tk:?}"),
             Err(e) => assert_eq!(e, Error::Budget, "case {case}"),
         }
@@ -336,10 +354,7 @@ fn ratio_tracking_through_majorants_ends_once_the_transmittance_is_gone() {
         let tr = maj
             .ratio_track_fn(
                 |_| (0.5, 0.5),
-                Vec3::new(0.0, 0.5, 0.5),
-                Vec3::new(1.0, 0.0, 0.0),
-                0.0,
-                1e5,
+                Ray::new(Vec3::new(0.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 1e5).segment(0.0, 1e5),
                 10_000,
                 &mut r,
             )

@@ -14,7 +14,7 @@ use scatterkit::medium::{
     self, Event, MAX_STEPS, clip_unit_cube, delta_track_fn, free_path, homogeneous_sample,
     ratio_track_fn, transmittance,
 };
-use scatterkit::{Error, Grid, Real, Vec3};
+use scatterkit::{Error, Grid, Ray, Real, Vec3};
 
 const N: usize = 200_000;
 
@@ -118,7 +118,7 @@ fn gradient_grid_matches_analytic_depth() {
     let mut r = rng(3);
     let (mut escaped, mut dists) = (0usize, Vec::new());
     for _ in 0..N {
-        let (t, e) = grid.delta_track(o, d, 3.0, &mut r).unwrap();
+        let (t, e) = grid.delta_track(Ray::new(o, d, 3.0), &mut r).unwrap();
         match e {
             Event::Escaped => {
                 assert_eq!(t, 3.0);
@@ -143,7 +143,7 @@ fn gradient_grid_matches_analytic_depth() {
     assert!(dstat < ks_critical(threshold(), n), "D = {dstat}");
     // Ratio tracking: mean e^{−τ}, variance below the binary estimator's.
     let est: Vec<f64> = (0..N)
-        .map(|_| grid.ratio_track(o, d, 3.0, &mut r).unwrap())
+        .map(|_| grid.ratio_track(Ray::new(o, d, 3.0), &mut r).unwrap())
         .collect();
     assert!(within_4_sigma(&est, p), "ratio {:?} vs {p}", mean_se(&est));
     let (_, se_ratio) = mean_se(&est);
@@ -191,7 +191,7 @@ fn constant_grid_and_rays_that_start_end_or_miss() {
         let mut escaped = 0;
         let mut absorbed = 0;
         for _ in 0..N {
-            let (t, e) = grid.delta_track(o, d, t_max, &mut r).unwrap();
+            let (t, e) = grid.delta_track(Ray::new(o, d, t_max), &mut r).unwrap();
             assert!(t <= t_max);
             escaped += (e == Event::Escaped) as usize;
             absorbed += (e == Event::Absorbed) as usize;
@@ -212,7 +212,7 @@ fn constant_grid_and_rays_that_start_end_or_miss() {
             );
         }
         let est: Vec<f64> = (0..N / 4)
-            .map(|_| grid.ratio_track(o, d, t_max, &mut r).unwrap())
+            .map(|_| grid.ratio_track(Ray::new(o, d, t_max), &mut r).unwrap())
             .collect();
         assert!(
             within_4_sigma(&est, p),
@@ -225,18 +225,14 @@ fn constant_grid_and_rays_that_start_end_or_miss() {
     let before = probe.clone();
     assert_eq!(
         grid.delta_track(
-            Vec3::new(2.0, 2.0, 2.0),
-            Vec3::new(1.0, 0.0, 0.0),
-            10.0,
+            Ray::new(Vec3::new(2.0, 2.0, 2.0), Vec3::new(1.0, 0.0, 0.0), 10.0),
             &mut probe
         ),
         Ok((10.0, Event::Escaped))
     );
     assert_eq!(
         grid.ratio_track(
-            Vec3::new(2.0, 2.0, 2.0),
-            Vec3::new(1.0, 0.0, 0.0),
-            10.0,
+            Ray::new(Vec3::new(2.0, 2.0, 2.0), Vec3::new(1.0, 0.0, 0.0), 10.0),
             &mut probe
         ),
         Ok(1.0)
@@ -272,7 +268,14 @@ fn spherical_blob_through_a_callback() {
     let mut dists = Vec::new();
     let mut escaped = 0usize;
     for _ in 0..N {
-        match delta_track_fn(sigma, sigma0, o, dir * 3.0, 0.0, 2.0 * radius, &mut r).unwrap() {
+        match delta_track_fn(
+            sigma,
+            sigma0,
+            Ray::new(o, dir * 3.0, 2.0 * radius).segment(0.0, 2.0 * radius),
+            &mut r,
+        )
+        .unwrap()
+        {
             (t, Event::Collided) => dists.push(t),
             (_, Event::Escaped) => escaped += 1,
             other => panic!("{other:?}"),
@@ -284,7 +287,15 @@ fn spherical_blob_through_a_callback() {
     let dstat = ks_statistic(&mut dists, |t| -(-tau(t)).exp_m1() / -(-total).exp_m1());
     assert!(dstat < ks_critical(threshold(), n), "D = {dstat}");
     let est: Vec<f64> = (0..N)
-        .map(|_| ratio_track_fn(sigma, sigma0, o, dir, 0.0, 2.0 * radius, &mut r).unwrap())
+        .map(|_| {
+            ratio_track_fn(
+                sigma,
+                sigma0,
+                Ray::new(o, dir, 2.0 * radius).segment(0.0, 2.0 * radius),
+                &mut r,
+            )
+            .unwrap()
+        })
         .collect();
     assert!(within_4_sigma(&est, p), "ratio {:?} vs {p}", mean_se(&est));
 }
@@ -295,21 +306,36 @@ fn a_density_above_the_majorant_is_reported() {
     let (o, d) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0));
     let mut r = rng(7);
     assert_eq!(
-        delta_track_fn(too_dense, 1.0, o, d, 0.0, 10.0, &mut r),
+        delta_track_fn(
+            too_dense,
+            1.0,
+            Ray::new(o, d, 10.0).segment(0.0, 10.0),
+            &mut r
+        ),
         Err(Error::Domain)
     );
     assert_eq!(
-        ratio_track_fn(too_dense, 1.0, o, d, 0.0, 10.0, &mut r),
+        ratio_track_fn(
+            too_dense,
+            1.0,
+            Ray::new(o, d, 10.0).segment(0.0, 10.0),
+            &mut r
+        ),
         Err(Error::Domain)
     );
     let negative = |_: Vec3<f64>| -0.1;
     assert_eq!(
-        delta_track_fn(negative, 1.0, o, d, 0.0, 10.0, &mut r),
+        delta_track_fn(
+            negative,
+            1.0,
+            Ray::new(o, d, 10.0).segment(0.0, 10.0),
+            &mut r
+        ),
         Err(Error::Domain)
     );
     let nan = |_: Vec3<f64>| f64::NAN;
     assert_eq!(
-        ratio_track_fn(nan, 1.0, o, d, 0.0, 10.0, &mut r),
+        ratio_track_fn(nan, 1.0, Ray::new(o, d, 10.0).segment(0.0, 10.0), &mut r),
         Err(Error::Domain)
     );
 }
@@ -319,27 +345,42 @@ fn zero_majorant_and_step_cap() {
     let (o, d) = (Vec3::new(0.0f64, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0));
     let mut r = rng(8);
     assert_eq!(
-        delta_track_fn(|_| 0.0, 0.0, o, d, 0.0, f64::INFINITY, &mut r),
+        delta_track_fn(
+            |_| 0.0,
+            0.0,
+            Ray::new(o, d, f64::INFINITY).segment(0.0, f64::INFINITY),
+            &mut r
+        ),
         Ok((f64::INFINITY, Event::Escaped))
     );
     assert_eq!(
-        ratio_track_fn(|_| 0.0, 0.0, o, d, 0.0, 5.0, &mut r),
+        ratio_track_fn(|_| 0.0, 0.0, Ray::new(o, d, 5.0).segment(0.0, 5.0), &mut r),
         Ok(1.0)
     );
     let empty = Grid::new(&[0.0f64; 8], 2, 2, 2, 1.0, 1.0).unwrap();
     assert_eq!(
-        empty.delta_track(Vec3::new(-1.0, 0.5, 0.5), d, 9.0, &mut r),
+        empty.delta_track(Ray::new(Vec3::new(-1.0, 0.5, 0.5), d, 9.0), &mut r),
         Ok((9.0, Event::Escaped))
     );
     // A majorant far above the density over a long path: more than 2^20
     // tentative collisions, reported rather than cut short.
     let steps = MAX_STEPS as f64 * 4.0;
     assert_eq!(
-        delta_track_fn(|_| 0.0, steps, o, d, 0.0, 1.0, &mut r),
+        delta_track_fn(
+            |_| 0.0,
+            steps,
+            Ray::new(o, d, 1.0).segment(0.0, 1.0),
+            &mut r
+        ),
         Err(Error::Budget)
     );
     assert_eq!(
-        ratio_track_fn(|_| 1.0, steps, o, d, 0.0, 1.0, &mut r),
+        ratio_track_fn(
+            |_| 1.0,
+            steps,
+            Ray::new(o, d, 1.0).segment(0.0, 1.0),
+            &mut r
+        ),
         Err(Error::Budget)
     );
 }
@@ -389,25 +430,40 @@ fn bad_input_is_rejected() {
         Vec3::new(1.0, 0.0, 0.0),
         Vec3::new(0.0, 0.0, 0.0),
     );
-    assert_eq!(g.delta_track(o, z, 1.0, &mut r).err(), Some(Error::Domain));
     assert_eq!(
-        g.delta_track(Vec3::new(f64::NAN, 0.0, 0.0), d, 1.0, &mut r)
+        g.delta_track(Ray::new(o, z, 1.0), &mut r).err(),
+        Some(Error::Domain)
+    );
+    assert_eq!(
+        g.delta_track(Ray::new(Vec3::new(f64::NAN, 0.0, 0.0), d, 1.0), &mut r)
             .err(),
         Some(Error::Domain)
     );
-    assert_eq!(g.delta_track(o, d, -1.0, &mut r).err(), Some(Error::Domain));
-    assert_eq!(g.ratio_track(o, z, 1.0, &mut r), Err(Error::Domain));
     assert_eq!(
-        delta_track_fn(|_| 0.5, 1.0, o, d, 2.0, 1.0, &mut r).err(),
+        g.delta_track(Ray::new(o, d, -1.0), &mut r).err(),
+        Some(Error::Domain)
+    );
+    assert_eq!(
+        g.ratio_track(Ray::new(o, z, 1.0), &mut r),
+        Err(Error::Domain)
+    );
+    assert_eq!(
+        delta_track_fn(|_| 0.5, 1.0, Ray::new(o, d, 1.0).segment(2.0, 1.0), &mut r).err(),
         Some(Error::Domain),
         "t_max < t_min"
     );
     assert_eq!(
-        delta_track_fn(|_| 0.5, -1.0, o, d, 0.0, 1.0, &mut r).err(),
+        delta_track_fn(|_| 0.5, -1.0, Ray::new(o, d, 1.0).segment(0.0, 1.0), &mut r).err(),
         Some(Error::Domain)
     );
     assert_eq!(
-        delta_track_fn(|_| 0.5, f64::INFINITY, o, d, 0.0, 1.0, &mut r).err(),
+        delta_track_fn(
+            |_| 0.5,
+            f64::INFINITY,
+            Ray::new(o, d, 1.0).segment(0.0, 1.0),
+            &mut r
+        )
+        .err(),
         Some(Error::Domain)
     );
     let st = [1.0f64, 2.0];
@@ -456,7 +512,13 @@ fn ratio_tracking_stops_once_the_transmittance_is_gone() {
                 sigma_t
             };
             let t_max = T::from_f64(1e5);
-            let tr = ratio_track_fn(density, sigma_maj, o, d, T::ZERO, t_max, &mut r).unwrap();
+            let tr = ratio_track_fn(
+                density,
+                sigma_maj,
+                Ray::new(o, d, t_max).segment(T::ZERO, t_max),
+                &mut r,
+            )
+            .unwrap();
             assert_eq!(tr, T::ZERO, "e^-1e5 is 0 in any precision");
             assert!(calls.get() < 10_000, "{} density calls", calls.get());
         }
@@ -493,11 +555,11 @@ fn no_valid_ray_yields_nan() {
             continue;
         }
         let t_max = if u() < 0.1 { f64::INFINITY } else { 5.0 * u() };
-        match grid.ratio_track(o, d, t_max, &mut r2) {
+        match grid.ratio_track(Ray::new(o, d, t_max), &mut r2) {
             Ok(tr) => assert!(tr.is_finite() && tr >= 0.0, "case {case}: {tr}"),
             Err(e) => assert_eq!(e, Error::Budget, "case {case}"),
         }
-        match grid.delta_track(o, d, t_max, &mut r2) {
+        match grid.delta_track(Ray::new(o, d, t_max), &mut r2) {
             Ok((t, _)) => assert!(t >= 0.0 && t <= t_max, "case {case}: t = {t}"),
             Err(e) => assert_eq!(e, Error::Budget, "case {case}"),
         }

@@ -12,7 +12,7 @@ use common::rng;
 use scatterkit::majorant::Majorants;
 use scatterkit::medium::Event;
 use scatterkit::spectral::{MAX_CHANNELS, Ratios, Spectrum};
-use scatterkit::{Error, Grid, Real, Vec3};
+use scatterkit::{Error, Grid, Ray, Real, Vec3};
 
 const SA: [f64; 4] = [0.1, 0.4, 0.0, 0.02];
 const SS: [f64; 4] = [0.5, 1.1, 2.0, 0.0];
@@ -101,7 +101,7 @@ fn hero_tracking_matches_every_channel_alone() {
                 r_u: &mut u,
                 r_l: &mut l,
             };
-            maj.ratio_track_spectral(&g, &s, o, d, t_max, 1 << 20, &mut r, &mut out)
+            maj.ratio_track_spectral(&g, &s, Ray::new(o, d, t_max), 1 << 20, &mut r, &mut out)
                 .unwrap();
             let ml = l.iter().sum::<f64>() / 4.0;
             for c in 0..4 {
@@ -113,7 +113,7 @@ fn hero_tracking_matches_every_channel_alone() {
                 r_l: &mut l,
             };
             let tk = maj
-                .delta_track_spectral(&g, &s, o, d, t_max, 1 << 20, &mut r, &mut out)
+                .delta_track_spectral(&g, &s, Ray::new(o, d, t_max), 1 << 20, &mut r, &mut out)
                 .unwrap();
             let mu = u.iter().sum::<f64>() / 4.0;
             for c in 0..4 {
@@ -177,7 +177,7 @@ fn spectral_bad_input() {
             r_u: &mut u[..n_out],
             r_l: &mut l[..n_out],
         };
-        maj.ratio_track_spectral(&g, &s, o, d, 2.0, 1 << 20, &mut r, &mut out)
+        maj.ratio_track_spectral(&g, &s, Ray::new(o, d, 2.0), 1 << 20, &mut r, &mut out)
             .err()
     };
     assert_eq!(run(&[], &[], 0, 4, d), Some(Error::Size));
@@ -210,7 +210,7 @@ fn spectral_bad_input() {
         r_l: &mut l,
     };
     assert!(
-        maj.ratio_track_spectral(&g, &s, o, d, 2.0, 1 << 20, &mut r, &mut out)
+        maj.ratio_track_spectral(&g, &s, Ray::new(o, d, 2.0), 1 << 20, &mut r, &mut out)
             .is_ok()
     );
     assert!(w[..4].iter().all(|&x| x != 7.0) && w[4..].iter().all(|&x| x == 7.0));

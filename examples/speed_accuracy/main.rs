@@ -46,7 +46,7 @@ pub(crate) use report::*;
 pub(crate) use rand_xoshiro::Xoshiro256PlusPlus;
 pub(crate) use rand_xoshiro::rand_core::{SeedableRng, TryRng};
 pub(crate) use scatterkit::{
-    Grid, Phase, PhaseFunction, RayleighMethod, Real, Table, Vec3, rayleigh,
+    Grid, Phase, PhaseFunction, Ray, RayleighMethod, Real, Table, Vec3, rayleigh,
 };
 pub(crate) use std::convert::Infallible;
 use std::fmt::Write as _;

@@ -14,24 +14,18 @@ pub(crate) fn media_report() -> String {
     let budget = 1 << 24;
     // Per ray: (tentative collisions of delta tracking, real collisions,
     // tentative collisions of ratio tracking).
-    let counts =
-        |grid: &Grid<'_, f32>, maj: &Majorants<'_, f32>, rays: &[(Vec3<f32>, Vec3<f32>)]| {
-            let mut r = fast_rng();
-            let (mut steps, mut real, mut ratio) = (0u64, 0u64, 0u64);
-            for &(o, d) in rays {
-                let t = maj
-                    .delta_track(grid, o, d, f32::INFINITY, budget, &mut r)
-                    .unwrap();
-                steps += t.steps as u64;
-                real += (t.event != Event::Escaped) as u64;
-                ratio += maj
-                    .ratio_track(grid, o, d, f32::INFINITY, budget, &mut r)
-                    .unwrap()
-                    .steps as u64;
-            }
-            let n = rays.len() as f64;
-            (steps as f64 / n, real as f64 / n, ratio as f64 / n)
-        };
+    let counts = |grid: &Grid<'_, f32>, maj: &Majorants<'_, f32>, rays: &[Ray<f32>]| {
+        let mut r = fast_rng();
+        let (mut steps, mut real, mut ratio) = (0u64, 0u64, 0u64);
+        for &ray in rays {
+            let t = maj.delta_track(grid, ray, budget, &mut r).unwrap();
+            steps += t.steps as u64;
+            real += (t.event != Event::Escaped) as u64;
+            ratio += maj.ratio_track(grid, ray, budget, &mut r).unwrap().steps as u64;
+        }
+        let n = rays.len() as f64;
+        (steps as f64 / n, real as f64 / n, ratio as f64 / n)
+    };
     let n = 128;
     let values = cloud::cloud(n, 60.0);
     let grid = cloud::grid(&values, n);
@@ -43,15 +37,11 @@ pub(crate) fn media_report() -> String {
         let mut r = fast_rng();
         let start = Instant::now();
         let mut acc = 0.0f32;
-        for &(o, d) in &rays {
+        for &ray in &rays {
             acc += if ratio {
-                maj.ratio_track(&grid, o, d, f32::INFINITY, budget, &mut r)
-                    .unwrap()
-                    .tr
+                maj.ratio_track(&grid, ray, budget, &mut r).unwrap().tr
             } else {
-                maj.delta_track(&grid, o, d, f32::INFINITY, budget, &mut r)
-                    .unwrap()
-                    .t
+                maj.delta_track(&grid, ray, budget, &mut r).unwrap().t
             };
         }
         black_box(acc);

@@ -5,6 +5,7 @@ use super::{CRng, CVec, sk_rng, sk_status, sk_vec3, sk_vec3_f64, slice_in, slice
 use crate::error::Error;
 use crate::geometry::Vec3;
 use crate::majorant::{Majorants, Track, Transmittance, majorant_len};
+use crate::medium::Ray;
 use crate::real::Real;
 use core::ffi::c_void;
 
@@ -451,7 +452,7 @@ pub unsafe extern "C" fn sk_delta_track_majorants(
             budget,
             rng,
             out,
-            |m, g, o, d, t, b, r| m.delta_track(g, o, d, t, b, r),
+            |m, g, o, d, t, b, r| m.delta_track(g, Ray::new(o, d, t), b, r),
             sk_majorants::track,
         )
     }
@@ -479,7 +480,7 @@ pub unsafe extern "C" fn sk_delta_track_majorants_f64(
             budget,
             rng,
             out,
-            |m, g, o, d, t, b, r| m.delta_track(g, o, d, t, b, r),
+            |m, g, o, d, t, b, r| m.delta_track(g, Ray::new(o, d, t), b, r),
             sk_majorants_f64::track,
         )
     }
@@ -509,7 +510,7 @@ pub unsafe extern "C" fn sk_ratio_track_majorants(
             budget,
             rng,
             out,
-            |m, g, o, d, t, b, r| m.ratio_track(g, o, d, t, b, r),
+            |m, g, o, d, t, b, r| m.ratio_track(g, Ray::new(o, d, t), b, r),
             sk_majorants::tr,
         )
     }
@@ -537,7 +538,7 @@ pub unsafe extern "C" fn sk_ratio_track_majorants_f64(
             budget,
             rng,
             out,
-            |m, g, o, d, t, b, r| m.ratio_track(g, o, d, t, b, r),
+            |m, g, o, d, t, b, r| m.ratio_track(g, Ray::new(o, d, t), b, r),
             sk_majorants_f64::tr,
         )
     }
@@ -579,7 +580,7 @@ pub unsafe extern "C" fn sk_delta_track_majorants_fn(
             budget,
             rng,
             out,
-            |m, f, [o, d], (a, b), n, r| m.delta_track_fn(f, o, d, a, b, n, r),
+            |m, f, [o, d], (a, b), n, r| m.delta_track_fn(f, Ray::new(o, d, b).segment(a, b), n, r),
             sk_majorants::track,
         )
     }
@@ -617,7 +618,7 @@ pub unsafe extern "C" fn sk_delta_track_majorants_fn_f64(
             budget,
             rng,
             out,
-            |m, f, [o, d], (a, b), n, r| m.delta_track_fn(f, o, d, a, b, n, r),
+            |m, f, [o, d], (a, b), n, r| m.delta_track_fn(f, Ray::new(o, d, b).segment(a, b), n, r),
             sk_majorants_f64::track,
         )
     }
@@ -657,7 +658,7 @@ pub unsafe extern "C" fn sk_ratio_track_majorants_fn(
             budget,
             rng,
             out,
-            |m, f, [o, d], (a, b), n, r| m.ratio_track_fn(f, o, d, a, b, n, r),
+            |m, f, [o, d], (a, b), n, r| m.ratio_track_fn(f, Ray::new(o, d, b).segment(a, b), n, r),
             sk_majorants::tr,
         )
     }
@@ -695,7 +696,7 @@ pub unsafe extern "C" fn sk_ratio_track_majorants_fn_f64(
             budget,
             rng,
             out,
-            |m, f, [o, d], (a, b), n, r| m.ratio_track_fn(f, o, d, a, b, n, r),
+            |m, f, [o, d], (a, b), n, r| m.ratio_track_fn(f, Ray::new(o, d, b).segment(a, b), n, r),
             sk_majorants_f64::tr,
         )
     }

@@ -6,7 +6,7 @@ use super::{
 };
 use crate::error::Error;
 use crate::geometry::Vec3;
-use crate::medium::{self, Event, Grid, Sampling, grid_len, valid_box};
+use crate::medium::{self, Event, Grid, Ray, Sampling, grid_len, valid_box};
 use crate::real::Real;
 use core::ffi::c_void;
 
@@ -328,7 +328,7 @@ unsafe fn delta_grid<S: GridStore>(
     };
     unsafe {
         write_track(
-            grid.delta_track(o.to_vec(), d.to_vec(), t_max, &mut r),
+            grid.delta_track(Ray::new(o.to_vec(), d.to_vec(), t_max), &mut r),
             t_out,
             event_out,
         )
@@ -344,7 +344,7 @@ unsafe fn ratio_grid<S: GridStore>(
 ) -> S::T {
     match unsafe { (load(g), CRng::from_ptr(rng)) } {
         (Some(grid), Some(mut r)) => grid
-            .ratio_track(o.to_vec(), d.to_vec(), t_max, &mut r)
+            .ratio_track(Ray::new(o.to_vec(), d.to_vec(), t_max), &mut r)
             .unwrap_or(S::T::NAN),
         _ => S::T::NAN,
     }
@@ -372,10 +372,7 @@ unsafe fn delta_fn<V: CVec>(
     let res = medium::delta_track_fn(
         |p| sigma(V::from_vec(p)),
         sigma_maj,
-        o.to_vec(),
-        d.to_vec(),
-        t_min,
-        t_max,
+        Ray::new(o.to_vec(), d.to_vec(), t_max).segment(t_min, t_max),
         &mut r,
     );
     unsafe { write_track(res, t_out, event_out) }
@@ -397,10 +394,7 @@ unsafe fn ratio_fn<V: CVec>(
     let res = medium::ratio_track_fn(
         |p| sigma(V::from_vec(p)),
         sigma_maj,
-        o.to_vec(),
-        d.to_vec(),
-        t_min,
-        t_max,
+        Ray::new(o.to_vec(), d.to_vec(), t_max).segment(t_min, t_max),
         &mut r,
     );
     res.unwrap_or(V::T::NAN)

@@ -3,6 +3,7 @@
 use super::majorant::{MajStore, load_maj};
 use super::medium::{GridStore, load};
 use super::{CRng, CVec, overlaps, sk_rng, sk_status, sk_vec3, sk_vec3_f64, slice_in, slice_out};
+use crate::medium::Ray;
 use crate::spectral::{MAX_CHANNELS, Ratios, Spectrum};
 
 /// The channels (wavelength samples) of a spectral medium: coefficients per
@@ -154,7 +155,14 @@ where
     }
     unsafe {
         spectral(m, g, spec, rng, ratios, |maj, grid, s, r, rat| {
-            match maj.delta_track_spectral(grid, s, o.to_vec(), d.to_vec(), t_max, budget, r, rat) {
+            match maj.delta_track_spectral(
+                grid,
+                s,
+                Ray::new(o.to_vec(), d.to_vec(), t_max),
+                budget,
+                r,
+                rat,
+            ) {
                 Ok(t) => {
                     out.write(S::track(t));
                     sk_status::SK_OK
@@ -183,7 +191,14 @@ where
 {
     unsafe {
         spectral(m, g, spec, rng, ratios, |maj, grid, s, r, rat| {
-            match maj.ratio_track_spectral(grid, s, o.to_vec(), d.to_vec(), t_max, budget, r, rat) {
+            match maj.ratio_track_spectral(
+                grid,
+                s,
+                Ray::new(o.to_vec(), d.to_vec(), t_max),
+                budget,
+                r,
+                rat,
+            ) {
                 Ok(steps) => {
                     if let Some(p) = steps_out.as_mut() {
                         *p = steps;

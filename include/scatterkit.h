@@ -1576,8 +1576,8 @@ sk_status sk_rayleigh_sample_dir_n_f64(uint32_t method,
  picks absorption, scattering or a null collision with the hero's
  probabilities; every channel's ratios are updated as pbrt-v4 does.
  Writes *out (the event, its distance or the exit, the tentative
- collisions) and weight[c], r_u[c], r_l[c] for each channel c: with the
- hero drawn uniformly among the channels, weight[c] / mean(r_u) on each
+ collisions) and `weight[c]`, `r_u[c]`, `r_l[c]` for each channel c: with the
+ hero drawn uniformly among the channels, `weight[c]` / mean(r_u) on each
  event is an unbiased estimate for channel c. Errors as
  sk_delta_track_majorants, and SK_ERR_SIZE for 0 or more than 16
  channels; SK_ERR_DOMAIN for a negative or non-finite coefficient, a hero
@@ -1617,7 +1617,7 @@ sk_status sk_delta_track_spectral_f64(const sk_majorants_f64 *m,
  Spectral ratio tracking (arguments as sk_delta_track_spectral): every
  tentative collision is a null one; weight is pbrt-v4's T_ray (with its
  Russian roulette), and with the hero drawn uniformly among the channels
- weight[c] / mean(r_l) is an unbiased transmittance estimate for channel
+ `weight[c]` / mean(r_l) is an unbiased transmittance estimate for channel
  c. Writes the tentative collisions to *steps_out unless it is NULL.
  */
 sk_status sk_ratio_track_spectral(const sk_majorants *m,

@@ -1896,6 +1896,40 @@ float sk_table_sample_cos(const sk_table *t, float u);
  */
 double sk_table_sample_cos_f64(const sk_table_f64 *t, double u);
 
+/*
+ The density per steradian that sk_table_sample_cos draws from, at
+ cos_theta: the table's own (not the phase function it was built from),
+ so that a sample and its pdf agree exactly, as MIS needs. Frisvad's CDF
+ table: (F[i+1] - F[i]) / (2 pi (2/n)) on interval i of cos theta. Hermite
+ tables: 1 / (2 pi n mu'(t)), where mu(t) is the interval's cubic (see
+ include/scatterkit_table.h) and t solves mu(t) = cos_theta; +inf where a
+ slope was limited to 0. 0 outside the range the table covers; NaN for
+ NaN or a NULL or malformed table.
+ */
+float sk_table_pdf(const sk_table *t, float cos_theta);
+
+/*
+ Double twin of `sk_table_pdf`.
+ */
+double sk_table_pdf_f64(const sk_table_f64 *t, double cos_theta);
+
+/*
+ A direction about w_in (unit): cos theta from sk_table_sample_cos(t, u1),
+ the azimuth 2 pi u2 (u2 clamped to [0, 1]). Writes its density per
+ steradian (sk_table_pdf) to pdf_out unless it is NULL. A NULL or
+ malformed table gives NaN (direction and pdf).
+ */
+sk_vec3 sk_table_sample_dir(const sk_table *t, sk_vec3 w_in, float u1, float u2, float *pdf_out);
+
+/*
+ Double twin of `sk_table_sample_dir`.
+ */
+sk_vec3_f64 sk_table_sample_dir_f64(const sk_table_f64 *t,
+                                    sk_vec3_f64 w_in,
+                                    double u1,
+                                    double u2,
+                                    double *pdf_out);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus

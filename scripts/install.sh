@@ -18,7 +18,7 @@ version=$(sed -n 's/^version = "\(.*\)"/\1/p' "$root/Cargo.toml" | head -n 1)
 # The native libraries a static link needs (`--print native-static-libs`).
 native="-lgcc_s -lutil -lrt -lpthread -lm -ldl -lc"
 mkdir -p "$prefix/lib/pkgconfig" "$prefix/include"
-cp "$root/include/scatterkit.h" "$prefix/include/"
+cp "$root/include/scatterkit.h" "$root/include/scatterkit_table.h" "$prefix/include/"
 [ "$mode" = "--shared-only" ] || cp "$target/libscatterkit.a" "$prefix/lib/"
 [ "$mode" = "--static-only" ] || cp "$target/libscatterkit.so" "$prefix/lib/"
 cat > "$prefix/lib/pkgconfig/scatterkit.pc" <<PC

@@ -17,6 +17,7 @@
 //! `d_i = (dμ/du)(u_i) / n` (the slope per interval).
 
 use crate::error::{Error, try_from_u32};
+use crate::geometry::{Vec3, direction_about_turns, sin_from_cos};
 use crate::numeric::hermite;
 use crate::phase::{PhaseFunction, Rayleigh};
 use crate::real::Real;
@@ -194,6 +195,84 @@ impl<'a, T: Real> Table<'a, T> {
         }
     }
 
+    /// The density per steradian that [`sample_cos`](Self::sample_cos)
+    /// draws from, at `cos_theta` (NaN for NaN; 0 outside the range the
+    /// table covers). Not the density the table was built from: the
+    /// table's own, so that a sample and its pdf agree exactly (MIS).
+    ///
+    /// * Frisvad's CDF table: piecewise constant,
+    ///   `(F_{i+1} − F_i) / (2π · 2/n)` on interval `i` of `μ`.
+    /// * Hermite tables: `1 / (2π n μ'(t))` with `μ(t)` the interval's cubic
+    ///   (module docs) and `t` solved from `μ(t) = cos θ` in f64 (bisection
+    ///   safeguarding Newton); +∞ where the spline is flat (a slope limited
+    ///   to 0 at a node: the sampler puts no spread there).
+    pub fn pdf(&self, cos_theta: T) -> T {
+        if cos_theta.is_nan() {
+            return T::NAN;
+        }
+        let mu = cos_theta.to_f64();
+        let p = match self.kind {
+            TableKind::RayleighCdf => self.pdf_cdf_table(mu),
+            TableKind::Inverse | TableKind::Measured => self.pdf_hermite(mu),
+        };
+        T::from_f64(p)
+    }
+
+    /// A direction about `w_in` (unit): `cos θ` from
+    /// [`sample_cos`](Self::sample_cos)`(u1)`, the azimuth `2π u2`, and its
+    /// density per steradian ([`pdf`](Self::pdf)).
+    pub fn sample_dir(&self, w_in: Vec3<T>, u1: T, u2: T) -> (Vec3<T>, T) {
+        let mu = self.sample_cos(u1);
+        let dir = direction_about_turns(w_in, mu, sin_from_cos(mu), u2.clamp01());
+        (dir, self.pdf(mu))
+    }
+
+    /// Frisvad's table: the CDF is linear on each of the `n` intervals of
+    /// `μ`, so the density is the interval's CDF step over its width.
+    fn pdf_cdf_table(&self, mu: f64) -> f64 {
+        if !(-1.0..=1.0).contains(&mu) {
+            return 0.0;
+        }
+        let f = |i: usize| self.data.get(i).map_or(f64::NAN, |v| v.to_f64());
+        let dx = 2.0 / self.n as f64;
+        let i = Real::to_index((mu + 1.0) / dx).min(self.n - 1);
+        (f(i + 1) - f(i)) / dx / core::f64::consts::TAU
+    }
+
+    /// The Hermite tables: find the interval whose node values bracket `μ`,
+    /// solve its cubic for `t`, and invert the slope.
+    fn pdf_hermite(&self, mu: f64) -> f64 {
+        let n = self.n;
+        let y = |i: usize| self.data.get(2 * i).map_or(f64::NAN, |v| v.to_f64());
+        if !(mu >= y(0) && mu <= y(n)) {
+            return 0.0;
+        }
+        // The last node at or below μ (nodes are non-decreasing).
+        let (mut lo, mut hi) = (0usize, n);
+        while hi - lo > 1 {
+            let mid = (lo + hi) / 2;
+            if y(mid) <= mu {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let d = |i: usize| self.data.get(2 * i + 1).map_or(f64::NAN, |v| v.to_f64());
+        let (y0, d0, y1, d1) = (y(lo), d(lo), y(lo + 1), d(lo + 1));
+        let dy = y1 - y0;
+        let c2 = 3.0 * dy - 2.0 * d0 - d1;
+        let c3 = d0 + d1 - 2.0 * dy;
+        let cubic = |t: f64| y0 + t * (d0 + t * (c2 + t * c3));
+        let slope = |t: f64| d0 + t * (2.0 * c2 + 3.0 * c3 * t);
+        let t = solve_unit(|t| cubic(t) - mu, slope);
+        let s = slope(t);
+        if s > 0.0 {
+            1.0 / (core::f64::consts::TAU * n as f64 * s)
+        } else {
+            f64::INFINITY
+        }
+    }
+
     /// Cubic Hermite interpolation of the tabulated inverse: interval
     /// `i = ⌊u n⌋` found by arithmetic, no search.
     #[inline(always)]
@@ -245,6 +324,35 @@ fn limit_slopes<T: Real>(buf: &mut [T], n: usize) {
             *slot = d;
         }
     }
+}
+
+/// The root in `[0, 1]` of a non-decreasing `f` with `f(0) ≤ 0 ≤ f(1)`:
+/// Newton steps kept inside a shrinking bracket, bisection where a step
+/// would leave it; 60 steps at most (bisection alone reaches 10⁻¹⁸).
+fn solve_unit(f: impl Fn(f64) -> f64, slope: impl Fn(f64) -> f64) -> f64 {
+    let (mut lo, mut hi, mut t) = (0.0f64, 1.0f64, 0.5f64);
+    for _ in 0..60 {
+        let r = f(t);
+        if r == 0.0 {
+            break;
+        }
+        if r < 0.0 {
+            lo = t;
+        } else {
+            hi = t;
+        }
+        let s = slope(t);
+        let newton = t - r / s;
+        t = if s > 0.0 && newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        if hi - lo <= 1e-16 {
+            break;
+        }
+    }
+    t
 }
 
 /// `d` capped at `limit` (an infinite `d` becomes `limit`).

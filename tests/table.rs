@@ -225,3 +225,63 @@ fn measured_table_validation() {
     assert_eq!(TableKind::Inverse.len(8), Some(18));
     assert_eq!(TableKind::Measured.len(usize::MAX), None);
 }
+
+/// The tables' own density: `Table::pdf` is what `Table::sample_dir` draws
+/// from (chi² over the sphere, coarse tables so that they differ from the
+/// phase functions they tabulate), normalised (`2π ∫ pdf dμ = 1` to 1e-6),
+/// and `sample_dir` reports it.
+#[test]
+fn table_pdf_is_the_density_its_sampler_draws() {
+    use common::chi2::integrate;
+    let (x, p) = measured_hg(0.6, 41);
+    let phases: [(&str, Phase<f64>); 3] = [
+        ("HG 0.7", Phase::henyey_greenstein(0.7).unwrap()),
+        ("Draine 0.5, 1", Phase::draine(0.5, 1.0).unwrap()),
+        ("fog 2 um", Phase::fog_diameter(2.0).unwrap()),
+    ];
+    let n = 24;
+    let mut bufs = vec![vec![0.0f64; TableKind::Inverse.len(n).unwrap()]; 4];
+    let mut cdf_buf = vec![0.0f64; TableKind::RayleighCdf.len(n).unwrap()];
+    let mut tables: Vec<(String, Table<f64>)> = Vec::new();
+    let (first, rest) = bufs.split_at_mut(1);
+    tables.push((
+        "measured HG 0.6 (41 points)".into(),
+        Table::measured(&x, &p, &mut first[0], n).unwrap(),
+    ));
+    for ((name, ph), buf) in phases.iter().zip(rest.iter_mut()) {
+        tables.push((
+            format!("inverse {name}"),
+            Table::inverse(ph, buf, n).unwrap(),
+        ));
+    }
+    tables.push((
+        "Frisvad's Rayleigh CDF".into(),
+        Table::rayleigh_cdf(&mut cdf_buf, n).unwrap(),
+    ));
+    let w_in = [0.3, -0.5, 0.81];
+    let w = Vec3::new(w_in[0], w_in[1], w_in[2]);
+    let w = w * (1.0 / w.length());
+    for (i, (name, t)) in tables.iter().enumerate() {
+        // Piecewise over the n intervals of μ: Frisvad's table is piecewise
+        // constant there, and an adaptive rule can step over a jump.
+        let total: f64 = (0..n)
+            .map(|k| {
+                let (a, b) = (
+                    -1.0 + 2.0 * k as f64 / n as f64,
+                    -1.0 + 2.0 * (k + 1) as f64 / n as f64,
+                );
+                std::f64::consts::TAU * integrate(&|mu| t.pdf(mu), a, b, 1e-13)
+            })
+            .sum();
+        assert!((total - 1.0).abs() < 1e-6, "{name}: 2π ∫ pdf = {total}");
+        let mut r = rng(300 + i as u64);
+        let res = chi2_directions(&|mu| t.pdf(mu), w_in, CHI2_SAMPLES, || {
+            let u1 = f64::uniform(&mut r);
+            let (d, pdf) = t.sample_dir(w, u1, f64::uniform(&mut r));
+            assert_eq!(pdf, t.pdf(t.sample_cos(u1)), "{name}: sample_dir's pdf");
+            [d.x, d.y, d.z]
+        });
+        println!("{name}: 2π ∫ pdf = {total:.9}, {res:?}");
+        assert!(res.passes(), "{name}: {res:?}");
+    }
+}

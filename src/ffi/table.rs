@@ -1,7 +1,8 @@
 //! Tables over caller-owned memory.
 
 use super::phase::{PhaseStore, load};
-use super::{sk_status, slice_in, slice_out, write_result};
+use super::{CVec, sk_status, sk_vec3, sk_vec3_f64, slice_in, slice_out, write_result};
+use crate::geometry::Vec3;
 use crate::real::Real;
 use crate::table::{Table, TableKind};
 
@@ -137,22 +138,40 @@ unsafe fn measured<S: TableStore>(
     unsafe { write_result(out, r) }
 }
 
-unsafe fn sample_cos<S: TableStore>(t: *const S, u: S::T) -> S::T {
+/// The Rust table behind a C table, or None for NULL or malformed fields.
+unsafe fn load_table<'a, S: TableStore>(t: *const S) -> Option<Table<'a, S::T>> {
     // SAFETY: a non-NULL t points to a table built by this library.
-    let Some(t) = (unsafe { t.as_ref() }) else {
-        return S::T::NAN;
+    let (data, n, kind) = unsafe { t.as_ref() }?.parts();
+    let kind = TableKind::try_from(kind).ok()?;
+    let len = kind.len(n)?;
+    let data = unsafe { slice_in(data, len) }.ok()?;
+    Table::from_data(data, n, kind).ok()
+}
+
+unsafe fn sample_cos<S: TableStore>(t: *const S, u: S::T) -> S::T {
+    unsafe { load_table(t) }.map_or(S::T::NAN, |table| table.sample_cos(u))
+}
+
+unsafe fn pdf<S: TableStore>(t: *const S, cos_theta: S::T) -> S::T {
+    unsafe { load_table(t) }.map_or(S::T::NAN, |table| table.pdf(cos_theta))
+}
+
+unsafe fn sample_dir<S: TableStore, V: CVec<T = S::T>>(
+    t: *const S,
+    w_in: V,
+    u1: S::T,
+    u2: S::T,
+    pdf_out: *mut S::T,
+) -> V {
+    let (dir, pdf) = match unsafe { load_table(t) } {
+        Some(table) => table.sample_dir(w_in.to_vec(), u1, u2),
+        None => (Vec3::new(S::T::NAN, S::T::NAN, S::T::NAN), S::T::NAN),
     };
-    let (data, n, kind) = t.parts();
-    let Ok(kind) = TableKind::try_from(kind) else {
-        return S::T::NAN;
-    };
-    let Some(len) = kind.len(n) else {
-        return S::T::NAN;
-    };
-    match unsafe { slice_in(data, len) }.map(|d| Table::from_data(d, n, kind)) {
-        Ok(Ok(table)) => table.sample_cos(u),
-        _ => S::T::NAN,
+    // SAFETY: a non-NULL pdf_out is writable (module contract).
+    if let Some(p) = unsafe { pdf_out.as_mut() } {
+        *p = pdf;
     }
+    V::from_vec(dir)
 }
 
 /// Number of floats (or doubles) a table of `kind` and resolution n needs;
@@ -262,4 +281,50 @@ pub unsafe extern "C" fn sk_table_sample_cos(t: *const sk_table, u: f32) -> f32 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_table_sample_cos_f64(t: *const sk_table_f64, u: f64) -> f64 {
     unsafe { sample_cos(t, u) }
+}
+
+/// The density per steradian that sk_table_sample_cos draws from, at
+/// cos_theta: the table's own (not the phase function it was built from),
+/// so that a sample and its pdf agree exactly, as MIS needs. Frisvad's CDF
+/// table: (F[i+1] - F[i]) / (2 pi (2/n)) on interval i of cos theta. Hermite
+/// tables: 1 / (2 pi n mu'(t)), where mu(t) is the interval's cubic (see
+/// include/scatterkit_table.h) and t solves mu(t) = cos_theta; +inf where a
+/// slope was limited to 0. 0 outside the range the table covers; NaN for
+/// NaN or a NULL or malformed table.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_pdf(t: *const sk_table, cos_theta: f32) -> f32 {
+    unsafe { pdf(t, cos_theta) }
+}
+
+/// Double twin of `sk_table_pdf`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_pdf_f64(t: *const sk_table_f64, cos_theta: f64) -> f64 {
+    unsafe { pdf(t, cos_theta) }
+}
+
+/// A direction about w_in (unit): cos theta from sk_table_sample_cos(t, u1),
+/// the azimuth 2 pi u2 (u2 clamped to [0, 1]). Writes its density per
+/// steradian (sk_table_pdf) to pdf_out unless it is NULL. A NULL or
+/// malformed table gives NaN (direction and pdf).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_sample_dir(
+    t: *const sk_table,
+    w_in: sk_vec3,
+    u1: f32,
+    u2: f32,
+    pdf_out: *mut f32,
+) -> sk_vec3 {
+    unsafe { sample_dir(t, w_in, u1, u2, pdf_out) }
+}
+
+/// Double twin of `sk_table_sample_dir`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_sample_dir_f64(
+    t: *const sk_table_f64,
+    w_in: sk_vec3_f64,
+    u1: f64,
+    u2: f64,
+    pdf_out: *mut f64,
+) -> sk_vec3_f64 {
+    unsafe { sample_dir(t, w_in, u1, u2, pdf_out) }
 }

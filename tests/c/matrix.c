@@ -374,6 +374,22 @@ static void tables(void) {
         CHECK(isnan(f) ? isnan(sk_table_sample_cos(&t, f)) : in_unit(sk_table_sample_cos(&t, f)));
         sk_table_inverse_f64(&q, bufd, 66, 32, &td);
         CHECK(isnan(d) ? isnan(sk_table_sample_cos_f64(&td, d)) : in_unit(sk_table_sample_cos_f64(&td, d)));
+        /* pdf: NaN for NaN, 0 outside [-1, 1], finite and >= 0 inside. */
+        {
+            float pf = sk_table_pdf(&t, f), pu;
+            double pd = sk_table_pdf_f64(&td, d);
+            sk_vec3 w = {0, 0, 1}, dir;
+            sk_vec3_f64 wd = {0, 0, 1}, dird;
+            double pdd;
+            CHECK(isnan(f) ? isnan(pf) : (fabsf(f) > 1.0f ? pf == 0.0f : pf >= 0.0f && isfinite(pf)));
+            CHECK(isnan(d) ? isnan(pd) : (fabs(d) > 1.0 ? pd == 0.0 : pd >= 0.0));
+            /* sample_dir: u clamped (NaN gives NaN), the pdf the table's. */
+            dir = sk_table_sample_dir(&t, w, f, 0.25f, &pu);
+            CHECK(isnan(f) ? vec_nan3(dir) || isnan(dir.z) : fabsf(dir.x * dir.x + dir.y * dir.y + dir.z * dir.z - 1.0f) < 1e-5f);
+            CHECK(isnan(f) ? isnan(pu) : pu == sk_table_pdf(&t, sk_table_sample_cos(&t, f)));
+            dird = sk_table_sample_dir_f64(&td, wd, 0.5, d, &pdd);
+            CHECK(isnan(d) ? isnan(dird.x) || isnan(dird.y) : fabs(dird.x * dird.x + dird.y * dird.y + dird.z * dird.z - 1.0) < 1e-12);
+        }
     }
     i = 0;
     CHECK(isnan(sk_table_sample_cos(NULL, 0.5f)) && isnan(sk_table_sample_cos_f64(NULL, 0.5)));
@@ -386,6 +402,20 @@ static void tables(void) {
     bogus.n = 4;
     bogus.data = NULL;
     CHECK(isnan(sk_table_sample_cos(&bogus, 0.5f)));
+    {
+        /* NULL and malformed tables: NaN density and direction; pdf_out may
+         * be NULL. */
+        sk_vec3 w = {0, 0, 1};
+        sk_vec3_f64 wd = {0, 0, 1};
+        float pf = 0.0f;
+        double pd = 0.0;
+        CHECK(isnan(sk_table_pdf(NULL, 0.5f)) && isnan(sk_table_pdf_f64(NULL, 0.5)) && isnan(sk_table_pdf(&bogus, 0.5f)));
+        CHECK(vec_nan3(sk_table_sample_dir(NULL, w, 0.5f, 0.5f, &pf)) && isnan(pf));
+        CHECK(isnan(sk_table_sample_dir_f64(NULL, wd, 0.5, 0.5, &pd).x) && isnan(pd));
+        CHECK(vec_nan3(sk_table_sample_dir(&bogus, w, 0.5f, 0.5f, NULL)));
+        sk_table_inverse(&p, buf, 66, 32, &t);
+        CHECK(!isnan(sk_table_sample_dir(&t, w, 0.5f, 0.5f, NULL).z));
+    }
 }
 
 static void surfaces(void) {

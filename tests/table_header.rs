@@ -1,0 +1,29 @@
+//! `include/scatterkit_table.h`, the header-only table lookups, against the
+//! library: `tests/c/table_lookup.c` compiled as C99 and as C++ (`-Wall
+//! -Wextra -Werror -pedantic`) compares them bit for bit with
+//! `sk_table_sample_cos` over 2²⁰ + 1 values of `u` (plus values outside
+//! `[0, 1]`, NaN and the ends) for every table kind, f32 and f64, at four
+//! resolutions.
+
+mod common;
+
+use common::cbuild::{build_program_with, root, run};
+
+fn check(cpp: bool) {
+    let src = root().join("tests/c/table_lookup.c");
+    let exe = build_program_with(&src, cpp, &[], if cpp { "_cpp" } else { "" });
+    let (code, out) = run(&exe);
+    println!("{out}");
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("lookups compared, 0 mismatched"), "{out}");
+}
+
+#[test]
+fn header_lookup_is_bit_identical_as_c() {
+    check(false);
+}
+
+#[test]
+fn header_lookup_is_bit_identical_as_cpp() {
+    check(true);
+}

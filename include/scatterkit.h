@@ -295,6 +295,48 @@ typedef uint32_t sk_sampling;
 #endif // __cplusplus
 
 /*
+ Which phase function an sk_phase holds (its tag, also the value of the
+ enum's discriminant in Rust).
+ */
+enum sk_phase_model
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+    /*
+     Uniform over the sphere: no parameters.
+     */
+    SK_PHASE_ISOTROPIC = 1,
+    /*
+     Rayleigh: no parameters.
+     */
+    SK_PHASE_RAYLEIGH = 2,
+    /*
+     Depolarised Rayleigh: params[0] = rho.
+     */
+    SK_PHASE_RAYLEIGH_DEPOLARIZED = 3,
+    /*
+     Henyey-Greenstein: params[0] = g.
+     */
+    SK_PHASE_HG = 4,
+    /*
+     Draine (Cornette-Shanks for alpha = 1): params[0] = g, params[1] = alpha.
+     */
+    SK_PHASE_DRAINE = 5,
+    /*
+     The fog mixture: params = g_hg, g_d, alpha, w_d.
+     */
+    SK_PHASE_FOG = 6,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_phase_model sk_phase_model;
+#else
+typedef uint32_t sk_phase_model;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/*
  The caller's random number generator: `next_u64(state)` returns 64
  uniformly random bits. Uniform floats are taken from the top 24 (float) or
  53 (double) bits.
@@ -645,6 +687,43 @@ typedef struct {
      */
     uint64_t opaque[32];
 } sk_phase_f64;
+
+/*
+ What an sk_phase holds, for a host to hand to a device: the model (an
+ sk_phase_model) and its parameters (`count` of them, the rest 0).
+ */
+typedef struct {
+    /*
+     An sk_phase_model.
+     */
+    uint32_t model;
+    /*
+     How many of `params` the model uses (0 to 4).
+     */
+    uint32_t count;
+    /*
+     The parameters, in the order sk_phase_model lists them.
+     */
+    float params[4];
+} sk_phase_params;
+
+/*
+ What an sk_phase_f64 holds; see `sk_phase_params`.
+ */
+typedef struct {
+    /*
+     An sk_phase_model.
+     */
+    uint32_t model;
+    /*
+     How many of `params` the model uses (0 to 4).
+     */
+    uint32_t count;
+    /*
+     The parameters.
+     */
+    double params[4];
+} sk_phase_params_f64;
 
 /*
  The channels (wavelength samples) of a spectral medium: coefficients per
@@ -1488,6 +1567,17 @@ sk_status sk_phase_sample_dir_n_f64(const sk_phase_f64 *p,
                                     double *out_z,
                                     double *pdf_out,
                                     size_t n);
+
+/*
+ Writes what `p` holds to *out. SK_ERR_NULL for NULL pointers;
+ SK_ERR_DOMAIN for an unconstructed phase (its tag is not a model).
+ */
+sk_status sk_phase_get_params(const sk_phase *p, sk_phase_params *out);
+
+/*
+ Double twin of `sk_phase_get_params`.
+ */
+sk_status sk_phase_get_params_f64(const sk_phase_f64 *p, sk_phase_params_f64 *out);
 
 /*
  A Rayleigh-distributed propagation direction about the unit vector w_in,

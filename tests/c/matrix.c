@@ -122,6 +122,39 @@ static void phase_constructors(void) {
 }
 
 /* Queries of every phase kind with each special argument. */
+/* What a phase holds: the model and its parameters, as built. */
+static void phase_params(void) {
+    int i = 0;
+    sk_phase p, zero;
+    sk_phase_f64 q;
+    sk_phase_params pp;
+    sk_phase_params_f64 qp;
+    memset(&zero, 0, sizeof zero);
+    CHECK(sk_phase_get_params(NULL, &pp) == SK_ERR_NULL);
+    sk_phase_hg(0.3f, &p);
+    CHECK(sk_phase_get_params(&p, NULL) == SK_ERR_NULL);
+    pp.model = 99;
+    CHECK(sk_phase_get_params(&zero, &pp) == SK_ERR_DOMAIN && pp.model == 99);
+    CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_HG && pp.count == 1 && pp.params[0] == 0.3f &&
+          pp.params[1] == 0.0f);
+    sk_phase_isotropic(&p);
+    CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_ISOTROPIC && pp.count == 0);
+    sk_phase_rayleigh(&p);
+    CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_RAYLEIGH && pp.count == 0);
+    sk_phase_rayleigh_depolarized(0.03f, &p);
+    CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_RAYLEIGH_DEPOLARIZED && pp.params[0] == 0.03f);
+    sk_phase_draine(0.5f, 2.0f, &p);
+    CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_DRAINE && pp.count == 2 && pp.params[0] == 0.5f &&
+          pp.params[1] == 2.0f);
+    sk_phase_fog(0.9f, 0.2f, 10.0f, 0.3f, &p);
+    CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_FOG && pp.count == 4 && pp.params[0] == 0.9f &&
+          pp.params[1] == 0.2f && pp.params[2] == 10.0f && pp.params[3] == 0.3f);
+    sk_phase_draine_f64(-0.25, 1000.0, &q);
+    CHECK(sk_phase_get_params_f64(&q, &qp) == SK_OK && qp.model == SK_PHASE_DRAINE && qp.params[0] == -0.25 &&
+          qp.params[1] == 1000.0);
+    CHECK(sk_phase_get_params_f64(&q, NULL) == SK_ERR_NULL && sk_phase_get_params_f64(NULL, &qp) == SK_ERR_NULL);
+}
+
 static void phase_queries(void) {
     int i, k;
     sk_phase ps[6], zero;
@@ -774,6 +807,7 @@ int main(void) {
     basis();
     phase_constructors();
     phase_queries();
+    phase_params();
     direction_batches();
     rayleigh_functions();
     tables();

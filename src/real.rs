@@ -310,7 +310,36 @@ fn sqrt_f64(x: f64) -> f64 {
     // SAFETY: as above.
     unsafe { _mm_cvtsd_f64(_mm_sqrt_sd(_mm_set_sd(x), _mm_set_sd(x))) }
 }
-#[cfg(not(target_arch = "x86_64"))]
+// Hard-float 32-bit ARM (Cortex-M4F/M7, `*-eabihf`): the FPU's `vsqrt.f32`,
+// correctly rounded; libm's `sqrtf` is a software routine there. These FPUs
+// may be single-precision only, so f64 keeps libm.
+#[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
+#[inline(always)]
+#[allow(unsafe_code)]
+fn sqrt_f32(x: f32) -> f32 {
+    let bits: u32;
+    // SAFETY: FPU instructions on registers only; s0 and the other
+    // caller-saved registers are declared clobbered (`clobber_abi`). The
+    // value travels through core registers because the compiler's `sreg`
+    // class needs double-precision VFP, which these FPUs may lack.
+    unsafe {
+        core::arch::asm!(
+            "vmov s0, r0",
+            "vsqrt.f32 s0, s0",
+            "vmov r0, s0",
+            inlateout("r0") x.to_bits() => bits,
+            clobber_abi("C"),
+            options(pure, nomem, nostack),
+        );
+    }
+    f32::from_bits(bits)
+}
+#[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
+use libm::sqrt as sqrt_f64;
+#[cfg(not(any(
+    target_arch = "x86_64",
+    all(target_arch = "arm", target_abi = "eabihf")
+)))]
 use libm::{sqrt as sqrt_f64, sqrtf as sqrt_f32};
 
 #[cfg(test)]

@@ -1,7 +1,10 @@
 #!/usr/bin/env sh
 # Installs the C library the way cargo-c's `cargo cinstall` does, without
-# needing cargo-c: libscatterkit.a and/or libscatterkit.so into PREFIX/lib, the
-# committed header into PREFIX/include, and PREFIX/lib/pkgconfig/scatterkit.pc.
+# needing cargo-c: libscatterkit.a and/or the shared library into PREFIX/lib
+# (libscatterkit.so.MAJOR.MINOR, its SONAME, with the libscatterkit.so link
+# beside it), the headers into PREFIX/include, PREFIX/lib/pkgconfig/scatterkit.pc
+# and a CMake package in PREFIX/lib/cmake/scatterkit (find_package(scatterkit
+# CONFIG) gives the imported target scatterkit::scatterkit).
 #
 #   scripts/install.sh PREFIX [--static-only | --shared-only]
 #
@@ -20,7 +23,11 @@ native="-lgcc_s -lutil -lrt -lpthread -lm -ldl -lc"
 mkdir -p "$prefix/lib/pkgconfig" "$prefix/include"
 cp "$root/include/scatterkit.h" "$root/include/scatterkit_table.h" "$prefix/include/"
 [ "$mode" = "--shared-only" ] || cp "$target/libscatterkit.a" "$prefix/lib/"
-[ "$mode" = "--static-only" ] || cp "$target/libscatterkit.so" "$prefix/lib/"
+soname=libscatterkit.so.$(echo "$version" | cut -d. -f1-2)
+if [ "$mode" != "--static-only" ]; then
+  cp "$target/libscatterkit.so" "$prefix/lib/$soname"
+  ln -sf "$soname" "$prefix/lib/libscatterkit.so"
+fi
 cat > "$prefix/lib/pkgconfig/scatterkit.pc" <<PC
 prefix=$prefix
 libdir=\${prefix}/lib
@@ -33,4 +40,32 @@ Libs: -L\${libdir} -lscatterkit
 Libs.private: $native
 Cflags: -I\${includedir}
 PC
+# CMake: an imported target for the shared library if installed, else the
+# static one (with the native libraries a static link needs).
+mkdir -p "$prefix/lib/cmake/scatterkit"
+if [ "$mode" = "--static-only" ]; then
+  kind=STATIC; lib='libscatterkit.a'; links="$(echo "$native" | sed 's/-l//g; s/ /;/g')"
+else
+  kind=SHARED; lib=$soname; links=''
+fi
+cat > "$prefix/lib/cmake/scatterkit/scatterkitConfig.cmake" <<CM
+# scatterkit $version: find_package(scatterkit CONFIG) gives scatterkit::scatterkit.
+get_filename_component(_sk_prefix "\${CMAKE_CURRENT_LIST_DIR}/../../.." ABSOLUTE)
+if(NOT TARGET scatterkit::scatterkit)
+  add_library(scatterkit::scatterkit $kind IMPORTED)
+  set_target_properties(scatterkit::scatterkit PROPERTIES
+    IMPORTED_LOCATION "\${_sk_prefix}/lib/$lib"
+    INTERFACE_INCLUDE_DIRECTORIES "\${_sk_prefix}/include"
+    INTERFACE_LINK_LIBRARIES "$links")
+endif()
+unset(_sk_prefix)
+CM
+cat > "$prefix/lib/cmake/scatterkit/scatterkitConfigVersion.cmake" <<CM
+set(PACKAGE_VERSION "$version")
+if(PACKAGE_FIND_VERSION VERSION_GREATER PACKAGE_VERSION)
+  set(PACKAGE_VERSION_COMPATIBLE FALSE)
+else()
+  set(PACKAGE_VERSION_COMPATIBLE TRUE)
+endif()
+CM
 echo "installed scatterkit $version into $prefix ($mode)" >&2

@@ -1,0 +1,177 @@
+//! Every `cc` line of the README, exactly as written there (read from the
+//! file, so the README cannot drift from what works): the in-tree static
+//! line in a directory laid out like the repository, and the pkg-config
+//! lines after `scripts/install.sh` into a temporary prefix. Each builds
+//! `c_examples/hg_stratified.c` as `app.c`, and the program runs (the shared
+//! one without `LD_LIBRARY_PATH`: the line records the library's directory).
+//! The CMake route is built too where `cmake` is installed.
+
+mod common;
+
+use common::cbuild::{root, static_lib};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The `cc` lines of the README's `sh` code blocks.
+fn readme_cc_lines() -> Vec<String> {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let (mut in_sh, mut lines) = (false, Vec::new());
+    for l in readme.lines() {
+        if l.starts_with("```") {
+            in_sh = l == "```sh";
+            continue;
+        }
+        if in_sh && l.starts_with("cc ") {
+            lines.push(l.to_string());
+        }
+    }
+    lines
+}
+
+fn sh(dir: &Path, line: &str, env: &[(&str, &Path)]) -> String {
+    let mut cmd = Command::new("sh");
+    cmd.arg("-c").arg(line).current_dir(dir);
+    for (k, v) in env {
+        cmd.env(k, v);
+    }
+    let out = cmd.output().unwrap();
+    assert!(
+        out.status.success(),
+        "`{line}` failed:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// A fresh directory holding `app.c`.
+fn workdir(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("link_lines")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(root().join("c_examples/hg_stratified.c"), dir.join("app.c")).unwrap();
+    dir
+}
+
+fn install(prefix: &Path, mode: &str) {
+    let _ = std::fs::remove_dir_all(prefix);
+    let target = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf();
+    let out = Command::new("sh")
+        .arg(root().join("scripts/install.sh"))
+        .arg(prefix)
+        .arg(mode)
+        .env("CARGO_TARGET_DIR", target)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "install: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn every_readme_link_line_builds_and_runs() {
+    let lines = readme_cc_lines();
+    assert!(
+        lines.len() >= 3,
+        "the README lost its link lines: {lines:?}"
+    );
+    let lib = static_lib();
+    for (k, line) in lines.iter().enumerate() {
+        let dir = workdir(&format!("line{k}"));
+        let mut env: Vec<(&str, PathBuf)> = Vec::new();
+        if line.contains("target/release/libscatterkit.a") {
+            // The repository's layout: include/ and target/release/.
+            std::os::unix::fs::symlink(root().join("include"), dir.join("include")).unwrap();
+            std::fs::create_dir_all(dir.join("target")).unwrap();
+            std::os::unix::fs::symlink(lib.parent().unwrap(), dir.join("target/release")).unwrap();
+        } else if line.contains("pkg-config") {
+            let prefix = dir.join("prefix");
+            install(
+                &prefix,
+                if line.contains("--static") {
+                    "--static-only"
+                } else {
+                    "--shared-only"
+                },
+            );
+            env.push(("PKG_CONFIG_PATH", prefix.join("lib/pkgconfig")));
+        } else {
+            panic!("a README cc line this test does not know how to run: {line}");
+        }
+        let env_ref: Vec<(&str, &Path)> = env.iter().map(|(k, v)| (*k, v.as_path())).collect();
+        sh(&dir, line, &env_ref);
+        let exe = dir.join("a.out");
+        let size = std::fs::metadata(&exe).unwrap().len();
+        let run = Command::new(&exe).current_dir(&dir).output().unwrap();
+        let out = String::from_utf8_lossy(&run.stdout);
+        println!("`{line}`: {size} bytes, runs: {}", run.status.success());
+        assert!(
+            run.status.success() && out.contains("sorted: yes"),
+            "`{line}`: {out}"
+        );
+        if line.contains("--gc-sections") {
+            // The code the program keeps (`size`'s text column), not the
+            // file, which also holds debug information.
+            let out = Command::new("size").arg(&exe).output().unwrap();
+            let table = String::from_utf8_lossy(&out.stdout);
+            let text: u64 = table
+                .lines()
+                .nth(1)
+                .and_then(|l| l.split_whitespace().next())
+                .and_then(|t| t.parse().ok())
+                .unwrap_or(u64::MAX);
+            println!("  .text {text} bytes");
+            assert!(text < 200_000, "`{line}` kept {text} bytes of code");
+        }
+    }
+}
+
+#[test]
+fn cmake_package_builds_an_app_where_cmake_is_installed() {
+    if Command::new("cmake").arg("--version").output().is_err() {
+        println!("cmake is not installed: the CMake route is not tested here");
+        return;
+    }
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let block: String = readme
+        .split("```cmake\n")
+        .nth(1)
+        .and_then(|b| b.split("```").next())
+        .expect("the README's cmake block")
+        .to_string();
+    let dir = workdir("cmake");
+    let prefix = dir.join("prefix");
+    install(&prefix, "--shared-only");
+    let cmakelists = format!(
+        "cmake_minimum_required(VERSION 3.10)\nproject(app C)\nadd_executable(app app.c)\n{block}"
+    );
+    std::fs::write(dir.join("CMakeLists.txt"), cmakelists).unwrap();
+    let build = dir.join("build");
+    let ok = Command::new("cmake")
+        .arg("-S")
+        .arg(&dir)
+        .arg("-B")
+        .arg(&build)
+        .arg(format!("-DCMAKE_PREFIX_PATH={}", prefix.display()))
+        .status()
+        .unwrap()
+        .success()
+        && Command::new("cmake")
+            .arg("--build")
+            .arg(&build)
+            .status()
+            .unwrap()
+            .success();
+    assert!(ok, "the CMake route failed");
+    let run = Command::new(build.join("app"))
+        .env("LD_LIBRARY_PATH", prefix.join("lib"))
+        .output()
+        .unwrap();
+    assert!(String::from_utf8_lossy(&run.stdout).contains("sorted: yes"));
+}

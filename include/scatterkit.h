@@ -312,15 +312,15 @@ enum sk_phase_model
      */
     SK_PHASE_RAYLEIGH = 2,
     /*
-     Depolarised Rayleigh: params[0] = rho.
+     Depolarised Rayleigh: `params[0]` = rho.
      */
     SK_PHASE_RAYLEIGH_DEPOLARIZED = 3,
     /*
-     Henyey-Greenstein: params[0] = g.
+     Henyey-Greenstein: `params[0]` = g.
      */
     SK_PHASE_HG = 4,
     /*
-     Draine (Cornette-Shanks for alpha = 1): params[0] = g, params[1] = alpha.
+     Draine (Cornette-Shanks for alpha = 1): `params[0]` = g, `params[1]` = alpha.
      */
     SK_PHASE_DRAINE = 5,
     /*
@@ -1990,7 +1990,7 @@ double sk_table_sample_cos_f64(const sk_table_f64 *t, double u);
  The density per steradian that sk_table_sample_cos draws from, at
  cos_theta: the table's own (not the phase function it was built from),
  so that a sample and its pdf agree exactly, as MIS needs. Frisvad's CDF
- table: (F[i+1] - F[i]) / (2 pi (2/n)) on interval i of cos theta. Hermite
+ table: `(F[i+1] - F[i])` / (2 pi (2/n)) on interval i of cos theta. Hermite
  tables: 1 / (2 pi n mu'(t)), where mu(t) is the interval's cubic (see
  include/scatterkit_table.h) and t solves mu(t) = cos_theta; +inf where a
  slope was limited to 0. 0 outside the range the table covers; NaN for

@@ -566,11 +566,11 @@ pub enum sk_phase_model {
     SK_PHASE_ISOTROPIC = 1,
     /// Rayleigh: no parameters.
     SK_PHASE_RAYLEIGH = 2,
-    /// Depolarised Rayleigh: params[0] = rho.
+    /// Depolarised Rayleigh: `params[0]` = rho.
     SK_PHASE_RAYLEIGH_DEPOLARIZED = 3,
-    /// Henyey-Greenstein: params[0] = g.
+    /// Henyey-Greenstein: `params[0]` = g.
     SK_PHASE_HG = 4,
-    /// Draine (Cornette-Shanks for alpha = 1): params[0] = g, params[1] = alpha.
+    /// Draine (Cornette-Shanks for alpha = 1): `params[0]` = g, `params[1]` = alpha.
     SK_PHASE_DRAINE = 5,
     /// The fog mixture: params = g_hg, g_d, alpha, w_d.
     SK_PHASE_FOG = 6,

@@ -286,7 +286,7 @@ pub unsafe extern "C" fn sk_table_sample_cos_f64(t: *const sk_table_f64, u: f64)
 /// The density per steradian that sk_table_sample_cos draws from, at
 /// cos_theta: the table's own (not the phase function it was built from),
 /// so that a sample and its pdf agree exactly, as MIS needs. Frisvad's CDF
-/// table: (F[i+1] - F[i]) / (2 pi (2/n)) on interval i of cos theta. Hermite
+/// table: `(F[i+1] - F[i])` / (2 pi (2/n)) on interval i of cos theta. Hermite
 /// tables: 1 / (2 pi n mu'(t)), where mu(t) is the interval's cubic (see
 /// include/scatterkit_table.h) and t solves mu(t) = cos_theta; +inf where a
 /// slope was limited to 0. 0 outside the range the table covers; NaN for

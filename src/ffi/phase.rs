@@ -618,6 +618,22 @@ fn model_params<T: Real>(p: &Phase<T>) -> (sk_phase_model, u32, [T; 4]) {
     }
 }
 
+/// Writes `make(model, count, params)` for the phase behind `p` to *out.
+unsafe fn get_params<S: PhaseStore, P>(
+    p: *const S,
+    out: *mut P,
+    make: impl Fn(u32, u32, [S::T; 4]) -> P,
+) -> sk_status {
+    if p.is_null() || out.is_null() {
+        return sk_status::SK_ERR_NULL;
+    }
+    let r = unsafe { load(p) }.ok_or(Error::Domain).map(|ph| {
+        let (model, count, params) = model_params(ph);
+        make(model as u32, count, params)
+    });
+    unsafe { write_result(out, r) }
+}
+
 /// Writes what `p` holds to *out. SK_ERR_NULL for NULL pointers;
 /// SK_ERR_DOMAIN for an unconstructed phase (its tag is not a model).
 #[unsafe(no_mangle)]
@@ -625,18 +641,13 @@ pub unsafe extern "C" fn sk_phase_get_params(
     p: *const sk_phase,
     out: *mut sk_phase_params,
 ) -> sk_status {
-    if p.is_null() || out.is_null() {
-        return sk_status::SK_ERR_NULL;
-    }
-    let r = unsafe { load(p) }.ok_or(Error::Domain).map(|ph| {
-        let (model, count, params) = model_params(ph);
-        sk_phase_params {
-            model: model as u32,
+    unsafe {
+        get_params(p, out, |model, count, params| sk_phase_params {
+            model,
             count,
             params,
-        }
-    });
-    unsafe { write_result(out, r) }
+        })
+    }
 }
 
 /// Double twin of `sk_phase_get_params`.
@@ -645,16 +656,11 @@ pub unsafe extern "C" fn sk_phase_get_params_f64(
     p: *const sk_phase_f64,
     out: *mut sk_phase_params_f64,
 ) -> sk_status {
-    if p.is_null() || out.is_null() {
-        return sk_status::SK_ERR_NULL;
-    }
-    let r = unsafe { load(p) }.ok_or(Error::Domain).map(|ph| {
-        let (model, count, params) = model_params(ph);
-        sk_phase_params_f64 {
-            model: model as u32,
+    unsafe {
+        get_params(p, out, |model, count, params| sk_phase_params_f64 {
+            model,
             count,
             params,
-        }
-    });
-    unsafe { write_result(out, r) }
+        })
+    }
 }

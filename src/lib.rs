@@ -66,6 +66,7 @@ mod error;
 pub mod geometry;
 pub mod majorant;
 pub mod medium;
+pub mod mie;
 mod numeric;
 pub mod phase;
 pub mod real;

@@ -47,7 +47,11 @@ impl rand_core::TryRng for Counter {
 pub extern "C" fn nostd_sample(g: f32, u: f32) -> f32 {
     let hg = Phase::henyey_greenstein(g).map_or(f32::NAN, |p| p.sample_cos(u));
     let d = rayleigh::sample_dir(RayleighMethod::Simplified, Vec3::new(0.0f32, 0.0, 1.0), &mut Counter(1));
-    hg + d.z + scatterkit::cbrt::cbrt_f32(u)
+    // Mie in a stack buffer: no allocation.
+    let mut buf = [scatterkit::mie::Complex::default(); 128];
+    let q = scatterkit::mie::Mie::new(1.0, scatterkit::mie::Complex::new(1.5, 0.01), &mut buf)
+        .map_or(f64::NAN, |m| m.efficiencies.q_ext);
+    hg + d.z + scatterkit::cbrt::cbrt_f32(u) + q as f32
 }
 "#;
 

@@ -667,6 +667,68 @@ typedef float (*sk_density_fn)(void *ctx, sk_vec3 p);
 typedef double (*sk_density_fn_f64)(void *ctx, sk_vec3_f64 p);
 
 /*
+ A complex number: the relative refractive index m = re + i im (im >= 0
+ absorbs; Wiscombe's MIEV0 writes the same sphere as re - i im) and the
+ amplitude functions.
+ */
+typedef struct {
+    /*
+     Real part.
+     */
+    double re;
+    /*
+     Imaginary part.
+     */
+    double im;
+} sk_complex;
+
+/*
+ Efficiencies (cross sections over pi r^2) and asymmetry of a sphere.
+ */
+typedef struct {
+    /*
+     Extinction efficiency Q_ext.
+     */
+    double q_ext;
+    /*
+     Scattering efficiency Q_sca.
+     */
+    double q_sca;
+    /*
+     Backscattering efficiency Q_back = 4 |S1(180 deg)|^2 / x^2.
+     */
+    double q_back;
+    /*
+     Asymmetry parameter g = <cos theta>.
+     */
+    double g;
+} sk_mie_efficiencies;
+
+/*
+ A solved sphere: its size parameter, efficiencies, and the series
+ coefficients a_1, b_1, ..., a_terms, b_terms in the caller's buffer,
+ which must outlive it. Build it with sk_mie_new.
+ */
+typedef struct {
+    /*
+     Size parameter x.
+     */
+    double x;
+    /*
+     2 terms coefficients in the caller's buffer.
+     */
+    const sk_complex *ab;
+    /*
+     Number of series terms.
+     */
+    size_t terms;
+    /*
+     The efficiencies and g.
+     */
+    sk_mie_efficiencies efficiencies;
+} sk_mie;
+
+/*
  A phase function (float). A plain value with no pointers inside: build it
  with an `sk_phase_*` constructor, then copy it and share it freely across
  threads. Its contents are private.
@@ -1330,6 +1392,40 @@ double sk_ratio_track_fn_f64(sk_density_fn_f64 f,
                              double t_min,
                              double t_max,
                              sk_rng *rng);
+
+/*
+ The size parameter pi d n_medium / lambda of a sphere of diameter d in a
+ medium of index n_medium at vacuum wavelength lambda (same unit as d).
+ */
+double sk_mie_size_parameter(double diameter, double wavelength, double n_medium);
+
+/*
+ The number of sk_complex values sk_mie_new needs for (x, m); 0 for input
+ it rejects (x outside [1e-20, 1e5], re <= 0, im < 0, or non-finite).
+ */
+size_t sk_mie_buffer_len(double x, sk_complex m);
+
+/*
+ Solves the sphere of size parameter x and relative index m into buf (len
+ values, at least sk_mie_buffer_len(x, m)) and writes *out, which borrows
+ buf. Wiscombe's term count, the logarithmic derivative by downward
+ recurrence. SK_ERR_NULL for NULL buf or out; SK_ERR_DOMAIN for input
+ sk_mie_buffer_len rejects; SK_ERR_SIZE for a short buffer.
+ */
+sk_status sk_mie_new(double x, sk_complex m, sk_complex *buf, size_t len, sk_mie *out);
+
+/*
+ The amplitude functions S1(mu), S2(mu) of a solved sphere at mu = cos
+ theta (clamped to [-1, 1]; NaN gives NaN). SK_ERR_NULL for NULL
+ pointers; SK_ERR_SIZE for a malformed sphere.
+ */
+sk_status sk_mie_amplitudes(const sk_mie *m, double mu, sk_complex *s1_out, sk_complex *s2_out);
+
+/*
+ The unpolarised phase function per steradian of a solved sphere at mu,
+ normalised over the sphere; NaN for a NULL or malformed sphere or NaN mu.
+ */
+double sk_mie_phase(const sk_mie *m, double mu);
 
 /*
  Isotropic scattering, p = 1/(4 pi).

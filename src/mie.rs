@@ -25,6 +25,8 @@
 use crate::error::Error;
 
 /// A complex number (f64): the refractive index and the series terms.
+/// `repr(C)`: the C layer's `sk_complex` is the same pair.
+#[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Complex {
     /// Real part.
@@ -77,6 +79,13 @@ impl Complex {
     }
 }
 
+/// The size parameter `x = π d n_medium / λ` of a sphere of diameter `d`
+/// in a medium of index `n_medium`, at vacuum wavelength `λ` (same length
+/// unit as `d`).
+pub fn size_parameter(diameter: f64, wavelength: f64, n_medium: f64) -> f64 {
+    core::f64::consts::PI * diameter * n_medium / wavelength
+}
+
 /// Wiscombe's number of series terms for size parameter `x`.
 pub fn terms(x: f64) -> usize {
     let c = libm::cbrt(x);
@@ -107,8 +116,10 @@ pub fn buffer_len(x: f64, m: Complex) -> Option<usize> {
 }
 
 fn valid(x: f64, m: Complex) -> bool {
-    // x up to 10⁵ (a few hundred thousand terms at most), n and k finite.
-    x > 0.0 && x <= 1e5 && m.re > 0.0 && m.re.is_finite() && m.im >= 0.0 && m.im.is_finite()
+    // x from 10⁻²⁰ (below, the real parts of the coefficients, of order
+    // x⁶, approach f64's underflow and the efficiencies would lose them)
+    // to 10⁵ (a few hundred thousand terms), n and k finite.
+    (1e-20..=1e5).contains(&x) && m.re > 0.0 && m.re.is_finite() && m.im >= 0.0 && m.im.is_finite()
 }
 
 /// Efficiencies and asymmetry of one sphere.
@@ -136,7 +147,7 @@ pub struct Mie<'a> {
 }
 
 impl<'a> Mie<'a> {
-    /// Solves the sphere of size parameter `x ∈ (0, 10⁵]` and relative
+    /// Solves the sphere of size parameter `x ∈ [10⁻²⁰, 10⁵]` and relative
     /// index `m` (`n > 0`, `k ≥ 0`, finite) into `buf` (at least
     /// [`buffer_len`] values). [`Error::Domain`] for other input,
     /// [`Error::Size`] for a short buffer.
@@ -144,7 +155,9 @@ impl<'a> Mie<'a> {
         let len = buffer_len(x, m).ok_or(Error::Domain)?;
         let buf = buf.get_mut(..len).ok_or(Error::Size)?;
         let (nmx, n_terms) = (start(x, m), terms(x));
-        let (d, ab) = buf.split_at_mut(nmx + 1);
+        let Some((d, ab)) = buf.split_at_mut_checked(nmx + 1) else {
+            return Err(Error::Size);
+        };
         // D_n(mx), downward from D_nmx = 0.
         let mx = m.scale(x);
         let inv_mx = mx.recip();
@@ -201,8 +214,8 @@ impl<'a> Mie<'a> {
             }
             let sign = if n % 2 == 0 { 1.0 } else { -1.0 };
             back = back.add(an.sub(bn).scale(w * sign));
-            if let Some(slot) = ab.get_mut(2 * (n - 1)..2 * n) {
-                slot.copy_from_slice(&[an, bn]);
+            if let Some([a, b]) = ab.get_mut(2 * (n - 1)..2 * n) {
+                (*a, *b) = (an, bn);
             }
             (prev_a, prev_b) = (an, bn);
             (psi0, psi1) = (psi1, psi);
@@ -232,6 +245,21 @@ impl<'a> Mie<'a> {
         self.x
     }
 
+    /// The series coefficients `a_1, b_1, …, a_N, b_N`.
+    pub fn coefficients(&self) -> &'a [Complex] {
+        self.ab
+    }
+
+    /// A solved sphere from its parts (the C layer keeps them in `sk_mie`).
+    #[cfg_attr(not(feature = "ffi"), allow(dead_code))]
+    pub(crate) fn from_parts(x: f64, ab: &'a [Complex], efficiencies: Efficiencies) -> Self {
+        Mie {
+            x,
+            ab,
+            efficiencies,
+        }
+    }
+
     /// The amplitude functions `(S1, S2)` at `μ = cos θ` (Bohren & Huffman
     /// eq. 4.74), by the `π_n`, `τ_n` recurrences. NaN for NaN `μ`; `μ`
     /// outside `[−1, 1]` is clamped.
@@ -247,7 +275,7 @@ impl<'a> Mie<'a> {
             let n = (i + 1) as f64;
             let tau = n * mu * pi - (n + 1.0) * pi_prev;
             let w = (2.0 * n + 1.0) / (n * (n + 1.0));
-            let (an, bn) = (pair[0], pair[1]);
+            let &[an, bn] = pair else { continue };
             s1 = s1.add(an.scale(w * pi).add(bn.scale(w * tau)));
             s2 = s2.add(an.scale(w * tau).add(bn.scale(w * pi)));
             // π_{n+1} = ((2n + 1) μ π_n − (n + 1) π_{n−1}) / n

@@ -170,7 +170,7 @@ fn optical_theorem_energy_and_normalisation_across_the_domain() {
 #[test]
 fn small_spheres_follow_rayleigh() {
     // Q_sca → (8/3) x⁴ |(m² − 1)/(m² + 2)|² as x → 0, to relative O(x²).
-    for x in [1e-6, 1e-4, 1e-2] {
+    for x in [1e-20, 1e-12, 1e-6, 1e-4, 1e-2] {
         let (mut buf, x, m) = solve(x, 1.5, 0.0);
         let e = Mie::new(x, m, &mut buf).unwrap().efficiencies;
         let l = (1.5f64 * 1.5 - 1.0) / (1.5 * 1.5 + 2.0);
@@ -191,6 +191,7 @@ fn bad_input_is_rejected() {
     let mut buf = vec![Complex::default(); 10];
     for (x, m) in [
         (0.0, m),
+        (1e-21, m),
         (-1.0, m),
         (f64::NAN, m),
         (1e6, m),

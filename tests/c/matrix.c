@@ -802,6 +802,41 @@ static void majorants(void) {
           (tr.event == SK_TRACK_ESCAPED && tr.t == 1.5f));
 }
 
+/* Mie: bad input from C, and the BHMIE example through the header. */
+static void mie(void) {
+    int i;
+    static sk_complex buf[4096];
+    sk_complex m = {1.55, 0.0}, s1, s2;
+    sk_mie sphere, bogus;
+    double x = sk_mie_size_parameter(1.05, 0.6328, 1.0);
+    size_t len = sk_mie_buffer_len(x, m);
+    i = 0;
+    CHECK(len > 0 && len <= 4096);
+    CHECK(sk_mie_new(x, m, buf, len, &sphere) == SK_OK);
+    CHECK(fabs(sphere.efficiencies.q_ext - 3.10543) < 5e-6 && fabs(sphere.efficiencies.g - 0.63314) < 5e-6);
+    CHECK(sk_mie_amplitudes(&sphere, -1.0, &s1, &s2) == SK_OK);
+    CHECK(fabs(4.0 * (s1.re * s1.re + s1.im * s1.im) / (x * x) - sphere.efficiencies.q_back) < 1e-12);
+    CHECK(sk_mie_phase(&sphere, 1.0) > sk_mie_phase(&sphere, -1.0));
+    CHECK(isnan(sk_mie_phase(&sphere, NAN)) && isnan(sk_mie_phase(NULL, 0.5)));
+    CHECK(sk_mie_new(x, m, NULL, len, &sphere) == SK_ERR_NULL && sk_mie_new(x, m, buf, len, NULL) == SK_ERR_NULL);
+    CHECK(sk_mie_new(x, m, buf, len - 1, &sphere) == SK_ERR_SIZE);
+    CHECK(sk_mie_new(x, m, buf, SIZE_MAX, &sphere) == SK_ERR_SIZE);
+    CHECK(sk_mie_amplitudes(NULL, 0.5, &s1, &s2) == SK_ERR_NULL && sk_mie_amplitudes(&sphere, 0.5, NULL, &s2) == SK_ERR_NULL);
+    bogus = sphere;
+    bogus.terms = SIZE_MAX;
+    CHECK(sk_mie_amplitudes(&bogus, 0.5, &s1, &s2) == SK_ERR_SIZE && isnan(sk_mie_phase(&bogus, 0.5)));
+    for (i = 0; i < NS; i++) {
+        double d = DS[i];
+        sk_complex bad_re = {d, 0.0}, bad_im = {1.5, d};
+        int x_ok = d >= 1e-20 && d <= 1e5, re_ok = d > 0.0 && isfinite(d), im_ok = d >= 0.0 && isfinite(d);
+        CHECK((sk_mie_buffer_len(d, m) > 0) == x_ok);
+        CHECK((sk_mie_buffer_len(1.0, bad_re) > 0) == re_ok);
+        CHECK((sk_mie_buffer_len(1.0, bad_im) > 0) == im_ok);
+        CHECK(sk_mie_new(d, m, buf, 4096, &sphere) == (x_ok ? (sk_mie_buffer_len(d, m) <= 4096 ? SK_OK : SK_ERR_SIZE) : SK_ERR_DOMAIN));
+        CHECK(sk_mie_new(1.0, bad_im, buf, 4096, &sphere) == (im_ok ? SK_OK : SK_ERR_DOMAIN));
+    }
+}
+
 int main(void) {
     cube_roots_and_version();
     basis();
@@ -814,6 +849,7 @@ int main(void) {
     surfaces();
     media();
     majorants();
+    mie();
     printf("matrix: %d checks passed, %d failed\n", passed, failed);
     return failed;
 }

@@ -1,0 +1,159 @@
+//! Mie scattering by a sphere (double precision only: the series needs it;
+//! a float caller converts).
+
+use super::{sk_status, slice_in, slice_out, write_result};
+use crate::mie::{self, Complex, Efficiencies, Mie};
+
+/// A complex number: the relative refractive index m = re + i im (im >= 0
+/// absorbs; Wiscombe's MIEV0 writes the same sphere as re - i im) and the
+/// amplitude functions.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct sk_complex {
+    /// Real part.
+    pub re: f64,
+    /// Imaginary part.
+    pub im: f64,
+}
+
+/// Efficiencies (cross sections over pi r^2) and asymmetry of a sphere.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct sk_mie_efficiencies {
+    /// Extinction efficiency Q_ext.
+    pub q_ext: f64,
+    /// Scattering efficiency Q_sca.
+    pub q_sca: f64,
+    /// Backscattering efficiency Q_back = 4 |S1(180 deg)|^2 / x^2.
+    pub q_back: f64,
+    /// Asymmetry parameter g = <cos theta>.
+    pub g: f64,
+}
+
+/// A solved sphere: its size parameter, efficiencies, and the series
+/// coefficients a_1, b_1, ..., a_terms, b_terms in the caller's buffer,
+/// which must outlive it. Build it with sk_mie_new.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct sk_mie {
+    /// Size parameter x.
+    pub x: f64,
+    /// 2 terms coefficients in the caller's buffer.
+    pub ab: *const sk_complex,
+    /// Number of series terms.
+    pub terms: usize,
+    /// The efficiencies and g.
+    pub efficiencies: sk_mie_efficiencies,
+}
+
+fn to_c(z: Complex) -> sk_complex {
+    sk_complex { re: z.re, im: z.im }
+}
+
+/// The Rust sphere behind an sk_mie, or None for NULL or malformed fields.
+unsafe fn load<'a>(m: *const sk_mie) -> Option<Mie<'a>> {
+    // SAFETY: a non-NULL m points to an sk_mie built by sk_mie_new, whose ab
+    // holds 2 terms values (module contract).
+    let m = unsafe { m.as_ref() }?;
+    let len = m.terms.checked_mul(2)?;
+    let ab = unsafe { slice_in(m.ab.cast::<Complex>(), len) }.ok()?;
+    let e = m.efficiencies;
+    let eff = Efficiencies {
+        q_ext: e.q_ext,
+        q_sca: e.q_sca,
+        q_back: e.q_back,
+        g: e.g,
+    };
+    Some(Mie::from_parts(m.x, ab, eff))
+}
+
+/// The size parameter pi d n_medium / lambda of a sphere of diameter d in a
+/// medium of index n_medium at vacuum wavelength lambda (same unit as d).
+#[unsafe(no_mangle)]
+pub extern "C" fn sk_mie_size_parameter(diameter: f64, wavelength: f64, n_medium: f64) -> f64 {
+    mie::size_parameter(diameter, wavelength, n_medium)
+}
+
+/// The number of sk_complex values sk_mie_new needs for (x, m); 0 for input
+/// it rejects (x outside [1e-20, 1e5], re <= 0, im < 0, or non-finite).
+#[unsafe(no_mangle)]
+pub extern "C" fn sk_mie_buffer_len(x: f64, m: sk_complex) -> usize {
+    mie::buffer_len(x, Complex::new(m.re, m.im)).unwrap_or(0)
+}
+
+/// Solves the sphere of size parameter x and relative index m into buf (len
+/// values, at least sk_mie_buffer_len(x, m)) and writes *out, which borrows
+/// buf. Wiscombe's term count, the logarithmic derivative by downward
+/// recurrence. SK_ERR_NULL for NULL buf or out; SK_ERR_DOMAIN for input
+/// sk_mie_buffer_len rejects; SK_ERR_SIZE for a short buffer.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_mie_new(
+    x: f64,
+    m: sk_complex,
+    buf: *mut sk_complex,
+    len: usize,
+    out: *mut sk_mie,
+) -> sk_status {
+    if buf.is_null() || out.is_null() {
+        return sk_status::SK_ERR_NULL;
+    }
+    let slice = match unsafe { slice_out(buf.cast::<Complex>(), len) } {
+        Ok(s) => s,
+        Err(e) => return e,
+    };
+    let r = Mie::new(x, Complex::new(m.re, m.im), slice).map(|mie| {
+        let e = mie.efficiencies;
+        sk_mie {
+            x: mie.x(),
+            ab: mie.coefficients().as_ptr().cast::<sk_complex>(),
+            terms: mie.coefficients().len() / 2,
+            efficiencies: sk_mie_efficiencies {
+                q_ext: e.q_ext,
+                q_sca: e.q_sca,
+                q_back: e.q_back,
+                g: e.g,
+            },
+        }
+    });
+    unsafe { write_result(out, r) }
+}
+
+/// The amplitude functions S1(mu), S2(mu) of a solved sphere at mu = cos
+/// theta (clamped to [-1, 1]; NaN gives NaN). SK_ERR_NULL for NULL
+/// pointers; SK_ERR_SIZE for a malformed sphere.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_mie_amplitudes(
+    m: *const sk_mie,
+    mu: f64,
+    s1_out: *mut sk_complex,
+    s2_out: *mut sk_complex,
+) -> sk_status {
+    if m.is_null() || s1_out.is_null() || s2_out.is_null() {
+        return sk_status::SK_ERR_NULL;
+    }
+    let Some(mie) = (unsafe { load(m) }) else {
+        return sk_status::SK_ERR_SIZE;
+    };
+    let (s1, s2) = mie.amplitudes(mu);
+    // SAFETY: both out-pointers were checked non-NULL.
+    unsafe {
+        s1_out.write(to_c(s1));
+        s2_out.write(to_c(s2));
+    }
+    sk_status::SK_OK
+}
+
+/// The unpolarised phase function per steradian of a solved sphere at mu,
+/// normalised over the sphere; NaN for a NULL or malformed sphere or NaN mu.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_mie_phase(m: *const sk_mie, mu: f64) -> f64 {
+    unsafe { load(m) }.map_or(f64::NAN, |mie| mie.phase(mu))
+}
+
+// Layout: sk_complex is Complex (both repr(C) pairs of f64), so the
+// caller's buffer is used as it is.
+const _: () = {
+    use core::mem::{align_of, size_of};
+    assert!(size_of::<sk_complex>() == size_of::<Complex>());
+    assert!(align_of::<sk_complex>() == align_of::<Complex>());
+};

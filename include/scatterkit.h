@@ -699,7 +699,7 @@ typedef struct {
      */
     double q_back;
     /*
-     Asymmetry parameter g = <cos theta>.
+     Asymmetry parameter g, the mean of cos theta.
      */
     double g;
 } sk_mie_efficiencies;

@@ -26,7 +26,7 @@ pub struct sk_mie_efficiencies {
     pub q_sca: f64,
     /// Backscattering efficiency Q_back = 4 |S1(180 deg)|^2 / x^2.
     pub q_back: f64,
-    /// Asymmetry parameter g = <cos theta>.
+    /// Asymmetry parameter g, the mean of cos theta.
     pub g: f64,
 }
 

@@ -62,12 +62,13 @@ fn wiscombe_miev0_test_cases_to_every_published_digit() {
             e.q_sca,
             e.g * e.q_sca
         );
-        // Seven digits everywhere but the three spheres with x ≤ 0.101
-        // (cases 5, 6, 12), which agree to six: their seventh digits differ
-        // by 1–4 units. MIEV0 treats x near 0.1 with its small-particle
-        // expansion (Wiscombe 1980); which of the two is right in the
-        // seventh digit is not settled here.
-        let digits = if x <= 0.101 { 6 } else { 7 };
+        // Seven digits, except where MIEV0's own seventh digit is not the
+        // sphere's: see `where_miev0s_seventh_digit_is_off`.
+        let digits = if OFF_IN_SEVENTH.contains(&(case + 5)) {
+            6
+        } else {
+            7
+        };
         assert!(
             agrees(e.q_ext, qe, digits),
             "case {}: Q_ext {} vs {qe}",
@@ -86,6 +87,107 @@ fn wiscombe_miev0_test_cases_to_every_published_digit() {
             case + 5,
             e.g * e.q_sca
         );
+    }
+}
+
+/// MIEV0 cases whose published seventh digit differs from the exact sphere
+/// (MIEV0 evaluates x < 0.1-ish with its small-particle expansion).
+const OFF_IN_SEVENTH: [usize; 3] = [5, 6, 12];
+
+/// (case, x, n, k, Q_ext, g Q_sca) from the series summed in 40-digit
+/// arithmetic (mpmath 1.3, Riccati–Bessel functions from `besselj` and
+/// `bessely`, no recurrences; `scripts/mie_reference.py`), for MIEV0's
+/// small spheres and five more of its cases.
+const FORTY_DIGIT: [(usize, f64, f64, f64, f64, f64); 9] = [
+    (5, 0.099, 0.75, 0.0, 7.41785911491e-6, 1.07427734367e-8),
+    (6, 0.101, 0.75, 0.0, 8.03353814856e-6, 1.21099958183e-8),
+    (12, 0.055, 1.5, 1.0, 0.101491041705, 5.55853694541e-9),
+    (13, 0.056, 1.5, 1.0, 0.10334669465, 6.19325493151e-9),
+    (7, 10.0, 0.75, 0.0, 2.23226484250202, 2.00116416533667),
+    (14, 1.0, 1.5, 1.0, 2.33632098467261, 0.127473614578647),
+    (10, 100.0, 1.33, 1e-5, 2.10132070588026, 1.82185436700066),
+    (17, 1.0, 10.0, 10.0, 2.53299307789637, -0.226796095614914),
+    (18, 100.0, 10.0, 10.0, 2.07112432672695, 1.02164848287015),
+];
+
+#[test]
+fn where_miev0s_seventh_digit_is_off() {
+    // MIEV0 publishes g Q_sca = 1.074279e-8 (case 5), Q_ext = 8.033542e-6
+    // (case 6) and g Q_sca = 5.558541e-9 (case 12); the 40-digit sums give
+    // 1.0742773e-8, 8.0335381e-6 and 5.5585369e-9. This solver must agree
+    // with the 40-digit values to 10 digits (measured: 3·10⁻¹¹ or better), and so lands off MIEV0's
+    // seventh digit exactly where MIEV0 is off.
+    for &(case, x, n, k, qe, gqs) in &FORTY_DIGIT {
+        let (mut buf, x, m) = solve(x, n, k);
+        let e = Mie::new(x, m, &mut buf).unwrap().efficiencies;
+        let gq = e.g * e.q_sca;
+        let (rq, rg) = ((e.q_ext / qe - 1.0).abs(), (gq / gqs - 1.0).abs());
+        println!("case {case}: relative error Q_ext {rq:.1e}, g Q_sca {rg:.1e}");
+        assert!(rq < 1e-10, "case {case}: Q_ext {}", e.q_ext);
+        assert!(rg < 1e-10, "case {case}: g Q_sca {gq}");
+    }
+}
+
+/// `|S|²` agrees with a published `re + i im` given to `digits` significant
+/// digits in each part: within what rounding the parts allows.
+fn agrees_sq(got: Complex, re: f64, im: f64, digits: i32) -> bool {
+    let half = |v: f64| {
+        if v == 0.0 {
+            0.0
+        } else {
+            0.5 * 10f64.powi(v.abs().log10().floor() as i32 - (digits - 1))
+        }
+    };
+    let (dr, di) = (half(re), half(im));
+    let want = re * re + im * im;
+    let slack = 2.0 * (re.abs() * dr + im.abs() * di) + dr * dr + di * di;
+    (got.norm_sqr() - want).abs() <= slack * (1.0 + 1e-9)
+}
+
+/// MIEV0's amplitudes, as its test driver prints them (Wiscombe, NCAR
+/// TN-140, test cases; reproduced in the tests of S. Prahl's miepython):
+/// `S1(180°)` for cases 5–8, and `S1`, `S2` at 0°, 30°, …, 180° for case 14
+/// (`x = 1`, `m = 1.5 + i`). MIEV0's sign convention conjugates the
+/// amplitudes, so the comparison is of `|S1|²` and `|S2|²`.
+#[test]
+fn miev0_amplitudes_at_the_published_angles() {
+    for (x, re, im) in [
+        (0.099, 1.81756e-8, -1.64810e-4),
+        (0.101, 2.04875e-8, -1.74965e-4),
+        (10.0, -1.07857, -3.60881e-2),
+        (1000.0, 1.70578e1, 4.84251e2),
+    ] {
+        let (mut buf, x, m) = solve(x, 0.75, 0.0);
+        let mie = Mie::new(x, m, &mut buf).unwrap();
+        let (s1, _) = mie.amplitudes(-1.0);
+        println!("x {x}: S1(180°) = {s1:?}");
+        assert!(
+            agrees_sq(s1, re, im, 6),
+            "x {x}: S1(180°) {s1:?} vs {re} {im}"
+        );
+    }
+    #[rustfmt::skip]
+    let case14: [(f64, [f64; 4]); 7] = [
+        (0.0, [0.584080, 0.190515, 0.584080, 0.190515]),
+        (30.0, [0.565702, 0.187200, 0.500161, 0.145611]),
+        (60.0, [0.517525, 0.178443, 0.287964, 0.041054]),
+        (90.0, [0.456340, 0.167167, 0.0362285, -0.0618265]),
+        (120.0, [0.400212, 0.156643, -0.174875, -0.122959]),
+        (150.0, [0.362157, 0.149391, -0.305682, -0.143846]),
+        (180.0, [0.348844, 0.146829, -0.348844, -0.146829]),
+    ];
+    let (mut buf, x, m) = solve(1.0, 1.5, 1.0);
+    let mie = Mie::new(x, m, &mut buf).unwrap();
+    for (deg, [r1, i1, r2, i2]) in case14 {
+        let mu = if deg == 90.0 {
+            0.0
+        } else {
+            (deg as f64).to_radians().cos()
+        };
+        let (s1, s2) = mie.amplitudes(mu);
+        println!("{deg}°: S1 {s1:?} S2 {s2:?}");
+        assert!(agrees_sq(s1, r1, i1, 6), "{deg}°: S1 {s1:?}");
+        assert!(agrees_sq(s2, r2, i2, 6), "{deg}°: S2 {s2:?}");
     }
 }
 

@@ -1401,14 +1401,16 @@ double sk_mie_size_parameter(double diameter, double wavelength, double n_medium
 
 /*
  The number of sk_complex values sk_mie_new needs for (x, m); 0 for input
- it rejects (x outside [1e-20, 1e5], re <= 0, im < 0, or non-finite).
+ it rejects: x outside [1e-20, 1e5], re outside (0, 1000], im outside
+ [0, 1000], |m| x above 2e6, or NaN.
  */
 size_t sk_mie_buffer_len(double x, sk_complex m);
 
 /*
  Solves the sphere of size parameter x and relative index m into buf (len
  values, at least sk_mie_buffer_len(x, m)) and writes *out, which borrows
- buf. Wiscombe's term count, the logarithmic derivative by downward
+ buf. Wiscombe's term count (two more below x = 8), the logarithmic
+ derivative by downward
  recurrence. SK_ERR_NULL for NULL buf or out; SK_ERR_DOMAIN for input
  sk_mie_buffer_len rejects; SK_ERR_SIZE for a short buffer.
  */
@@ -1426,6 +1428,26 @@ sk_status sk_mie_amplitudes(const sk_mie *m, double mu, sk_complex *s1_out, sk_c
  normalised over the sphere; NaN for a NULL or malformed sphere or NaN mu.
  */
 double sk_mie_phase(const sk_mie *m, double mu);
+
+/*
+ Table sizes for a sphere of size parameter x in [1e-20, 1e5]:
+ *angles = max(4000, 16 x) for sk_mie_tabulate and *intervals = max(16384,
+ 64 x) for sk_table_measured_f64 (docs/mie_table.md measures them:
+ total-variation distance 3e-6 at x = 10, 2.4e-4 at 100, 1e-3 at 1000).
+ SK_ERR_NULL for NULL pointers, SK_ERR_DOMAIN for other x; nothing is
+ written on error.
+ */
+sk_status sk_mie_table_sizes(double x, size_t *angles, size_t *intervals);
+
+/*
+ Tabulates a solved sphere's phase function for sk_table_measured_f64:
+ cos_theta[j] (decreasing from 1 to -1, the angles crowded into the
+ forward peak, which is about 1/x radians wide) and pdf[j], the phase
+ function per steradian there, for j < count. SK_ERR_NULL for NULL
+ pointers; SK_ERR_DOMAIN for overlapping arrays; SK_ERR_SIZE for count <
+ 2, a malformed sphere, or too many angles to give distinct cosines.
+ */
+sk_status sk_mie_tabulate(const sk_mie *m, double *cos_theta, double *pdf, size_t count);
 
 /*
  Isotropic scattering, p = 1/(4 pi).

@@ -182,7 +182,7 @@ fn miev0_amplitudes_at_the_published_angles() {
         let mu = if deg == 90.0 {
             0.0
         } else {
-            (deg as f64).to_radians().cos()
+            deg.to_radians().cos()
         };
         let (s1, s2) = mie.amplitudes(mu);
         println!("{deg}°: S1 {s1:?} S2 {s2:?}");
@@ -300,6 +300,10 @@ fn bad_input_is_rejected() {
         (1.0, Complex::new(0.0, 0.0)),
         (1.0, Complex::new(1.5, -0.1)),
         (1.0, Complex::new(f64::INFINITY, 0.0)),
+        (1.0, Complex::new(1.5, 1e10)),
+        (1.0, Complex::new(1.5, f64::MAX)),
+        (1.0, Complex::new(1001.0, 0.0)),
+        (1e4, Complex::new(300.0, 0.0)),
     ] {
         assert!(buffer_len(x, m).is_none());
         assert_eq!(Mie::new(x, m, &mut buf).err(), Some(Error::Domain));

@@ -802,6 +802,8 @@ static void majorants(void) {
           (tr.event == SK_TRACK_ESCAPED && tr.t == 1.5f));
 }
 
+static void mie_tables(const sk_mie *sphere);
+
 /* Mie: bad input from C, and the BHMIE example through the header. */
 static void mie(void) {
     int i;
@@ -828,13 +830,35 @@ static void mie(void) {
     for (i = 0; i < NS; i++) {
         double d = DS[i];
         sk_complex bad_re = {d, 0.0}, bad_im = {1.5, d};
-        int x_ok = d >= 1e-20 && d <= 1e5, re_ok = d > 0.0 && isfinite(d), im_ok = d >= 0.0 && isfinite(d);
+        int x_ok = d >= 1e-20 && d <= 1e5, re_ok = d > 0.0 && d <= 1000.0, im_ok = d >= 0.0 && d <= 1000.0;
         CHECK((sk_mie_buffer_len(d, m) > 0) == x_ok);
         CHECK((sk_mie_buffer_len(1.0, bad_re) > 0) == re_ok);
         CHECK((sk_mie_buffer_len(1.0, bad_im) > 0) == im_ok);
         CHECK(sk_mie_new(d, m, buf, 4096, &sphere) == (x_ok ? (sk_mie_buffer_len(d, m) <= 4096 ? SK_OK : SK_ERR_SIZE) : SK_ERR_DOMAIN));
         CHECK(sk_mie_new(1.0, bad_im, buf, 4096, &sphere) == (im_ok ? SK_OK : SK_ERR_DOMAIN));
     }
+    mie_tables(&sphere);
+}
+
+/* Mie tables: sizes, tabulation into sk_table_measured_f64, bad input. */
+static void mie_tables(const sk_mie *sphere) {
+    static double c[256], p[256], tb[2 * 513];
+    size_t angles = 7, intervals = 7;
+    int i = 0;
+    sk_table_f64 t;
+    CHECK(sk_mie_table_sizes(100.0, &angles, &intervals) == SK_OK && angles == 4000 && intervals == 16384);
+    CHECK(sk_mie_table_sizes(NAN, &angles, &intervals) == SK_ERR_DOMAIN && angles == 4000);
+    CHECK(sk_mie_table_sizes(0.0, &angles, &intervals) == SK_ERR_DOMAIN);
+    CHECK(sk_mie_table_sizes(1.0, NULL, &intervals) == SK_ERR_NULL && sk_mie_table_sizes(1.0, &angles, NULL) == SK_ERR_NULL);
+    CHECK(sk_mie_tabulate(sphere, c, p, 256) == SK_OK && c[0] == 1.0 && c[255] == -1.0);
+    for (i = 1; i < 256; i++) CHECK(c[i] < c[i - 1] && p[i] > 0.0);
+    i = 0;
+    CHECK(sk_table_measured_f64(c, p, 256, tb, 2 * 513, 512, &t) == SK_OK);
+    CHECK(sk_table_sample_cos_f64(&t, 0.999) > 0.9 * sk_table_sample_cos_f64(&t, 1.0));
+    CHECK(sk_mie_tabulate(NULL, c, p, 256) == SK_ERR_NULL && sk_mie_tabulate(sphere, NULL, p, 256) == SK_ERR_NULL);
+    CHECK(sk_mie_tabulate(sphere, c, NULL, 256) == SK_ERR_NULL);
+    CHECK(sk_mie_tabulate(sphere, c, p, 1) == SK_ERR_SIZE && sk_mie_tabulate(sphere, c, p, SIZE_MAX) == SK_ERR_SIZE);
+    CHECK(sk_mie_tabulate(sphere, c, c + 1, 100) == SK_ERR_DOMAIN);
 }
 
 int main(void) {

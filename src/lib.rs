@@ -69,6 +69,7 @@ pub mod medium;
 pub mod mie;
 mod numeric;
 pub mod phase;
+pub mod polydisperse;
 pub mod real;
 pub mod spectral;
 pub mod surface;

@@ -803,6 +803,7 @@ static void majorants(void) {
 }
 
 static void mie_tables(const sk_mie *sphere);
+static void polydisperse(void);
 
 /* Mie: bad input from C, and the BHMIE example through the header. */
 static void mie(void) {
@@ -838,6 +839,74 @@ static void mie(void) {
         CHECK(sk_mie_new(1.0, bad_im, buf, 4096, &sphere) == (im_ok ? SK_OK : SK_ERR_DOMAIN));
     }
     mie_tables(&sphere);
+    polydisperse();
+}
+
+/* Mie over size distributions: cumulus C.1 at 550 nm, bad input. */
+static void polydisperse(void) {
+    static sk_complex buf[1 << 12];
+    double mu[3] = {1.0, 0.0, -1.0}, phase[3], scratch[3], lo = 7.0, hi = 7.0;
+    sk_size_distribution c1 = {SK_SIZE_MODIFIED_GAMMA, {6.0, 1.5, 1.0}}, bad = c1;
+    sk_polydisperse p;
+    sk_mie_averages a, untouched;
+    size_t len;
+    int i = 0;
+    CHECK(sk_size_distribution_range(&c1, &lo, &hi) == SK_OK && lo > 0.05 && lo < 0.2 && hi > 30.0 && hi < 40.0);
+    p.distribution = c1;
+    p.r_min = 0.5;
+    p.r_max = 10.0;
+    p.wavelength = 0.55;
+    p.n_medium = 1.0;
+    p.m.re = 1.333;
+    p.m.im = 1e-8;
+    p.intervals = 64;
+    len = sk_polydisperse_buffer_len(&p);
+    CHECK(len > 0 && len <= sizeof buf / sizeof buf[0]);
+    CHECK(sk_polydisperse_average(&p, mu, 3, phase, scratch, buf, len, &a) == SK_OK);
+    CHECK(a.c_ext > a.c_sca && a.c_sca > 0.0 && a.g > 0.7 && a.g < 0.95 && phase[0] > phase[1]);
+    CHECK(fabs(a.c_ext / a.area - 2.0) < 0.2 && a.errors[0] >= 0.0 && a.phase_error >= 0.0);
+    untouched = a;
+    CHECK(sk_polydisperse_average(&p, mu, 3, phase, scratch, buf, len - 1, &a) == SK_ERR_SIZE);
+    CHECK(sk_polydisperse_average(&p, mu, 3, phase, phase + 1, buf, len, &a) == SK_ERR_DOMAIN);
+    CHECK(sk_polydisperse_average(NULL, mu, 3, phase, scratch, buf, len, &a) == SK_ERR_NULL);
+    CHECK(sk_polydisperse_average(&p, NULL, 3, phase, scratch, buf, len, &a) == SK_ERR_NULL);
+    CHECK(sk_polydisperse_average(&p, mu, 3, NULL, scratch, buf, len, &a) == SK_ERR_NULL);
+    CHECK(sk_polydisperse_average(&p, mu, 3, phase, NULL, buf, len, &a) == SK_ERR_NULL);
+    CHECK(sk_polydisperse_average(&p, mu, 3, phase, scratch, NULL, len, &a) == SK_ERR_NULL);
+    CHECK(sk_polydisperse_average(&p, mu, 3, phase, scratch, buf, len, NULL) == SK_ERR_NULL);
+    CHECK(sk_polydisperse_average(&p, mu, SIZE_MAX, phase, scratch, buf, len, &a) == SK_ERR_SIZE);
+    CHECK(memcmp(&a, &untouched, sizeof a) == 0);
+    CHECK(sk_polydisperse_average(&p, NULL, 0, NULL, NULL, buf, len, &a) == SK_OK);
+    mu[1] = 1.5;
+    CHECK(sk_polydisperse_average(&p, mu, 3, phase, scratch, buf, len, &a) == SK_ERR_DOMAIN);
+    mu[1] = 0.0;
+    CHECK(sk_size_distribution_range(NULL, &lo, &hi) == SK_ERR_NULL && sk_size_distribution_range(&c1, NULL, &hi) == SK_ERR_NULL);
+    CHECK(sk_size_distribution_range(&c1, &lo, NULL) == SK_ERR_NULL && sk_polydisperse_buffer_len(NULL) == 0);
+    bad.kind = 2;
+    CHECK(sk_size_distribution_range(&bad, &lo, &hi) == SK_ERR_DOMAIN);
+    p.distribution = bad;
+    CHECK(sk_polydisperse_buffer_len(&p) == 0 && sk_polydisperse_average(&p, mu, 3, phase, scratch, buf, len, &a) == SK_ERR_DOMAIN);
+    p.distribution = c1;
+    for (i = 0; i < NS; i++) {
+        double d = DS[i];
+        sk_polydisperse q = p;
+        bad = c1;
+        bad.params[i % 3] = d;
+        {
+            int ok = i % 3 == 0 ? (d >= 0.0 && d <= 100.0) : i % 3 == 1 ? (d > 0.0 && d < 1e100) : (d > 0.0 && d <= 10.0);
+            /* Valid parameters may still put the range beyond doubles. */
+            sk_status st = sk_size_distribution_range(&bad, &lo, &hi);
+            CHECK(ok ? (st == SK_ERR_DOMAIN || (st == SK_OK && lo > 0.0 && lo < hi)) : st == SK_ERR_DOMAIN);
+        }
+        q.r_min = d;
+        CHECK(sk_polydisperse_buffer_len(&q) == 0 || (d > 0.0 && d < p.r_max));
+        q = p;
+        q.wavelength = d;
+        CHECK(sk_polydisperse_buffer_len(&q) == 0 || (d > 0.0 && isfinite(d)));
+        q = p;
+        q.intervals = (size_t)i * 3;
+        CHECK((sk_polydisperse_buffer_len(&q) == 0) == (i == 0 || (i * 3) % 4 != 0));
+    }
 }
 
 /* Mie tables: sizes, tabulation into sk_table_measured_f64, bad input. */

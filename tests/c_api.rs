@@ -45,6 +45,19 @@ fn example_fog_histogram() {
 }
 
 #[test]
+fn example_mie_cloud() {
+    // The example exits non-zero (and run_source fails) on chi² ≥ 42.31.
+    let out = run_source("c_examples/mie_cloud.c", false);
+    assert!(out.starts_with("Mie, 10 um water droplet"), "{out}");
+    assert!(out.contains(": consistent"), "{out}");
+    assert_eq!(
+        out.lines().filter(|l| l.starts_with('[')).count(),
+        19,
+        "{out}"
+    );
+}
+
+#[test]
 fn example_surface_shares() {
     let out = run_source("c_examples/surface_shares.c", false);
     assert!(

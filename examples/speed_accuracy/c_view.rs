@@ -9,27 +9,42 @@ use std::fmt::Write as _;
 /// profile), run once. Returns `key → (ns, max error)`; an error below 0
 /// means not measured (rejection).
 pub(crate) fn c_abi() -> std::collections::BTreeMap<String, (f64, f64)> {
+    run_c("benches/c_abi.c", &[]).expect("compiling benches/c_abi.c failed")
+}
+
+/// Builds the C library (release profile) once, then `src` (relative to
+/// the crate) at `-O2` with `extra` flags against `libscatterkit.a`, runs
+/// it, and parses its `key<TAB>ns<TAB>error` lines. `None` if the compiler
+/// rejects the flags or the source.
+pub(crate) fn run_c(
+    src: &str,
+    extra: &[&str],
+) -> Option<std::collections::BTreeMap<String, (f64, f64)>> {
     use std::path::{Path, PathBuf};
     use std::process::Command;
+    use std::sync::Once;
+    static BUILT: Once = Once::new();
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     // The example runs from <target>/release/examples/.
     let exe = std::env::current_exe().expect("current exe");
     let target: PathBuf = exe.ancestors().nth(3).expect("target dir").to_path_buf();
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let ok = Command::new(cargo)
-        .args([
-            "build",
-            "--release",
-            "-p",
-            "scatterkit-capi",
-            "--target-dir",
-        ])
-        .arg(&target)
-        .current_dir(root)
-        .status()
-        .expect("cargo build of the C library failed to start")
-        .success();
-    assert!(ok, "cargo build -p scatterkit-capi failed");
+    BUILT.call_once(|| {
+        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+        let ok = Command::new(cargo)
+            .args([
+                "build",
+                "--release",
+                "-p",
+                "scatterkit-capi",
+                "--target-dir",
+            ])
+            .arg(&target)
+            .current_dir(root)
+            .status()
+            .expect("cargo build of the C library failed to start")
+            .success();
+        assert!(ok, "cargo build -p scatterkit-capi failed");
+    });
     let host = String::from_utf8(Command::new("rustc").arg("-vV").output().unwrap().stdout)
         .unwrap()
         .lines()
@@ -37,7 +52,12 @@ pub(crate) fn c_abi() -> std::collections::BTreeMap<String, (f64, f64)> {
         .expect("host triple");
     let out_dir = target.join("c_abi_bench");
     std::fs::create_dir_all(&out_dir).unwrap();
-    let bin = out_dir.join("c_abi");
+    let stem = Path::new(src)
+        .file_stem()
+        .unwrap()
+        .to_string_lossy()
+        .into_owned();
+    let bin = out_dir.join(format!("{stem}{}", extra.concat()));
     let compiler = cc::Build::new()
         .target(&host)
         .host(&host)
@@ -48,16 +68,20 @@ pub(crate) fn c_abi() -> std::collections::BTreeMap<String, (f64, f64)> {
     let status = compiler
         .to_command()
         .args(["-std=c99", "-D_POSIX_C_SOURCE=199309L"])
+        .args(extra)
         .arg("-I")
         .arg(root.join("include"))
-        .arg(root.join("benches/c_abi.c"))
+        .arg(root.join(src))
         .arg("-o")
         .arg(&bin)
         .arg(target.join("release/libscatterkit.a"))
         .args(["-lpthread", "-ldl", "-lm"])
+        .stderr(std::process::Stdio::null())
         .status()
         .expect("C compiler failed to start");
-    assert!(status.success(), "compiling benches/c_abi.c failed");
+    if !status.success() {
+        return None;
+    }
     let run = Command::new(&bin)
         .output()
         .expect("C benchmark failed to start");
@@ -66,17 +90,19 @@ pub(crate) fn c_abi() -> std::collections::BTreeMap<String, (f64, f64)> {
         "{}",
         String::from_utf8_lossy(&run.stderr)
     );
-    String::from_utf8(run.stdout)
-        .unwrap()
-        .lines()
-        .map(|l| {
-            let f: Vec<&str> = l.split('\t').collect();
-            (
-                f[0].to_string(),
-                (f[1].parse().unwrap(), f[2].parse().unwrap()),
-            )
-        })
-        .collect()
+    Some(
+        String::from_utf8(run.stdout)
+            .unwrap()
+            .lines()
+            .map(|l| {
+                let f: Vec<&str> = l.split('\t').collect();
+                (
+                    f[0].to_string(),
+                    (f[1].parse().unwrap(), f[2].parse().unwrap()),
+                )
+            })
+            .collect(),
+    )
 }
 
 /// What each C measurement is, for the tables and the chart:

@@ -37,7 +37,7 @@ pub(crate) fn csv(es: &[Entry]) -> String {
 }
 
 /// The families, one chart panel each: `(family, title, y-axis label, y range)`.
-pub(crate) const PANELS: [(&str, &str, &str, (f64, f64)); 5] = [
+pub(crate) const PANELS: [(&str, &str, &str, (f64, f64)); 6] = [
     ("Rayleigh", "Rayleigh", "max |cos θ − exact|", (1e-9, 1.0)),
     (
         "HG",
@@ -58,6 +58,12 @@ pub(crate) const PANELS: [(&str, &str, &str, (f64, f64)); 5] = [
         (1e-8, 1e-1),
     ),
     ("cbrt", "cube root (f32)", "max error in ULP", (0.1, 1e10)),
+    (
+        "Mie",
+        "Mie, water droplet 10 µm at 550 nm",
+        "max |F_Mie(μ(u)) − u|",
+        (1e-7, 1.0),
+    ),
 ];
 
 /// The points of one panel: the family's entries with a finite positive error.
@@ -120,10 +126,10 @@ pub(crate) fn svg(es: &[Entry]) -> String {
         }
         let x0 = 70.0 + (k % 2) as f64 * (pw + gap_x);
         let y0 = 40.0 + (k / 2) as f64 * (ph + gap_y);
-        let xl = if *family == "cbrt" {
-            "ns per cube root"
-        } else {
-            "ns per sample (f32)"
+        let xl = match *family {
+            "cbrt" => "ns per cube root",
+            "Mie" => "ns per sample",
+            _ => "ns per sample (f32)",
         };
         panel(
             &mut s,
@@ -140,13 +146,14 @@ pub(crate) fn svg(es: &[Entry]) -> String {
     s
 }
 
-pub(crate) const COLORS: [(&str, &str); 6] = [
+pub(crate) const COLORS: [(&str, &str); 7] = [
     ("Rayleigh", "#1f77b4"),
     ("HG", "#2ca02c"),
     ("Draine", "#d62728"),
     ("fog", "#9467bd"),
     ("isotropic", "#7f7f7f"),
     ("cbrt", "#ff7f0e"),
+    ("Mie", "#17becf"),
 ];
 
 pub(crate) fn color(family: &str) -> &'static str {

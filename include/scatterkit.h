@@ -365,6 +365,48 @@ typedef uint32_t sk_size_kind;
 #endif // __cplusplus
 
 /*
+ The models sk_phase_particle_mie chooses from.
+ */
+enum sk_particle_model
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+    /*
+     Uniform over the sphere.
+     */
+    SK_PARTICLE_ISOTROPIC = 0,
+    /*
+     Henyey-Greenstein with the best-fit g.
+     */
+    SK_PARTICLE_HG = 1,
+    /*
+     Rayleigh.
+     */
+    SK_PARTICLE_RAYLEIGH = 2,
+    /*
+     Draine with the best-fit g and alpha.
+     */
+    SK_PARTICLE_DRAINE = 3,
+    /*
+     The fog fit (Jendersie & d'Eon 2023).
+     */
+    SK_PARTICLE_FOG = 4,
+    /*
+     A table of the exact Mie phase function: build it with sk_mie_new,
+     sk_mie_table_sizes, sk_mie_tabulate and sk_table_measured_f64.
+     */
+    SK_PARTICLE_MIE_TABLE = 5,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_particle_model sk_particle_model;
+#else
+typedef uint32_t sk_particle_model;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/*
  The caller's random number generator: `next_u64(state)` returns 64
  uniformly random bits. Uniform floats are taken from the top 24 (float) or
  53 (double) bits.
@@ -777,6 +819,45 @@ typedef struct {
      */
     uint64_t opaque[32];
 } sk_phase_f64;
+
+/*
+ What sk_phase_particle_mie found.
+ */
+typedef struct {
+    /*
+     The chosen model, an sk_particle_model.
+     */
+    uint32_t model;
+    /*
+     1 when distance is within the tolerance (without a table none may
+     be, and the closest model is returned), else 0.
+     */
+    uint32_t within_tolerance;
+    /*
+     The chosen model's total-variation distance to the Mie phase
+     function (0 for the table, the reference itself; the table built at
+     sk_mie_table_sizes adds at most 1e-3 for x <= 1000).
+     */
+    double distance;
+    /*
+     Each candidate's best distance: isotropic, HG, Rayleigh, Draine, fog
+     fit (NaN for the fog fit beyond 50 um).
+     */
+    double distances[5];
+    /*
+     The droplets' size parameter.
+     */
+    double x;
+    /*
+     The refractive index used.
+     */
+    sk_complex m;
+    /*
+     The chosen model ready to sample; unconstructed (every query NaN)
+     for SK_PARTICLE_MIE_TABLE.
+     */
+    sk_phase_f64 phase;
+} sk_particle_choice;
 
 /*
  What an sk_phase holds, for a host to hand to a device: the model (an
@@ -1669,6 +1750,38 @@ sk_status sk_phase_particle(float diameter_um, float tolerance, sk_phase *out);
  Double twin of `sk_phase_particle`.
  */
 sk_status sk_phase_particle_f64(double diameter_um, double tolerance, sk_phase_f64 *out);
+
+/*
+ The sk_complex values sk_phase_particle_mie needs in buf; 0 for input
+ it rejects. m = {0, 0} means water at that wavelength (0.182 to 1.129
+ um).
+ */
+size_t sk_particle_mie_buffer_len(double diameter_um, double wavelength_um, sk_complex m);
+
+/*
+ The honest chooser: the cheapest model whose total-variation distance to
+ the exact Mie phase function of droplets of diameter_um micrometres in
+ air at vacuum wavelength wavelength_um is within tolerance (0 <
+ tolerance < 1). m is the droplets' relative index (re + i im, im >= 0
+ absorbs); {0, 0} means water (Daimon & Masumura 2007, 0.182 to 1.129
+ um). Candidates in order of sampling cost: isotropic, HG, Rayleigh, then
+ with allow_table != 0 the Mie table, else Draine and the fog fit. buf
+ holds len >= sk_particle_mie_buffer_len values, work work_len >= 4096
+ doubles. Takes about 0.1 s at x = 300: build once per medium.
+ SK_ERR_NULL for NULL buf, work or out; SK_ERR_DOMAIN for invalid input
+ or overlapping buffers; SK_ERR_SIZE for short buffers. *out is written
+ only on success.
+ */
+sk_status sk_phase_particle_mie(double diameter_um,
+                                double wavelength_um,
+                                sk_complex m,
+                                double tolerance,
+                                uint32_t allow_table,
+                                sk_complex *buf,
+                                size_t len,
+                                double *work,
+                                size_t work_len,
+                                sk_particle_choice *out);
 
 /*
  cos theta by lobe: for a fog phase, the paper's sampler (u < w_d picks the

@@ -397,3 +397,32 @@ impl Mie<'_> {
         Ok(())
     }
 }
+
+/// The refractive index of liquid water at vacuum wavelength
+/// `wavelength_um` µm in `[0.182, 1.129]` (`None` outside): the real part
+/// from Daimon & Masumura's four-term Sellmeier fit at 21.5 °C
+/// (Appl. Opt. 46, 3811, 2007, table 3: `n² − 1 = Σ B_i λ² / (λ² − C_i)`,
+/// λ in µm; 1.3345 at 550 nm); the imaginary part is left at 0 — below
+/// 1.13 µm it stays under 3·10⁻⁶ (Hale & Querry 1973), which changes a
+/// 50 µm droplet's `Q_abs` by under 0.2 % of `Q_ext` and its phase function
+/// by less.
+pub fn water(wavelength_um: f64) -> Option<Complex> {
+    const B: [f64; 4] = [
+        5.689093832e-1,
+        1.719708856e-1,
+        2.062501582e-2,
+        1.123965424e-1,
+    ];
+    const C: [f64; 4] = [
+        5.110301794e-3,
+        1.825180155e-2,
+        2.624158904e-2,
+        1.067505178e1,
+    ];
+    if !(0.182..=1.129).contains(&wavelength_um) {
+        return None;
+    }
+    let l2 = wavelength_um * wavelength_um;
+    let n2 = 1.0 + B.iter().zip(C).map(|(b, c)| b * l2 / (l2 - c)).sum::<f64>();
+    Some(Complex::new(libm::sqrt(n2), 0.0))
+}

@@ -369,6 +369,152 @@ pub unsafe extern "C" fn sk_phase_particle_f64(
     unsafe { construct(out, Phase::particle(diameter_um, tolerance)) }
 }
 
+/// The models sk_phase_particle_mie chooses from.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug)]
+pub enum sk_particle_model {
+    /// Uniform over the sphere.
+    SK_PARTICLE_ISOTROPIC = 0,
+    /// Henyey-Greenstein with the best-fit g.
+    SK_PARTICLE_HG = 1,
+    /// Rayleigh.
+    SK_PARTICLE_RAYLEIGH = 2,
+    /// Draine with the best-fit g and alpha.
+    SK_PARTICLE_DRAINE = 3,
+    /// The fog fit (Jendersie & d'Eon 2023).
+    SK_PARTICLE_FOG = 4,
+    /// A table of the exact Mie phase function: build it with sk_mie_new,
+    /// sk_mie_table_sizes, sk_mie_tabulate and sk_table_measured_f64.
+    SK_PARTICLE_MIE_TABLE = 5,
+}
+
+/// What sk_phase_particle_mie found.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct sk_particle_choice {
+    /// The chosen model, an sk_particle_model.
+    pub model: u32,
+    /// 1 when distance is within the tolerance (without a table none may
+    /// be, and the closest model is returned), else 0.
+    pub within_tolerance: u32,
+    /// The chosen model's total-variation distance to the Mie phase
+    /// function (0 for the table, the reference itself; the table built at
+    /// sk_mie_table_sizes adds at most 1e-3 for x <= 1000).
+    pub distance: f64,
+    /// Each candidate's best distance: isotropic, HG, Rayleigh, Draine, fog
+    /// fit (NaN for the fog fit beyond 50 um).
+    pub distances: [f64; 5],
+    /// The droplets' size parameter.
+    pub x: f64,
+    /// The refractive index used.
+    pub m: super::mie::sk_complex,
+    /// The chosen model ready to sample; unconstructed (every query NaN)
+    /// for SK_PARTICLE_MIE_TABLE.
+    pub phase: sk_phase_f64,
+}
+
+/// The sk_complex values sk_phase_particle_mie needs in buf; 0 for input
+/// it rejects. m = {0, 0} means water at that wavelength (0.182 to 1.129
+/// um).
+#[unsafe(no_mangle)]
+pub extern "C" fn sk_particle_mie_buffer_len(
+    diameter_um: f64,
+    wavelength_um: f64,
+    m: super::mie::sk_complex,
+) -> usize {
+    let m = (m.re != 0.0 || m.im != 0.0).then(|| crate::mie::Complex::new(m.re, m.im));
+    crate::phase::particle_mie::buffer_len(diameter_um, wavelength_um, m).unwrap_or(0)
+}
+
+/// The honest chooser: the cheapest model whose total-variation distance to
+/// the exact Mie phase function of droplets of diameter_um micrometres in
+/// air at vacuum wavelength wavelength_um is within tolerance (0 <
+/// tolerance < 1). m is the droplets' relative index (re + i im, im >= 0
+/// absorbs); {0, 0} means water (Daimon & Masumura 2007, 0.182 to 1.129
+/// um). Candidates in order of sampling cost: isotropic, HG, Rayleigh, then
+/// with allow_table != 0 the Mie table, else Draine and the fog fit. buf
+/// holds len >= sk_particle_mie_buffer_len values, work work_len >= 4096
+/// doubles. Takes about 0.1 s at x = 300: build once per medium.
+/// SK_ERR_NULL for NULL buf, work or out; SK_ERR_DOMAIN for invalid input
+/// or overlapping buffers; SK_ERR_SIZE for short buffers. *out is written
+/// only on success.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_phase_particle_mie(
+    diameter_um: f64,
+    wavelength_um: f64,
+    m: super::mie::sk_complex,
+    tolerance: f64,
+    allow_table: u32,
+    buf: *mut super::mie::sk_complex,
+    len: usize,
+    work: *mut f64,
+    work_len: usize,
+    out: *mut sk_particle_choice,
+) -> sk_status {
+    use crate::mie::Complex;
+    use crate::phase::particle::Model;
+    use crate::phase::particle_mie::choose_mie;
+    if buf.is_null() || work.is_null() || out.is_null() {
+        return sk_status::SK_ERR_NULL;
+    }
+    if !super::fits::<Complex>(len) || !super::fits::<f64>(work_len) {
+        return sk_status::SK_ERR_SIZE;
+    }
+    let bytes = |n: usize, size: usize| n.saturating_mul(size);
+    let (b0, w0) = (buf as usize, work as usize);
+    let (b1, w1) = (
+        b0.saturating_add(bytes(len, 16)),
+        w0.saturating_add(bytes(work_len, 8)),
+    );
+    if b0 < w1 && w0 < b1 {
+        return sk_status::SK_ERR_DOMAIN;
+    }
+    let slices = unsafe {
+        (
+            super::slice_out(buf.cast::<Complex>(), len),
+            super::slice_out(work, work_len),
+        )
+    };
+    let (buf, work) = match slices {
+        (Ok(b), Ok(w)) => (b, w),
+        (Err(e), _) | (_, Err(e)) => return e,
+    };
+    let m = (m.re != 0.0 || m.im != 0.0).then(|| Complex::new(m.re, m.im));
+    let r = choose_mie(
+        diameter_um,
+        wavelength_um,
+        m,
+        tolerance,
+        allow_table != 0,
+        buf,
+        work,
+    )
+    .map(|c| {
+        let model = match c.model {
+            Model::Isotropic => sk_particle_model::SK_PARTICLE_ISOTROPIC,
+            Model::HenyeyGreenstein => sk_particle_model::SK_PARTICLE_HG,
+            Model::Rayleigh => sk_particle_model::SK_PARTICLE_RAYLEIGH,
+            Model::Draine => sk_particle_model::SK_PARTICLE_DRAINE,
+            Model::Fog => sk_particle_model::SK_PARTICLE_FOG,
+            _ => sk_particle_model::SK_PARTICLE_MIE_TABLE,
+        };
+        sk_particle_choice {
+            model: model as u32,
+            within_tolerance: u32::from(c.within_tolerance),
+            distance: c.distance,
+            distances: c.distances,
+            x: c.x,
+            m: super::mie::sk_complex {
+                re: c.m.re,
+                im: c.m.im,
+            },
+            phase: c.phase.map_or(sk_phase_f64::ZEROED, store),
+        }
+    });
+    unsafe { write_result(out, r) }
+}
+
 /// cos theta by lobe: for a fog phase, the paper's sampler (u < w_d picks the
 /// Draine lobe and u is rescaled and reused inside the lobe): exact in
 /// distribution and cheaper than sk_phase_sample_cos, but not monotone in u.

@@ -15,6 +15,7 @@ pub mod fog;
 mod hg;
 mod isotropic;
 pub mod particle;
+pub mod particle_mie;
 pub mod rayleigh;
 mod rayleigh_depolarized;
 mod seeds;

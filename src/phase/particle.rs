@@ -41,6 +41,8 @@ pub enum Model {
     Draine,
     /// The full fog fit.
     Fog,
+    /// A table of the exact Mie phase function (`particle_mie`).
+    MieTable,
 }
 
 /// Candidates in order of measured `sample_cos` cost, cheapest first.
@@ -75,16 +77,33 @@ impl Reference {
         r
     }
 
-    /// `TV` of the density of μ `f` against the fog.
-    fn distance(&self, f: impl Fn(f64) -> f64) -> f64 {
+    fn view(&self) -> Quantiles<'_> {
+        Quantiles {
+            mu: &self.mu,
+            density: &self.density,
+        }
+    }
+}
+
+/// A reference density of `μ` at its own midpoint quantiles `μ_k =
+/// F⁻¹((k + ½)/n)`: the nodes of the distance's quadrature.
+#[derive(Clone, Copy)]
+pub(crate) struct Quantiles<'a> {
+    pub(crate) mu: &'a [f64],
+    pub(crate) density: &'a [f64],
+}
+
+impl Quantiles<'_> {
+    /// `TV` of the density of μ `f` against the reference.
+    pub(crate) fn distance(&self, f: impl Fn(f64) -> f64) -> f64 {
         let mut sum = 0.0;
-        for k in 0..NODES {
-            let ratio = f(self.mu[k]) / self.density[k];
+        for (&mu, &d) in self.mu.iter().zip(self.density) {
+            let ratio = f(mu) / d;
             if ratio < 1.0 {
                 sum += 1.0 - ratio;
             }
         }
-        sum / NODES as f64
+        sum / self.mu.len().max(1) as f64
     }
 }
 
@@ -114,7 +133,7 @@ fn golden(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64, iterations: u32) -> (f
 }
 
 /// Best-fit HG: `(g, distance)`.
-fn fit_hg(r: &Reference) -> (f64, f64) {
+pub(crate) fn fit_hg(r: &Quantiles) -> (f64, f64) {
     golden(
         |g| r.distance(|mu| Params::new(g, 0.0).density(mu)),
         -0.999,
@@ -124,7 +143,7 @@ fn fit_hg(r: &Reference) -> (f64, f64) {
 }
 
 /// Best-fit Draine: `(g, α, distance)`, over a grid of α refined in log α.
-fn fit_draine(r: &Reference) -> (f64, f64, f64) {
+pub(crate) fn fit_draine(r: &Quantiles) -> (f64, f64, f64) {
     let dist = |g: f64, a: f64| r.distance(|mu| Params::new(g, a).density(mu));
     let best_g = |a: f64| golden(|g| dist(g, a), -0.999, 0.999, 40);
     let mut best = (0.0, 0.0, f64::INFINITY);
@@ -171,7 +190,8 @@ pub fn choose(diameter_um: f64, tolerance: f64) -> Result<(Phase<f64>, Model, f6
         return Err(Error::Domain);
     }
     let fog = Fog::<f64>::from_diameter(diameter_um)?;
-    let r = Reference::new(&fog);
+    let reference = Reference::new(&fog);
+    let r = reference.view();
     let accept = (1.0 - MARGIN) * tolerance;
     for model in COST_ORDER {
         let chosen = match model {
@@ -191,7 +211,7 @@ pub fn choose(diameter_um: f64, tolerance: f64) -> Result<(Phase<f64>, Model, f6
                 let (g, alpha, d) = fit_draine(&r);
                 (d <= accept).then_some((Phase::Draine(Draine::from_parts(g, alpha)), d))
             }
-            Model::Fog => Some((Phase::Fog(fog), 0.0)),
+            Model::Fog | Model::MieTable => Some((Phase::Fog(fog), 0.0)),
         };
         if let Some((phase, d)) = chosen {
             return Ok((phase, model, d));

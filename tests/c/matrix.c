@@ -804,6 +804,7 @@ static void majorants(void) {
 
 static void mie_tables(const sk_mie *sphere);
 static void polydisperse(void);
+static void particle_mie(void);
 
 /* Mie: bad input from C, and the BHMIE example through the header. */
 static void mie(void) {
@@ -840,6 +841,7 @@ static void mie(void) {
     }
     mie_tables(&sphere);
     polydisperse();
+    particle_mie();
 }
 
 /* Mie over size distributions: cumulus C.1 at 550 nm, bad input. */
@@ -906,6 +908,42 @@ static void polydisperse(void) {
         q = p;
         q.intervals = (size_t)i * 3;
         CHECK((sk_polydisperse_buffer_len(&q) == 0) == (i == 0 || (i * 3) % 4 != 0));
+    }
+}
+
+/* The honest chooser against Mie: water at 550 nm, bad input. */
+static void particle_mie(void) {
+    static sk_complex buf[1024];
+    static double work[4096];
+    sk_complex water = {0.0, 0.0}, glass = {1.5, 0.0};
+    sk_particle_choice c, kept;
+    size_t len = sk_particle_mie_buffer_len(0.01, 0.55, water);
+    int i = 0;
+    CHECK(len > 0 && len <= 1024 && sk_particle_mie_buffer_len(1.0, 2.0, water) == 0);
+    CHECK(sk_particle_mie_buffer_len(1.0, 2.0, glass) > 0);
+    CHECK(sk_phase_particle_mie(0.01, 0.55, water, 0.01, 1, buf, 1024, work, 4096, &c) == SK_OK);
+    CHECK(c.model == SK_PARTICLE_RAYLEIGH && c.within_tolerance == 1 && c.distance < 0.01 && fabs(c.m.re - 1.3345) < 1e-3);
+    CHECK(fabs(sk_phase_pdf_f64(&c.phase, 1.0) - 3.0 / (8.0 * 3.14159265358979)) < 1e-12);
+    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, buf, 1024, work, 4096, &c) == SK_OK);
+    CHECK(c.model == SK_PARTICLE_MIE_TABLE && c.distance == 0.0 && isnan(sk_phase_pdf_f64(&c.phase, 0.5)));
+    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 0, buf, 1024, work, 4096, &c) == SK_OK);
+    CHECK(c.within_tolerance == 0 && c.model != SK_PARTICLE_MIE_TABLE && sk_phase_pdf_f64(&c.phase, 0.5) > 0.0);
+    kept = c;
+    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, NULL, 1024, work, 4096, &c) == SK_ERR_NULL);
+    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, buf, 1024, NULL, 4096, &c) == SK_ERR_NULL);
+    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, buf, 1024, work, 4096, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, buf, 3, work, 4096, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, buf, 1024, work, 4095, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, buf, SIZE_MAX, work, 4096, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, (sk_complex *)work, 100, work, 4096, &c) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_particle_mie(1.0, 2.0, water, 0.01, 1, buf, 1024, work, 4096, &c) == SK_ERR_DOMAIN);
+    CHECK(memcmp(&c, &kept, sizeof c) == 0);
+    for (i = 0; i < NS; i++) {
+        double d = DS[i];
+        CHECK(sk_phase_particle_mie(d, 0.55, water, 0.1, 1, buf, 1024, work, 4096, &c) ==
+              (d > 0.0 && sk_particle_mie_buffer_len(d, 0.55, water) > 0 ? (sk_particle_mie_buffer_len(d, 0.55, water) <= 1024 ? SK_OK : SK_ERR_SIZE) : SK_ERR_DOMAIN));
+        CHECK(sk_phase_particle_mie(0.1, 0.55, water, d, 1, buf, 1024, work, 4096, &c) == (d > 0.0 && d < 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_particle_mie(0.1, d, water, 0.1, 1, buf, 1024, work, 4096, &c) == SK_ERR_DOMAIN);
     }
 }
 

@@ -1,0 +1,249 @@
+//! The honest chooser: the cheapest model whose density is within a
+//! total-variation distance of the real Lorenz–Mie phase function of
+//! droplets of one diameter at one wavelength (water by default), and the
+//! distance every candidate achieved.
+//!
+//! The reference is the exact Mie phase function (`crate::mie`), not the
+//! fog fit. Its quantiles come from its CDF accumulated on a uniform grid
+//! in `θ` of `max(20 000, 100 x)` steps (the forward peak is about `1/x`
+//! wide); the distance is `∫₀¹ (1 − p/p_Mie)₊ dv` over the Mie quantile `v`
+//! by the midpoint rule at [`MIE_NODES`] nodes, held in the caller's
+//! `work`. Candidates, in order of measured sampling cost (ns per `cos θ`,
+//! `docs/PERFORMANCE.md`): isotropic, HG (best g), Rayleigh, then either
+//! the Mie table itself (`mie::table_sizes`; about 9 ns per f64 sample, so
+//! faster than Draine, 38–164 ns, or the fog fit, 270 ns, but it holds
+//! `2(intervals + 1)` doubles), or, without a table, Draine (best g and α)
+//! and the fog fit (for `d ≤ 50 µm`). A model is accepted at `(1 −
+//! MARGIN)` of the tolerance, like the fog chooser.
+
+use super::particle::{MARGIN, Model, Quantiles, fit_draine, fit_hg};
+use super::{Draine, Fog, HenyeyGreenstein, Phase, PhaseFunction};
+use crate::error::Error;
+use crate::mie::{self, Complex, Mie};
+
+/// Quadrature nodes of the distance to Mie (the midpoint rule in the Mie
+/// quantile): more than the fog chooser's 512, for the oscillations of a
+/// large droplet's phase function.
+pub const MIE_NODES: usize = 2048;
+/// The length of the `work` slice [`choose_mie`] needs.
+pub const WORK_LEN: usize = 2 * MIE_NODES;
+
+/// What [`choose_mie`] found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MieChoice {
+    /// The chosen model.
+    pub model: Model,
+    /// The chosen model ready to sample, or `None` for [`Model::MieTable`]
+    /// (build it with `Mie::tabulate` and `Table::measured` at
+    /// `mie::table_sizes`).
+    pub phase: Option<Phase<f64>>,
+    /// The chosen model's distance to Mie (0 for the table: it is the
+    /// reference; the table built at `mie::table_sizes` adds its own, at
+    /// most 10⁻³ for `x ≤ 1000`, `docs/mie_table.md`).
+    pub distance: f64,
+    /// Whether `distance` is within the tolerance (without a table, none
+    /// may be: the closest is returned).
+    pub within_tolerance: bool,
+    /// The distance of each candidate's best fit: isotropic, HG, Rayleigh,
+    /// Draine, fog fit (NaN for the fog fit beyond 50 µm).
+    pub distances: [f64; 5],
+    /// The droplets' size parameter.
+    pub x: f64,
+    /// The refractive index used.
+    pub m: Complex,
+}
+
+/// The buffer [`choose_mie`] needs for the Mie series (in [`Complex`]
+/// values), or `None` for input it rejects. `m = None` means water
+/// ([`mie::water`]).
+pub fn buffer_len(diameter_um: f64, wavelength_um: f64, m: Option<Complex>) -> Option<usize> {
+    let m = match m {
+        Some(m) => m,
+        None => mie::water(wavelength_um)?,
+    };
+    mie::buffer_len(mie::size_parameter(diameter_um, wavelength_um, 1.0), m)
+}
+
+/// The cheapest model within `tolerance` (total variation, `0 < tolerance
+/// < 1`) of the Mie phase function of droplets of `diameter_um` µm in air at
+/// vacuum wavelength `wavelength_um` µm, with relative index `m` (`None`:
+/// water at that wavelength, which needs `0.182 ≤ λ ≤ 1.129` µm). With
+/// `allow_table` the Mie table is the last candidate (always within);
+/// without it, Draine and the fog fit are, and the closest model is
+/// returned if none is within. `buf` holds at least [`buffer_len`] values,
+/// `work` at least [`WORK_LEN`]. Costs a Mie solution, two passes over
+/// `max(20 000, 100 x)` angles and a few thousand quadratures of
+/// [`MIE_NODES`] points (about 0.1 s at `x = 300`): build it once per
+/// medium. [`Error::Domain`] for invalid input, [`Error::Size`] for short
+/// slices.
+pub fn choose_mie(
+    diameter_um: f64,
+    wavelength_um: f64,
+    m: Option<Complex>,
+    tolerance: f64,
+    allow_table: bool,
+    buf: &mut [Complex],
+    work: &mut [f64],
+) -> Result<MieChoice, Error> {
+    if !(tolerance > 0.0 && tolerance < 1.0) {
+        return Err(Error::Domain);
+    }
+    let m = match m {
+        Some(m) => m,
+        None => mie::water(wavelength_um).ok_or(Error::Domain)?,
+    };
+    let x = mie::size_parameter(diameter_um, wavelength_um, 1.0);
+    let sphere = Mie::new(x, m, buf)?;
+    let work = work.get_mut(..WORK_LEN).ok_or(Error::Size)?;
+    let (mu, density) = work.split_at_mut_checked(MIE_NODES).ok_or(Error::Size)?;
+    quantiles(&|m| sphere.phase(m), x, mu, density);
+    let r = Quantiles { mu, density };
+
+    let hg = fit_hg(&r);
+    let draine = fit_draine(&r);
+    let fog = Fog::<f64>::from_diameter(diameter_um).ok();
+    let fog_d = fog.map_or(f64::NAN, |f| {
+        r.distance(|mu| core::f64::consts::TAU * f.pdf(mu))
+    });
+    let distances = [
+        r.distance(|_| 0.5),
+        hg.1,
+        r.distance(|mu| 0.375 * (1.0 + mu * mu)),
+        draine.2,
+        fog_d,
+    ];
+    let phases = [
+        Some(Phase::isotropic()),
+        Some(Phase::HenyeyGreenstein(HenyeyGreenstein::from_g(hg.0))),
+        Some(Phase::rayleigh()),
+        Some(Phase::Draine(Draine::from_parts(draine.0, draine.1))),
+        fog.map(Phase::Fog),
+    ];
+    let models = [
+        Model::Isotropic,
+        Model::HenyeyGreenstein,
+        Model::Rayleigh,
+        Model::Draine,
+        Model::Fog,
+    ];
+    let accept = (1.0 - MARGIN) * tolerance;
+    // Cost order: isotropic, HG, Rayleigh, then the table or Draine, fog.
+    let candidates = if allow_table { 3 } else { 5 };
+    let base = MieChoice {
+        model: Model::MieTable,
+        phase: None,
+        distance: 0.0,
+        within_tolerance: true,
+        distances,
+        x,
+        m,
+    };
+    let mut best: Option<(Model, Option<Phase<f64>>, f64)> = None;
+    for ((&model, &phase), &d) in models.iter().zip(&phases).zip(&distances).take(candidates) {
+        if d <= accept {
+            return Ok(MieChoice {
+                model,
+                phase,
+                distance: d,
+                ..base
+            });
+        }
+        if d.is_finite() && best.is_none_or(|b| d < b.2) {
+            best = Some((model, phase, d));
+        }
+    }
+    match best {
+        Some((model, phase, distance)) if !allow_table => Ok(MieChoice {
+            model,
+            phase,
+            distance,
+            within_tolerance: false,
+            ..base
+        }),
+        _ => Ok(base),
+    }
+}
+
+/// The total-variation distance `½ ∫ |p − p_ref| dω` of a phase function
+/// `model` from `reference` (both per steradian, functions of `cos θ`),
+/// the way [`choose_mie`] measures it: the midpoint rule in the reference's
+/// quantile at [`MIE_NODES`] nodes, the quantiles from the reference's CDF
+/// on a uniform grid in `θ` of `max(20 000, 100 x)` steps, `x` setting the
+/// resolution (a forward peak about `1/x` wide). `work` holds [`WORK_LEN`]
+/// values. [`Error::Domain`] for `x` outside `(0, 10⁵]`, [`Error::Size`]
+/// for a short `work`.
+pub fn tv_distance(
+    reference: &dyn Fn(f64) -> f64,
+    model: &dyn Fn(f64) -> f64,
+    x: f64,
+    work: &mut [f64],
+) -> Result<f64, Error> {
+    if !(x > 0.0 && x <= 1e5) {
+        return Err(Error::Domain);
+    }
+    let work = work.get_mut(..WORK_LEN).ok_or(Error::Size)?;
+    let (mu, density) = work.split_at_mut_checked(MIE_NODES).ok_or(Error::Size)?;
+    quantiles(reference, x, mu, density);
+    let r = Quantiles { mu, density };
+    Ok(r.distance(|m| core::f64::consts::TAU * model(m)))
+}
+
+/// The density of `μ` of `phase` (per steradian) at its midpoint
+/// quantiles: the CDF from `μ = −1` accumulated by trapezoids on a uniform
+/// grid in `θ` (one pass for the total, one to place the nodes, each linear
+/// in `θ` within its step).
+fn quantiles(phase: &dyn Fn(f64) -> f64, x: f64, mu: &mut [f64], density: &mut [f64]) {
+    use core::f64::consts::{PI, TAU};
+    let steps = ((100.0 * x) as usize).clamp(20_000, 2_000_000);
+    let h = PI / steps as f64;
+    // Density per unit θ (over 2π), at θ_i.
+    let f = |i: usize| {
+        let t = i as f64 * h;
+        phase(libm::cos(t)) * libm::sin(t)
+    };
+    let mut total = 0.0;
+    let mut prev = f(steps);
+    for i in (0..steps).rev() {
+        let cur = f(i);
+        total += 0.5 * h * (prev + cur);
+        prev = cur;
+    }
+    let n = mu.len();
+    let (mut k, mut acc) = (0usize, 0.0);
+    let mut prev = f(steps);
+    for i in (0..steps).rev() {
+        let cur = f(i);
+        let mass = 0.5 * h * (prev + cur);
+        while k < n && acc + mass >= (k as f64 + 0.5) / n as f64 * total {
+            let target = (k as f64 + 0.5) / n as f64 * total;
+            let w = if mass > 0.0 {
+                (target - acc) / mass
+            } else {
+                0.5
+            };
+            let m = libm::cos((i as f64 + 1.0 - w) * h);
+            if let (Some(mu_k), Some(d_k)) = (mu.get_mut(k), density.get_mut(k)) {
+                *mu_k = m;
+                *d_k = TAU * phase(m) * total_scale(total);
+            }
+            k += 1;
+        }
+        acc += mass;
+        prev = cur;
+    }
+    // Rounding can leave the last node unplaced: put it at the forward end.
+    while k < n {
+        if let (Some(mu_k), Some(d_k)) = (mu.get_mut(k), density.get_mut(k)) {
+            *mu_k = 1.0;
+            *d_k = TAU * phase(1.0) * total_scale(total);
+        }
+        k += 1;
+    }
+}
+
+/// The factor normalising a reference whose `2π ∫ p sin θ dθ` came out as
+/// `2π total` (1 for a normalised phase function, to the grid's accuracy).
+fn total_scale(total: f64) -> f64 {
+    let norm = core::f64::consts::TAU * total;
+    if norm > 0.0 { 1.0 / norm } else { 1.0 }
+}

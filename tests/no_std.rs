@@ -51,7 +51,22 @@ pub extern "C" fn nostd_sample(g: f32, u: f32) -> f32 {
     let mut buf = [scatterkit::mie::Complex::default(); 128];
     let q = scatterkit::mie::Mie::new(1.0, scatterkit::mie::Complex::new(1.5, 0.01), &mut buf)
         .map_or(f64::NAN, |m| m.efficiencies.q_ext);
-    hg + d.z + scatterkit::cbrt::cbrt_f32(u) + q as f32
+    // A size distribution and the honest chooser, in stack memory too.
+    let poly = scatterkit::polydisperse::Polydisperse {
+        distribution: scatterkit::polydisperse::SizeDistribution::HAZE_M,
+        r_min: 0.01,
+        r_max: 0.1,
+        wavelength: 0.55,
+        n_medium: 1.0,
+        m: scatterkit::mie::Complex::new(1.5, 0.01),
+        intervals: 8,
+    };
+    let (mu, mut ph, mut sc) = ([1.0f64, -1.0], [0.0f64; 2], [0.0f64; 2]);
+    let c = poly.average(&mu, &mut ph, &mut sc, &mut buf).map_or(f64::NAN, |a| a.c_ext);
+    let mut work = [0.0f64; scatterkit::phase::particle_mie::WORK_LEN];
+    let choice = scatterkit::phase::particle_mie::choose_mie(0.01, 0.55, None, 0.1, true, &mut buf, &mut work)
+        .map_or(f64::NAN, |c| c.distance);
+    hg + d.z + scatterkit::cbrt::cbrt_f32(u) + q as f32 + (c + choice) as f32
 }
 "#;
 

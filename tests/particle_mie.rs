@@ -242,7 +242,7 @@ fn documents() {
              holds up to a few hundred kB), or without a table Draine and the fog fit, the \
              closest returned when none is within. The last five columns: each candidate's best \
              distance. Droplets of one size scatter with deep interference oscillations that no \
-             smooth model follows: above half a micron only the table is within 0.1. \
+             smooth model follows: from 1 µm up no analytic model is within 0.1. \
              `docs/particle_choice_fog.md` is the older choice, against the fog fit.\n\n{choice}"
         );
         std::fs::write(root.join("docs/particle_choice.md"), doc).unwrap();

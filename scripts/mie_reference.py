@@ -29,7 +29,8 @@ def mie(x, m, N=None):
             gs += n*(n+2)/(n+1)*mp.re(a*mp.conj(a1)+b*mp.conj(b1))
     return 2/x**2*qe, 2/x**2*qs, 4/x**2*gs
 for x,n,k in [(0.099,0.75,0),(0.101,0.75,0),(0.055,1.5,1),(0.056,1.5,1),
-              (10,0.75,0),(1,1.5,1),(100,1.33,1e-5),(1,10,10),(100,10,10)]:
+              (10,0.75,0),(1,1.5,1),(100,1.33,1e-5),(1,10,10),(100,10,10),
+              (1000,1.333,1e-8)]:  # the last takes minutes
     qe,qs,gqs = mie(x, mp.mpc(n,k))
     print(x,n,k, mp.nstr(qe,12), mp.nstr(qs,12), mp.nstr(gqs,12))
 print("angles")

@@ -17,7 +17,8 @@
 //!   in `Q_ext` (MIEV0 cases 5 and 12, against the series summed in 40
 //!   digits); with the two terms the truncation is below 10⁻¹⁵;
 //! * the logarithmic derivative `D_n(mx)` by downward recurrence
-//!   `D_{n−1} = n/(mx) − 1/(D_n + n/(mx))` from `1.1 max(N, |mx|) + 50`, which
+//!   `D_{n−1} = n/(mx) − 1/(D_n + n/(mx))` from `max(N, |mx|) + 8 (|mx|/2)^{1/3}
+//!   + 16` (eight Airy widths past the turning point), which
 //!   is stable for every `m` (the upward recurrence is not when `|mx|` is
 //!   large or `k` is);
 //! * the Riccati–Bessel functions `χ_n` by upward recurrence (the growing
@@ -110,14 +111,17 @@ pub fn terms(x: f64) -> usize {
     n as usize
 }
 
-/// Where the downward recurrence for `D_n` starts: 10 % and 50 terms above
-/// `max(N, |mx|)`. Bohren & Huffman's `+ 15` leaves the start error
-/// undamped for a nearly real `m` at large `x` (MIEV0 case 10, `m = 1.33 +
-/// 10⁻⁵ i`, `x = 100`: `Q_ext` wrong in the fifth digit); this start gives
-/// all seven published digits there and at `x = 10⁴`.
+/// Where the downward recurrence for `D_n` starts: `max(N, |mx|) + 8
+/// (|mx|/2)^{1/3} + 16`. For a nearly real `mx` the start error is damped
+/// only where `n > |mx|`, by the Airy-type decay of the wanted solution
+/// against the unwanted one over widths of `(|mx|/2)^{1/3}`: eight widths
+/// bring it below 10⁻¹³. Bohren & Huffman's `+ 15` is under four widths at
+/// `|mx| = 133` (MIEV0 case 10, `m = 1.33 + 10⁻⁵ i`, `x = 100`: `Q_ext`
+/// wrong in the fifth digit) and leaves water at `x = 1000` wrong in the
+/// third.
 fn start(x: f64, m: Complex) -> usize {
     let mx = libm::sqrt(m.norm_sqr()) * x;
-    ((terms(x) as f64).max(mx) * 1.1) as usize + 50
+    ((terms(x) as f64).max(mx) + 8.0 * libm::cbrt(0.5 * mx)) as usize + 16
 }
 
 /// The number of [`Complex`] values [`Mie::new`] needs for `(x, m)`, or
@@ -196,13 +200,12 @@ impl<'a> Mie<'a> {
         }
         // D_n(x) for real x where ψ_n decays (n ≥ x), downward, parked
         // in the real parts of the b_n slots until step n overwrites them.
-        // Its start: 8 x^{1/3} + 50 terms past N, where the start error has
-        // decayed like the ratio of the decaying to the growing solution,
-        // below 10⁻³⁰ at n = x (the Airy-type decay over (n − x)/(x/2)^{1/3}
-        // ≥ 10 widths); the complex recurrence's 1.1 |m| x would cost up to
-        // half as many real steps again as there are terms.
+        // Its start: 8 (x/2)^{1/3} + 16 terms past N, where the start error
+        // has decayed below 10⁻¹³ by n = x (as for the complex start, eight
+        // Airy widths); the complex recurrence's start, past |m| x, would
+        // cost up to half as many real steps again as there are terms.
         let first_ratio = (libm::ceil(x) as usize).max(1);
-        let real_start = (n_terms + (8.0 * libm::cbrt(x)) as usize + 50).min(nmx);
+        let real_start = (n_terms + (8.0 * libm::cbrt(0.5 * x)) as usize + 16).min(nmx);
         let mut dx = 0.0;
         for n in (first_ratio + 1..=real_start).rev() {
             let nx = n as f64 / x;
@@ -334,35 +337,64 @@ impl<'a> Mie<'a> {
 }
 
 /// Share of the tabulation angles spaced uniformly in `θ`; the rest are
-/// spaced geometrically from the forward direction ([`table_angle`]).
+/// spaced logarithmically from the forward direction ([`table_angle`]).
 const UNIFORM_SHARE: f64 = 0.5;
-/// The geometric part's scale in units of `1/x` (the forward peak's width).
-const PEAK_SCALE: f64 = 10.0;
 
 /// The `j`-th of `count ≥ 2` scattering angles (radians, increasing from
 /// 0 to π) at which [`Mie::tabulate`] evaluates the phase function of a
-/// sphere of size parameter `x`:
-/// `θ(t) = π (w t + (1 − w)(e^{s t} − 1)/(e^s − 1))`, `t = j/(count − 1)`,
-/// `w = ½`, `e^s − 1 = π x / 10`. Half the angles are uniform in `θ`; the
-/// other half crowd geometrically into the forward peak, about `1/x` wide,
-/// which a grid uniform in `μ` (or in `θ`) would need `O(x²)` (`O(x)`)
-/// points to resolve: the first step is about `5 s / (x (count − 1))`.
+/// sphere of size parameter `x`: `θ_j` solves `t(θ) = j/(count − 1)` for
+/// the share of angles below `θ`,
+/// `t(θ) = w θ/π + (1 − w) ln(1 + θ x) / ln(1 + π x)`, `w = ½`: half the
+/// angles uniform in `θ`, half uniform in `ln(1 + θ x)`, which crowds them
+/// into the forward peak (about `1/x` wide; a grid uniform in `μ` or `θ`
+/// needs `O(x²)` or `O(x)` points to resolve it): the first step is about
+/// `ln(1 + π x) / (½ x (count − 1))`, and a share `½ ln 2 / ln(1 + π x)`
+/// of the angles lies within `θ < 1/x` (4 % at `x = 1000`).
 pub fn table_angle(x: f64, j: usize, count: usize) -> f64 {
+    use core::f64::consts::PI;
     let t = j as f64 / (count.max(2) - 1) as f64;
-    // e^s − 1 = π x / 10, so (e^{st} − 1)/(e^s − 1) = expm1(s t) / (π x / 10);
-    // small x (no peak) makes the geometric part uniform in the limit.
-    let e = core::f64::consts::PI * x / PEAK_SCALE;
-    let s = libm::log1p(e);
-    let geometric = if e > 1e-8 { libm::expm1(s * t) / e } else { t };
-    core::f64::consts::PI * (UNIFORM_SHARE * t + (1.0 - UNIFORM_SHARE) * geometric).min(1.0)
+    let w = UNIFORM_SHARE;
+    let l_pi = libm::log1p(PI * x);
+    if !(l_pi > 1e-12) || t <= 0.0 || t >= 1.0 {
+        // x → 0: ln(1 + θx)/ln(1 + πx) → θ/π, the grid is uniform.
+        return PI * t.clamp(0.0, 1.0);
+    }
+    let share = |th: f64| w * th / PI + (1.0 - w) * libm::log1p(th * x) / l_pi;
+    let slope = |th: f64| w / PI + (1.0 - w) * x / ((1.0 + th * x) * l_pi);
+    // Newton inside a shrinking bracket (share is increasing); bisection
+    // where a step leaves it. 100 steps at most.
+    let (mut lo, mut hi, mut th) = (0.0f64, PI, PI * t);
+    for _ in 0..100 {
+        let r = share(th) - t;
+        if r == 0.0 {
+            break;
+        }
+        if r < 0.0 {
+            lo = th;
+        } else {
+            hi = th;
+        }
+        let next = th - r / slope(th);
+        let next = if next > lo && next < hi {
+            next
+        } else {
+            0.5 * (lo + hi)
+        };
+        if (next - th).abs() <= 1e-15 * th {
+            th = next;
+            break;
+        }
+        th = next;
+    }
+    th
 }
 
 /// Table sizes for a sphere of size parameter `x`: `(angles, intervals)`
 /// = `(max(4000, 16 x), max(16384, 64 x))`, for [`Mie::tabulate`] and
 /// [`Table::measured`](crate::Table::measured). Measured against the exact
 /// phase function (`docs/mie_table.md`, water, `m = 1.333`): total-variation
-/// distance 3·10⁻⁶ at `x = 10`, 2.4·10⁻⁴ at `x = 100`, 10⁻³ at `x = 1000`;
-/// `max |F(μ(u)) − u|` 1.5·10⁻⁶, 5·10⁻⁵, 2.6·10⁻⁴. The phase function of a
+/// distance 2.8·10⁻⁶ at `x = 10`, 2.5·10⁻⁴ at `x = 100`, 1.2·10⁻³ at
+/// `x = 1000`; `max |F(μ(u)) − u|` 6.5·10⁻⁷, 1.1·10⁻⁵, 6.8·10⁻⁶. The phase function of a
 /// large sphere oscillates with a period of about `π/x` in `θ`, and the
 /// table grows with `x` to resolve it: `2(intervals + 1)` values.
 pub fn table_sizes(x: f64) -> (usize, usize) {

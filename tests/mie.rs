@@ -97,8 +97,9 @@ const OFF_IN_SEVENTH: [usize; 3] = [5, 6, 12];
 /// (case, x, n, k, Q_ext, g Q_sca) from the series summed in 40-digit
 /// arithmetic (mpmath 1.3, Riccati–Bessel functions from `besselj` and
 /// `bessely`, no recurrences; `scripts/mie_reference.py`), for MIEV0's
-/// small spheres and five more of its cases.
-const FORTY_DIGIT: [(usize, f64, f64, f64, f64, f64); 9] = [
+/// small spheres, five more of its cases, and (case 0, not MIEV0's) water
+/// at x = 1000, where the start of the `D_n` recurrence matters most.
+const FORTY_DIGIT: [(usize, f64, f64, f64, f64, f64); 10] = [
     (5, 0.099, 0.75, 0.0, 7.41785911491e-6, 1.07427734367e-8),
     (6, 0.101, 0.75, 0.0, 8.03353814856e-6, 1.21099958183e-8),
     (12, 0.055, 1.5, 1.0, 0.101491041705, 5.55853694541e-9),
@@ -108,6 +109,7 @@ const FORTY_DIGIT: [(usize, f64, f64, f64, f64, f64); 9] = [
     (10, 100.0, 1.33, 1e-5, 2.10132070588026, 1.82185436700066),
     (17, 1.0, 10.0, 10.0, 2.53299307789637, -0.226796095614914),
     (18, 100.0, 10.0, 10.0, 2.07112432672695, 1.02164848287015),
+    (0, 1000.0, 1.333, 1e-8, 2.02280787312486, 1.78024105567029),
 ];
 
 #[test]
@@ -267,6 +269,33 @@ fn optical_theorem_energy_and_normalisation_across_the_domain() {
         }
     }
     println!("worst optical-theorem mismatch {worst_theorem:.1e}");
+}
+
+/// The phase function's normalisation where the uniform grid above would
+/// be too coarse: x = 3000 and 2·10⁴, on `table_angle`'s grid (half the
+/// angles crowded into the forward peak), 2x angles, trapezoids in θ.
+#[test]
+fn phase_function_is_normalised_at_large_x() {
+    for (x, n, k) in [
+        (3000.0, 1.33, 0.0),
+        (3000.0, 10.0, 10.0),
+        (2e4, 1.33, 0.0),
+        (2e4, 10.0, 10.0),
+    ] {
+        let (mut buf, x, m) = solve(x, n, k);
+        let mie = Mie::new(x, m, &mut buf).unwrap();
+        let count = (2.0 * x) as usize;
+        let theta: Vec<f64> = (0..count)
+            .map(|j| scatterkit::mie::table_angle(x, j, count))
+            .collect();
+        let f: Vec<f64> = theta.iter().map(|t| mie.phase(t.cos()) * t.sin()).collect();
+        let total: f64 = (1..count)
+            .map(|i| 0.5 * (theta[i] - theta[i - 1]) * (f[i - 1] + f[i]))
+            .sum::<f64>()
+            * std::f64::consts::TAU;
+        println!("x {x} m {n}+{k}i: 2π ∫ p = {total}");
+        assert!((total - 1.0).abs() < 1e-5, "x {x} m {n}+{k}i: {total}");
+    }
 }
 
 #[test]

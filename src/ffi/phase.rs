@@ -399,7 +399,7 @@ pub struct sk_particle_choice {
     pub within_tolerance: u32,
     /// The chosen model's total-variation distance to the Mie phase
     /// function (0 for the table, the reference itself; the table built at
-    /// sk_mie_table_sizes adds at most 1e-3 for x <= 1000).
+    /// sk_mie_table_sizes adds at most 1.2e-3 for x <= 1000).
     pub distance: f64,
     /// Each candidate's best distance: isotropic, HG, Rayleigh, Draine, fog
     /// fit (NaN for the fog fit beyond 50 um).

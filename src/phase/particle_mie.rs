@@ -39,7 +39,7 @@ pub struct MieChoice {
     pub phase: Option<Phase<f64>>,
     /// The chosen model's distance to Mie (0 for the table: it is the
     /// reference; the table built at `mie::table_sizes` adds its own, at
-    /// most 10⁻³ for `x ≤ 1000`, `docs/mie_table.md`).
+    /// most 1.2·10⁻³ for `x ≤ 1000`, `docs/mie_table.md`).
     pub distance: f64,
     /// Whether `distance` is within the tolerance (without a table, none
     /// may be: the closest is returned).

@@ -355,7 +355,7 @@ pub fn table_angle(x: f64, j: usize, count: usize) -> f64 {
     let t = j as f64 / (count.max(2) - 1) as f64;
     let w = UNIFORM_SHARE;
     let l_pi = libm::log1p(PI * x);
-    if !(l_pi > 1e-12) || t <= 0.0 || t >= 1.0 {
+    if l_pi <= 1e-12 || l_pi.is_nan() || t <= 0.0 || t >= 1.0 {
         // x → 0: ln(1 + θx)/ln(1 + πx) → θ/π, the grid is uniform.
         return PI * t.clamp(0.0, 1.0);
     }

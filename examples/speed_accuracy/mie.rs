@@ -173,7 +173,7 @@ pub(crate) fn mie_report() -> (String, bool) {
          real index of water that start has not converged at `x = 1000` and `10⁴`, and its \
          results differ from the library's in the third to fourth digit (the library agrees \
          with the series summed in 40 digits at `x = 1000` to 10⁻¹⁴, `tests/mie.rs`). The \
-         library starts at `max(N, |mx|) + 8 (|mx|/2)^{1/3} + 16`, eight widths of the Airy-type \
+         library starts at `max(N, |mx|) + 8 (|mx|/2)^{{1/3}} + 16`, eight widths of the Airy-type \
          region past `|mx|`, where the start error decays."
     )
     .unwrap();

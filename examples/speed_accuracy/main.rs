@@ -178,7 +178,7 @@ fn main() -> std::io::Result<()> {
     print!("{c_md}");
     let media_md = media_report();
     print!("{media_md}");
-    let (mie_md, _) = mie_report();
+    let (mie_md, _) = mie_report(&es);
     print!("{mie_md}");
     let perf = performance(&es, rayleigh_batch, hg_batch, &pairs)
         + &c_md

@@ -346,8 +346,8 @@ enum sk_size_kind
  {
     /*
      Lognormal, n(r) proportional to exp(-ln^2(r/r_g) / (2 ln^2 sigma_g))
-     / r: params[0] = median radius r_g > 0, params[1] = geometric
-     standard deviation sigma_g > 1 (params[2] unused).
+     / r: `params[0]` = median radius r_g > 0, `params[1]` = geometric
+     standard deviation sigma_g > 1 (`params[2]` unused).
      */
     SK_SIZE_LOGNORMAL = 0,
     /*
@@ -836,7 +836,7 @@ typedef struct {
     /*
      The chosen model's total-variation distance to the Mie phase
      function (0 for the table, the reference itself; the table built at
-     sk_mie_table_sizes adds at most 1e-3 for x <= 1000).
+     sk_mie_table_sizes adds at most 1.2e-3 for x <= 1000).
      */
     double distance;
     /*
@@ -1629,7 +1629,8 @@ double sk_mie_phase(const sk_mie *m, double mu);
  Table sizes for a sphere of size parameter x in [1e-20, 1e5]:
  *angles = max(4000, 16 x) for sk_mie_tabulate and *intervals = max(16384,
  64 x) for sk_table_measured_f64 (docs/mie_table.md measures them:
- total-variation distance 3e-6 at x = 10, 2.4e-4 at 100, 1e-3 at 1000).
+ total-variation distance 2.8e-6 at x = 10, 2.5e-4 at 100, 1.2e-3 at
+ 1000).
  SK_ERR_NULL for NULL pointers, SK_ERR_DOMAIN for other x; nothing is
  written on error.
  */
@@ -1637,8 +1638,8 @@ sk_status sk_mie_table_sizes(double x, size_t *angles, size_t *intervals);
 
 /*
  Tabulates a solved sphere's phase function for sk_table_measured_f64:
- cos_theta[j] (decreasing from 1 to -1, the angles crowded into the
- forward peak, which is about 1/x radians wide) and pdf[j], the phase
+ `cos_theta[j]` (decreasing from 1 to -1, the angles crowded into the
+ forward peak, which is about 1/x radians wide) and `pdf[j]`, the phase
  function per steradian there, for j < count. SK_ERR_NULL for NULL
  pointers; SK_ERR_DOMAIN for overlapping arrays; SK_ERR_SIZE for count <
  2, a malformed sphere, or too many angles to give distinct cosines.
@@ -1942,8 +1943,8 @@ size_t sk_polydisperse_buffer_len(const sk_polydisperse *p);
 /*
  Averages Mie scattering over the distribution (composite Simpson in ln
  r, one sphere per node): writes the mean cross sections, g and the error
- estimates to *out, and the phase function per steradian at mu[i] to
- phase[i] for i < count. scratch holds count values (the coarser rule's
+ estimates to *out, and the phase function per steradian at `mu[i]` to
+ `phase[i]` for i < count. scratch holds count values (the coarser rule's
  phase function); buf holds len >= sk_polydisperse_buffer_len(p) values.
  SK_ERR_NULL for NULL p, out or buf, or NULL arrays with count > 0;
  SK_ERR_DOMAIN for invalid input (see sk_polydisperse, a mu outside [-1,

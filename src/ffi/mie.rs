@@ -181,8 +181,8 @@ pub unsafe extern "C" fn sk_mie_table_sizes(
 }
 
 /// Tabulates a solved sphere's phase function for sk_table_measured_f64:
-/// cos_theta[j] (decreasing from 1 to -1, the angles crowded into the
-/// forward peak, which is about 1/x radians wide) and pdf[j], the phase
+/// `cos_theta[j]` (decreasing from 1 to -1, the angles crowded into the
+/// forward peak, which is about 1/x radians wide) and `pdf[j]`, the phase
 /// function per steradian there, for j < count. SK_ERR_NULL for NULL
 /// pointers; SK_ERR_DOMAIN for overlapping arrays; SK_ERR_SIZE for count <
 /// 2, a malformed sphere, or too many angles to give distinct cosines.

@@ -10,8 +10,8 @@ use crate::polydisperse::{Averages, Polydisperse, SizeDistribution};
 #[derive(Clone, Copy, Debug)]
 pub enum sk_size_kind {
     /// Lognormal, n(r) proportional to exp(-ln^2(r/r_g) / (2 ln^2 sigma_g))
-    /// / r: params[0] = median radius r_g > 0, params[1] = geometric
-    /// standard deviation sigma_g > 1 (params[2] unused).
+    /// / r: `params[0]` = median radius r_g > 0, `params[1]` = geometric
+    /// standard deviation sigma_g > 1 (`params[2]` unused).
     SK_SIZE_LOGNORMAL = 0,
     /// Deirmendjian's modified gamma, n(r) proportional to r^alpha exp(-b
     /// r^gamma): params = {alpha in [0, 100], b > 0, gamma in (0, 10]}.
@@ -145,8 +145,8 @@ pub unsafe extern "C" fn sk_polydisperse_buffer_len(p: *const sk_polydisperse) -
 
 /// Averages Mie scattering over the distribution (composite Simpson in ln
 /// r, one sphere per node): writes the mean cross sections, g and the error
-/// estimates to *out, and the phase function per steradian at mu[i] to
-/// phase[i] for i < count. scratch holds count values (the coarser rule's
+/// estimates to *out, and the phase function per steradian at `mu[i]` to
+/// `phase[i]` for i < count. scratch holds count values (the coarser rule's
 /// phase function); buf holds len >= sk_polydisperse_buffer_len(p) values.
 /// SK_ERR_NULL for NULL p, out or buf, or NULL arrays with count > 0;
 /// SK_ERR_DOMAIN for invalid input (see sk_polydisperse, a mu outside [-1,

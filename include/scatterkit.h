@@ -801,7 +801,9 @@ typedef struct {
 /*
  A phase function (float). A plain value with no pointers inside: build it
  with an `sk_phase_*` constructor, then copy it and share it freely across
- threads. Its contents are private.
+ threads. Its contents are private, and some of its bytes are padding a
+ constructor need not define: compare phases with sk_phase_get_params,
+ not memcmp.
  */
 typedef struct {
     /*

@@ -15,7 +15,9 @@ use crate::real::Real;
 
 /// A phase function (float). A plain value with no pointers inside: build it
 /// with an `sk_phase_*` constructor, then copy it and share it freely across
-/// threads. Its contents are private.
+/// threads. Its contents are private, and some of its bytes are padding a
+/// constructor need not define: compare phases with sk_phase_get_params,
+/// not memcmp.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct sk_phase {
@@ -54,7 +56,9 @@ const _: () = {
     assert!(align_of::<Phase<f64>>() <= align_of::<sk_phase_f64>());
 };
 
-/// Packs a phase into zeroed storage (so the bytes are deterministic).
+/// Packs a phase into zeroed storage. The enum's padding (after the tag,
+/// and past a shorter variant) need not be written: compare two phases by
+/// their parameters (sk_phase_get_params), not by their bytes.
 fn store<S: PhaseStore>(phase: Phase<S::T>) -> S {
     let mut s = S::ZEROED;
     // SAFETY: size and alignment checked above; S is plain bytes.

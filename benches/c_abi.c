@@ -95,6 +95,12 @@ static inline float pbrt_hg_cos(float g, float u) {
     float sq = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
     return (1.0f + g * g - sq * sq) / (2.0f * g);
 }
+/* Two HG lobes chosen by one uniform (the usual renderer sampler): u < w
+ * picks lobe 1 and u / w is reused inside it, else lobe 2 with (u - w) /
+ * (1 - w). */
+static inline float two_lobe_cos(float g1, float g2, float w, float u) {
+    return u < w ? pbrt_hg_cos(g1, u / w) : pbrt_hg_cos(g2, (u - w) / (1.0f - w));
+}
 static inline float pbrt_hg_pdf(float g, float cos_t) {
     float denom = 1.0f + g * g - 2.0f * g * cos_t;
     return INV_4PI_F * (1.0f - g * g) / (denom * sqrtf(denom));
@@ -233,8 +239,8 @@ static void fill_batch(void) {
         sink = box[rep & (BATCH - 1)] + bcos[rep & (BATCH - 1)]; \
     } while (0)
 
-static sk_phase iso, hg, ray, fog, draine[4];
-static sk_phase_f64 hg64, ray64, fog64, draine64[4];
+static sk_phase iso, hg, ray, fog, two, draine[4];
+static sk_phase_f64 hg64, ray64, fog64, two64, draine64[4];
 static const float DRAINE_G[4] = {0.5f, 0.9f, 0.3f, 0.01f};
 static const float DRAINE_A[4] = {1.0f, 10.0f, 250.0f, 1000.0f};
 static const char *DRAINE_SK[4] = {"draine_0.5_1.sk", "draine_0.9_10.sk", "draine_0.3_250.sk",
@@ -331,6 +337,9 @@ static void time_round(void) {
                                         BATCH));
     TIME("fog_cos.sk", acc += sk_phase_sample_cos(&fog, xo_float(&rng)));
     TIME("fog_cos.lobe", acc += sk_phase_sample_cos_lobe(&fog, xo_float(&rng)));
+    TIME("two_lobe_cos.sk", acc += sk_phase_sample_cos(&two, xo_float(&rng)));
+    TIME("two_lobe_cos.sk_lobe", acc += sk_phase_sample_cos_lobe(&two, xo_float(&rng)));
+    TIME("two_lobe_cos.c", acc += two_lobe_cos(0.8f, -0.3f, 0.9f, xo_float(&rng)));
     for (k = 0; k < 4; k++) {
         float g = DRAINE_G[k], a = DRAINE_A[k];
         TIME(DRAINE_SK[k], acc += sk_phase_sample_cos(&draine[k], xo_float(&rng)));
@@ -388,6 +397,7 @@ static void accuracy(void) {
     MAX_DIR_ERR("rayleigh_dir.cycles", &ray64,
                 rayleigh_dir_from_cos(W_IN, cycles_rayleigh_cos(u1), u2, &pdf));
     MAX_ERR("fog_cos.sk", &fog64, sk_phase_sample_cos(&fog, u));
+    MAX_ERR("two_lobe_cos.sk", &two64, sk_phase_sample_cos(&two, u));
     for (k = 0; k < 4; k++) {
         float g = DRAINE_G[k], a = DRAINE_A[k];
         MAX_ERR(DRAINE_SK[k], &draine64[k], sk_phase_sample_cos(&draine[k], u));
@@ -415,7 +425,8 @@ int main(void) {
     int k, r;
     if (sk_phase_isotropic(&iso) || sk_phase_hg(0.7f, &hg) || sk_phase_rayleigh(&ray) ||
         sk_phase_fog_diameter(2.0f, &fog) || sk_phase_hg_f64(0.7, &hg64) ||
-        sk_phase_rayleigh_f64(&ray64) || sk_phase_fog_diameter_f64(2.0, &fog64)) {
+        sk_phase_rayleigh_f64(&ray64) || sk_phase_fog_diameter_f64(2.0, &fog64) ||
+        sk_phase_two_lobe_hg(0.8f, -0.3f, 0.9f, &two) || sk_phase_two_lobe_hg_f64(0.8, -0.3, 0.9, &two64)) {
         fprintf(stderr, "constructor failed\n");
         return 1;
     }

@@ -314,6 +314,25 @@ impl<T: Real> Phase<T> {
     pub fn fog_diameter(diameter_um: T) -> Result<Self, Error> {
         Fog::from_diameter(diameter_um).map(Phase::Fog)
     }
+    /// Two-lobe Henyey–Greenstein, `w HG(g1) + (1 − w) HG(g2)`, for clouds,
+    /// skin and materials: `|g1| < 1`, `|g2| < 1`, `0 ≤ w ≤ 1`, else
+    /// [`Error::Domain`]. It is the fog mixture with a Draine lobe of
+    /// `α = 0` (which is HG), so it shares the fog's samplers: `sample_cos`
+    /// inverts the mixture's CDF exactly (monotone in `u`), and
+    /// [`sample_cos_by_lobe`](Self::sample_cos_by_lobe) picks a lobe with
+    /// the uniform and reuses it (cheaper, not monotone). It reports itself
+    /// as a fog mixture (`g_hg = g2`, `g_d = g1`, `α = 0`, `w_d = w`).
+    ///
+    /// ```
+    /// use scatterkit::{Phase, PhaseFunction};
+    /// // A forward lobe with a weaker backward one.
+    /// let p = Phase::<f64>::two_lobe_hg(0.8, -0.3, 0.9).unwrap();
+    /// assert!((p.mean_cosine() - (0.9 * 0.8 - 0.1 * 0.3)).abs() < 1e-12);
+    /// assert!((p.cdf(p.sample_cos(0.3)) - 0.3).abs() < 1e-12);
+    /// ```
+    pub fn two_lobe_hg(g1: T, g2: T, w: T) -> Result<Self, Error> {
+        Fog::new(g2, g1, T::ZERO, w).map(Phase::Fog)
+    }
 }
 
 macro_rules! dispatch {

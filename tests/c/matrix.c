@@ -101,6 +101,12 @@ static void phase_constructors(void) {
         CHECK(sk_phase_fog(0.5f, 0.5f, 1.0f, f, &p) == (f >= 0.0f && f <= 1.0f ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_fog_f64(d, 0.5, 1.0, 0.5, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_fog_f64(0.5, 0.5, 1.0, d, &q) == (d >= 0.0 && d <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_two_lobe_hg(f, 0.5f, 0.5f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_two_lobe_hg(0.5f, f, 0.5f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_two_lobe_hg(0.5f, -0.5f, f, &p) == (f >= 0.0f && f <= 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_two_lobe_hg_f64(d, 0.5, 0.5, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_two_lobe_hg_f64(0.5, d, 0.5, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_two_lobe_hg_f64(0.5, -0.5, d, &q) == (d >= 0.0 && d <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_fog_diameter(f, &p) == (f > 0.0f && f <= 50.0f ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_fog_diameter_f64(d, &q) == (d > 0.0 && d <= 50.0 ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_rayleigh_depolarized(f, &p) == (f >= 0.0f && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
@@ -117,6 +123,8 @@ static void phase_constructors(void) {
     CHECK(sk_phase_cornette_shanks(0.1f, NULL) == SK_ERR_NULL && sk_phase_cornette_shanks_f64(0.1, NULL) == SK_ERR_NULL);
     CHECK(sk_phase_fog(0.1f, 0.1f, 1, 0.5f, NULL) == SK_ERR_NULL && sk_phase_fog_f64(0.1, 0.1, 1, 0.5, NULL) == SK_ERR_NULL);
     CHECK(sk_phase_fog_diameter(2, NULL) == SK_ERR_NULL && sk_phase_fog_diameter_f64(2, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_two_lobe_hg(0.8f, -0.3f, 0.9f, NULL) == SK_ERR_NULL && sk_phase_two_lobe_hg_f64(0.8, -0.3, 0.9, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_two_lobe_hg_f64(0.8, -0.3, 0.9, &q) == SK_OK && fabs(sk_phase_mean_cosine_f64(&q) - 0.69) < 1e-12);
     CHECK(sk_phase_rayleigh_depolarized(0.1f, NULL) == SK_ERR_NULL && sk_phase_rayleigh_depolarized_f64(0.1, NULL) == SK_ERR_NULL);
     CHECK(sk_phase_particle(2, 0.1f, NULL) == SK_ERR_NULL && sk_phase_particle_f64(2, 0.1, NULL) == SK_ERR_NULL);
 }

@@ -29,7 +29,9 @@ fn u_values() -> Vec<f64> {
     u
 }
 
-const GS: [f64; 13] = [-0.999, -0.99, -0.9, -0.5, -0.1, -1e-3, 0.0, 1e-3, 0.1, 0.5, 0.9, 0.99, 0.999];
+const GS: [f64; 13] = [
+    -0.999, -0.99, -0.9, -0.5, -0.1, -1e-3, 0.0, 1e-3, 0.1, 0.5, 0.9, 0.99, 0.999,
+];
 const WS: [f64; 7] = [0.0, 1e-3, 0.1, 0.5, 0.9, 0.999, 1.0];
 
 #[test]
@@ -53,7 +55,8 @@ fn inverse_is_accurate_over_the_whole_domain() {
                     prev = got;
                     let err = (got - exact).abs();
                     let density = std::f64::consts::TAU * p.pdf(exact);
-                    worst_ratio = worst_ratio.max((err - 1e-14).max(0.0) * density / f64::EPSILON * 2.0);
+                    worst_ratio =
+                        worst_ratio.max((err - 1e-14).max(0.0) * density / f64::EPSILON * 2.0);
                     assert!(
                         err <= 4.0 * f64::EPSILON / 2.0 / density + 1e-14,
                         "{g1} {g2} {w} u {u}: error {err:e}, density {density:e}"
@@ -98,13 +101,23 @@ fn mean_cosine_is_the_weighted_mean() {
 fn chi2_of_both_samplers() {
     fn check<T: Real>(seed: u64) {
         let l = (0.3f64 * 0.3 + 0.25 + 0.81 * 0.81).sqrt();
-        let w_in = Vec3::new(T::from_f64(0.3 / l), T::from_f64(-0.5 / l), T::from_f64(0.81 / l));
+        let w_in = Vec3::new(
+            T::from_f64(0.3 / l),
+            T::from_f64(-0.5 / l),
+            T::from_f64(0.81 / l),
+        );
         let w64 = [w_in.x.to_f64(), w_in.y.to_f64(), w_in.z.to_f64()];
-        for (k, (g1, g2, w)) in [(0.8, -0.3, 0.9), (0.99, -0.9, 0.5), (0.2, 0.6, 0.3), (-0.7, 0.95, 0.02)]
-            .into_iter()
-            .enumerate()
+        for (k, (g1, g2, w)) in [
+            (0.8, -0.3, 0.9),
+            (0.99, -0.9, 0.5),
+            (0.2, 0.6, 0.3),
+            (-0.7, 0.95, 0.02),
+        ]
+        .into_iter()
+        .enumerate()
         {
-            let p = Phase::<T>::two_lobe_hg(T::from_f64(g1), T::from_f64(g2), T::from_f64(w)).unwrap();
+            let p =
+                Phase::<T>::two_lobe_hg(T::from_f64(g1), T::from_f64(g2), T::from_f64(w)).unwrap();
             let p64: Phase<f64> = p.cast();
             let pdf = |mu: f64| p64.pdf(mu);
             let mut r = rng(seed + k as u64);
@@ -112,12 +125,17 @@ fn chi2_of_both_samplers() {
                 let (d, _) = p.sample_dir(w_in, T::uniform(&mut r), T::uniform(&mut r));
                 [d.x.to_f64(), d.y.to_f64(), d.z.to_f64()]
             });
-            assert!(res.passes(), "{g1} {g2} {w} exact inverse: {res:?} ({:.2e})", threshold());
+            assert!(
+                res.passes(),
+                "{g1} {g2} {w} exact inverse: {res:?} ({:.2e})",
+                threshold()
+            );
             let mut r = rng(seed + 100 + k as u64);
             let res = chi2_directions(&pdf, w64, CHI2_SAMPLES, || {
                 let mu = p.sample_cos_by_lobe(T::uniform(&mut r));
                 let s = scatterkit::geometry::sin_from_cos(mu);
-                let d = scatterkit::geometry::direction_about_turns(w_in, mu, s, T::uniform(&mut r));
+                let d =
+                    scatterkit::geometry::direction_about_turns(w_in, mu, s, T::uniform(&mut r));
                 [d.x.to_f64(), d.y.to_f64(), d.z.to_f64()]
             });
             assert!(res.passes(), "{g1} {g2} {w} by lobe: {res:?}");
@@ -138,6 +156,9 @@ fn bad_parameters_are_rejected() {
         (0.0, f64::NAN, 0.5),
         (0.0, 0.0, f64::NAN),
     ] {
-        assert!(Phase::<f64>::two_lobe_hg(g1, g2, w).is_err(), "{g1} {g2} {w}");
+        assert!(
+            Phase::<f64>::two_lobe_hg(g1, g2, w).is_err(),
+            "{g1} {g2} {w}"
+        );
     }
 }

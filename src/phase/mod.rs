@@ -12,6 +12,7 @@
 
 pub mod draine;
 pub mod fog;
+pub mod gegenbauer;
 mod hg;
 mod isotropic;
 pub mod particle;
@@ -22,6 +23,7 @@ mod seeds;
 
 pub use draine::Draine;
 pub use fog::{Fog, FogParams, fog_fit};
+pub use gegenbauer::Gegenbauer;
 pub use hg::HenyeyGreenstein;
 pub use isotropic::Isotropic;
 pub use rayleigh::{Rayleigh, RayleighMethod};

@@ -50,6 +50,10 @@ impl<T: Real> Gegenbauer<T> {
             Err(Error::Domain)
         }
     }
+    /// Without checks (the caller validated).
+    pub(crate) fn from_parts(alpha: T, g: T) -> Self {
+        Gegenbauer { alpha, g }
+    }
     /// `α`.
     pub fn alpha(&self) -> T {
         self.alpha

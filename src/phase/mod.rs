@@ -234,6 +234,8 @@ pub enum Phase<T> {
     Draine(Draine<T>) = 5,
     /// The fog mixture of HG and Draine.
     Fog(Fog<T>) = 6,
+    /// The Gegenbauer kernel of Reynolds & McCormick.
+    Gegenbauer(Gegenbauer<T>) = 7,
 }
 
 impl<T: Real> Phase<T> {
@@ -264,6 +266,14 @@ impl<T: Real> Phase<T> {
                 let (a, b, al, w) = f.params();
                 Phase::Fog(Fog::from_parts(open(a), open(b), c(al), c(w)))
             }
+            Phase::Gegenbauer(k) => match Gegenbauer::new(c(k.alpha()), open(k.g())) {
+                Ok(k) => Phase::Gegenbauer(k),
+                // α just above −½ can round onto it: the nearest valid α.
+                Err(_) => Phase::Gegenbauer(Gegenbauer::from_parts(
+                    U::from_f64(-0.5 + 1e-7),
+                    open(k.g()),
+                )),
+            },
         }
     }
 
@@ -281,7 +291,7 @@ impl<T: Real> Phase<T> {
     /// The discriminant of the last variant (the C layer checks tags against
     /// `1..=LAST_TAG`).
     #[cfg_attr(not(feature = "ffi"), allow(dead_code))]
-    pub(crate) const LAST_TAG: u32 = 6;
+    pub(crate) const LAST_TAG: u32 = 7;
 
     /// Isotropic scattering.
     pub fn isotropic() -> Self {
@@ -316,6 +326,12 @@ impl<T: Real> Phase<T> {
     pub fn fog_diameter(diameter_um: T) -> Result<Self, Error> {
         Fog::from_diameter(diameter_um).map(Phase::Fog)
     }
+    /// The Gegenbauer kernel of Reynolds & McCormick (1980),
+    /// `p ∝ (1 + g² − 2gμ)^{−(α+1)}`, with `−½ < α ≤ 1000` and `|g| < 1`
+    /// (`α = ½` is HG); see [`Gegenbauer`].
+    pub fn gegenbauer(alpha: T, g: T) -> Result<Self, Error> {
+        Gegenbauer::new(alpha, g).map(Phase::Gegenbauer)
+    }
     /// Two-lobe Henyey–Greenstein, `w HG(g1) + (1 − w) HG(g2)`, for clouds,
     /// skin and materials: `|g1| < 1`, `|g2| < 1`, `0 ≤ w ≤ 1`, else
     /// [`Error::Domain`]. It is the fog mixture with a Draine lobe of
@@ -346,6 +362,7 @@ macro_rules! dispatch {
             Phase::HenyeyGreenstein($m) => $e,
             Phase::Draine($m) => $e,
             Phase::Fog($m) => $e,
+            Phase::Gegenbauer($m) => $e,
         }
     };
 }

@@ -12,6 +12,7 @@
 
 pub mod draine;
 pub mod fog;
+pub mod fournier_forand;
 pub mod gegenbauer;
 mod hg;
 mod isotropic;
@@ -23,6 +24,7 @@ mod seeds;
 
 pub use draine::Draine;
 pub use fog::{Fog, FogParams, fog_fit};
+pub use fournier_forand::FournierForand;
 pub use gegenbauer::Gegenbauer;
 pub use hg::HenyeyGreenstein;
 pub use isotropic::Isotropic;

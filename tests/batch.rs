@@ -43,6 +43,7 @@ fn phases<T: Real>() -> Vec<Phase<T>> {
         Phase::two_lobe_hg(t(0.8), t(-0.3), t(0.9)).unwrap(),
         Phase::gegenbauer(t(-0.25), t(0.7)).unwrap(),
         Phase::gegenbauer(t(10.0), t(-0.5)).unwrap(),
+        Phase::fournier_forand(t(1.1), t(4.0)).unwrap(),
     ]
 }
 

@@ -83,7 +83,7 @@ fn phase_lines(s: &mut String, name: &str, p: &Phase<f32>, q: &Phase<f64>) {
 /// The golden lines through the Rust API.
 fn rust_lines() -> String {
     let mut s = String::new();
-    let phases: [(&str, Phase<f32>, Phase<f64>); 11] = [
+    let phases: [(&str, Phase<f32>, Phase<f64>); 12] = [
         ("isotropic", Phase::isotropic(), Phase::isotropic()),
         ("rayleigh", Phase::rayleigh(), Phase::rayleigh()),
         (
@@ -125,6 +125,11 @@ fn rust_lines() -> String {
             "gegenbauer_-0.25_0.7",
             Phase::gegenbauer(-0.25, 0.7).unwrap(),
             Phase::gegenbauer(-0.25, 0.7).unwrap(),
+        ),
+        (
+            "fournier_forand_1.1_4",
+            Phase::fournier_forand(1.1, 4.0).unwrap(),
+            Phase::fournier_forand(1.1, 4.0).unwrap(),
         ),
         (
             "particle_0.01_0.01",

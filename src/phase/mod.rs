@@ -238,6 +238,8 @@ pub enum Phase<T> {
     Fog(Fog<T>) = 6,
     /// The Gegenbauer kernel of Reynolds & McCormick.
     Gegenbauer(Gegenbauer<T>) = 7,
+    /// Fournier–Forand, for ocean particles.
+    FournierForand(FournierForand<T>) = 8,
 }
 
 impl<T: Real> Phase<T> {
@@ -276,6 +278,11 @@ impl<T: Real> Phase<T> {
                     open(k.g()),
                 )),
             },
+            Phase::FournierForand(f) => Phase::FournierForand(FournierForand::from_parts(
+                c(f.n()),
+                // ν stays inside (−1, 0) after rounding.
+                U::from_f64(f.nu().to_f64().clamp(-1.0 + 1e-7, -1e-30)),
+            )),
         }
     }
 
@@ -293,7 +300,7 @@ impl<T: Real> Phase<T> {
     /// The discriminant of the last variant (the C layer checks tags against
     /// `1..=LAST_TAG`).
     #[cfg_attr(not(feature = "ffi"), allow(dead_code))]
-    pub(crate) const LAST_TAG: u32 = 7;
+    pub(crate) const LAST_TAG: u32 = 8;
 
     /// Isotropic scattering.
     pub fn isotropic() -> Self {
@@ -334,6 +341,17 @@ impl<T: Real> Phase<T> {
     pub fn gegenbauer(alpha: T, g: T) -> Result<Self, Error> {
         Gegenbauer::new(alpha, g).map(Phase::Gegenbauer)
     }
+    /// Fournier–Forand for ocean particles of relative index `n ∈ (1, 1.8]`
+    /// with a Junge size distribution of slope `mu_j ∈ (3, 5)`; see
+    /// [`FournierForand`].
+    pub fn fournier_forand(n: T, mu_j: T) -> Result<Self, Error> {
+        FournierForand::new(n, mu_j).map(Phase::FournierForand)
+    }
+    /// Fournier–Forand from the backscatter fraction `b ∈ (0, ½)` and
+    /// `n ∈ (1, 1.8]`, as oceanographers specify it.
+    pub fn fournier_forand_backscatter(b: T, n: T) -> Result<Self, Error> {
+        FournierForand::from_backscatter(b, n).map(Phase::FournierForand)
+    }
     /// Two-lobe Henyey–Greenstein, `w HG(g1) + (1 − w) HG(g2)`, for clouds,
     /// skin and materials: `|g1| < 1`, `|g2| < 1`, `0 ≤ w ≤ 1`, else
     /// [`Error::Domain`]. It is the fog mixture with a Draine lobe of
@@ -365,6 +383,7 @@ macro_rules! dispatch {
             Phase::Draine($m) => $e,
             Phase::Fog($m) => $e,
             Phase::Gegenbauer($m) => $e,
+            Phase::FournierForand($m) => $e,
         }
     };
 }

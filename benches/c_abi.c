@@ -12,6 +12,10 @@
  *   Cycles Rayleigh: Cardano with the fast inverse cube root (two Newton steps).
  *   Frisvad (2011) simplified rejection: mu = 2 xi - 1 kept with (1 + mu^2)/2.
  *   Jendersie & d'Eon (2023) eq. 6 for Draine, as published, in float.
+ *   Cycles' Fournier-Forand sampler: the published forward CDF (Fournier &
+ *     Jonasz 1999) with a first-order expansion within 1e-3 of delta = 1,
+ *     inverted by up to 20 Newton steps in float from 50 degrees, the
+ *     coefficients from the backscatter fraction and the index.
  * All map u in [0, 1) to cos theta with u = 0 giving -1 (the library's
  * orientation); directions are built the same way everywhere.
  *
@@ -94,6 +98,53 @@ static inline float pbrt_hg_cos(float g, float u) {
     if (fabsf(g) < 1e-3f) return 2.0f * u - 1.0f;
     float sq = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
     return (1.0f + g * g - sq * sq) / (2.0f * g);
+}
+/* Two HG lobes chosen by one uniform (the usual renderer sampler): u < w
+ * picks lobe 1 and u / w is reused inside it, else lobe 2 with (u - w) /
+ * (1 - w). */
+static inline float two_lobe_cos(float g1, float g2, float w, float u) {
+    return u < w ? pbrt_hg_cos(g1, u / w) : pbrt_hg_cos(g2, (u - w) / (1.0f - w));
+}
+/* Cycles-style Fournier-Forand: coefficients (n, v, c) from backscatter
+ * fraction b and index n; the published forward CDF and density in float;
+ * Newton on cos theta. */
+typedef struct { float n, v, c; } ff_coeffs;
+static ff_coeffs ff_setup(float b, float n) {
+    float k = 4.0f / (3.0f * (n - 1.0f) * (n - 1.0f));
+    float d90 = 0.5f * k, d180 = k;
+    ff_coeffs r;
+    r.n = n;
+    r.v = -logf(2.0f * b * (d90 - 1.0f) + 1.0f) / logf(d90);
+    r.c = (powf(d180, -r.v) - 1.0f) / (d180 - 1.0f);
+    return r;
+}
+static inline float ff_pdf_published(float cos_t, float d, float dv, float v, float s, float c) {
+    float md = 1.0f - d, mdv = 1.0f - dv, pf;
+    if (fabsf(md) < 1e-3f) {
+        pf = v * ((v - 1.0f) - (v + 1.0f) / s) * (1.0f / (8.0f * PI_F));
+        pf += v * (v + 1.0f) * md * (2.0f * (v - 1.0f) - (2.0f * v + 1.0f) / s) * (1.0f / (24.0f * PI_F));
+    } else {
+        pf = (v * md - mdv + (d * mdv - v * md) / s) / (4.0f * PI_F * md * md * dv);
+    }
+    return pf + c * (1.0f / (16.0f * PI_F)) * (3.0f * cos_t * cos_t - 1.0f);
+}
+static inline float cycles_ff_cos(ff_coeffs k, float u) {
+    float cos_t = 0.64278760968f, kk = 4.0f / (3.0f * (k.n - 1.0f) * (k.n - 1.0f));
+    int it;
+    for (it = 0; it < 20; it++) {
+        float s = 0.5f * (1.0f - cos_t), d = kk * s, dv = powf(d, k.v), md = 1.0f - d, cdf, pf, next;
+        if (fabsf(md) < 1e-3f)
+            cdf = 1.0f + k.v * (1.0f - s) * (1.0f - 0.5f * (k.v + 1.0f) * md);
+        else
+            cdf = (1.0f - dv * d - (1.0f - dv) * s) / (md * dv);
+        cdf += k.c * 0.125f * cos_t * (1.0f - cos_t * cos_t);
+        pf = ff_pdf_published(cos_t, d, dv, k.v, s, k.c);
+        next = cos_t + (cdf - u) / (2.0f * PI_F * pf);
+        if (next >= 1.0f) next = fmaxf(0.5f * (cos_t + 1.0f), 0.99f);
+        if (fabsf(cos_t - next) < 1e-6f || next == 1.0f) return next;
+        cos_t = next;
+    }
+    return cos_t;
 }
 static inline float pbrt_hg_pdf(float g, float cos_t) {
     float denom = 1.0f + g * g - 2.0f * g * cos_t;
@@ -233,8 +284,9 @@ static void fill_batch(void) {
         sink = box[rep & (BATCH - 1)] + bcos[rep & (BATCH - 1)]; \
     } while (0)
 
-static sk_phase iso, hg, ray, fog, draine[4];
-static sk_phase_f64 hg64, ray64, fog64, draine64[4];
+static sk_phase iso, hg, ray, fog, two, ff, draine[4];
+static sk_phase_f64 hg64, ray64, fog64, two64, ff64, draine64[4];
+static ff_coeffs ffc;
 static const float DRAINE_G[4] = {0.5f, 0.9f, 0.3f, 0.01f};
 static const float DRAINE_A[4] = {1.0f, 10.0f, 250.0f, 1000.0f};
 static const char *DRAINE_SK[4] = {"draine_0.5_1.sk", "draine_0.9_10.sk", "draine_0.3_250.sk",
@@ -331,6 +383,11 @@ static void time_round(void) {
                                         BATCH));
     TIME("fog_cos.sk", acc += sk_phase_sample_cos(&fog, xo_float(&rng)));
     TIME("fog_cos.lobe", acc += sk_phase_sample_cos_lobe(&fog, xo_float(&rng)));
+    TIME("two_lobe_cos.sk", acc += sk_phase_sample_cos(&two, xo_float(&rng)));
+    TIME("two_lobe_cos.sk_lobe", acc += sk_phase_sample_cos_lobe(&two, xo_float(&rng)));
+    TIME("two_lobe_cos.c", acc += two_lobe_cos(0.8f, -0.3f, 0.9f, xo_float(&rng)));
+    TIME("ff_cos.sk", acc += sk_phase_sample_cos(&ff, xo_float(&rng)));
+    TIME("ff_cos.cycles", acc += cycles_ff_cos(ffc, xo_float(&rng)));
     for (k = 0; k < 4; k++) {
         float g = DRAINE_G[k], a = DRAINE_A[k];
         TIME(DRAINE_SK[k], acc += sk_phase_sample_cos(&draine[k], xo_float(&rng)));
@@ -388,6 +445,10 @@ static void accuracy(void) {
     MAX_DIR_ERR("rayleigh_dir.cycles", &ray64,
                 rayleigh_dir_from_cos(W_IN, cycles_rayleigh_cos(u1), u2, &pdf));
     MAX_ERR("fog_cos.sk", &fog64, sk_phase_sample_cos(&fog, u));
+    MAX_ERR("two_lobe_cos.sk", &two64, sk_phase_sample_cos(&two, u));
+    /* Cycles maps u to the forward CDF: its cos theta for 1 - u is ours for u. */
+    MAX_ERR("ff_cos.sk", &ff64, sk_phase_sample_cos(&ff, u));
+    MAX_ERR("ff_cos.cycles", &ff64, cycles_ff_cos(ffc, 1.0f - u));
     for (k = 0; k < 4; k++) {
         float g = DRAINE_G[k], a = DRAINE_A[k];
         MAX_ERR(DRAINE_SK[k], &draine64[k], sk_phase_sample_cos(&draine[k], u));
@@ -415,7 +476,10 @@ int main(void) {
     int k, r;
     if (sk_phase_isotropic(&iso) || sk_phase_hg(0.7f, &hg) || sk_phase_rayleigh(&ray) ||
         sk_phase_fog_diameter(2.0f, &fog) || sk_phase_hg_f64(0.7, &hg64) ||
-        sk_phase_rayleigh_f64(&ray64) || sk_phase_fog_diameter_f64(2.0, &fog64)) {
+        sk_phase_rayleigh_f64(&ray64) || sk_phase_fog_diameter_f64(2.0, &fog64) ||
+        sk_phase_two_lobe_hg(0.8f, -0.3f, 0.9f, &two) || sk_phase_two_lobe_hg_f64(0.8, -0.3, 0.9, &two64) ||
+        sk_phase_fournier_forand_backscatter(0.0183f, 1.1f, &ff) ||
+        sk_phase_fournier_forand_backscatter_f64(0.0183, 1.1, &ff64)) {
         fprintf(stderr, "constructor failed\n");
         return 1;
     }
@@ -426,6 +490,7 @@ int main(void) {
             return 1;
         }
     }
+    ffc = ff_setup(0.0183f, 1.1f);
     fill_batch();
     if (!batch_agrees()) {
         fprintf(stderr, "sk_phase_sample_dir_n differs from sk_phase_sample_dir\n");

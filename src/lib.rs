@@ -85,8 +85,8 @@ pub use majorant::Majorants;
 pub use medium::{Grid, Ray, Sampling};
 pub use phase::rayleigh;
 pub use phase::{
-    Draine, Fog, HenyeyGreenstein, Isotropic, Phase, PhaseFunction, Rayleigh, RayleighDepolarized,
-    RayleighMethod,
+    Draine, Fog, FournierForand, Gegenbauer, HenyeyGreenstein, Isotropic, Phase, PhaseFunction,
+    Rayleigh, RayleighDepolarized, RayleighMethod,
 };
 pub use real::Real;
 pub use surface::{CrossingPolicy, Fraction, Surface, SurfaceModel};

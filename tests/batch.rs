@@ -40,6 +40,10 @@ fn phases<T: Real>() -> Vec<Phase<T>> {
         Phase::rayleigh_depolarized(t(0.03)).unwrap(),
         Phase::draine(t(0.5), t(1.0)).unwrap(),
         Phase::fog_diameter(t(2.0)).unwrap(),
+        Phase::two_lobe_hg(t(0.8), t(-0.3), t(0.9)).unwrap(),
+        Phase::gegenbauer(t(-0.25), t(0.7)).unwrap(),
+        Phase::gegenbauer(t(10.0), t(-0.5)).unwrap(),
+        Phase::fournier_forand(t(1.1), t(4.0)).unwrap(),
     ]
 }
 

@@ -83,7 +83,7 @@ fn phase_lines(s: &mut String, name: &str, p: &Phase<f32>, q: &Phase<f64>) {
 /// The golden lines through the Rust API.
 fn rust_lines() -> String {
     let mut s = String::new();
-    let phases: [(&str, Phase<f32>, Phase<f64>); 9] = [
+    let phases: [(&str, Phase<f32>, Phase<f64>); 12] = [
         ("isotropic", Phase::isotropic(), Phase::isotropic()),
         ("rayleigh", Phase::rayleigh(), Phase::rayleigh()),
         (
@@ -115,6 +115,21 @@ fn rust_lines() -> String {
             "fog_2um",
             Phase::fog_diameter(2.0).unwrap(),
             Phase::fog_diameter(2.0).unwrap(),
+        ),
+        (
+            "two_lobe_hg_0.8_-0.3_0.9",
+            Phase::two_lobe_hg(0.8, -0.3, 0.9).unwrap(),
+            Phase::two_lobe_hg(0.8, -0.3, 0.9).unwrap(),
+        ),
+        (
+            "gegenbauer_-0.25_0.7",
+            Phase::gegenbauer(-0.25, 0.7).unwrap(),
+            Phase::gegenbauer(-0.25, 0.7).unwrap(),
+        ),
+        (
+            "fournier_forand_1.1_4",
+            Phase::fournier_forand(1.1, 4.0).unwrap(),
+            Phase::fournier_forand(1.1, 4.0).unwrap(),
         ),
         (
             "particle_0.01_0.01",

@@ -107,7 +107,7 @@ pub(crate) fn run_c(
 
 /// What each C measurement is, for the tables and the chart:
 /// `(key, family, label, is a cos θ sampler)`.
-pub(crate) const C_KEYS: [(&str, &str, &str, bool); 29] = [
+pub(crate) const C_KEYS: [(&str, &str, &str, bool); 34] = [
     (
         "iso_dir.sk",
         "isotropic",
@@ -230,6 +230,36 @@ pub(crate) const C_KEYS: [(&str, &str, &str, bool); 29] = [
         true,
     ),
     (
+        "two_lobe_cos.sk",
+        "HG",
+        "two-lobe HG (0.8, −0.3, w 0.9), sk_phase_sample_cos (exact inverse)",
+        true,
+    ),
+    (
+        "two_lobe_cos.sk_lobe",
+        "HG",
+        "two-lobe HG (0.8, −0.3, w 0.9), sk_phase_sample_cos_lobe",
+        true,
+    ),
+    (
+        "two_lobe_cos.c",
+        "HG",
+        "peer: two HG lobes chosen by one uniform, inline C",
+        true,
+    ),
+    (
+        "ff_cos.sk",
+        "FF",
+        "Fournier–Forand b 0.0183, n 1.1, sk_phase_sample_cos",
+        true,
+    ),
+    (
+        "ff_cos.cycles",
+        "FF",
+        "peer: Cycles' Fournier–Forand (20 Newton steps, f32), inline C",
+        true,
+    ),
+    (
         "draine_0.5_1.sk",
         "Draine",
         "Draine g = 0.5, α = 1, sk_phase_sample_cos",
@@ -311,7 +341,8 @@ pub(crate) fn c_tables(c: &std::collections::BTreeMap<String, (f64, f64)>, p: &P
         .unwrap();
     let hg_rust = p.hg.0 / p.hg.1;
     let d = |k: &str| r(&format!("draine_{k}.sk"), &format!("draine_{k}.eq6"));
-    let rows: [(String, String, bool); 9] = [
+    let two = |k: &str| r(&format!("two_lobe_cos.{k}"), "two_lobe_cos.c");
+    let rows: [(String, String, bool); 11] = [
         ("`sk_phase_sample_dir` HG g = 0.7 ≤ 1.15× pbrt-v4 inline C".into(),
          format!("{:.2}× ({:.1} vs {:.1} ns)", r("hg_dir.sk", "hg_dir.pbrt"), ns("hg_dir.sk"), ns("hg_dir.pbrt")),
          r("hg_dir.sk", "hg_dir.pbrt") <= 1.15),
@@ -333,6 +364,12 @@ pub(crate) fn c_tables(c: &std::collections::BTreeMap<String, (f64, f64)>, p: &P
         ("Draine `sk_phase_sample_cos` ≤ 1.3× eq. 6 inline C (g 0.5, α 1; g 0.9, α 10), ≤ 1.5× (α 250, 1000)".into(),
          format!("{:.2}×, {:.2}×; {:.2}×, {:.2}×", d("0.5_1"), d("0.9_10"), d("0.3_250"), d("0.01_1000")),
          d("0.5_1") <= 1.3 && d("0.9_10") <= 1.3 && d("0.3_250") <= 1.5 && d("0.01_1000") <= 1.5),
+        ("two-lobe HG ≤ 1.3× two HG lobes chosen by one uniform, inline C (issue 15): by lobe; exact inverse".into(),
+         format!("{:.2}× ({:.1} vs {:.1} ns); {:.2}×", two("sk_lobe"), ns("two_lobe_cos.sk_lobe"), ns("two_lobe_cos.c"), two("sk")),
+         two("sk_lobe") <= 1.3),
+        ("Fournier–Forand `sk_phase_sample_cos` ≤ 1.5× Cycles' sampler inline C (issue 15)".into(),
+         format!("{:.2}× ({:.0} vs {:.0} ns; max error {:.1e} vs {:.1e})", r("ff_cos.sk", "ff_cos.cycles"), ns("ff_cos.sk"), ns("ff_cos.cycles"), c["ff_cos.sk"].1, c["ff_cos.cycles"].1),
+         r("ff_cos.sk", "ff_cos.cycles") <= 1.5),
         ("`sk_phase_sample_dir` isotropic ≤ 1.0× the inline-C isotropic direction".into(),
          format!("{:.2}× ({:.1} vs {:.1} ns)", r("iso_dir.sk", "iso_dir.c"), ns("iso_dir.sk"), ns("iso_dir.c")),
          r("iso_dir.sk", "iso_dir.c") <= 1.0),

@@ -37,7 +37,7 @@ pub(crate) fn csv(es: &[Entry]) -> String {
 }
 
 /// The families, one chart panel each: `(family, title, y-axis label, y range)`.
-pub(crate) const PANELS: [(&str, &str, &str, (f64, f64)); 6] = [
+pub(crate) const PANELS: [(&str, &str, &str, (f64, f64)); 7] = [
     ("Rayleigh", "Rayleigh", "max |cos θ − exact|", (1e-9, 1.0)),
     (
         "HG",
@@ -63,6 +63,12 @@ pub(crate) const PANELS: [(&str, &str, &str, (f64, f64)); 6] = [
         "Mie, water droplet 10 µm at 550 nm",
         "max |F_Mie(μ(u)) − u|",
         (1e-7, 1.0),
+    ),
+    (
+        "FF",
+        "Fournier–Forand (through the C ABI)",
+        "max |cos θ − exact|",
+        (1e-9, 1e-2),
     ),
 ];
 
@@ -114,7 +120,8 @@ pub(crate) fn short(name: &str) -> String {
 /// numbered and named under its panel.
 pub(crate) fn svg(es: &[Entry]) -> String {
     let (pw, ph, gap_x, gap_y) = (470.0, 330.0, 110.0, 150.0);
-    let (w, h) = (2.0 * pw + gap_x + 90.0, 3.0 * (ph + gap_y) + 20.0);
+    let rows = PANELS.len().div_ceil(2) as f64;
+    let (w, h) = (2.0 * pw + gap_x + 90.0, rows * (ph + gap_y) + 20.0);
     let mut s = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"9\">\n\
          <rect width=\"{w}\" height=\"{h}\" fill=\"white\"/>\n"
@@ -146,7 +153,7 @@ pub(crate) fn svg(es: &[Entry]) -> String {
     s
 }
 
-pub(crate) const COLORS: [(&str, &str); 7] = [
+pub(crate) const COLORS: [(&str, &str); 8] = [
     ("Rayleigh", "#1f77b4"),
     ("HG", "#2ca02c"),
     ("Draine", "#d62728"),
@@ -154,6 +161,7 @@ pub(crate) const COLORS: [(&str, &str); 7] = [
     ("isotropic", "#7f7f7f"),
     ("cbrt", "#ff7f0e"),
     ("Mie", "#17becf"),
+    ("FF", "#8c564b"),
 ];
 
 pub(crate) fn color(family: &str) -> &'static str {

@@ -208,6 +208,11 @@ impl<T: Real> Fog<T> {
     pub fn sample_cos_by_lobe(&self, u: T) -> T {
         let (u, w) = (u.clamp01(), self.w_d);
         if u < w {
+            if self.alpha == T::ZERO {
+                // Draine with α = 0 is HG: the closed form, not Draine's solve
+                // (a two-lobe HG samples both lobes this way).
+                return super::HenyeyGreenstein::from_g(self.g_d).sample_cos(u / w);
+            }
             super::Draine::lobe(self.g_d, self.alpha).sample_cos(u / w)
         } else {
             super::HenyeyGreenstein::from_g(self.g_hg).sample_cos((u - w) / (T::ONE - w))

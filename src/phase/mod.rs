@@ -12,6 +12,8 @@
 
 pub mod draine;
 pub mod fog;
+pub mod fournier_forand;
+pub mod gegenbauer;
 mod hg;
 mod isotropic;
 pub mod particle;
@@ -22,6 +24,8 @@ mod seeds;
 
 pub use draine::Draine;
 pub use fog::{Fog, FogParams, fog_fit};
+pub use fournier_forand::FournierForand;
+pub use gegenbauer::Gegenbauer;
 pub use hg::HenyeyGreenstein;
 pub use isotropic::Isotropic;
 pub use rayleigh::{Rayleigh, RayleighMethod};
@@ -232,6 +236,10 @@ pub enum Phase<T> {
     Draine(Draine<T>) = 5,
     /// The fog mixture of HG and Draine.
     Fog(Fog<T>) = 6,
+    /// The Gegenbauer kernel of Reynolds & McCormick.
+    Gegenbauer(Gegenbauer<T>) = 7,
+    /// Fournier–Forand, for ocean particles.
+    FournierForand(FournierForand<T>) = 8,
 }
 
 impl<T: Real> Phase<T> {
@@ -262,6 +270,19 @@ impl<T: Real> Phase<T> {
                 let (a, b, al, w) = f.params();
                 Phase::Fog(Fog::from_parts(open(a), open(b), c(al), c(w)))
             }
+            Phase::Gegenbauer(k) => match Gegenbauer::new(c(k.alpha()), open(k.g())) {
+                Ok(k) => Phase::Gegenbauer(k),
+                // α just above −½ can round onto it: the nearest valid α.
+                Err(_) => Phase::Gegenbauer(Gegenbauer::from_parts(
+                    U::from_f64(-0.5 + 1e-7),
+                    open(k.g()),
+                )),
+            },
+            Phase::FournierForand(f) => Phase::FournierForand(FournierForand::from_parts(
+                c(f.n()),
+                // ν stays inside (−1, 0) after rounding.
+                U::from_f64(f.nu().to_f64().clamp(-1.0 + 1e-7, -1e-30)),
+            )),
         }
     }
 
@@ -279,7 +300,7 @@ impl<T: Real> Phase<T> {
     /// The discriminant of the last variant (the C layer checks tags against
     /// `1..=LAST_TAG`).
     #[cfg_attr(not(feature = "ffi"), allow(dead_code))]
-    pub(crate) const LAST_TAG: u32 = 6;
+    pub(crate) const LAST_TAG: u32 = 8;
 
     /// Isotropic scattering.
     pub fn isotropic() -> Self {
@@ -314,6 +335,42 @@ impl<T: Real> Phase<T> {
     pub fn fog_diameter(diameter_um: T) -> Result<Self, Error> {
         Fog::from_diameter(diameter_um).map(Phase::Fog)
     }
+    /// The Gegenbauer kernel of Reynolds & McCormick (1980),
+    /// `p ∝ (1 + g² − 2gμ)^{−(α+1)}`, with `−½ < α ≤ 1000` and `|g| < 1`
+    /// (`α = ½` is HG); see [`Gegenbauer`].
+    pub fn gegenbauer(alpha: T, g: T) -> Result<Self, Error> {
+        Gegenbauer::new(alpha, g).map(Phase::Gegenbauer)
+    }
+    /// Fournier–Forand for ocean particles of relative index `n ∈ (1, 1.8]`
+    /// with a Junge size distribution of slope `mu_j ∈ (3, 5)`; see
+    /// [`FournierForand`].
+    pub fn fournier_forand(n: T, mu_j: T) -> Result<Self, Error> {
+        FournierForand::new(n, mu_j).map(Phase::FournierForand)
+    }
+    /// Fournier–Forand from the backscatter fraction `b ∈ (0, ½)` and
+    /// `n ∈ (1, 1.8]`, as oceanographers specify it.
+    pub fn fournier_forand_backscatter(b: T, n: T) -> Result<Self, Error> {
+        FournierForand::from_backscatter(b, n).map(Phase::FournierForand)
+    }
+    /// Two-lobe Henyey–Greenstein, `w HG(g1) + (1 − w) HG(g2)`, for clouds,
+    /// skin and materials: `|g1| < 1`, `|g2| < 1`, `0 ≤ w ≤ 1`, else
+    /// [`Error::Domain`]. It is the fog mixture with a Draine lobe of
+    /// `α = 0` (which is HG), so it shares the fog's samplers: `sample_cos`
+    /// inverts the mixture's CDF exactly (monotone in `u`), and
+    /// [`sample_cos_by_lobe`](Self::sample_cos_by_lobe) picks a lobe with
+    /// the uniform and reuses it (cheaper, not monotone). It reports itself
+    /// as a fog mixture (`g_hg = g2`, `g_d = g1`, `α = 0`, `w_d = w`).
+    ///
+    /// ```
+    /// use scatterkit::{Phase, PhaseFunction};
+    /// // A forward lobe with a weaker backward one.
+    /// let p = Phase::<f64>::two_lobe_hg(0.8, -0.3, 0.9).unwrap();
+    /// assert!((p.mean_cosine() - (0.9 * 0.8 - 0.1 * 0.3)).abs() < 1e-12);
+    /// assert!((p.cdf(p.sample_cos(0.3)) - 0.3).abs() < 1e-12);
+    /// ```
+    pub fn two_lobe_hg(g1: T, g2: T, w: T) -> Result<Self, Error> {
+        Fog::new(g2, g1, T::ZERO, w).map(Phase::Fog)
+    }
 }
 
 macro_rules! dispatch {
@@ -325,6 +382,8 @@ macro_rules! dispatch {
             Phase::HenyeyGreenstein($m) => $e,
             Phase::Draine($m) => $e,
             Phase::Fog($m) => $e,
+            Phase::Gegenbauer($m) => $e,
+            Phase::FournierForand($m) => $e,
         }
     };
 }

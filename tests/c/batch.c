@@ -103,8 +103,8 @@ static void rayleigh_batches(uint32_t m, int k) {
 
 int main(void) {
     int k;
-    sk_phase p[7];
-    sk_phase_f64 q[7];
+    sk_phase p[10];
+    sk_phase_f64 q[10];
     fill();
     sk_phase_isotropic(&p[0]), sk_phase_isotropic_f64(&q[0]);
     sk_phase_rayleigh(&p[1]), sk_phase_rayleigh_f64(&q[1]);
@@ -113,7 +113,10 @@ int main(void) {
     sk_phase_draine(0.5f, 1.0f, &p[4]), sk_phase_draine_f64(0.5, 1.0, &q[4]);
     sk_phase_fog_diameter(2.0f, &p[5]), sk_phase_fog_diameter_f64(2.0, &q[5]);
     sk_phase_rayleigh_depolarized(0.03f, &p[6]), sk_phase_rayleigh_depolarized_f64(0.03, &q[6]);
-    for (k = 0; k < 7; k++) phase_batches(&p[k], &q[k], k);
+    sk_phase_two_lobe_hg(0.8f, -0.3f, 0.9f, &p[7]), sk_phase_two_lobe_hg_f64(0.8, -0.3, 0.9, &q[7]);
+    sk_phase_gegenbauer(-0.25f, 0.7f, &p[8]), sk_phase_gegenbauer_f64(-0.25, 0.7, &q[8]);
+    sk_phase_fournier_forand(1.1f, 4.0f, &p[9]), sk_phase_fournier_forand_f64(1.1, 4.0, &q[9]);
+    for (k = 0; k < 10; k++) phase_batches(&p[k], &q[k], k);
     for (k = SK_RAYLEIGH_REJECT_CUBE; k <= SK_RAYLEIGH_TABLE; k++) rayleigh_batches((uint32_t)k, k);
     printf("%d passed, %d failed\n", passed, failed);
     return failed;

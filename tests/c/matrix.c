@@ -101,6 +101,24 @@ static void phase_constructors(void) {
         CHECK(sk_phase_fog(0.5f, 0.5f, 1.0f, f, &p) == (f >= 0.0f && f <= 1.0f ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_fog_f64(d, 0.5, 1.0, 0.5, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_fog_f64(0.5, 0.5, 1.0, d, &q) == (d >= 0.0 && d <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_two_lobe_hg(f, 0.5f, 0.5f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_two_lobe_hg(0.5f, f, 0.5f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_two_lobe_hg(0.5f, -0.5f, f, &p) == (f >= 0.0f && f <= 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_two_lobe_hg_f64(d, 0.5, 0.5, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_two_lobe_hg_f64(0.5, d, 0.5, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_two_lobe_hg_f64(0.5, -0.5, d, &q) == (d >= 0.0 && d <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fournier_forand(f, 4.0f, &p) == (f > 1.0f && f <= 1.8f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fournier_forand(1.1f, f, &p) == (f > 3.0f && f < 5.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fournier_forand_f64(d, 4.0, &q) == (d > 1.0 && d <= 1.8 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fournier_forand_f64(1.1, d, &q) == (d > 3.0 && d < 5.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fournier_forand_backscatter(f, 1.1f, &p) == (f > 0.0f && f < 0.5f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fournier_forand_backscatter(0.02f, f, &p) == (f > 1.0f && f <= 1.8f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fournier_forand_backscatter_f64(d, 1.1, &q) == (d > 0.0 && d < 0.5 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_fournier_forand_backscatter_f64(0.02, d, &q) == (d > 1.0 && d <= 1.8 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_gegenbauer(f, 0.5f, &p) == (f > -0.5f && f <= 1000.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_gegenbauer(0.5f, f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_gegenbauer_f64(d, 0.5, &q) == (d > -0.5 && d <= 1000.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_gegenbauer_f64(0.5, d, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_fog_diameter(f, &p) == (f > 0.0f && f <= 50.0f ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_fog_diameter_f64(d, &q) == (d > 0.0 && d <= 50.0 ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_rayleigh_depolarized(f, &p) == (f >= 0.0f && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
@@ -117,6 +135,14 @@ static void phase_constructors(void) {
     CHECK(sk_phase_cornette_shanks(0.1f, NULL) == SK_ERR_NULL && sk_phase_cornette_shanks_f64(0.1, NULL) == SK_ERR_NULL);
     CHECK(sk_phase_fog(0.1f, 0.1f, 1, 0.5f, NULL) == SK_ERR_NULL && sk_phase_fog_f64(0.1, 0.1, 1, 0.5, NULL) == SK_ERR_NULL);
     CHECK(sk_phase_fog_diameter(2, NULL) == SK_ERR_NULL && sk_phase_fog_diameter_f64(2, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_fournier_forand(1.1f, 4.0f, NULL) == SK_ERR_NULL && sk_phase_fournier_forand_f64(1.1, 4.0, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_fournier_forand_backscatter(0.02f, 1.1f, NULL) == SK_ERR_NULL &&
+          sk_phase_fournier_forand_backscatter_f64(0.02, 1.1, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_fournier_forand_backscatter_f64(0.0183, 1.1, &q) == SK_OK && fabs(sk_phase_cdf_f64(&q, 0.0) - 0.0183) < 1e-12);
+    CHECK(sk_phase_gegenbauer(0.5f, 0.3f, NULL) == SK_ERR_NULL && sk_phase_gegenbauer_f64(0.5, 0.3, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_gegenbauer_f64(0.5, 0.3, &q) == SK_OK && fabs(sk_phase_mean_cosine_f64(&q) - 0.3) < 1e-10);
+    CHECK(sk_phase_two_lobe_hg(0.8f, -0.3f, 0.9f, NULL) == SK_ERR_NULL && sk_phase_two_lobe_hg_f64(0.8, -0.3, 0.9, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_two_lobe_hg_f64(0.8, -0.3, 0.9, &q) == SK_OK && fabs(sk_phase_mean_cosine_f64(&q) - 0.69) < 1e-12);
     CHECK(sk_phase_rayleigh_depolarized(0.1f, NULL) == SK_ERR_NULL && sk_phase_rayleigh_depolarized_f64(0.1, NULL) == SK_ERR_NULL);
     CHECK(sk_phase_particle(2, 0.1f, NULL) == SK_ERR_NULL && sk_phase_particle_f64(2, 0.1, NULL) == SK_ERR_NULL);
 }
@@ -149,6 +175,12 @@ static void phase_params(void) {
     sk_phase_fog(0.9f, 0.2f, 10.0f, 0.3f, &p);
     CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_FOG && pp.count == 4 && pp.params[0] == 0.9f &&
           pp.params[1] == 0.2f && pp.params[2] == 10.0f && pp.params[3] == 0.3f);
+    sk_phase_fournier_forand_f64(1.1, 4.0, &q);
+    CHECK(sk_phase_get_params_f64(&q, &qp) == SK_OK && qp.model == SK_PHASE_FOURNIER_FORAND && qp.count == 3 &&
+          qp.params[0] == 1.1 && qp.params[1] == -0.5 && fabs(qp.params[2] - sk_phase_cdf_f64(&q, 0.0)) < 1e-12);
+    sk_phase_gegenbauer(-0.25f, 0.7f, &p);
+    CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_GEGENBAUER && pp.count == 2 && pp.params[0] == -0.25f &&
+          pp.params[1] == 0.7f);
     sk_phase_draine_f64(-0.25, 1000.0, &q);
     CHECK(sk_phase_get_params_f64(&q, &qp) == SK_OK && qp.model == SK_PHASE_DRAINE && qp.params[0] == -0.25 &&
           qp.params[1] == 1000.0);

@@ -1,0 +1,424 @@
+//! The Fournier–Forand phase function of ocean particles (G. R. Fournier,
+//! J. L. Forand, "Analytic phase function for ocean water", Proc. SPIE 2258,
+//! 1994; with the CDF of Fournier & Jonasz, Proc. SPIE 3761, 1999): for
+//! particles of relative refractive index `n` with a Junge (hyperbolic) size
+//! distribution of slope `μ_J`, `ν = (3 − μ_J)/2 ∈ (−1, 0)`,
+//! `δ = 4 sin²(θ/2) / (3(n − 1)²)`,
+//!
+//! `p = [ν(1−δ) − (1−δ^ν) + (δ(1−δ^ν) − ν(1−δ)) / sin²(θ/2)] / (4π (1−δ)² δ^ν)
+//!      + (δ₁₈₀^{−ν} − 1)/(δ₁₈₀ − 1) (3μ² − 1)/(16π)`.
+//!
+//! Its CDF from the forward direction is
+//! `F_fwd = [1 − δ^{ν+1} − (1 − δ^ν) s] / ((1 − δ) δ^ν) + c μ(1 − μ²)/8`,
+//! `s = sin²(θ/2)`, `c = (δ₁₈₀^{−ν} − 1)/(δ₁₈₀ − 1)`. As published it divides
+//! `0/0` at `δ = 1` (Cycles switches to a Taylor expansion within 10⁻³ of
+//! it) and its numerator cancels there. Rearranged (`1 − s = (1 + μ)/2`):
+//!
+//! * `P(cos θ ≤ μ) = (1 + μ)/2 · R(δ) − c μ(1 − μ²)/8` with
+//!   `R(δ) = (δ^{−ν} − 1)/(δ − 1) = expm1(−ν ln δ)/expm1(ln δ)`, smooth
+//!   through `δ = 1` (`R → −ν`), used where `F ≤ ½` (its second term is
+//!   at most a sixteenth of the first, so it cancels less than a bit);
+//! * `F_fwd = [δ^{−ν}(1 − s) − (δ − s)]/(1 − δ) + c μ(1 − μ²)/8`, whose
+//!   terms are all positive as `θ → 0` (`δ^{−ν}` dominates `δ`), used where
+//!   `F > ½` (and as `1 − (1 − s) R(δ)` within ½ of `δ = 1`).
+//!
+//! The density is `p = (dF/dμ)/(2π)` from the same forms.
+//!
+//! Sampling solves `F(μ) = u` in f64 in the tail of `min(u, 1 − u)`, in
+//! `1 + μ` or `s = (1 − μ)/2`, by Newton steps kept inside a shrinking bracket
+//! (bisection where a step leaves it), seeded from the forward power law
+//! `F_fwd ≈ δ^{−ν}`.
+
+use super::PhaseFunction;
+use crate::error::Error;
+use crate::real::Real;
+
+/// Fournier–Forand with relative index `n ∈ (1, 1.8]` and Junge slope
+/// `μ_J ∈ (3, 5)` (ocean particles: `n` 1.02–1.2, `μ_J` 3.5–4.5).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FournierForand<T> {
+    n: T,
+    nu: T,
+    /// The f64 constants every evaluation needs, computed once, as bit
+    /// patterns in u32 halves: the f32 phase must keep 4-byte alignment
+    /// (the C layer's `sk_phase` is `uint32_t[32]`).
+    ff: [u32; 8],
+}
+
+impl<T: Real> FournierForand<T> {
+    /// The largest relative index accepted: below it `δ₉₀ > 1`, and the
+    /// backscatter parameterisation is one to one.
+    pub const MAX_N: f64 = 1.8;
+
+    /// From the relative refractive index `n ∈ (1, 1.8]` and the Junge
+    /// slope `mu_j ∈ (3, 5)`. [`Error::Domain`] otherwise (NaN fails).
+    pub fn new(n: T, mu_j: T) -> Result<Self, Error> {
+        let (nf, mf) = (n.to_f64(), mu_j.to_f64());
+        if !(nf > 1.0 && nf <= Self::MAX_N && mf > 3.0 && mf < 5.0) {
+            return Err(Error::Domain);
+        }
+        Ok(Self::from_parts(n, T::from_f64(0.5 * (3.0 - mf))))
+    }
+
+    /// From the backscatter fraction `b = b_b/b ∈ (0, ½)` and `n ∈ (1,
+    /// 1.8]`, as oceanographers specify it: `ν = −ln(2b(δ₉₀ − 1) + 1) /
+    /// ln δ₉₀` (the backscatter fraction is `R(δ₉₀)/2`). [`Error::Domain`]
+    /// outside the ranges, or where `ν` would leave `(−1, 0)`.
+    pub fn from_backscatter(b: T, n: T) -> Result<Self, Error> {
+        let (bf, nf) = (b.to_f64(), n.to_f64());
+        if !(bf > 0.0 && bf < 0.5 && nf > 1.0 && nf <= Self::MAX_N) {
+            return Err(Error::Domain);
+        }
+        let d90 = 2.0 / (3.0 * (nf - 1.0) * (nf - 1.0));
+        let nu = -libm::log1p(2.0 * bf * (d90 - 1.0)) / libm::log(d90);
+        if !(nu > -1.0 && nu < 0.0) {
+            return Err(Error::Domain);
+        }
+        Ok(Self::from_parts(n, T::from_f64(nu)))
+    }
+
+    /// Without checks (the caller validated `n` and `ν`).
+    pub(crate) fn from_parts(n: T, nu: T) -> Self {
+        FournierForand {
+            n,
+            nu,
+            ff: Ff::new(n.to_f64(), nu.to_f64()).to_bits(),
+        }
+    }
+    /// The relative refractive index `n`.
+    pub fn n(&self) -> T {
+        self.n
+    }
+    /// `ν = (3 − μ_J)/2`.
+    pub fn nu(&self) -> T {
+        self.nu
+    }
+    /// The backscatter fraction `R(δ₉₀)/2`.
+    pub fn backscatter(&self) -> T {
+        T::from_f64(Ff::from_bits(self.ff).f0)
+    }
+}
+
+/// The model's constants in f64.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Ff {
+    nu: f64,
+    /// `δ = k s`, `k = 4/(3(n − 1)²)`.
+    k: f64,
+    /// `c = (δ₁₈₀^{−ν} − 1)/(δ₁₈₀ − 1) = R(δ₁₈₀)`.
+    c: f64,
+    /// `F(0) = R(δ₉₀)/2`, the backscatter fraction.
+    f0: f64,
+}
+
+impl Ff {
+    fn to_bits(self) -> [u32; 8] {
+        let mut out = [0u32; 8];
+        for (pair, v) in out
+            .chunks_exact_mut(2)
+            .zip([self.nu, self.k, self.c, self.f0])
+        {
+            let b = v.to_bits();
+            if let [lo, hi] = pair {
+                (*lo, *hi) = (b as u32, (b >> 32) as u32);
+            }
+        }
+        out
+    }
+    fn from_bits(b: [u32; 8]) -> Ff {
+        let f = |i: usize| f64::from_bits(u64::from(b[2 * i]) | (u64::from(b[2 * i + 1]) << 32));
+        Ff {
+            nu: f(0),
+            k: f(1),
+            c: f(2),
+            f0: f(3),
+        }
+    }
+    fn new(n: f64, nu: f64) -> Ff {
+        let k = 4.0 / (3.0 * (n - 1.0) * (n - 1.0));
+        let mut f = Ff {
+            nu,
+            k,
+            c: 0.0,
+            f0: 0.0,
+        };
+        f.c = f.r(k);
+        f.f0 = 0.5 * f.r(0.5 * k);
+        f
+    }
+    /// `R(δ) = (δ^{−ν} − 1)/(δ − 1)`, by `expm1` of `ln δ`: no cancellation
+    /// near `δ = 1`, where it tends to `−ν`. `R(0) = 1`.
+    fn r(&self, delta: f64) -> f64 {
+        if delta <= 0.0 {
+            return 1.0;
+        }
+        let l = libm::log(delta);
+        if l == 0.0 {
+            return -self.nu;
+        }
+        libm::expm1(-self.nu * l) / libm::expm1(l)
+    }
+    /// `R'(δ)`: `[−ν δ^{−ν−1}(δ − 1) − (δ^{−ν} − 1)] / (δ − 1)²`, whose
+    /// numerator cancels to second order near `δ = 1`: there the series.
+    fn r_prime(&self, delta: f64) -> f64 {
+        let nu = self.nu;
+        let e = delta - 1.0;
+        if e.abs() < 1e-3 {
+            return self.near_one(e).1;
+        }
+        let p = libm::pow(delta, -nu);
+        (-nu * p / delta * e - (p - 1.0)) / (e * e)
+    }
+    /// `(R, R')` at `δ = 1 + e`, `|e| < 10⁻³`, from `δ^{−ν} = Σ C(−ν, j) e^j`:
+    /// `R = Σ_{j≥1} C(−ν, j) e^{j−1}`, `R' = Σ_{j≥2} (j − 1) C(−ν, j) e^{j−2}`;
+    /// eight terms leave less than 10⁻¹⁸ (`|C(−ν, j)| ≤ 1`).
+    fn near_one(&self, e: f64) -> (f64, f64) {
+        let mut b = -self.nu; // C(−ν, 1)
+        let (mut r, mut rp, mut pow) = (0.0, 0.0, 1.0); // pow = e^{j−1}
+        for j in 1..=8 {
+            let jf = j as f64;
+            r += b * pow;
+            if j >= 2 {
+                rp += (jf - 1.0) * b * pow / e;
+            }
+            b *= (-self.nu - jf) / (jf + 1.0);
+            pow *= e;
+        }
+        (
+            r,
+            if e == 0.0 {
+                self.nu * (self.nu + 1.0) / 2.0
+            } else {
+                rp
+            },
+        )
+    }
+    /// `P(cos θ ≤ μ)` for `μ < 0`: `(1 + μ)/2 · R(δ) − c μ(1 − μ²)/8`.
+    fn lower(&self, mu: f64) -> f64 {
+        let s = 0.5 * (1.0 - mu);
+        (1.0 + mu) * (0.5 * self.r(self.k * s) - self.c / 8.0 * mu * (1.0 - mu))
+    }
+    /// `F_fwd = P(cos θ ≥ μ)` as a function of `s = (1 − μ)/2 ≤ ½`:
+    /// `[δ^{−ν}(1 − s) − (δ − s)]/(1 − δ) + c μ(1 − μ²)/8`; at `s = 0`, 0.
+    fn upper(&self, s: f64) -> f64 {
+        if s <= 0.0 {
+            return 0.0;
+        }
+        let delta = self.k * s;
+        let mu = 1.0 - 2.0 * s;
+        // (δ^{−ν}(1 − s) − (δ − s))/(1 − δ) = 1 − (1 − s) R(δ) rearranged:
+        // the form with positive terms is exact as s → 0.
+        let main = if (delta - 1.0).abs() < 0.5 {
+            1.0 - (1.0 - s) * self.r(delta)
+        } else {
+            (libm::pow(delta, -self.nu) * (1.0 - s) - (delta - s)) / (1.0 - delta)
+        };
+        main + self.c / 2.0 * mu * s * (1.0 - s)
+    }
+    /// `dF/dμ = 2π p` at `μ`: from `F = (1 − s) R(δ) − c μ(1 − μ²)/8` with
+    /// `dδ/dμ = −k/2`, `dF/dμ = R/2 − (1 − s) R'(δ) k/2 − c (1 − 3μ²)/8`
+    /// (`R' < 0`).
+    fn density_mu(&self, mu: f64) -> f64 {
+        let s = 0.5 * (1.0 - mu);
+        let delta = self.k * s;
+        if delta <= 0.0 {
+            // The forward pole (ν < 0): infinite density.
+            return f64::INFINITY;
+        }
+        0.5 * self.r(delta)
+            - (1.0 - s) * self.r_prime(delta) * 0.5 * self.k
+            - self.c / 8.0 * (1.0 - 3.0 * mu * mu)
+    }
+    /// `P(cos θ ≤ μ)` from the form whose value is the smaller tail.
+    fn cdf(&self, mu: f64) -> f64 {
+        let lo = self.lower(mu);
+        if lo <= 0.5 {
+            lo
+        } else {
+            1.0 - self.upper(0.5 * (1.0 - mu))
+        }
+    }
+    /// `(F, F_fwd, dF/dμ)` at `s = (1 − μ)/2`, sharing one `ln δ` and two
+    /// `expm1` between the CDF (both forms) and the density: `F` is exact
+    /// where it is the smaller tail, `F_fwd` where it is.
+    fn eval(&self, s: f64) -> (f64, f64, f64) {
+        let (nu, k, c) = (self.nu, self.k, self.c);
+        let delta = k * s;
+        let mu = 1.0 - 2.0 * s;
+        if delta <= 0.0 {
+            return (1.0, 0.0, f64::INFINITY);
+        }
+        let l = libm::log(delta);
+        let (e1, e2) = (libm::expm1(-nu * l), libm::expm1(l));
+        let (r, rp) = if (delta - 1.0).abs() < 1e-3 {
+            self.near_one(delta - 1.0)
+        } else {
+            (e1 / e2, (-nu * (1.0 + e1) / delta * e2 - e1) / (e2 * e2))
+        };
+        let poly = 0.5 * c * mu * s * (1.0 - s);
+        let lower = (1.0 - s) * r - poly;
+        let upper = if (delta - 1.0).abs() < 0.5 {
+            1.0 - (1.0 - s) * r + poly
+        } else {
+            ((1.0 + e1) * (1.0 - s) - (delta - s)) / (1.0 - delta) + poly
+        };
+        let rho = 0.5 * r - (1.0 - s) * rp * 0.5 * k - c / 8.0 * (1.0 - 3.0 * mu * mu);
+        (lower, upper, rho)
+    }
+    /// The inverse with `sin θ` from the solved variable (`1 + μ` or
+    /// `s`), so that f32 directions keep angles `cos θ` in f32 cannot.
+    fn inverse_sin(&self, u: f64) -> (f64, f64) {
+        if !(u > 0.0 && u < 1.0) {
+            return (
+                if u >= 1.0 {
+                    1.0
+                } else if u <= 0.0 {
+                    -1.0
+                } else {
+                    f64::NAN
+                },
+                0.0,
+            );
+        }
+        let f0 = self.f0;
+        if u <= f0 {
+            // Backward hemisphere, y = 1 + μ ∈ [0, 1]: F rises from 0 to F(0)
+            // nearly in proportion to y (the density varies little there).
+            let fd = |y: f64| {
+                let (f, _, rho) = self.eval(1.0 - 0.5 * y);
+                (f - u, rho)
+            };
+            let y = solve(fd, 0.0, 1.0, u / f0);
+            return (y - 1.0, libm::sqrt((y * (2.0 - y)).max(0.0)));
+        }
+        // Forward hemisphere, in x = ln s: F_fwd ≈ (k s)^{−ν} is nearly a
+        // power law, so its logarithm is nearly linear in x and Newton
+        // converges in a few steps from the power law's own inverse. Each
+        // tail in its own form: ln u − ln F (u ≤ ½) or ln F_fwd − ln(1 − u).
+        let s = if u <= 0.5 {
+            let lu = libm::log(u);
+            let fd = |x: f64| {
+                let s = libm::exp(x);
+                let (f, _, rho) = self.eval(s);
+                (lu - libm::log(f), 2.0 * s * rho / f)
+            };
+            self.solve_log(fd, 1.0 - u)
+        } else {
+            let t = 1.0 - u;
+            let lt = libm::log(t);
+            let fd = |x: f64| {
+                let s = libm::exp(x);
+                let (_, g, rho) = self.eval(s);
+                (libm::log(g) - lt, 2.0 * s * rho / g)
+            };
+            self.solve_log(fd, t)
+        };
+        (1.0 - 2.0 * s, 2.0 * libm::sqrt((s * (1.0 - s)).max(0.0)))
+    }
+    /// `s ∈ [0, ½]` from Newton in `x = ln s` on an increasing function,
+    /// seeded by the forward power law at forward mass `t`:
+    /// `s ≈ t^{−1/ν}/k`. Below `e^{−745}` (a forward lobe beyond f64),
+    /// `s = 0`.
+    fn solve_log(&self, fd: impl Fn(f64) -> (f64, f64), t: f64) -> f64 {
+        const LO: f64 = -745.0;
+        let hi = -core::f64::consts::LN_2;
+        let seed = (-libm::log(t) / self.nu - libm::log(self.k)).clamp(LO, hi);
+        let x = solve(fd, LO, hi, seed);
+        // A root at the bracket's floor: the lobe lies below f64's range.
+        if x <= LO + 1.0 { 0.0 } else { libm::exp(x) }
+    }
+    /// The inverse: `μ` with `P(cos θ ≤ μ) = u`, solved in the tail of the
+    /// smaller of `u` and `1 − u` (so that the target carries no rounding:
+    /// `1 − 0.001` would cost 10⁻¹⁶ in the target and 5·10⁻¹⁴ in `μ` where
+    /// the density is 10⁻³).
+    fn inverse(&self, u: f64) -> f64 {
+        self.inverse_sin(u).0
+    }
+}
+
+/// The root in `[lo, hi]` of an increasing `f` with `f(lo) ≤ 0 ≤ f(hi)`:
+/// Newton from `x`, kept inside the shrinking bracket (bisection where a
+/// step leaves it or the slope is not finite and positive), 100 steps at
+/// most, stopping when a step or the bracket is within 4 ulp.
+fn solve(fd: impl Fn(f64) -> (f64, f64), lo: f64, hi: f64, x: f64) -> f64 {
+    let (mut lo, mut hi) = (lo, hi);
+    let mut x = if x > lo && x < hi { x } else { 0.5 * (lo + hi) };
+    for _ in 0..100 {
+        let (r, d) = fd(x);
+        if r == 0.0 {
+            return x;
+        }
+        if r < 0.0 {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        let newton = x - r / d;
+        let next = if d > 0.0 && d.is_finite() && newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        // Converged: a step of a few ulp (Newton then oscillates in the
+        // last bit), or a bracket that narrow.
+        let tol = 4.0 * f64::EPSILON * x.abs().max(1e-300);
+        if (next - x).abs() <= tol || hi - lo <= tol {
+            return next;
+        }
+        x = next;
+    }
+    x
+}
+
+impl<T: Real> PhaseFunction<T> for FournierForand<T> {
+    fn pdf(&self, cos_theta: T) -> T {
+        let mu = cos_theta.to_f64();
+        if mu.is_nan() {
+            return T::NAN;
+        }
+        let k = Ff::from_bits(self.ff);
+        T::from_f64(k.density_mu(mu.clamp(-1.0, 1.0)) / core::f64::consts::TAU)
+    }
+    fn cdf(&self, cos_theta: T) -> T {
+        let mu = cos_theta.to_f64();
+        if mu.is_nan() {
+            return T::NAN;
+        }
+        let mu = mu.clamp(-1.0, 1.0);
+        let k = Ff::from_bits(self.ff);
+        T::from_f64(k.cdf(mu).clamp(0.0, 1.0))
+    }
+    fn sample_cos(&self, u: T) -> T {
+        self.sample_cos_sin(u).0
+    }
+    /// `sin θ` from the solved variable in f64, so f32 directions keep
+    /// the forward lobe's angles that `cos θ` in f32 cannot resolve.
+    fn sample_cos_sin(&self, u: T) -> (T, T) {
+        let u = u.clamp01().to_f64();
+        if u.is_nan() {
+            return (T::NAN, T::NAN);
+        }
+        let k = Ff::from_bits(self.ff);
+        let (mu, sin) = k.inverse_sin(u);
+        (T::from_f64(mu), T::from_f64(sin))
+    }
+    /// `⟨μ⟩ = ∫₀¹ μ(u) du` by Simpson's rule over 4096 intervals of `u`
+    /// (the inverse is smooth in `u` but for its forward end, where `μ → 1`).
+    fn mean_cosine(&self) -> T {
+        let k = Ff::from_bits(self.ff);
+        let n = 4096usize;
+        let h = 1.0 / n as f64;
+        let mut sum = 0.0;
+        for i in 0..=n {
+            let c = if i == 0 || i == n {
+                1.0
+            } else if i % 2 == 1 {
+                4.0
+            } else {
+                2.0
+            };
+            sum += c * k.inverse(i as f64 * h);
+        }
+        T::from_f64(sum * h / 3.0)
+    }
+}

@@ -1,0 +1,164 @@
+//! Two-lobe Henyey–Greenstein (`Phase::two_lobe_hg`, `sk_phase_two_lobe_hg`):
+//! the exact inverse against a double-double bisection of the mixture's CDF
+//! over the whole accepted domain (|g| up to 0.999, every weight), chi² of
+//! both samplers over the sphere, and the mean cosine.
+//!
+//! Bounds: f32 `max |cos θ error| ≤ 2·10⁻⁷`; f64 `≤ 10⁻¹⁴` where the
+//! density of `μ` at the answer is at least 0.1, and `≤ 4ε / p_μ + 10⁻¹⁴`
+//! everywhere (ε = 2⁻⁵³): where the two lobes point apart and the density
+//! between them is small, `μ(u)` amplifies the rounding of `u ↦ F(μ)` (a
+//! few ε) by `1/p_μ`, and an f64 residual cannot do better (issue 15 asks
+//! for 10⁻¹⁴ everywhere; not met there). The first bounds tried, `10⁻¹⁶ /
+//! p_μ + 10⁻¹⁴` and `10⁻¹⁴` where `p_μ ≥ 0.01`, failed by a factor 2 at
+//! `(g1, g2, w) = (−0.999, 0.99, ½)`, `u ≈ ½` (error 2.0·10⁻¹⁴ at
+//! `p_μ = 0.011`): the rounding there is 1.9 ε, not 1.
+
+mod common;
+
+use common::chi2::{chi2_directions, threshold};
+use common::{CHI2_SAMPLES, dd, rng};
+use scatterkit::{Phase, PhaseFunction, Real, Vec3};
+
+fn u_values() -> Vec<f64> {
+    let mut u: Vec<f64> = (0..=128).map(|i| i as f64 / 128.0).collect();
+    for k in [1e-12, 1e-9, 1e-6, 1e-4, 1e-3, 0.01] {
+        u.push(k);
+        u.push(1.0 - k);
+    }
+    u.sort_by(f64::total_cmp);
+    u
+}
+
+const GS: [f64; 13] = [
+    -0.999, -0.99, -0.9, -0.5, -0.1, -1e-3, 0.0, 1e-3, 0.1, 0.5, 0.9, 0.99, 0.999,
+];
+const WS: [f64; 7] = [0.0, 1e-3, 0.1, 0.5, 0.9, 0.999, 1.0];
+
+#[test]
+fn inverse_is_accurate_over_the_whole_domain() {
+    let (mut e32, mut e64_conditioned, mut e64_any) = (0.0f64, 0.0f64, (0.0f64, [0.0; 3]));
+    // The largest error beyond 10⁻¹⁴, times the density, in units of ε = 2⁻⁵³.
+    let mut worst_ratio = 0.0f64;
+    let t = |x: f64| x as f32 as f64;
+    for g1 in GS {
+        for g2 in GS {
+            for w in WS {
+                let p = Phase::<f64>::two_lobe_hg(g1, g2, w).unwrap();
+                let p32 = Phase::<f32>::two_lobe_hg(g1 as f32, g2 as f32, w as f32).unwrap();
+                let mut prev = -2.0;
+                for u in u_values() {
+                    // dd::fog_inverse(g_hg, g_d, α, w_d): lobe 1 is the "Draine" lobe.
+                    let exact = dd::fog_inverse(g2, g1, 0.0, w, u);
+                    let got = p.sample_cos(u);
+                    assert!((-1.0..=1.0).contains(&got), "{g1} {g2} {w} {u}: {got}");
+                    assert!(got >= prev, "not monotone at {g1} {g2} {w} {u}");
+                    prev = got;
+                    let err = (got - exact).abs();
+                    let density = std::f64::consts::TAU * p.pdf(exact);
+                    worst_ratio =
+                        worst_ratio.max((err - 1e-14).max(0.0) * density / f64::EPSILON * 2.0);
+                    assert!(
+                        err <= 4.0 * f64::EPSILON / 2.0 / density + 1e-14,
+                        "{g1} {g2} {w} u {u}: error {err:e}, density {density:e}"
+                    );
+                    if density >= 0.1 {
+                        e64_conditioned = e64_conditioned.max(err);
+                    }
+                    if err > e64_any.0 {
+                        e64_any = (err, [g1, g2, w]);
+                    }
+                    let u32 = u as f32;
+                    let ex32 = dd::fog_inverse(t(g2), t(g1), 0.0, t(w), u32 as f64);
+                    let got32 = p32.sample_cos(u32);
+                    assert!(!got32.is_nan() && got32.abs() <= 1.0);
+                    e32 = e32.max((got32 as f64 - ex32).abs());
+                }
+            }
+        }
+    }
+    println!(
+        "two-lobe HG: f32 {e32:.1e}; f64 {e64_conditioned:.1e} where p_μ ≥ 0.1, {:.1e} anywhere (at g1, g2, w = {:?}); (error − 10⁻¹⁴) × p_μ ≤ {worst_ratio:.2} ε",
+        e64_any.0, e64_any.1
+    );
+    assert!(e32 <= 2e-7, "f32 {e32:e}");
+    assert!(e64_conditioned <= 1e-14, "f64 {e64_conditioned:e}");
+}
+
+#[test]
+fn mean_cosine_is_the_weighted_mean() {
+    for g1 in GS {
+        for g2 in GS {
+            for w in WS {
+                let p = Phase::<f64>::two_lobe_hg(g1, g2, w).unwrap();
+                let want = w * g1 + (1.0 - w) * g2;
+                assert!((p.mean_cosine() - want).abs() < 1e-12, "{g1} {g2} {w}");
+            }
+        }
+    }
+}
+
+#[test]
+fn chi2_of_both_samplers() {
+    fn check<T: Real>(seed: u64) {
+        let l = (0.3f64 * 0.3 + 0.25 + 0.81 * 0.81).sqrt();
+        let w_in = Vec3::new(
+            T::from_f64(0.3 / l),
+            T::from_f64(-0.5 / l),
+            T::from_f64(0.81 / l),
+        );
+        let w64 = [w_in.x.to_f64(), w_in.y.to_f64(), w_in.z.to_f64()];
+        for (k, (g1, g2, w)) in [
+            (0.8, -0.3, 0.9),
+            (0.99, -0.9, 0.5),
+            (0.2, 0.6, 0.3),
+            (-0.7, 0.95, 0.02),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let p =
+                Phase::<T>::two_lobe_hg(T::from_f64(g1), T::from_f64(g2), T::from_f64(w)).unwrap();
+            let p64: Phase<f64> = p.cast();
+            let pdf = |mu: f64| p64.pdf(mu);
+            let mut r = rng(seed + k as u64);
+            let res = chi2_directions(&pdf, w64, CHI2_SAMPLES, || {
+                let (d, _) = p.sample_dir(w_in, T::uniform(&mut r), T::uniform(&mut r));
+                [d.x.to_f64(), d.y.to_f64(), d.z.to_f64()]
+            });
+            assert!(
+                res.passes(),
+                "{g1} {g2} {w} exact inverse: {res:?} ({:.2e})",
+                threshold()
+            );
+            let mut r = rng(seed + 100 + k as u64);
+            let res = chi2_directions(&pdf, w64, CHI2_SAMPLES, || {
+                let mu = p.sample_cos_by_lobe(T::uniform(&mut r));
+                let s = scatterkit::geometry::sin_from_cos(mu);
+                let d =
+                    scatterkit::geometry::direction_about_turns(w_in, mu, s, T::uniform(&mut r));
+                [d.x.to_f64(), d.y.to_f64(), d.z.to_f64()]
+            });
+            assert!(res.passes(), "{g1} {g2} {w} by lobe: {res:?}");
+        }
+    }
+    check::<f32>(9100);
+    check::<f64>(9200);
+}
+
+#[test]
+fn bad_parameters_are_rejected() {
+    for (g1, g2, w) in [
+        (1.0, 0.0, 0.5),
+        (0.0, -1.0, 0.5),
+        (0.5, 0.5, -0.1),
+        (0.5, 0.5, 1.1),
+        (f64::NAN, 0.0, 0.5),
+        (0.0, f64::NAN, 0.5),
+        (0.0, 0.0, f64::NAN),
+    ] {
+        assert!(
+            Phase::<f64>::two_lobe_hg(g1, g2, w).is_err(),
+            "{g1} {g2} {w}"
+        );
+    }
+}

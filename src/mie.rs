@@ -34,6 +34,7 @@
 //!   `b_n` likewise with `m D_n`.
 
 use crate::error::Error;
+use crate::numeric::newton_bracketed;
 
 /// A complex number (f64): the refractive index and the series terms.
 /// `repr(C)`: the C layer's `sk_complex` is the same pair.
@@ -361,32 +362,7 @@ pub fn table_angle(x: f64, j: usize, count: usize) -> f64 {
     }
     let share = |th: f64| w * th / PI + (1.0 - w) * libm::log1p(th * x) / l_pi;
     let slope = |th: f64| w / PI + (1.0 - w) * x / ((1.0 + th * x) * l_pi);
-    // Newton inside a shrinking bracket (share is increasing); bisection
-    // where a step leaves it. 100 steps at most.
-    let (mut lo, mut hi, mut th) = (0.0f64, PI, PI * t);
-    for _ in 0..100 {
-        let r = share(th) - t;
-        if r == 0.0 {
-            break;
-        }
-        if r < 0.0 {
-            lo = th;
-        } else {
-            hi = th;
-        }
-        let next = th - r / slope(th);
-        let next = if next > lo && next < hi {
-            next
-        } else {
-            0.5 * (lo + hi)
-        };
-        if (next - th).abs() <= 1e-15 * th {
-            th = next;
-            break;
-        }
-        th = next;
-    }
-    th
+    newton_bracketed(|th| (share(th) - t, slope(th)), 0.0, PI, PI * t)
 }
 
 /// Table sizes for a sphere of size parameter `x`: `(angles, intervals)`

@@ -147,3 +147,57 @@ pub(crate) fn hermite<T: Real>(data: &[T], n: usize, n_t: T, u: T) -> T {
     let c3 = d0 + d1 - T::TWO * dy;
     (y0 + t * (d0 + t * (c2 + t * c3))).clamp_unit()
 }
+
+/// The root in `[lo, hi]` of an increasing `f` with `f(lo) ≤ 0 ≤ f(hi)`,
+/// `fd(x) = (f(x), f'(x))`: Newton from `x0`, kept inside the shrinking
+/// bracket (bisection where a step leaves it or the slope is not finite and
+/// positive), 100 steps at most, stopping when a step or the bracket is
+/// within 4 ulp of `x` (Newton then oscillates in the last bit).
+pub(crate) fn newton_bracketed(fd: impl Fn(f64) -> (f64, f64), lo: f64, hi: f64, x0: f64) -> f64 {
+    let (mut lo, mut hi) = (lo, hi);
+    let mut x = if x0 > lo && x0 < hi {
+        x0
+    } else {
+        0.5 * (lo + hi)
+    };
+    for _ in 0..100 {
+        let (r, d) = fd(x);
+        if r == 0.0 {
+            return x;
+        }
+        if r < 0.0 {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        let newton = x - r / d;
+        let next = if d > 0.0 && d.is_finite() && newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        let tol = 4.0 * f64::EPSILON * x.abs().max(1e-300);
+        if (next - x).abs() <= tol || hi - lo <= tol {
+            return next;
+        }
+        x = next;
+    }
+    x
+}
+
+/// `∫₀¹ f(u) du` by composite Simpson with `n` (even) intervals.
+pub(crate) fn simpson_unit(f: impl Fn(f64) -> f64, n: usize) -> f64 {
+    let h = 1.0 / n as f64;
+    let mut sum = 0.0;
+    for i in 0..=n {
+        let c = if i == 0 || i == n {
+            1.0
+        } else if i % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        };
+        sum += c * f(i as f64 * h);
+    }
+    sum * h / 3.0
+}

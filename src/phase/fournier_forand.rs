@@ -31,6 +31,7 @@
 
 use super::PhaseFunction;
 use crate::error::Error;
+use crate::numeric::{newton_bracketed, simpson_unit};
 use crate::real::Real;
 
 /// Fournier–Forand with relative index `n ∈ (1, 1.8]` and Junge slope
@@ -288,7 +289,7 @@ impl Ff {
                 let (f, _, rho) = self.eval(1.0 - 0.5 * y);
                 (f - u, rho)
             };
-            let y = solve(fd, 0.0, 1.0, u / f0);
+            let y = newton_bracketed(fd, 0.0, 1.0, u / f0);
             return (y - 1.0, libm::sqrt((y * (2.0 - y)).max(0.0)));
         }
         // Forward hemisphere, in x = ln s: F_fwd ≈ (k s)^{−ν} is nearly a
@@ -323,7 +324,7 @@ impl Ff {
         const LO: f64 = -745.0;
         let hi = -core::f64::consts::LN_2;
         let seed = (-libm::log(t) / self.nu - libm::log(self.k)).clamp(LO, hi);
-        let x = solve(fd, LO, hi, seed);
+        let x = newton_bracketed(fd, LO, hi, seed);
         // A root at the bracket's floor: the lobe lies below f64's range.
         if x <= LO + 1.0 { 0.0 } else { libm::exp(x) }
     }
@@ -334,40 +335,6 @@ impl Ff {
     fn inverse(&self, u: f64) -> f64 {
         self.inverse_sin(u).0
     }
-}
-
-/// The root in `[lo, hi]` of an increasing `f` with `f(lo) ≤ 0 ≤ f(hi)`:
-/// Newton from `x`, kept inside the shrinking bracket (bisection where a
-/// step leaves it or the slope is not finite and positive), 100 steps at
-/// most, stopping when a step or the bracket is within 4 ulp.
-fn solve(fd: impl Fn(f64) -> (f64, f64), lo: f64, hi: f64, x: f64) -> f64 {
-    let (mut lo, mut hi) = (lo, hi);
-    let mut x = if x > lo && x < hi { x } else { 0.5 * (lo + hi) };
-    for _ in 0..100 {
-        let (r, d) = fd(x);
-        if r == 0.0 {
-            return x;
-        }
-        if r < 0.0 {
-            lo = x;
-        } else {
-            hi = x;
-        }
-        let newton = x - r / d;
-        let next = if d > 0.0 && d.is_finite() && newton > lo && newton < hi {
-            newton
-        } else {
-            0.5 * (lo + hi)
-        };
-        // Converged: a step of a few ulp (Newton then oscillates in the
-        // last bit), or a bracket that narrow.
-        let tol = 4.0 * f64::EPSILON * x.abs().max(1e-300);
-        if (next - x).abs() <= tol || hi - lo <= tol {
-            return next;
-        }
-        x = next;
-    }
-    x
 }
 
 impl<T: Real> PhaseFunction<T> for FournierForand<T> {
@@ -406,19 +373,6 @@ impl<T: Real> PhaseFunction<T> for FournierForand<T> {
     /// (the inverse is smooth in `u` but for its forward end, where `μ → 1`).
     fn mean_cosine(&self) -> T {
         let k = Ff::from_bits(self.ff);
-        let n = 4096usize;
-        let h = 1.0 / n as f64;
-        let mut sum = 0.0;
-        for i in 0..=n {
-            let c = if i == 0 || i == n {
-                1.0
-            } else if i % 2 == 1 {
-                4.0
-            } else {
-                2.0
-            };
-            sum += c * k.inverse(i as f64 * h);
-        }
-        T::from_f64(sum * h / 3.0)
+        T::from_f64(simpson_unit(|u| k.inverse(u), 4096))
     }
 }

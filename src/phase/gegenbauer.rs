@@ -25,6 +25,7 @@
 
 use super::PhaseFunction;
 use crate::error::Error;
+use crate::numeric::simpson_unit;
 use crate::real::Real;
 
 /// The Gegenbauer kernel phase function with `α ∈ (−½, 1000]` and
@@ -210,18 +211,5 @@ fn mean_cosine(a: f64, g: f64) -> f64 {
         return 0.0;
     }
     let k = K::new(a, g);
-    let n = 4096usize;
-    let h = 1.0 / n as f64;
-    let mut sum = 0.0;
-    for i in 0..=n {
-        let c = if i == 0 || i == n {
-            1.0
-        } else if i % 2 == 1 {
-            4.0
-        } else {
-            2.0
-        };
-        sum += c * k.inverse(i as f64 * h);
-    }
-    sum * h / 3.0
+    simpson_unit(|u| k.inverse(u), 4096)
 }

@@ -159,7 +159,7 @@ pub fn hg_inverse(g: f64, u: f64) -> f64 {
         .clamp(-1.0, 1.0)
 }
 
-/// Draine's CDF (SPEC §7's cancellation-free form) in double-double.
+/// Draine's CDF (the cancellation-free form of `src/phase/draine.rs`) in double-double.
 pub fn draine_cdf(g: f64, alpha: f64, mu: Dd) -> Dd {
     let one = Dd::new(1.0);
     let gd = Dd::new(g);

@@ -27,7 +27,7 @@
 //! Sampling solves `F(μ) = u` in f64 in the tail of `min(u, 1 − u)`, in
 //! `1 + μ` or `s = (1 − μ)/2`, by Newton steps kept inside a shrinking bracket
 //! (bisection where a step leaves it), seeded from the forward power law
-//! `F_fwd ≈ δ^{−ν}`.
+//! `F_fwd ≈ δ^{−ν}` corrected by a 16-node table built with the object.
 
 use super::PhaseFunction;
 use crate::error::Error;
@@ -44,7 +44,19 @@ pub struct FournierForand<T> {
     /// patterns in u32 halves: the f32 phase must keep 4-byte alignment
     /// (the C layer's `sk_phase` is `uint32_t[32]`).
     ff: [u32; 8],
+    /// Seeds of the forward solve ([`SEEDS`]).
+    seeds: [f32; SEEDS],
 }
+
+/// Nodes of the seed table: the correction `ln s − ln s_p` of the exact
+/// forward solution over the power law `s_p = F_fwd^{−1/ν}/k`, at
+/// `ln F_fwd` evenly spaced over the 8 e-folds below its largest value
+/// (`ln(1 − F(0))`, at `μ = 0`). The power law alone leaves Newton 5 to 12
+/// steps; the table, 2 or 3.
+const SEEDS: usize = 16;
+/// The span of `ln F_fwd` the seed table covers (below it the power law is
+/// exact to the table's accuracy).
+const SEED_SPAN: f64 = 8.0;
 
 impl<T: Real> FournierForand<T> {
     /// The largest relative index accepted: below it `δ₉₀ > 1`, and the
@@ -80,10 +92,26 @@ impl<T: Real> FournierForand<T> {
 
     /// Without checks (the caller validated `n` and `ν`).
     pub(crate) fn from_parts(n: T, nu: T) -> Self {
+        let ff = Ff::new(n.to_f64(), nu.to_f64());
+        let mut seeds = [0.0f32; SEEDS];
+        let t_max = libm::log1p(-ff.f0);
+        for (j, c) in seeds.iter_mut().enumerate() {
+            let t = t_max - SEED_SPAN * (1.0 - j as f64 / (SEEDS - 1) as f64);
+            // The exact solution from the power-law seed (no table yet).
+            let (mu, _) = ff.inverse_sin(-libm::expm1(t), &[0.0; SEEDS]);
+            let s = 0.5 * (1.0 - mu);
+            let power = -t / ff.nu - libm::log(ff.k);
+            *c = if s > 0.0 {
+                (libm::log(s) - power) as f32
+            } else {
+                0.0
+            };
+        }
         FournierForand {
             n,
             nu,
-            ff: Ff::new(n.to_f64(), nu.to_f64()).to_bits(),
+            ff: ff.to_bits(),
+            seeds,
         }
     }
     /// The relative refractive index `n`.
@@ -243,13 +271,20 @@ impl Ff {
     /// `expm1` between the CDF (both forms) and the density: `F` is exact
     /// where it is the smaller tail, `F_fwd` where it is.
     fn eval(&self, s: f64) -> (f64, f64, f64) {
+        if s <= 0.0 {
+            return (1.0, 0.0, f64::INFINITY);
+        }
+        self.eval_ln(s, libm::log(self.k * s))
+    }
+    /// [`eval`](Self::eval) with `ln δ = l` given (the forward solve works
+    /// in `ln s`, so `ln δ = ln k + ln s` costs no logarithm).
+    fn eval_ln(&self, s: f64, l: f64) -> (f64, f64, f64) {
         let (nu, k, c) = (self.nu, self.k, self.c);
         let delta = k * s;
         let mu = 1.0 - 2.0 * s;
         if delta <= 0.0 {
             return (1.0, 0.0, f64::INFINITY);
         }
-        let l = libm::log(delta);
         let (e1, e2) = (libm::expm1(-nu * l), libm::expm1(l));
         let (r, rp) = if (delta - 1.0).abs() < 1e-3 {
             self.near_one(delta - 1.0)
@@ -268,7 +303,7 @@ impl Ff {
     }
     /// The inverse with `sin θ` from the solved variable (`1 + μ` or
     /// `s`), so that f32 directions keep angles `cos θ` in f32 cannot.
-    fn inverse_sin(&self, u: f64) -> (f64, f64) {
+    fn inverse_sin(&self, u: f64, seeds: &[f32; SEEDS]) -> (f64, f64) {
         if !(u > 0.0 && u < 1.0) {
             return (
                 if u >= 1.0 {
@@ -292,38 +327,49 @@ impl Ff {
             let y = newton_bracketed(fd, 0.0, 1.0, u / f0);
             return (y - 1.0, libm::sqrt((y * (2.0 - y)).max(0.0)));
         }
-        // Forward hemisphere, in x = ln s: F_fwd ≈ (k s)^{−ν} is nearly a
-        // power law, so its logarithm is nearly linear in x and Newton
-        // converges in a few steps from the power law's own inverse. Each
-        // tail in its own form: ln u − ln F (u ≤ ½) or ln F_fwd − ln(1 − u).
+        // Forward hemisphere, Newton in x = ln s (where ln δ = ln k + x
+        // costs no logarithm), seeded by the forward power law
+        // F_fwd ≈ (k s)^{−ν} corrected by the seed table, so two or three
+        // steps suffice. Each tail in its own form: u − F (u ≤ ½) or
+        // F_fwd − (1 − u), both exact targets.
         let s = if u <= 0.5 {
-            let lu = libm::log(u);
+            let ln_k = libm::log(self.k);
             let fd = |x: f64| {
                 let s = libm::exp(x);
-                let (f, _, rho) = self.eval(s);
-                (lu - libm::log(f), 2.0 * s * rho / f)
+                let (f, _, rho) = self.eval_ln(s, ln_k + x);
+                (u - f, 2.0 * s * rho)
             };
-            self.solve_log(fd, 1.0 - u)
+            self.solve_log(fd, libm::log1p(-u), seeds)
         } else {
             let t = 1.0 - u;
             let lt = libm::log(t);
+            let ln_k = libm::log(self.k);
             let fd = |x: f64| {
                 let s = libm::exp(x);
-                let (_, g, rho) = self.eval(s);
-                (libm::log(g) - lt, 2.0 * s * rho / g)
+                let (_, g, rho) = self.eval_ln(s, ln_k + x);
+                (g - t, 2.0 * s * rho)
             };
-            self.solve_log(fd, t)
+            self.solve_log(fd, lt, seeds)
         };
         (1.0 - 2.0 * s, 2.0 * libm::sqrt((s * (1.0 - s)).max(0.0)))
     }
     /// `s ∈ [0, ½]` from Newton in `x = ln s` on an increasing function,
-    /// seeded by the forward power law at forward mass `t`:
-    /// `s ≈ t^{−1/ν}/k`. Below `e^{−745}` (a forward lobe beyond f64),
-    /// `s = 0`.
-    fn solve_log(&self, fd: impl Fn(f64) -> (f64, f64), t: f64) -> f64 {
+    /// at forward mass `e^{lt}`, seeded by the power law `s ≈
+    /// e^{−lt/ν}/k` corrected by the seed table (zeros: none). Below
+    /// `e^{−745}` (a forward lobe beyond f64), `s = 0`.
+    fn solve_log(&self, fd: impl Fn(f64) -> (f64, f64), lt: f64, seeds: &[f32; SEEDS]) -> f64 {
         const LO: f64 = -745.0;
         let hi = -core::f64::consts::LN_2;
-        let seed = (-libm::log(t) / self.nu - libm::log(self.k)).clamp(LO, hi);
+        let t_max = libm::log1p(-self.f0);
+        let pos = ((lt - (t_max - SEED_SPAN)) / SEED_SPAN * (SEEDS - 1) as f64)
+            .clamp(0.0, (SEEDS - 1) as f64);
+        let j = (pos as usize).min(SEEDS - 2);
+        let f = pos - j as f64;
+        let corr = match (seeds.get(j), seeds.get(j + 1)) {
+            (Some(&a), Some(&b)) => f64::from(a) + f * (f64::from(b) - f64::from(a)),
+            _ => 0.0,
+        };
+        let seed = (-lt / self.nu - libm::log(self.k) + corr).clamp(LO, hi);
         let x = newton_bracketed(fd, LO, hi, seed);
         // A root at the bracket's floor: the lobe lies below f64's range.
         if x <= LO + 1.0 { 0.0 } else { libm::exp(x) }
@@ -332,8 +378,8 @@ impl Ff {
     /// smaller of `u` and `1 − u` (so that the target carries no rounding:
     /// `1 − 0.001` would cost 10⁻¹⁶ in the target and 5·10⁻¹⁴ in `μ` where
     /// the density is 10⁻³).
-    fn inverse(&self, u: f64) -> f64 {
-        self.inverse_sin(u).0
+    fn inverse(&self, u: f64, seeds: &[f32; SEEDS]) -> f64 {
+        self.inverse_sin(u, seeds).0
     }
 }
 
@@ -366,13 +412,13 @@ impl<T: Real> PhaseFunction<T> for FournierForand<T> {
             return (T::NAN, T::NAN);
         }
         let k = Ff::from_bits(self.ff);
-        let (mu, sin) = k.inverse_sin(u);
+        let (mu, sin) = k.inverse_sin(u, &self.seeds);
         (T::from_f64(mu), T::from_f64(sin))
     }
     /// `⟨μ⟩ = ∫₀¹ μ(u) du` by Simpson's rule over 4096 intervals of `u`
     /// (the inverse is smooth in `u` but for its forward end, where `μ → 1`).
     fn mean_cosine(&self) -> T {
         let k = Ff::from_bits(self.ff);
-        T::from_f64(simpson_unit(|u| k.inverse(u), 4096))
+        T::from_f64(simpson_unit(|u| k.inverse(u, &self.seeds), 4096))
     }
 }

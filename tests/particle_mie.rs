@@ -136,7 +136,9 @@ const DIAMETERS: [f64; 12] = [
     0.01, 0.05, 0.1, 0.3, 0.5, 1.0, 2.0, 4.0, 10.0, 20.0, 30.0, 50.0,
 ];
 
-/// `docs/particle_choice.md` and `docs/fog_vs_mie.md`.
+/// `docs/particle_choice.md` and `docs/fog_vs_mie.md`, with the choices'
+/// invariants checked on the way (a table is always within; without one,
+/// the flag and the closest model).
 #[test]
 fn documents() {
     let mut choice = String::from(
@@ -149,6 +151,28 @@ fn documents() {
             choose(d, 0.01, true),
             choose(d, 0.1, false),
         );
+        // The table's presence guarantees a choice within the tolerance;
+        // without it the flag must say whether the closest one is, every
+        // distance is a TV distance, and the chosen one is the reported one.
+        use scatterkit::phase::particle::MARGIN;
+        assert!(a.within_tolerance && b.within_tolerance, "d {d}");
+        assert_eq!(
+            c.within_tolerance,
+            c.distance <= (1.0 - MARGIN) * 0.1,
+            "d {d}: {c:?}"
+        );
+        assert!(
+            a.distances.iter().all(|v| (0.0..=1.0).contains(v)),
+            "d {d}: {:?}",
+            a.distances
+        );
+        if !c.within_tolerance {
+            let best = c.distances.iter().copied().fold(f64::INFINITY, f64::min);
+            assert_eq!(
+                c.distance, best,
+                "d {d}: without a table the closest is returned"
+            );
+        }
         let cell = |c: &MieChoice| {
             let flag = if c.within_tolerance {
                 ""

@@ -62,6 +62,7 @@
 
 pub mod azimuth;
 pub mod cbrt;
+mod double_double;
 mod error;
 pub mod geometry;
 pub mod majorant;

@@ -47,6 +47,8 @@ fn name(m: Model) -> &'static str {
         Model::Draine => "Draine",
         Model::Fog => "fog fit",
         Model::MieTable => "Mie table",
+        Model::TwoLobeHg => "two-lobe HG",
+        Model::FournierForand => "Fournier–Forand",
         _ => unreachable!("a model this test does not know"),
     }
 }
@@ -142,8 +144,8 @@ const DIAMETERS: [f64; 12] = [
 #[test]
 fn documents() {
     let mut choice = String::from(
-        "| diameter (µm) | x | TV ≤ 0.1 | TV ≤ 0.01 | without a table, TV ≤ 0.1 | isotropic | HG | Rayleigh | Draine | fog fit |\n\
-         |---|---:|---|---|---|---:|---:|---:|---:|---:|\n",
+        "| diameter (µm) | x | TV ≤ 0.1 | TV ≤ 0.01 | without a table, TV ≤ 0.1 | isotropic | HG | Rayleigh | Draine | fog fit | two-lobe HG | Fournier–Forand |\n\
+         |---|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     for d in DIAMETERS {
         let (a, b, c) = (
@@ -161,11 +163,17 @@ fn documents() {
             c.distance <= (1.0 - MARGIN) * 0.1,
             "d {d}: {c:?}"
         );
+        // Every distance is a TV distance; with a table the last two are
+        // not fitted (NaN), without one all seven are (d ≤ 50 µm).
+        let tv = |v: &f64| (0.0..=1.0).contains(v);
         assert!(
-            a.distances.iter().all(|v| (0.0..=1.0).contains(v)),
+            a.distances[..5].iter().all(tv) && a.distances[5..].iter().all(|v| v.is_nan()),
             "d {d}: {:?}",
             a.distances
         );
+        assert!(c.distances.iter().all(tv), "d {d}: {:?}", c.distances);
+        // The two-lobe fit starts from the best HG and never ends worse.
+        assert!(c.distances[5] <= c.distances[1], "d {d}: {:?}", c.distances);
         if !c.within_tolerance {
             let best = c.distances.iter().copied().fold(f64::INFINITY, f64::min);
             assert_eq!(
@@ -181,7 +189,7 @@ fn documents() {
             };
             format!("{} ({:.1e}{flag})", name(c.model), c.distance)
         };
-        let ds = a.distances.map(|v| {
+        let ds = c.distances.map(|v| {
             if v.is_nan() {
                 "—".to_string()
             } else {
@@ -263,9 +271,12 @@ fn documents() {
              exact Mie phase function of droplets of that diameter. A cell: the model chosen and \
              its distance. Candidates in order of sampling cost: isotropic, HG, Rayleigh, then \
              the Mie table (which samples in about 9 ns, faster than Draine or the fog fit, but \
-             holds up to a few hundred kB), or without a table Draine and the fog fit, the \
-             closest returned when none is within. The last five columns: each candidate's best \
-             distance. Droplets of one size scatter with deep interference oscillations that no \
+             holds up to a few hundred kB), or without a table Draine, two-lobe HG, the fog fit \
+             and Fournier–Forand, the closest returned when none is within. The last seven \
+             columns: each candidate's best distance, without a table (two-lobe HG and \
+             Fournier–Forand are fitted only then). Fournier–Forand is built for a Junge \
+             (power-law) distribution of ocean particles, not one droplet size; its column \
+             says how far it is from one. Droplets of one size scatter with deep interference oscillations that no \
              smooth model follows: from 1 µm up no analytic model is within 0.1. \
              `docs/particle_choice_fog.md` is the older choice, against the fog fit.\n\n{choice}"
         );

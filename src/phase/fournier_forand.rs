@@ -383,6 +383,13 @@ impl Ff {
     }
 }
 
+/// The density of `μ` (`2π p`, per unit `cos θ`) of Fournier–Forand with
+/// index `n` and `ν`, unchecked: for the fits of `particle_mie`.
+pub(crate) fn density_of_mu(n: f64, nu: f64) -> impl Fn(f64) -> f64 {
+    let ff = Ff::new(n, nu);
+    move |mu| ff.density_mu(mu)
+}
+
 impl<T: Real> PhaseFunction<T> for FournierForand<T> {
     fn pdf(&self, cos_theta: T) -> T {
         let mu = cos_theta.to_f64();

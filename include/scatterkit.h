@@ -364,6 +364,13 @@ enum sk_size_kind
      r^gamma): params = {alpha in [0, 100], b > 0, gamma in (0, 10]}.
      */
     SK_SIZE_MODIFIED_GAMMA = 1,
+    /*
+     Junge's power law, n(r) proportional to r^-slope: `params[0]` =
+     slope in (0, 10] (ocean particles: 3 to 5), the rest unused. It has
+     no natural range: sk_size_distribution_range returns SK_ERR_DOMAIN,
+     give r_min and r_max.
+     */
+    SK_SIZE_JUNGE = 2,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -1867,6 +1874,31 @@ sk_status sk_phase_particle_mie(double diameter_um,
                                 sk_particle_choice *out);
 
 /*
+ The cheapest model within total-variation distance `tolerance` (0 <
+ tolerance < 1) of a phase function measured or tabulated at m >= 2
+ cosines, as sk_table_measured_f64 takes it (`cos_theta[j]` strictly
+ monotone within [-1, 1], `pdf[j]` finite and non-negative, any scale;
+ linear in cos theta between the points): a size distribution's Mie
+ average from sk_polydisperse_average, a measured volume scattering
+ function. Candidates as sk_phase_particle_mie without the fog fit
+ (`distances[4]` is NaN); SK_PARTICLE_MIE_TABLE means
+ sk_table_measured_f64 over the same data. x and m of the result are
+ NaN. work holds work_len >= 4096 doubles and must not overlap the data.
+ Takes about 0.25 s without a table: build once per medium. SK_ERR_NULL
+ for NULL pointers; SK_ERR_DOMAIN for a tolerance outside (0, 1), invalid
+ data or overlapping arrays; SK_ERR_SIZE for m < 2 or a short work. *out
+ is written only on success.
+ */
+sk_status sk_phase_particle_measured(const double *cos_theta,
+                                     const double *pdf,
+                                     size_t m,
+                                     double tolerance,
+                                     uint32_t allow_table,
+                                     double *work,
+                                     size_t work_len,
+                                     sk_particle_choice *out);
+
+/*
  cos theta by lobe: for a fog phase, the paper's sampler (u < w_d picks the
  Draine lobe and u is rescaled and reused inside the lobe): exact in
  distribution and cheaper than sk_phase_sample_cos, but not monotone in u.
@@ -2011,8 +2043,9 @@ sk_status sk_phase_get_params_f64(const sk_phase_f64 *p, sk_phase_params_f64 *ou
 /*
  A radius range outside which r^3 n(r), the geometric cross section per
  ln r, is below 1e-12 of its peak. SK_ERR_NULL for NULL pointers;
- SK_ERR_DOMAIN for an unknown kind or invalid parameters. Nothing is
- written on error.
+ SK_ERR_DOMAIN for an unknown kind, invalid parameters or a power law
+ (SK_SIZE_JUNGE has no peak to measure from). Nothing is written on
+ error.
  */
 sk_status sk_size_distribution_range(const sk_size_distribution *d, double *r_min, double *r_max);
 

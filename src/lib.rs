@@ -66,6 +66,7 @@ mod double_double;
 mod error;
 pub mod geometry;
 pub mod majorant;
+mod measured;
 pub mod medium;
 pub mod mie;
 mod numeric;

@@ -1,5 +1,5 @@
 //! Mie scattering averaged over a distribution of sphere sizes (fog, cloud,
-//! haze), in f64, into the caller's memory.
+//! haze, ocean particles), in f64, into the caller's memory.
 //!
 //! For a number distribution `n(r)` of radii on `[r_min, r_max]` the mean
 //! cross sections per particle are `C = ∫ n(r) π r² Q(x(r)) dr / ∫ n(r) dr`
@@ -48,6 +48,14 @@ pub enum SizeDistribution {
         /// `γ`.
         gamma: f64,
     },
+    /// Junge's power law: `n(r) ∝ r^{−slope}`, `0 < slope ≤ 10` (ocean
+    /// particles, slope 3 to 5; Fournier–Forand's `μ_J`). A power law has
+    /// no natural range: give `r_min` and `r_max`
+    /// ([`default_range`](Self::default_range) is `None`).
+    Junge {
+        /// The slope `μ_J` of the number density per unit radius.
+        slope: f64,
+    },
 }
 
 impl SizeDistribution {
@@ -87,6 +95,7 @@ impl SizeDistribution {
                     && gamma > 0.0
                     && gamma <= 10.0
             }
+            SizeDistribution::Junge { slope } => slope > 0.0 && slope <= 10.0,
         }
     }
 
@@ -105,13 +114,14 @@ impl SizeDistribution {
             SizeDistribution::ModifiedGamma { alpha, b, gamma } => {
                 alpha * lr - b * libm::exp(gamma * lr)
             }
+            SizeDistribution::Junge { slope } => -slope * lr,
         }
     }
 
     /// The radius where the area-weighted density per `ln r`, `r³ n(r)`,
-    /// peaks.
-    fn area_peak(&self) -> f64 {
-        match *self {
+    /// peaks (`None` for a power law, which has no peak).
+    fn area_peak(&self) -> Option<f64> {
+        Some(match *self {
             SizeDistribution::LogNormal {
                 median_radius,
                 sigma_g,
@@ -122,7 +132,8 @@ impl SizeDistribution {
             SizeDistribution::ModifiedGamma { alpha, b, gamma } => {
                 libm::pow((alpha + 3.0) / (b * gamma), 1.0 / gamma)
             }
-        }
+            SizeDistribution::Junge { .. } => return None,
+        })
     }
 
     /// A radius range outside which `r³ n(r)`, the density of geometric
@@ -130,12 +141,12 @@ impl SizeDistribution {
     /// cross sections lose by the truncation is of that order (the
     /// efficiencies are bounded). `None` for invalid parameters, and for
     /// valid ones whose range lies beyond f64 (a modified gamma with a
-    /// tiny `b` or `γ`).
+    /// tiny `b` or `γ`), and for a power law (no peak to measure from).
     pub fn default_range(&self) -> Option<(f64, f64)> {
         if !self.valid() {
             return None;
         }
-        let peak = self.area_peak();
+        let peak = self.area_peak()?;
         let weight = |r: f64| 3.0 * libm::log(r) + self.ln_density(r);
         let top = weight(peak);
         let cut = top + libm::log(1e-12);

@@ -18,6 +18,7 @@
 
 use crate::error::{Error, try_from_u32};
 use crate::geometry::{Vec3, direction_about_turns, sin_from_cos};
+use crate::measured::Measured;
 use crate::numeric::hermite;
 use crate::phase::{PhaseFunction, Rayleigh};
 use crate::real::Real;
@@ -150,7 +151,7 @@ impl<'a, T: Real> Table<'a, T> {
         let len = TableKind::Measured.len(n).ok_or(Error::Size)?;
         let buf = buf.get_mut(..len).ok_or(Error::Size)?;
         let data = Measured::new(cos_theta, pdf)?;
-        data.fill_inverse(buf, n);
+        fill_inverse(&data, buf, n);
         limit_slopes(buf, n);
         Ok(Table {
             data: buf,
@@ -361,101 +362,16 @@ fn upto<T: Real>(d: T, limit: T) -> T {
     if d > limit { limit } else { d }
 }
 
-/// Validated measured data: `m` points in increasing `cos θ` order (the
-/// caller's order reversed if it was decreasing).
-struct Measured<'d, T> {
-    x: &'d [T],
-    p: &'d [T],
-    reversed: bool,
-    /// `∫ p dμ` by the trapezoid rule (exact for the linear density).
-    area: f64,
-}
-
-impl<'d, T: Real> Measured<'d, T> {
-    fn new(x: &'d [T], p: &'d [T]) -> Result<Self, Error> {
-        if x.len() != p.len() || x.len() < 2 {
-            return Err(Error::Size);
-        }
-        let reversed = x.get(1) < x.first();
-        let mut area = 0.0;
-        let mut prev: Option<(f64, f64)> = None;
-        for (&xj, &pj) in x.iter().zip(p) {
-            let (xj, pj) = (xj.to_f64(), pj.to_f64());
-            if !((-1.0..=1.0).contains(&xj) && pj >= 0.0 && pj.is_finite()) {
-                return Err(Error::Domain);
+/// Writes `μ_i = F⁻¹(i/n)` and the limited-later slopes.
+fn fill_inverse<T: Real>(data: &Measured<'_, T>, buf: &mut [T], n: usize) {
+    data.sweep(
+        n + 1,
+        |i| i as f64 / n as f64,
+        |i, mu, q| {
+            if let Some([y, d]) = buf.get_mut(2 * i..2 * i + 2) {
+                *y = T::from_f64(mu);
+                *d = T::from_f64(1.0 / (q * n as f64));
             }
-            if let Some((xp, pp)) = prev {
-                let step = xj - xp;
-                if !(if reversed { step < 0.0 } else { step > 0.0 }) {
-                    return Err(Error::Domain);
-                }
-                area += 0.5 * step.abs() * (pj + pp);
-            }
-            prev = Some((xj, pj));
-        }
-        if !(area > 0.0 && area.is_finite()) {
-            return Err(Error::Domain);
-        }
-        Ok(Measured {
-            x,
-            p,
-            reversed,
-            area,
-        })
-    }
-
-    /// The k-th point in increasing order, density normalised to ∫ = 1.
-    fn point(&self, k: usize) -> (f64, f64) {
-        let j = if self.reversed {
-            self.x.len() - 1 - k
-        } else {
-            k
-        };
-        let at = |s: &[T]| s.get(j).map_or(f64::NAN, |v| v.to_f64());
-        (at(self.x), at(self.p) / self.area)
-    }
-
-    /// Writes `μ_i = F⁻¹(i/n)` and the limited-later slopes, sweeping the
-    /// segments once (the CDF is quadratic on each).
-    fn fill_inverse(&self, buf: &mut [T], n: usize) {
-        let m = self.x.len();
-        let (mut k, mut cdf0) = (0usize, 0.0f64);
-        for i in 0..=n {
-            let u = i as f64 / n as f64;
-            // Advance to the segment [k, k+1] holding u.
-            loop {
-                let ((x0, q0), (x1, q1)) = (self.point(k), self.point(k + 1));
-                let mass = 0.5 * (x1 - x0) * (q0 + q1);
-                // Zero-mass segments are skipped: F⁻¹(0) is where the support starts.
-                if (mass > 0.0 && cdf0 + mass >= u) || k + 2 >= m {
-                    let r = (u - cdf0).max(0.0);
-                    let tau = segment_root(x1 - x0, q0, q1, r);
-                    // max/min rather than clamp, which asserts its bounds are ordered.
-                    let mu = (x0 + tau).max(x0).min(x1);
-                    let q = q0 + (q1 - q0) * ((mu - x0) / (x1 - x0));
-                    if let Some([y, d]) = buf.get_mut(2 * i..2 * i + 2) {
-                        *y = T::from_f64(mu);
-                        *d = T::from_f64(1.0 / (q * n as f64));
-                    }
-                    break;
-                }
-                cdf0 += mass;
-                k += 1;
-            }
-        }
-    }
-}
-
-/// The offset `τ ∈ [0, L]` at which a segment of length `L` with density
-/// linear from `q0` to `q1` accumulates mass `r`:
-/// `q0 τ + (q1 − q0) τ²/(2L) = r`, as `2r / (q0 + sqrt(q0² + 2(q1 − q0) r/L))`
-/// (the form without the cancellation of `−q0 + sqrt(...)`).
-fn segment_root(len: f64, q0: f64, q1: f64, r: f64) -> f64 {
-    let disc = (q0 * q0 + 2.0 * (q1 - q0) * r / len).max(0.0);
-    let den = q0 + libm::sqrt(disc);
-    if den > 0.0 {
-        (2.0 * r / den).min(len)
-    } else {
-        0.0
-    }
+        },
+    );
 }

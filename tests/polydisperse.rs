@@ -308,3 +308,45 @@ fn bad_input_is_rejected() {
     }
     assert!(lognormal(1.0, 0.5).default_range().is_none());
 }
+
+#[test]
+fn junge_mean_area_matches_the_power_law_moment() {
+    // n(r) ∝ r^(−s) on [a, b]: <r²> = [(b^(3−s) − a^(3−s))/(3−s)] /
+    // [(b^(1−s) − a^(1−s))/(1−s)]. Simpson in ln r integrates the smooth
+    // exponentials in ln r to better than 10⁻⁶ at 256 intervals.
+    for s in [3.5f64, 4.0, 4.5] {
+        let (a, b) = (0.1f64, 10.0f64);
+        let p = Polydisperse {
+            distribution: SizeDistribution::Junge { slope: s },
+            r_min: a,
+            r_max: b,
+            wavelength: 0.55,
+            n_medium: 1.339,
+            m: Complex::new(1.1, 0.0),
+            intervals: 256,
+        };
+        let (avg, _) = run(&p, &[1.0]);
+        let moment = |k: f64| (b.powf(k + 1.0 - s) - a.powf(k + 1.0 - s)) / (k + 1.0 - s);
+        let exact = PI * moment(2.0) / moment(0.0);
+        let rel = (avg.area / exact - 1.0).abs();
+        println!(
+            "Junge slope {s}: area {:.9e} vs {exact:.9e} ({rel:.1e})",
+            avg.area
+        );
+        assert!(rel <= 1e-6, "slope {s}: {rel:e}");
+    }
+    // A power law has no natural range, and slopes outside (0, 10] fail.
+    assert_eq!(SizeDistribution::Junge { slope: 4.0 }.default_range(), None);
+    for slope in [0.0, -1.0, 10.5, f64::NAN] {
+        let p = Polydisperse {
+            distribution: SizeDistribution::Junge { slope },
+            r_min: 0.1,
+            r_max: 10.0,
+            wavelength: 0.55,
+            n_medium: 1.339,
+            m: Complex::new(1.1, 0.0),
+            intervals: 16,
+        };
+        assert_eq!(p.buffer_len(), None, "slope {slope}");
+    }
+}

@@ -16,6 +16,11 @@ pub enum sk_size_kind {
     /// Deirmendjian's modified gamma, n(r) proportional to r^alpha exp(-b
     /// r^gamma): params = {alpha in [0, 100], b > 0, gamma in (0, 10]}.
     SK_SIZE_MODIFIED_GAMMA = 1,
+    /// Junge's power law, n(r) proportional to r^-slope: `params[0]` =
+    /// slope in (0, 10] (ocean particles: 3 to 5), the rest unused. It has
+    /// no natural range: sk_size_distribution_range returns SK_ERR_DOMAIN,
+    /// give r_min and r_max.
+    SK_SIZE_JUNGE = 2,
 }
 
 /// A number distribution of sphere radii (unnormalised; radii in the
@@ -75,6 +80,7 @@ pub struct sk_mie_averages {
 
 const LOGNORMAL: u32 = sk_size_kind::SK_SIZE_LOGNORMAL as u32;
 const MODIFIED_GAMMA: u32 = sk_size_kind::SK_SIZE_MODIFIED_GAMMA as u32;
+const JUNGE: u32 = sk_size_kind::SK_SIZE_JUNGE as u32;
 
 fn distribution(d: &sk_size_distribution) -> Option<SizeDistribution> {
     let [p0, p1, p2] = d.params;
@@ -88,6 +94,7 @@ fn distribution(d: &sk_size_distribution) -> Option<SizeDistribution> {
             b: p1,
             gamma: p2,
         }),
+        JUNGE => Some(SizeDistribution::Junge { slope: p0 }),
         _ => None,
     }
 }
@@ -110,8 +117,9 @@ unsafe fn load(p: *const sk_polydisperse) -> Option<Polydisperse> {
 
 /// A radius range outside which r^3 n(r), the geometric cross section per
 /// ln r, is below 1e-12 of its peak. SK_ERR_NULL for NULL pointers;
-/// SK_ERR_DOMAIN for an unknown kind or invalid parameters. Nothing is
-/// written on error.
+/// SK_ERR_DOMAIN for an unknown kind, invalid parameters or a power law
+/// (SK_SIZE_JUNGE has no peak to measure from). Nothing is written on
+/// error.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_size_distribution_range(
     d: *const sk_size_distribution,

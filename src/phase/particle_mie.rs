@@ -24,6 +24,12 @@
 //! closest. Two-lobe HG is no closer than one HG for droplets below about
 //! 1 µm at 550 nm (checked against a brute-force grid in `(g1, g2, w)`):
 //! there Draine's `(1 + αμ²)` shape is what helps.
+//!
+//! [`choose_measured`] runs the same candidates (without the fog fit)
+//! against tabulated data, whose quantiles are exact for its linear
+//! density. For Mie over a Junge distribution of ocean particles,
+//! Fournier–Forand's own scene, it measures Fournier–Forand 0.15–0.29 away
+//! and one or two HG lobes 0.02–0.11 (`docs/ocean_particles.md`).
 
 use super::particle::{
     MARGIN, Model, Quantiles, fit_draine, fit_fournier_forand, fit_hg, fit_two_lobe_hg,
@@ -46,7 +52,8 @@ pub struct MieChoice {
     pub model: Model,
     /// The chosen model ready to sample, or `None` for [`Model::MieTable`]
     /// (build it with `Mie::tabulate` and `Table::measured` at
-    /// `mie::table_sizes`).
+    /// `mie::table_sizes`; after [`choose_measured`], `Table::measured`
+    /// over the same data).
     pub phase: Option<Phase<f64>>,
     /// The chosen model's distance to Mie (0 for the table: it is the
     /// reference; the table built at `mie::table_sizes` adds its own, at
@@ -57,12 +64,12 @@ pub struct MieChoice {
     pub within_tolerance: bool,
     /// The distance of each candidate's best fit: isotropic, HG, Rayleigh,
     /// Draine, fog fit, two-lobe HG, Fournier–Forand (NaN for the fog fit
-    /// beyond 50 µm, and for the last two when a table is allowed: they
-    /// are fitted only without one).
+    /// beyond 50 µm and always from [`choose_measured`], and for the last
+    /// two when a table is allowed: they are fitted only without one).
     pub distances: [f64; 7],
-    /// The droplets' size parameter.
+    /// The droplets' size parameter (NaN from [`choose_measured`]).
     pub x: f64,
-    /// The refractive index used.
+    /// The refractive index used (NaN from [`choose_measured`]).
     pub m: Complex,
 }
 
@@ -112,23 +119,68 @@ pub fn choose_mie(
     let (mu, density) = work.split_at_mut_checked(MIE_NODES).ok_or(Error::Size)?;
     quantiles(&|m| sphere.phase(m), x, mu, density);
     let r = Quantiles { mu, density };
-
-    let hg = fit_hg(&r);
-    let draine = fit_draine(&r);
     let fog = Fog::<f64>::from_diameter(diameter_um).ok();
+    Ok(choose_among(&r, fog, tolerance, allow_table, x, m))
+}
+
+/// The cheapest model within `tolerance` (total variation, `0 < tolerance
+/// < 1`) of a phase function measured or tabulated at `m ≥ 2` cosines, as
+/// [`Table::measured`](crate::Table::measured) takes it (`cos_theta`
+/// strictly monotone within `[−1, 1]`, `pdf` finite, non-negative, any
+/// scale; linear in `cos θ` between the points, zero outside their range):
+/// a size distribution's Mie average (`Polydisperse::average` at
+/// `mie::table_angle`), a measured volume scattering function, any
+/// reference. Candidates as [`choose_mie`] without the fog fit (there is
+/// no droplet diameter; its distance is NaN); [`Model::MieTable`] here
+/// means [`Table::measured`](crate::Table::measured) over the same data,
+/// the reference itself. In the result `x` and `m` are NaN. The quantiles
+/// are exact for the linear density (no angle grid). `work` holds at least
+/// [`WORK_LEN`] values. Costs a few thousand quadratures of [`MIE_NODES`]
+/// points (about 0.25 s without a table). [`Error::Domain`] for a
+/// tolerance outside `(0, 1)` or invalid data, [`Error::Size`] for slices
+/// of different lengths, `m < 2` or a short `work`.
+pub fn choose_measured(
+    cos_theta: &[f64],
+    pdf: &[f64],
+    tolerance: f64,
+    allow_table: bool,
+    work: &mut [f64],
+) -> Result<MieChoice, Error> {
+    if !(tolerance > 0.0 && tolerance < 1.0) {
+        return Err(Error::Domain);
+    }
+    let work = work.get_mut(..WORK_LEN).ok_or(Error::Size)?;
+    let (mu, density) = work.split_at_mut_checked(MIE_NODES).ok_or(Error::Size)?;
+    crate::measured::measured_quantiles(cos_theta, pdf, mu, density)?;
+    let r = Quantiles { mu, density };
+    let nan = f64::NAN;
+    Ok(choose_among(
+        &r,
+        None,
+        tolerance,
+        allow_table,
+        nan,
+        Complex::new(nan, nan),
+    ))
+}
+
+/// Fits every candidate to the reference's quantiles `r` and picks the
+/// cheapest within the tolerance (module docs).
+fn choose_among(
+    r: &Quantiles,
+    fog: Option<Fog<f64>>,
+    tolerance: f64,
+    allow_table: bool,
+    x: f64,
+    m: Complex,
+) -> MieChoice {
+    let hg = fit_hg(r);
+    let draine = fit_draine(r);
     let fog_d = fog.map_or(f64::NAN, |f| {
         r.distance(|mu| core::f64::consts::TAU * f.pdf(mu))
     });
-    let two = if allow_table {
-        None
-    } else {
-        Some(fit_two_lobe_hg(&r, hg))
-    };
-    let ff = if allow_table {
-        None
-    } else {
-        Some(fit_fournier_forand(&r))
-    };
+    let two = (!allow_table).then(|| fit_two_lobe_hg(r, hg));
+    let ff = (!allow_table).then(|| fit_fournier_forand(r));
     // In the order of `MieChoice::distances`.
     let distances = [
         r.distance(|_| 0.5),
@@ -180,26 +232,26 @@ pub fn choose_mie(
         .filter_map(|&i| Some((*models.get(i)?, *phases.get(i)?, *distances.get(i)?)));
     for (model, phase, d) in candidates {
         if d <= accept {
-            return Ok(MieChoice {
+            return MieChoice {
                 model,
                 phase,
                 distance: d,
                 ..base
-            });
+            };
         }
         if d.is_finite() && best.is_none_or(|b| d < b.2) {
             best = Some((model, phase, d));
         }
     }
     match best {
-        Some((model, phase, distance)) if !allow_table => Ok(MieChoice {
+        Some((model, phase, distance)) if !allow_table => MieChoice {
             model,
             phase,
             distance,
             within_tolerance: false,
             ..base
-        }),
-        _ => Ok(base),
+        },
+        _ => base,
     }
 }
 

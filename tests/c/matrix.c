@@ -837,6 +837,7 @@ static void majorants(void) {
 static void mie_tables(const sk_mie *sphere);
 static void polydisperse(void);
 static void particle_mie(void);
+static void particle_measured(void);
 
 /* Mie: bad input from C, and the BHMIE example through the header. */
 static void mie(void) {
@@ -874,6 +875,7 @@ static void mie(void) {
     mie_tables(&sphere);
     polydisperse();
     particle_mie();
+    particle_measured();
 }
 
 /* Mie over size distributions: cumulus C.1 at 550 nm, bad input. */
@@ -916,10 +918,20 @@ static void polydisperse(void) {
     mu[1] = 0.0;
     CHECK(sk_size_distribution_range(NULL, &lo, &hi) == SK_ERR_NULL && sk_size_distribution_range(&c1, NULL, &hi) == SK_ERR_NULL);
     CHECK(sk_size_distribution_range(&c1, &lo, NULL) == SK_ERR_NULL && sk_polydisperse_buffer_len(NULL) == 0);
-    bad.kind = 2;
+    bad.kind = 3;
     CHECK(sk_size_distribution_range(&bad, &lo, &hi) == SK_ERR_DOMAIN);
     p.distribution = bad;
     CHECK(sk_polydisperse_buffer_len(&p) == 0 && sk_polydisperse_average(&p, mu, 3, phase, scratch, buf, len, &a) == SK_ERR_DOMAIN);
+    /* Junge's power law: no natural range, averages over the given one. */
+    bad.kind = SK_SIZE_JUNGE;
+    bad.params[0] = 4.0;
+    CHECK(sk_size_distribution_range(&bad, &lo, &hi) == SK_ERR_DOMAIN);
+    p.distribution = bad;
+    CHECK(sk_polydisperse_average(&p, mu, 3, phase, scratch, buf, len, &a) == SK_OK && a.g > 0.5 && a.g < 1.0);
+    for (i = 0; i < NS; i++) {
+        p.distribution.params[0] = DS[i];
+        CHECK((sk_polydisperse_buffer_len(&p) == 0) == !(DS[i] > 0.0 && DS[i] <= 10.0));
+    }
     p.distribution = c1;
     for (i = 0; i < NS; i++) {
         double d = DS[i];
@@ -940,6 +952,54 @@ static void polydisperse(void) {
         q = p;
         q.intervals = (size_t)i * 3;
         CHECK((sk_polydisperse_buffer_len(&q) == 0) == (i == 0 || (i * 3) % 4 != 0));
+    }
+}
+
+/* The chooser against tabulated data: a tabulated HG, bad input. */
+static void particle_measured(void) {
+    static double cosv[1001], pdf[1001], work[4096 + 8];
+    sk_phase_f64 hg;
+    sk_particle_choice c, kept;
+    int i = 0;
+    CHECK(sk_phase_hg_f64(0.8, &hg) == SK_OK);
+    for (i = 0; i < 1001; i++) {
+        cosv[i] = cos(3.14159265358979 * i / 1000.0);
+        pdf[i] = sk_phase_pdf_f64(&hg, cosv[i]);
+    }
+    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.02, 0, work, 4096, &c) == SK_OK);
+    CHECK(c.model == SK_PARTICLE_HG && c.within_tolerance == 1 && c.distance <= 0.02 && isnan(c.x) && isnan(c.m.re));
+    CHECK(isnan(c.distances[4]) && fabs(sk_phase_mean_cosine_f64(&c.phase) - 0.8) < 5e-3);
+    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 1e-9, 1, work, 4096, &c) == SK_OK);
+    CHECK(c.model == SK_PARTICLE_MIE_TABLE && c.distance == 0.0 && isnan(sk_phase_pdf_f64(&c.phase, 0.5)));
+    kept = c;
+    CHECK(sk_phase_particle_measured(NULL, pdf, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_NULL);
+    CHECK(sk_phase_particle_measured(cosv, NULL, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_NULL);
+    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, NULL, 4096, &c) == SK_ERR_NULL);
+    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, work, 4096, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_particle_measured(cosv, pdf, 1, 0.1, 0, work, 4096, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_particle_measured(cosv, pdf, 0, 0.1, 0, work, 4096, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_particle_measured(cosv, pdf, SIZE_MAX, 0.1, 0, work, 4096, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, work, 4095, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, work, SIZE_MAX, &c) == SK_ERR_SIZE);
+    /* work overlapping the data. */
+    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, pdf + 500, 4096, &c) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_particle_measured(work + 8, pdf, 10, 0.1, 0, work, 4096, &c) == SK_ERR_DOMAIN);
+    pdf[3] = -1.0;
+    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_DOMAIN);
+    pdf[3] = NAN;
+    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_DOMAIN);
+    pdf[3] = sk_phase_pdf_f64(&hg, cosv[3]);
+    cosv[3] = cosv[5];
+    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_DOMAIN);
+    cosv[3] = cos(3.14159265358979 * 3 / 1000.0);
+    CHECK(c.model == kept.model && c.distance == kept.distance && c.within_tolerance == kept.within_tolerance);
+    for (i = 0; i < NS; i++) {
+        double d = DS[i];
+        CHECK(sk_phase_particle_measured(cosv, pdf, 3, d, 1, work, 4096, &c) == (d > 0.0 && d < 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        cosv[0] = d;
+        CHECK(sk_phase_particle_measured(cosv, pdf, 3, 0.5, 1, work, 4096, &c) ==
+              (d >= -1.0 && d <= 1.0 && d > cosv[1] ? SK_OK : SK_ERR_DOMAIN));
+        cosv[0] = 1.0;
     }
 }
 

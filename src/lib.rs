@@ -74,6 +74,7 @@ pub mod phase;
 pub mod polydisperse;
 pub mod real;
 pub mod spectral;
+pub mod stokes;
 pub mod surface;
 pub mod table;
 
@@ -88,8 +89,9 @@ pub use medium::{Grid, Ray, Sampling};
 pub use phase::rayleigh;
 pub use phase::{
     Draine, Fog, FournierForand, Gegenbauer, HenyeyGreenstein, Isotropic, Phase, PhaseFunction,
-    Rayleigh, RayleighDepolarized, RayleighMethod,
+    Rayleigh, RayleighDepolarized, RayleighMethod, RayleighPolarized,
 };
 pub use real::Real;
+pub use stokes::Stokes;
 pub use surface::{CrossingPolicy, Fraction, Surface, SurfaceModel};
 pub use table::{Table, TableKind};

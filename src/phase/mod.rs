@@ -20,6 +20,7 @@ pub mod particle;
 pub mod particle_mie;
 pub mod rayleigh;
 mod rayleigh_depolarized;
+pub mod rayleigh_polarized;
 mod seeds;
 
 pub use draine::Draine;
@@ -30,6 +31,7 @@ pub use hg::HenyeyGreenstein;
 pub use isotropic::Isotropic;
 pub use rayleigh::{Rayleigh, RayleighMethod};
 pub use rayleigh_depolarized::RayleighDepolarized;
+pub use rayleigh_polarized::{RayleighMueller, RayleighPolarized, StokesSample};
 
 use crate::error::Error;
 use crate::geometry::{Vec3, direction_about_turns, sin_from_cos};

@@ -175,11 +175,17 @@ impl<T: Real> RayleighPolarized<T> {
     }
 
     /// The scattering plane of `k → w`: `(cos Θ, e⊥)` with `e⊥` the unit
-    /// normal `k × w/|k × w|` (exact cross product), or `fallback` where the
+    /// normal `k × w/|k × w|` (the exact cross product within 1/64 rad of
+    /// forward or backward), or `fallback` where the
     /// plane is undefined (`w = ±k`; there the matrix does not depend on
     /// it).
     fn plane(k: Vec3<T>, w: Vec3<T>, fallback: Vec3<T>) -> (T, Vec3<T>) {
-        let n = cross_exact(k, w);
+        // The plain cross product's direction is good to ε/|n|: enough
+        // above |n| = 1/64; below, the exact one.
+        let mut n = k.cross(w);
+        if n.length() < T::from_f64(1.0 / 64.0) {
+            n = cross_exact(k, w);
+        }
         let len = n.length();
         let e_perp = if len > T::ZERO && len.is_finite() {
             n * (T::ONE / len)

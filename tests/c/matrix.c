@@ -838,6 +838,7 @@ static void mie_tables(const sk_mie *sphere);
 static void polydisperse(void);
 static void particle_mie(void);
 static void particle_measured(void);
+static void polarization(void);
 
 /* Mie: bad input from C, and the BHMIE example through the header. */
 static void mie(void) {
@@ -1084,6 +1085,114 @@ int main(void) {
     media();
     majorants();
     mie();
+    polarization();
     printf("matrix: %d checks passed, %d failed\n", passed, failed);
     return failed;
+}
+
+/* Stokes vectors and polarised Rayleigh: construction, every query with
+ * valid input and with each kind of bad input, in both precisions. */
+static void polarization(void) {
+    sk_rayleigh_polarized p, zero;
+    sk_rayleigh_polarized_f64 pd, zerod;
+    const sk_vec3 k = {0, 0, 1}, e1 = {1, 0, 0}, w = {0.6f, 0, 0.8f}, r = {0.8f, 0, -0.6f};
+    const sk_vec3_f64 kd = {0, 0, 1}, e1d = {1, 0, 0}, wd = {0.6, 0, 0.8}, rd = {0.8, 0, -0.6};
+    sk_stokes s = {1.0f, 0.5f, 0.3f, 0.2f, {1, 0, 0}}, o, kept, bad_s;
+    sk_stokes_f64 sd = {1.0, 0.5, 0.3, 0.2, {1, 0, 0}}, od, keptd, bad_sd;
+    sk_stokes_sample x, keptx;
+    sk_stokes_sample_f64 xd, keptxd;
+    sk_rayleigh_mueller m;
+    sk_rayleigh_mueller_f64 md;
+    sk_vec3 v;
+    int i = 0, j;
+    memset(&zero, 0, sizeof zero);
+    memset(&zerod, 0, sizeof zerod);
+    CHECK(sk_rayleigh_polarized_new(0.028f, &p) == SK_OK && sk_rayleigh_polarized_new_f64(0.028, &pd) == SK_OK);
+    CHECK(sk_rayleigh_polarized_new(0.5f, NULL) == SK_ERR_NULL && sk_rayleigh_polarized_new_f64(0.5, NULL) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_polarized_new(1.0f, &zero) == SK_ERR_DOMAIN && sk_rayleigh_polarized_new_f64(-0.1, &zerod) == SK_ERR_DOMAIN);
+    for (i = 0; i < NS; i++) {
+        sk_rayleigh_polarized t;
+        sk_rayleigh_polarized_f64 td;
+        CHECK(sk_rayleigh_polarized_new(FS[i], &t) == (FS[i] >= 0.0f && FS[i] < 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_rayleigh_polarized_new_f64(DS[i], &td) == (DS[i] >= 0.0 && DS[i] < 1.0 ? SK_OK : SK_ERR_DOMAIN));
+    }
+    /* The matrix: P11 at 90 degrees is 1 - Delta/4; NaN unconstructed. */
+    m = sk_rayleigh_polarized_mueller(&p, 0.0f);
+    md = sk_rayleigh_polarized_mueller_f64(&pd, 0.0);
+    CHECK(m.p11 > 0.7f && m.p11 < 0.8f && m.p12 < 0.0f && m.p33 == 0.0f && fabs(md.p11 + md.p12 - 0.75 * 0.0) > 0.0);
+    CHECK(isnan(sk_rayleigh_polarized_mueller(&zero, 0.5f).p11) && isnan(sk_rayleigh_polarized_mueller_f64(NULL, 0.5).p44));
+    /* eval, pdf, both samplers with valid input. */
+    CHECK(sk_rayleigh_polarized_eval(&p, k, &s, w, r, &o) == SK_OK && o.i > 0.0f && o.q * o.q + o.u * o.u + o.v * o.v <= o.i * o.i * 1.0001f);
+    CHECK(sk_rayleigh_polarized_eval_f64(&pd, kd, &sd, wd, rd, &od) == SK_OK && fabs(od.i - sk_rayleigh_polarized_pdf_f64(&pd, kd, &sd, wd)) < 1e-15);
+    CHECK(fabsf(sk_rayleigh_polarized_pdf(&p, k, &s, w) - o.i) < 1e-6f);
+    CHECK(sk_rayleigh_polarized_sample(&p, k, &s, 0.3f, 0.7f, &x) == SK_OK && x.stokes.i == 1.0f && x.pdf > 0.0f);
+    CHECK(fabsf(x.dir.x * x.dir.x + x.dir.y * x.dir.y + x.dir.z * x.dir.z - 1.0f) < 1e-5f);
+    CHECK(sk_rayleigh_polarized_sample_f64(&pd, kd, &sd, 0.3, 0.7, &xd) == SK_OK && xd.stokes.i == 1.0 && xd.pdf > 0.0);
+    CHECK(fabs(xd.pdf - sk_rayleigh_polarized_pdf_f64(&pd, kd, &sd, xd.dir)) < 1e-12);
+    CHECK(sk_rayleigh_polarized_sample_scalar(&p, k, &s, 0.3f, 0.7f, &x) == SK_OK && x.stokes.i > 0.0f);
+    CHECK(sk_rayleigh_polarized_sample_scalar_f64(&pd, kd, &sd, 0.3, 0.7, &xd) == SK_OK && xd.stokes.i > 0.0);
+    /* Bad input: NULLs, unconstructed, bad directions, unphysical Stokes,
+     * uniforms outside [0, 1]; nothing written on error. */
+    kept = o;
+    keptd = od;
+    keptx = x;
+    keptxd = xd;
+    CHECK(sk_rayleigh_polarized_eval(NULL, k, &s, w, r, &o) == SK_ERR_NULL && sk_rayleigh_polarized_eval(&p, k, NULL, w, r, &o) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_polarized_eval(&p, k, &s, w, r, NULL) == SK_ERR_NULL && sk_rayleigh_polarized_eval(&zero, k, &s, w, r, &o) == SK_ERR_DOMAIN);
+    CHECK(sk_rayleigh_polarized_eval_f64(NULL, kd, &sd, wd, rd, &od) == SK_ERR_NULL && sk_rayleigh_polarized_eval_f64(&zerod, kd, &sd, wd, rd, &od) == SK_ERR_DOMAIN);
+    CHECK(sk_rayleigh_polarized_eval_f64(&pd, kd, &sd, wd, rd, NULL) == SK_ERR_NULL && sk_rayleigh_polarized_eval_f64(&pd, kd, NULL, wd, rd, &od) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_polarized_sample(NULL, k, &s, 0.5f, 0.5f, &x) == SK_ERR_NULL && sk_rayleigh_polarized_sample(&p, k, &s, 0.5f, 0.5f, NULL) == SK_ERR_NULL);
+    CHECK(sk_rayleigh_polarized_sample_f64(&pd, kd, NULL, 0.5, 0.5, &xd) == SK_ERR_NULL && sk_rayleigh_polarized_sample_scalar(&zero, k, &s, 0.5f, 0.5f, &x) == SK_ERR_DOMAIN);
+    CHECK(sk_rayleigh_polarized_sample_scalar_f64(&pd, kd, &sd, 0.5, 0.5, NULL) == SK_ERR_NULL && sk_rayleigh_polarized_sample_scalar(&p, k, NULL, 0.5f, 0.5f, &x) == SK_ERR_NULL);
+    CHECK(isnan(sk_rayleigh_polarized_pdf(NULL, k, &s, w)) && isnan(sk_rayleigh_polarized_pdf(&p, k, NULL, w)) && isnan(sk_rayleigh_polarized_pdf_f64(&zerod, kd, &sd, wd)));
+    bad_s = s;
+    bad_s.q = 0.99f; /* Q^2 + U^2 + V^2 > I^2 */
+    bad_sd = sd;
+    bad_sd.i = -1.0;
+    CHECK(sk_rayleigh_polarized_eval(&p, k, &bad_s, w, r, &o) == SK_ERR_DOMAIN && sk_rayleigh_polarized_eval_f64(&pd, kd, &bad_sd, wd, rd, &od) == SK_ERR_DOMAIN);
+    CHECK(sk_rayleigh_polarized_sample(&p, k, &bad_s, 0.5f, 0.5f, &x) == SK_ERR_DOMAIN && isnan(sk_rayleigh_polarized_pdf_f64(&pd, kd, &bad_sd, wd)));
+    bad_s = s;
+    bad_s.reference.x = 2.0f;
+    CHECK(sk_rayleigh_polarized_sample(&p, k, &bad_s, 0.5f, 0.5f, &x) == SK_ERR_DOMAIN);
+    for (i = 0; i < NS; i++) {
+        float f = FS[i];
+        double d = DS[i];
+        sk_vec3 kb = {f, 0, 1};
+        sk_vec3_f64 kbd = {d, 0, 1};
+        int u_ok = f >= 0.0f && f <= 1.0f;
+        int ud_ok = d >= 0.0 && d <= 1.0;
+        CHECK(sk_rayleigh_polarized_sample(&p, k, &s, f, 0.5f, &x) == (u_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_rayleigh_polarized_sample(&p, k, &s, 0.5f, f, &x) == (u_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_rayleigh_polarized_sample_f64(&pd, kd, &sd, d, 0.5, &xd) == (ud_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_rayleigh_polarized_sample_scalar_f64(&pd, kd, &sd, 0.5, d, &xd) == (ud_ok ? SK_OK : SK_ERR_DOMAIN));
+        /* A direction off unit length (or not finite) is rejected. */
+        CHECK(sk_rayleigh_polarized_eval(&p, kb, &s, w, r, &o) == (fabsf(f) < 1e-3f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_rayleigh_polarized_eval_f64(&pd, kd, &sd, kbd, rd, &od) == (fabs(d) < 1e-3 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(isnan(sk_rayleigh_polarized_pdf(&p, kb, &s, w)) == !(fabsf(f) < 1e-3f));
+        for (j = 0; j < 4; j++) {
+            sk_stokes t = s;
+            sk_stokes_f64 td = sd;
+            float *fs = &t.i;
+            double *ds = &td.i;
+            fs[j] = f;
+            ds[j] = d;
+            CHECK(sk_rayleigh_polarized_sample(&p, k, &t, 0.5f, 0.5f, &x) != SK_OK || (t.i >= 0.0f && isfinite(t.i)));
+            CHECK(sk_rayleigh_polarized_eval_f64(&pd, kd, &td, wd, rd, &od) != SK_OK || (td.i >= 0.0 && isfinite(td.i)));
+        }
+    }
+    /* The samples after the loop wrote only on success. */
+    x = keptx;
+    xd = keptxd;
+    o = kept;
+    od = keptd;
+    CHECK(sk_rayleigh_polarized_sample(&p, k, &bad_s, 0.5f, 0.5f, &x) == SK_ERR_DOMAIN && memcmp(&x, &keptx, sizeof x) == 0);
+    CHECK(sk_rayleigh_polarized_eval_f64(&pd, kd, &bad_sd, wd, rd, &od) == SK_ERR_DOMAIN && memcmp(&od, &keptd, sizeof od) == 0);
+    /* Rotation and the meridian reference. */
+    o = sk_stokes_rotate(&s, k, (sk_vec3){0, 1, 0});
+    CHECK(fabsf(o.q + 0.5f) < 1e-6f && fabsf(o.u + 0.3f) < 1e-6f && o.v == 0.2f && o.reference.y == 1.0f);
+    od = sk_stokes_rotate_f64(&sd, kd, (sk_vec3_f64){0, 1, 0});
+    CHECK(fabs(od.q + 0.5) < 1e-15 && isnan(sk_stokes_rotate(NULL, k, e1).i) && isnan(sk_stokes_rotate_f64(NULL, kd, e1d).q));
+    v = sk_meridian_reference(k, 0.0f);
+    CHECK(v.x == 1.0f && v.y == 0.0f && v.z == 0.0f);
+    CHECK(sk_meridian_reference_f64((sk_vec3_f64){1, 0, 0}, 0.0).z == -1.0);
 }

@@ -58,6 +58,19 @@ fn example_mie_cloud() {
 }
 
 #[test]
+fn example_rayleigh_sky() {
+    // The example exits non-zero (and run_source fails) when a value is more
+    // than 5 standard errors from Natraj, Li & Yung's table.
+    let out = run_source("c_examples/rayleigh_sky.c", false);
+    assert!(out.starts_with("tau 0.5, black ground"), "{out}");
+    assert_eq!(
+        out.lines().filter(|l| l.contains("max |z|")).count(),
+        4,
+        "{out}"
+    );
+}
+
+#[test]
 fn example_surface_shares() {
     let out = run_source("c_examples/surface_shares.c", false);
     assert!(

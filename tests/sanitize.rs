@@ -7,7 +7,7 @@ mod common;
 use common::cbuild::{build_program, build_program_with, root};
 use std::process::Command;
 
-const PROGRAMS: [&str; 11] = [
+const PROGRAMS: [&str; 12] = [
     "c_examples/rayleigh_histogram.c",
     "c_examples/hg_stratified.c",
     "c_examples/fog_histogram.c",
@@ -15,6 +15,7 @@ const PROGRAMS: [&str; 11] = [
     "c_examples/fog_slab.c",
     "c_examples/cloud_majorants.c",
     "c_examples/mie_cloud.c",
+    "c_examples/rayleigh_sky.c",
     "tests/c/bad_input.c",
     "tests/c/matrix.c",
     "tests/c/golden.c",

@@ -36,6 +36,7 @@ mod entries;
 mod measure;
 mod media;
 mod mie;
+mod polarization;
 mod report;
 
 pub(crate) use c_view::*;
@@ -44,6 +45,7 @@ pub(crate) use entries::*;
 pub(crate) use measure::*;
 pub(crate) use media::*;
 pub(crate) use mie::*;
+pub(crate) use polarization::*;
 pub(crate) use report::*;
 
 pub(crate) use rand_xoshiro::Xoshiro256PlusPlus;
@@ -180,11 +182,14 @@ fn main() -> std::io::Result<()> {
     print!("{media_md}");
     let (mie_md, _) = mie_report(&es);
     print!("{mie_md}");
+    let pol_md = polarization_report();
+    print!("{pol_md}");
     let perf = performance(&es, rayleigh_batch, hg_batch, &pairs)
         + &c_md
         + &frontier_peers(&es)
         + &media_md
-        + &mie_md;
+        + &mie_md
+        + &pol_md;
     std::fs::write(docs.join("PERFORMANCE.md"), &perf)?;
     println!(
         "\n{}",

@@ -2358,6 +2358,18 @@ sk_vec3 sk_meridian_reference(sk_vec3 k, float hint_azimuth);
 sk_vec3_f64 sk_meridian_reference_f64(sk_vec3_f64 k, double hint_azimuth);
 
 /*
+ A reference vector for the unit direction k when the caller has no
+ preferred one: b1 of sk_onb(k) (continuous except across k.z = 0 from
+ below).
+ */
+sk_vec3 sk_implicit_reference(sk_vec3 k);
+
+/*
+ Double twin of `sk_implicit_reference`.
+ */
+sk_vec3_f64 sk_implicit_reference_f64(sk_vec3_f64 k);
+
+/*
  A radius range outside which r^3 n(r), the geometric cross section per
  ln r, is below 1e-12 of its peak. SK_ERR_NULL for NULL pointers;
  SK_ERR_DOMAIN for an unknown kind, invalid parameters or a power law

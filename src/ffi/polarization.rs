@@ -558,3 +558,17 @@ pub extern "C" fn sk_meridian_reference(k: sk_vec3, hint_azimuth: f32) -> sk_vec
 pub extern "C" fn sk_meridian_reference_f64(k: sk_vec3_f64, hint_azimuth: f64) -> sk_vec3_f64 {
     sk_vec3_f64::from_vec(crate::stokes::meridian_reference(k.to_vec(), hint_azimuth))
 }
+
+/// A reference vector for the unit direction k when the caller has no
+/// preferred one: b1 of sk_onb(k) (continuous except across k.z = 0 from
+/// below).
+#[unsafe(no_mangle)]
+pub extern "C" fn sk_implicit_reference(k: sk_vec3) -> sk_vec3 {
+    sk_vec3::from_vec(crate::stokes::implicit_reference(k.to_vec()))
+}
+
+/// Double twin of `sk_implicit_reference`.
+#[unsafe(no_mangle)]
+pub extern "C" fn sk_implicit_reference_f64(k: sk_vec3_f64) -> sk_vec3_f64 {
+    sk_vec3_f64::from_vec(crate::stokes::implicit_reference(k.to_vec()))
+}

@@ -1195,4 +1195,10 @@ static void polarization(void) {
     v = sk_meridian_reference(k, 0.0f);
     CHECK(v.x == 1.0f && v.y == 0.0f && v.z == 0.0f);
     CHECK(sk_meridian_reference_f64((sk_vec3_f64){1, 0, 0}, 0.0).z == -1.0);
+    {
+        sk_vec3 b1, b2, ir = sk_implicit_reference(w);
+        sk_vec3_f64 ird = sk_implicit_reference_f64(wd);
+        sk_onb(w, &b1, &b2);
+        CHECK(ir.x == b1.x && ir.y == b1.y && ir.z == b1.z && fabs(ird.x * wd.x + ird.y * wd.y + ird.z * wd.z) < 1e-15);
+    }
 }

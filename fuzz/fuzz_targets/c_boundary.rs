@@ -47,6 +47,48 @@ fuzz_target!(|data: &[u8]| {
         }
         let mu = sk_phase_sample_cos(&p, x(4));
         assert!(mu.is_nan() || mu.abs() <= 1.0);
+        // Polarised Rayleigh with fuzzed depolarisation, directions, Stokes
+        // vector and uniforms (the first floats again: inputs are short):
+        // OK with a physical result, or DOMAIN.
+        let mut air = sk_rayleigh_polarized { opaque: [0; 16] };
+        let st = sk_rayleigh_polarized_new(x(1), &mut air);
+        assert!(matches!(st, sk_status::SK_OK | sk_status::SK_ERR_DOMAIN));
+        let v3 = |a: f32, b: f32, c: f32| sk_vec3 { x: a, y: b, z: c };
+        let stokes = sk_stokes {
+            i: x(2),
+            q: x(3),
+            u: x(4),
+            v: x(5),
+            reference: v3(x(6), 0.0, 0.0),
+        };
+        let k = v3(0.0, x(7), 1.0);
+        let mut smp = core::mem::MaybeUninit::<sk_stokes_sample>::uninit();
+        if sk_rayleigh_polarized_sample(&air, k, &stokes, x(8), x(0), smp.as_mut_ptr())
+            == sk_status::SK_OK
+        {
+            let r = smp.assume_init();
+            let s = r.stokes;
+            let len = r.dir.x * r.dir.x + r.dir.y * r.dir.y + r.dir.z * r.dir.z;
+            assert!(
+                (len - 1.0).abs() < 1e-4 && r.pdf >= 0.0 && s.i == stokes.i,
+                "{r:?}"
+            );
+            assert!(
+                (s.q * s.q + s.u * s.u + s.v * s.v).sqrt() <= s.i * 1.001 + 1e-30,
+                "{r:?}"
+            );
+        }
+        let mut ev = core::mem::MaybeUninit::<sk_stokes>::uninit();
+        let w = v3(x(1), 0.0, 1.0);
+        if sk_rayleigh_polarized_eval(&air, k, &stokes, w, v3(1.0, 0.0, 0.0), ev.as_mut_ptr())
+            == sk_status::SK_OK
+        {
+            let e = ev.assume_init();
+            assert!(
+                e.i >= 0.0 && (e.q * e.q + e.u * e.u + e.v * e.v).sqrt() <= e.i * 1.001 + 1e-30,
+                "{e:?}"
+            );
+        }
         // Enums arrive as arbitrary integers.
         let mut d = sk_vec3 {
             x: 0.0,
@@ -139,8 +181,16 @@ fuzz_target!(|data: &[u8]| {
             sigma_a: 0.0,
             sigma_s: 0.0,
             max_density: 0.0,
-            lo: sk_vec3 { x: 0.0, y: 0.0, z: 0.0 },
-            hi: sk_vec3 { x: 1.0, y: 1.0, z: 1.0 },
+            lo: sk_vec3 {
+                x: 0.0,
+                y: 0.0,
+                z: 0.0,
+            },
+            hi: sk_vec3 {
+                x: 1.0,
+                y: 1.0,
+                z: 1.0,
+            },
             sampling: 0,
         };
         let (nx, ny) = (word(6) % 8, word(7) % 8);
@@ -165,8 +215,16 @@ fuzz_target!(|data: &[u8]| {
             assert!(tr.is_nan() || (0.0..=1.0).contains(&tr), "{tr}");
             // The same grid in a fuzzed box and sampling, through majorants
             // of a fuzzed resolution with a fuzzed budget.
-            let lo = sk_vec3 { x: x(25), y: x(26), z: -1.0 };
-            let hi = sk_vec3 { x: x(27), y: 2.0, z: 1.0 };
+            let lo = sk_vec3 {
+                x: x(25),
+                y: x(26),
+                z: -1.0,
+            };
+            let hi = sk_vec3 {
+                x: x(27),
+                y: 2.0,
+                z: 1.0,
+            };
             let _ = sk_grid_set_box(&mut g, lo, hi);
             let _ = sk_grid_set_sampling(&mut g, word(8) % 3);
             let mut store = [0.0f32; 64];
@@ -176,19 +234,43 @@ fuzz_target!(|data: &[u8]| {
                 == sk_status::SK_OK
             {
                 let maj = maj.assume_init();
-                let o = sk_vec3 { x: x(28), y: x(29), z: 0.25 };
-                let d = sk_vec3 { x: x(30), y: 1.0, z: x(31) };
+                let o = sk_vec3 {
+                    x: x(28),
+                    y: x(29),
+                    z: 0.25,
+                };
+                let d = sk_vec3 {
+                    x: x(30),
+                    y: 1.0,
+                    z: x(31),
+                };
                 let budget = word(12) % 5000;
                 let mut out = core::mem::MaybeUninit::<sk_ratio_result>::uninit();
-                if sk_ratio_track_majorants(&maj, &g, o, d, x(32), budget, &mut rng, out.as_mut_ptr())
-                    == sk_status::SK_OK
+                if sk_ratio_track_majorants(
+                    &maj,
+                    &g,
+                    o,
+                    d,
+                    x(32),
+                    budget,
+                    &mut rng,
+                    out.as_mut_ptr(),
+                ) == sk_status::SK_OK
                 {
                     let r = out.assume_init();
                     assert!((0.0..=1.0).contains(&r.tr) && r.steps <= budget, "{r:?}");
                 }
                 let mut tk = core::mem::MaybeUninit::<sk_track_result>::uninit();
-                if sk_delta_track_majorants(&maj, &g, o, d, x(32), budget, &mut rng, tk.as_mut_ptr())
-                    == sk_status::SK_OK
+                if sk_delta_track_majorants(
+                    &maj,
+                    &g,
+                    o,
+                    d,
+                    x(32),
+                    budget,
+                    &mut rng,
+                    tk.as_mut_ptr(),
+                ) == sk_status::SK_OK
                 {
                     let t = tk.assume_init();
                     assert!(t.t >= 0.0 && t.event <= 2 && t.steps <= budget, "{t:?}");

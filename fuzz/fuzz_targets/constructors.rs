@@ -76,7 +76,10 @@ fuzz_target!(|data: &[u8]| {
     }
     if let Ok(g) = Grid::new(&v, v.len().max(1), 1, 1, x(1).abs(), x(2).abs()) {
         let mut rng = scatterkit_fuzz_rng(data);
-        let r = g.ratio_track(scatterkit::Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 3.0), &mut rng);
+        let r = g.ratio_track(
+            scatterkit::Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 3.0),
+            &mut rng,
+        );
         // Roulette raises a weight below 0.05 at most 4 times: it stays in [0, 1].
         assert!(r.map_or(true, |r| (0.0..=1.0).contains(&r)), "{r:?}");
     }

@@ -34,6 +34,11 @@ use crate::real::Real;
 pub struct Gegenbauer<T> {
     alpha: T,
     g: T,
+    /// `L_1`, `e^{∓αL_1}` and `expm1(∓αL_1)` (upper sign for `αL_1 > 0`),
+    /// computed once in f64 and kept as 32-bit halves (the f32 model stays
+    /// 4-byte aligned): each sample then costs two transcendentals, not
+    /// five.
+    k: [u32; 6],
 }
 
 impl<T: Real> Gegenbauer<T> {
@@ -46,14 +51,38 @@ impl<T: Real> Gegenbauer<T> {
         let ok =
             alpha.to_f64() > -0.5 && alpha.to_f64() <= Self::MAX_ALPHA && g > -T::ONE && g < T::ONE;
         if ok {
-            Ok(Gegenbauer { alpha, g })
+            Ok(Self::from_parts(alpha, g))
         } else {
             Err(Error::Domain)
         }
     }
     /// Without checks (the caller validated).
     pub(crate) fn from_parts(alpha: T, g: T) -> Self {
-        Gegenbauer { alpha, g }
+        let k = K::new(alpha.to_f64(), g.to_f64());
+        let mut bits = [0u32; 6];
+        for (pair, v) in bits.chunks_exact_mut(2).zip([k.l1, k.e, k.m]) {
+            let b = v.to_bits();
+            if let [lo, hi] = pair {
+                (*lo, *hi) = (b as u32, (b >> 32) as u32);
+            }
+        }
+        Gegenbauer { alpha, g, k: bits }
+    }
+    /// The constants, as [`K::new`] computed them.
+    fn constants(&self) -> K {
+        let at = |i: usize| {
+            let (lo, hi) = (self.k[2 * i] as u64, self.k[2 * i + 1] as u64);
+            f64::from_bits(lo | (hi << 32))
+        };
+        let (a, l1) = (self.alpha.to_f64(), at(0));
+        K {
+            a,
+            g: self.g.to_f64(),
+            l1,
+            s: a * l1,
+            e: at(1),
+            m: at(2),
+        }
     }
     /// `α`.
     pub fn alpha(&self) -> T {
@@ -74,16 +103,32 @@ struct K {
     l1: f64,
     /// `α L_1`.
     s: f64,
+    /// `e^{−s}` for `s > 0`, else `e^{s}`.
+    e: f64,
+    /// `expm1(−s)` for `s > 0`, else `expm1(s)`.
+    m: f64,
 }
 
 impl K {
     fn new(a: f64, g: f64) -> K {
         let l1 = 2.0 * (libm::log1p(g) - libm::log1p(-g));
+        let s = a * l1;
+        let t = if s > 0.0 { -s } else { s };
         K {
             a,
             g,
             l1,
-            s: a * l1,
+            s,
+            e: libm::exp(t),
+            m: libm::expm1(t),
+        }
+    }
+    /// `expm1(α L_1)/α`, `L_1` at `α = 0` (for `s ≤ 0`).
+    fn em_l1(&self) -> f64 {
+        if self.a == 0.0 {
+            self.l1
+        } else {
+            self.m / self.a
         }
     }
     /// `L_y = −log1p(−2g(1+μ)/(1+g)²)`.
@@ -112,9 +157,9 @@ impl K {
         if self.s > 0.0 {
             // e^{−αD} expm1(−α L_y)/expm1(−α L_1): exponents ≤ 0.
             let (ly, d) = (self.l_y(mu), self.d(mu));
-            libm::exp(-self.a * d) * libm::expm1(-self.a * ly) / libm::expm1(-self.s)
+            libm::exp(-self.a * d) * libm::expm1(-self.a * ly) / self.m
         } else {
-            self.em(self.l_y(mu)) / self.em(self.l1)
+            self.em(self.l_y(mu)) / self.em_l1()
         }
     }
     /// Density of `μ` (`2π p`): `dF/dμ = (2g/y) α e^{αL_y}/expm1(αL_1)`.
@@ -130,9 +175,9 @@ impl K {
             (1.0 + g) * (1.0 + g) - 2.0 * g * (1.0 + mu)
         };
         let factor = if self.s > 0.0 {
-            libm::exp(-self.a * self.d(mu)) * self.a / -libm::expm1(-self.s)
+            libm::exp(-self.a * self.d(mu)) * self.a / -self.m
         } else {
-            libm::exp(self.a * self.l_y(mu)) / self.em(self.l1)
+            libm::exp(self.a * self.l_y(mu)) / self.em_l1()
         };
         2.0 * g / y * factor
     }
@@ -147,11 +192,11 @@ impl K {
             // the argument of the logarithm exact.
             // The direct sum only where it is far from 1 (else its log
             // would cancel): there log1p of the small product is exact.
-            let direct = u + (1.0 - u) * libm::exp(-self.s);
+            let direct = u + (1.0 - u) * self.e;
             let d = if direct < 0.5 {
                 -libm::log(direct) / a
             } else {
-                -libm::log1p((1.0 - u) * libm::expm1(-self.s)) / a
+                -libm::log1p((1.0 - u) * self.m) / a
             };
             // 1 − μ = (1 − g)² expm1(D)/(2g).
             (1.0 - (1.0 - g) * (1.0 - g) * libm::expm1(d) / (2.0 * g)).clamp(-1.0, 1.0)
@@ -159,13 +204,13 @@ impl K {
             // expm1(α L_y) = u expm1(α L_1).
             // 1 + u expm1(s) = (1 − u) + u e^{s}: the direct sum where it
             // is far from 1, log1p of the small product elsewhere.
-            let direct = (1.0 - u) + u * libm::exp(self.s);
+            let direct = (1.0 - u) + u * self.e;
             let ly = if a == 0.0 {
                 u * self.l1
             } else if direct < 0.5 {
                 libm::log(direct) / a
             } else {
-                libm::log1p(u * libm::expm1(self.s)) / a
+                libm::log1p(u * self.m) / a
             };
             // 1 + μ = −(1 + g)² expm1(−L_y)/(2g).
             (-1.0 - (1.0 + g) * (1.0 + g) * libm::expm1(-ly) / (2.0 * g)).clamp(-1.0, 1.0)
@@ -176,7 +221,7 @@ impl K {
 impl<T: Real> PhaseFunction<T> for Gegenbauer<T> {
     /// `p = dF/dμ / 2π`, evaluated in f64 without overflow.
     fn pdf(&self, cos_theta: T) -> T {
-        let k = K::new(self.alpha.to_f64(), self.g.to_f64());
+        let k = self.constants();
         T::from_f64(k.density_mu(cos_theta.to_f64()) / core::f64::consts::TAU)
     }
     fn cdf(&self, cos_theta: T) -> T {
@@ -184,7 +229,7 @@ impl<T: Real> PhaseFunction<T> for Gegenbauer<T> {
         if mu.is_nan() {
             return T::NAN;
         }
-        let k = K::new(self.alpha.to_f64(), self.g.to_f64());
+        let k = self.constants();
         T::from_f64(k.cdf(mu.clamp(-1.0, 1.0)).clamp(0.0, 1.0))
     }
     fn sample_cos(&self, u: T) -> T {
@@ -192,7 +237,7 @@ impl<T: Real> PhaseFunction<T> for Gegenbauer<T> {
         if u.is_nan() {
             return T::NAN;
         }
-        let k = K::new(self.alpha.to_f64(), self.g.to_f64());
+        let k = self.constants();
         T::from_f64(k.inverse(u))
     }
     /// `⟨μ⟩ = ∫₀¹ μ(u) du` by Simpson's rule (module function).

@@ -244,7 +244,8 @@ impl<T: Real> RayleighPolarized<T> {
             let (sp, cp) = self.azimuth(qb, ub, p, u2);
             let q_phi = (cp * cp - sp * sp) * qb + T::TWO * sp * cp * ub;
             mu = self.cos_given(q_phi, u1);
-            let local = Vec3::new(sin_from_cos(mu) * cp, sin_from_cos(mu) * sp, mu);
+            let sin_theta = sin_from_cos(mu);
+            let local = Vec3::new(sin_theta * cp, sin_theta * sp, mu);
             dir = Vec3::from_local(local, b1, b2, k);
             (sin_phi, cos_phi) = (sp, cp);
             pdf = None;

@@ -292,10 +292,7 @@ unsafe fn eval<X: Types>(
         let (w, r) = (unit(w.to_vec())?, unit(r.to_vec())?);
         Ok(X::c_stokes(m.eval(k, &s, w, r)))
     });
-    match r {
-        Ok(v) => unsafe { write_result(out, Ok(v)) },
-        Err(e) => e,
-    }
+    unsafe { write_status(out, r) }
 }
 
 unsafe fn pdf<X: Types>(p: *const X::P, k: X::V, s: *const X::S, w: X::V) -> X::T {
@@ -329,7 +326,14 @@ unsafe fn sample<X: Types>(
         };
         Ok(X::c_sample(x))
     });
+    unsafe { write_status(out, r) }
+}
+
+/// Writes `Ok` through `out` (checked non-NULL by the caller), or returns
+/// the error status.
+unsafe fn write_status<V>(out: *mut V, r: Result<V, sk_status>) -> sk_status {
     match r {
+        // SAFETY: the caller checked `out`; non-NULL out-pointers are writable.
         Ok(v) => unsafe { write_result(out, Ok(v)) },
         Err(e) => e,
     }

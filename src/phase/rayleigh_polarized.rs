@@ -159,19 +159,20 @@ impl<T: Real> RayleighPolarized<T> {
 
     /// The incident `(q, u)` per unit intensity turned into the
     /// scattering plane, and `(I, Q, U, V)` scattered per unit incident
-    /// intensity (`P S`, not yet over `4π`).
+    /// intensity (`P S`, not yet over `4π`), with `P11`.
     #[inline]
-    fn in_plane(&self, mu: T, s: &Stokes<T>, qb: T, ub: T, cos2: T, sin2: T) -> [T; 4] {
+    fn in_plane(&self, mu: T, s: &Stokes<T>, qb: T, ub: T, cos2: T, sin2: T) -> (T, [T; 4]) {
         let m = self.mueller_fast(mu);
         let vn = if s.i > T::ZERO { s.v / s.i } else { T::ZERO };
         let q_r = cos2 * qb + sin2 * ub;
         let u_r = cos2 * ub - sin2 * qb;
-        [
+        let ps = [
             m.p11 + m.p12 * q_r,
             m.p12 + m.p22 * q_r,
             m.p33 * u_r,
             m.p44 * vn,
-        ]
+        ];
+        (m.p11, ps)
     }
 
     /// The scattering plane of `k → w`: `(cos Θ, e⊥)` with `e⊥` the unit
@@ -207,7 +208,7 @@ impl<T: Real> RayleighPolarized<T> {
         // cos α = e⊥·e2, sin α = −e⊥·e1.
         let (cos2, sin2) = double_angle(e_perp.dot(e2), -e_perp.dot(s.reference));
         let (qn, un) = per_unit(s);
-        let [i, q, u, v] = self.in_plane(mu, s, qn, un, cos2, sin2);
+        let (_, [i, q, u, v]) = self.in_plane(mu, s, qn, un, cos2, sin2);
         let scale = T::INV_4PI * s.i.max_of(T::ZERO);
         let out = Stokes {
             i: scale * i,
@@ -226,7 +227,7 @@ impl<T: Real> RayleighPolarized<T> {
         let (mu, e_perp) = Self::plane(k, w, e2);
         let (cos2, sin2) = double_angle(e_perp.dot(e2), -e_perp.dot(s.reference));
         let (qn, un) = per_unit(s);
-        self.in_plane(mu, s, qn, un, cos2, sin2)[0] * T::INV_4PI
+        self.in_plane(mu, s, qn, un, cos2, sin2).1[0] * T::INV_4PI
     }
 
     /// Draws the scattered direction of light `s` along the unit direction
@@ -239,27 +240,25 @@ impl<T: Real> RayleighPolarized<T> {
         let (b1, b2) = onb(k);
         let (qb, ub) = self.in_basis(k, s, b1);
         let p = (qb * qb + ub * ub).sqrt();
-        let (mu, dir, sin_phi, cos_phi, pdf);
+        let (mu, dir, phi, pdf);
         if p > T::ZERO {
-            let (sp, cp) = self.azimuth(qb, ub, p, u2);
-            let q_phi = (cp * cp - sp * sp) * qb + T::TWO * sp * cp * ub;
-            mu = self.cos_given(q_phi, u1);
+            phi = self.azimuth(qb, ub, p, u2);
+            let (sp, cp) = phi;
+            let (cos2, sin2) = twice(phi);
+            mu = self.cos_given(cos2 * qb + sin2 * ub, u1);
             let sin_theta = sin_from_cos(mu);
             let local = Vec3::new(sin_theta * cp, sin_theta * sp, mu);
             dir = Vec3::from_local(local, b1, b2, k);
-            (sin_phi, cos_phi) = (sp, cp);
             pdf = None;
         } else {
             // Unpolarised (linear part): the depolarised sampler exactly.
             mu = self.depol.sample_cos(u1);
             dir = direction_about_turns(k, mu, sin_from_cos(mu), u2);
-            (sin_phi, cos_phi) = u2.sin_cos_2pi();
+            phi = u2.sin_cos_2pi();
             pdf = Some(self.depol.pdf(mu));
         }
-        let cos2 = cos_phi * cos_phi - sin_phi * sin_phi;
-        let sin2 = T::TWO * sin_phi * cos_phi;
-        let [i, q, u, v] = self.in_plane(mu, s, qb, ub, cos2, sin2);
-        let e_perp = b2 * cos_phi - b1 * sin_phi;
+        let (cos2, sin2) = twice(phi);
+        let (_, [i, q, u, v]) = self.in_plane(mu, s, qb, ub, cos2, sin2);
         let ratio = |x: T| if i > T::ZERO { s.i * (x / i) } else { T::ZERO };
         StokesSample {
             dir,
@@ -268,7 +267,7 @@ impl<T: Real> RayleighPolarized<T> {
                 q: ratio(q),
                 u: ratio(u),
                 v: ratio(v),
-                reference: e_perp.cross(dir),
+                reference: perpendicular(b1, b2, phi).cross(dir),
             },
             pdf: pdf.unwrap_or(i * T::INV_4PI),
         }
@@ -287,11 +286,9 @@ impl<T: Real> RayleighPolarized<T> {
         let (qb, ub) = self.in_basis(k, s, b1);
         let mu = self.depol.sample_cos(u1);
         let dir = direction_about_turns(k, mu, sin_from_cos(mu), u2);
-        let (sin_phi, cos_phi) = u2.sin_cos_2pi();
-        let cos2 = cos_phi * cos_phi - sin_phi * sin_phi;
-        let sin2 = T::TWO * sin_phi * cos_phi;
-        let [i, q, u, v] = self.in_plane(mu, s, qb, ub, cos2, sin2);
-        let p11 = self.mueller_fast(mu).p11;
+        let phi = u2.sin_cos_2pi();
+        let (cos2, sin2) = twice(phi);
+        let (p11, [i, q, u, v]) = self.in_plane(mu, s, qb, ub, cos2, sin2);
         let w = |x: T| s.i * (x / p11);
         StokesSample {
             dir,
@@ -300,7 +297,7 @@ impl<T: Real> RayleighPolarized<T> {
                 q: w(q),
                 u: w(u),
                 v: w(v),
-                reference: (b2 * cos_phi - b1 * sin_phi).cross(dir),
+                reference: perpendicular(b1, b2, phi).cross(dir),
             },
             pdf: self.depol.pdf(mu),
         }
@@ -350,6 +347,19 @@ impl<T: Real> RayleighPolarized<T> {
         };
         mu.clamp_unit()
     }
+}
+
+/// `(cos 2φ, sin 2φ)` from `(sin φ, cos φ)`.
+#[inline(always)]
+fn twice<T: Real>((sp, cp): (T, T)) -> (T, T) {
+    (cp * cp - sp * sp, T::TWO * sp * cp)
+}
+
+/// The normal of the scattering plane at azimuth `φ` (given as `(sin φ,
+/// cos φ)`) from `b1`: `−sin φ b1 + cos φ b2`.
+#[inline(always)]
+fn perpendicular<T: Real>(b1: Vec3<T>, b2: Vec3<T>, (sp, cp): (T, T)) -> Vec3<T> {
+    b2 * cp - b1 * sp
 }
 
 /// `(Q/I, U/I)`, or `(0, 0)` for `I ≤ 0`.

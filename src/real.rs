@@ -342,6 +342,27 @@ use libm::sqrt as sqrt_f64;
 )))]
 use libm::{sqrt as sqrt_f64, sqrtf as sqrt_f32};
 
+/// `N` doubles kept as pairs of 32-bit halves (low word first), so that a
+/// model holding them keeps the 4-byte alignment of its f32 form: `sk_phase`
+/// is a 128-byte, 4-byte-aligned value for C.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct PackedF64<const N: usize>([[u32; 2]; N]);
+
+impl<const N: usize> PackedF64<N> {
+    pub(crate) fn new(values: [f64; N]) -> Self {
+        PackedF64(values.map(|v| {
+            let b = v.to_bits();
+            [b as u32, (b >> 32) as u32]
+        }))
+    }
+    /// The `i`-th value, bit for bit as stored.
+    #[inline(always)]
+    pub(crate) fn get(&self, i: usize) -> f64 {
+        let [lo, hi] = self.0[i];
+        f64::from_bits(lo as u64 | ((hi as u64) << 32))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

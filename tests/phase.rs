@@ -298,6 +298,19 @@ const HG_GS: [f64; 15] = [
     -0.999999,
 ];
 
+/// The f32 sampler's bound: where it computes in f64 (x86, x86-64, AArch64;
+/// `phase::hg` module docs) half an ULP of 1 plus that path's 3·10⁻¹³;
+/// elsewhere the f32 factored forms, checked at 3·10⁻⁷ by the unit tests.
+const F32_BOUND: f64 = if cfg!(any(
+    target_arch = "x86_64",
+    target_arch = "x86",
+    target_arch = "aarch64"
+)) {
+    f32::EPSILON as f64 / 4.0 + 3e-13
+} else {
+    1e-6
+};
+
 #[test]
 fn hg_inverse_is_accurate_on_the_whole_open_interval() {
     let n = 100_001;
@@ -309,7 +322,7 @@ fn hg_inverse_is_accurate_on_the_whole_open_interval() {
         let p64 = Phase::henyey_greenstein(g).unwrap();
         let e64 = max_error(&p64, |u| dd::hg_inverse(g, u), n);
         println!("HG g = {g:>9}: f32 {e32:.2e}  f64 {e64:.2e}");
-        assert!(e32 <= 1e-6, "f32 g = {g}: {e32:e}");
+        assert!(e32 <= F32_BOUND, "f32 g = {g}: {e32:e}");
         assert!(e64 <= 1e-14, "f64 g = {g}: {e64:e}");
         worst32 = worst32.max(e32);
         worst64 = worst64.max(e64);

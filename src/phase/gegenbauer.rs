@@ -26,7 +26,7 @@
 use super::PhaseFunction;
 use crate::error::Error;
 use crate::numeric::simpson_unit;
-use crate::real::Real;
+use crate::real::{PackedF64, Real};
 
 /// The Gegenbauer kernel phase function with `α ∈ (−½, 1000]` and
 /// `g ∈ (−1, 1)`.
@@ -38,7 +38,7 @@ pub struct Gegenbauer<T> {
     /// computed once in f64 and kept as 32-bit halves (the f32 model stays
     /// 4-byte aligned): each sample then costs two transcendentals, not
     /// five.
-    k: [u32; 6],
+    k: PackedF64<3>,
 }
 
 impl<T: Real> Gegenbauer<T> {
@@ -59,21 +59,15 @@ impl<T: Real> Gegenbauer<T> {
     /// Without checks (the caller validated).
     pub(crate) fn from_parts(alpha: T, g: T) -> Self {
         let k = K::new(alpha.to_f64(), g.to_f64());
-        let mut bits = [0u32; 6];
-        for (pair, v) in bits.chunks_exact_mut(2).zip([k.l1, k.e, k.m]) {
-            let b = v.to_bits();
-            if let [lo, hi] = pair {
-                (*lo, *hi) = (b as u32, (b >> 32) as u32);
-            }
+        Gegenbauer {
+            alpha,
+            g,
+            k: PackedF64::new([k.l1, k.e, k.m]),
         }
-        Gegenbauer { alpha, g, k: bits }
     }
     /// The constants, as [`K::new`] computed them.
     fn constants(&self) -> K {
-        let at = |i: usize| {
-            let (lo, hi) = (self.k[2 * i] as u64, self.k[2 * i + 1] as u64);
-            f64::from_bits(lo | (hi << 32))
-        };
+        let at = |i: usize| self.k.get(i);
         let (a, l1) = (self.alpha.to_f64(), at(0));
         K {
             a,

@@ -148,3 +148,24 @@ fn bad_parameters_are_rejected() {
         );
     }
 }
+
+#[test]
+fn lobe_sampler_is_finite_at_the_ends_of_the_weight() {
+    // w = 0 and w = 1 are accepted (one lobe only): the lobe choice must
+    // then never divide by a zero weight, at u = 0 and u = 1 included.
+    for w in [0.0, 1.0, 0.5] {
+        for (g1, g2) in [(0.8, -0.3), (-0.999, 0.999)] {
+            let p32 = Phase::<f32>::two_lobe_hg(g1 as f32, g2 as f32, w as f32).unwrap();
+            let p64 = Phase::<f64>::two_lobe_hg(g1, g2, w).unwrap();
+            for u in [0.0, 1e-7, 0.5, 1.0 - 1e-7, 1.0] {
+                let a = p32.sample_cos_by_lobe(u as f32);
+                let b = p64.sample_cos_by_lobe(u);
+                assert!((-1.0..=1.0).contains(&a), "f32 w = {w}, u = {u}: {a}");
+                assert!((-1.0..=1.0).contains(&b), "f64 w = {w}, u = {u}: {b}");
+            }
+            // At the ends the lobe sampler gives the mixture's poles.
+            assert_eq!(p64.sample_cos_by_lobe(0.0), -1.0, "w = {w}");
+            assert_eq!(p64.sample_cos_by_lobe(1.0), 1.0, "w = {w}");
+        }
+    }
+}

@@ -207,20 +207,23 @@ impl<T: Real> Fog<T> {
         from_tail(y, mirrored)
     }
 
-    /// The paper's sampler (Jendersie & d'Eon 2023): the Draine lobe when `u < w_D`, with
-    /// `u/w_D` reused inside it, else HG with `(u − w_D)/(1 − w_D)`. Exact in
-    /// distribution; not monotone in `u`. `u` is clamped to `[0, 1]`. The HG
-    /// lobes take HG's factored forms in `T` (within 3·10⁻⁷ in f32), whose
-    /// constants cost no division per sample.
+    /// The paper's sampler (Jendersie & d'Eon 2023): the Draine lobe when
+    /// `u < w_D` (or `w_D = 1`), with `u/w_D` reused inside it, else HG with
+    /// `(u − w_D)/(1 − w_D)`. Exact in distribution; not monotone in `u`. `u`
+    /// is clamped to `[0, 1]`. The HG lobes take HG's factored forms in `T`
+    /// (within 3·10⁻⁷ in f32), whose constants cost no division per sample.
     pub fn sample_cos_by_lobe(&self, u: T) -> T {
         let (u, w) = (u.clamp01(), self.w_d);
-        if u < w {
+        // `w = 1` takes the first lobe at u = 1 too, so neither branch
+        // divides by a zero weight (at u = 1, `(u − w)/(1 − w)` was 0/0).
+        if u < w || w == T::ONE {
+            let v = u / w;
             if self.alpha == T::ZERO {
                 // Draine with α = 0 is HG: the closed form, not Draine's solve
                 // (a two-lobe HG samples both lobes this way).
-                return super::HenyeyGreenstein::from_g(self.g_d).sample_cos_factored(u / w);
+                return super::HenyeyGreenstein::from_g(self.g_d).sample_cos_factored(v);
             }
-            super::Draine::lobe(self.g_d, self.alpha).sample_cos(u / w)
+            super::Draine::lobe(self.g_d, self.alpha).sample_cos(v)
         } else {
             super::HenyeyGreenstein::from_g(self.g_hg).sample_cos_factored((u - w) / (T::ONE - w))
         }

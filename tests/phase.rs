@@ -399,3 +399,42 @@ fn small_angles_survive_in_f32_directions() {
         );
     }
 }
+
+/// The f32 HG sampler is monotone over every float `u` in `[0, 1]` (about
+/// 1.07·10⁹ of them), for g on both sides of the 2⁻¹⁰ switch between its
+/// two forms and near both poles (`phase::hg` module docs say why it holds:
+/// every step of the f64 path is a monotone operation, correctly rounded).
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "exhaustive over 1.07e9 floats per g: run with --release"
+)]
+fn hg_f32_is_monotone_on_every_float() {
+    let gs = [
+        0.0f32,
+        5e-4,
+        -1.0 / 1024.0,
+        0.01,
+        -0.5,
+        0.9,
+        -0.999_999,
+        0.999_999,
+    ];
+    std::thread::scope(|s| {
+        for half in gs.chunks(gs.len() / 2) {
+            s.spawn(move || {
+                for &g in half {
+                    let p = scatterkit::HenyeyGreenstein::new(g).unwrap();
+                    let mut prev = -1.0f32;
+                    for bits in 0u32..=0x3f80_0000 {
+                        let u = f32::from_bits(bits);
+                        let mu = p.sample_cos(u);
+                        assert!(mu >= prev, "g = {g}: μ({u:e}) = {mu} < {prev}");
+                        prev = mu;
+                    }
+                    assert_eq!(prev, 1.0, "g = {g}");
+                }
+            });
+        }
+    });
+}

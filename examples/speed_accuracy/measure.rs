@@ -134,7 +134,7 @@ pub(crate) fn pairs() -> Pairs {
         black_box(xs[*i])
     };
     let cbrt = interleaved([
-        &mut || run_once(|| scatterkit::cbrt::cbrt_f32_steps(next(&mut i1), 2)),
+        &mut || run_once(|| scatterkit::cbrt::cbrt_f32(next(&mut i1))),
         &mut || run_once(|| libm::cbrtf(next(&mut i2))),
         &mut || run_once(|| libm::powf(next(&mut i3), 1.0 / 3.0)),
     ]);

@@ -334,12 +334,16 @@ fn inverse<T: Real>(g: f64, alpha: f64, seeds: &Seeds, u: f64) -> (f64, f64) {
     let mirrored = u > 0.5;
     let flip = (mirrored as u64) << 63;
     let target = u.min(1.0 - u);
-    let p = Params::new(f64::from_bits(g.to_bits() ^ flip), alpha);
+    let g = f64::from_bits(g.to_bits() ^ flip);
     let y = if seeds.is_some() {
+        let p = Params::new(g, alpha);
         let seed = seeds.y(mirrored, target);
         solve_bracketed::<T>(|y| p.eval_y(y), target, seed, 0.0, 2.0)
     } else {
-        inverse_tail::<T>(p, target)
+        // The parameters (four divisions) only if the solver runs: where eq. 6
+        // is the answer they would occupy the divider that eq. 6's own
+        // chain of divisions and square roots waits on.
+        inverse_tail_lazy::<T>(g, alpha, target, || Params::new(g, alpha))
     };
     let (mu, sin) = from_tail(y, false);
     (f64::from_bits(mu.to_bits() ^ flip), sin)
@@ -357,8 +361,20 @@ pub(crate) fn from_tail(y: f64, mirrored: bool) -> (f64, f64) {
 /// `y = 1 + F⁻¹(target)` without the mirror step: accurate when
 /// `target ≤ 1/2`.
 pub(crate) fn inverse_tail<T: Real>(p: Params, target: f64) -> f64 {
-    if p.alpha == 0.0 {
-        return HenyeyGreenstein::from_g(p.g).one_plus_minus_mu(target).0;
+    inverse_tail_lazy::<T>(p.g, p.alpha, target, || p)
+}
+
+/// [`inverse_tail`] for `(g, α)`, with the parameters built by `params` only
+/// when the solver runs.
+#[inline(always)]
+fn inverse_tail_lazy<T: Real>(
+    g: f64,
+    alpha: f64,
+    target: f64,
+    params: impl FnOnce() -> Params,
+) -> f64 {
+    if alpha == 0.0 {
+        return HenyeyGreenstein::from_g(g).one_plus_minus_mu(target).0;
     }
     if target.is_nan() {
         return f64::NAN;
@@ -366,13 +382,12 @@ pub(crate) fn inverse_tail<T: Real>(p: Params, target: f64) -> f64 {
     if target <= 0.0 {
         return 0.0;
     }
-    let eq6_region = eq6_region(p);
-    let seed = if p.g.abs() >= 0.02 {
-        1.0 + seed_eq6(p.g, p.alpha, target)
+    let seed = if g.abs() >= 0.02 {
+        1.0 + seed_eq6(g, alpha, target)
     } else {
         f64::NAN
     };
-    if eq6_region && core::mem::size_of::<T>() == 4 && (EQ6_MIN_Y..=2.0).contains(&seed) {
+    if eq6_region(g, alpha) && core::mem::size_of::<T>() == 4 && (EQ6_MIN_Y..=2.0).contains(&seed) {
         // Eq. 6 in f64 on the small tail is within ~10⁻¹¹ here (see
         // docs/draine_accuracy.md), 10³ finer than f32 resolves, and y is
         // large enough for that absolute error to leave sin θ exact: done.
@@ -381,14 +396,15 @@ pub(crate) fn inverse_tail<T: Real>(p: Params, target: f64) -> f64 {
     let seed = if seed.is_finite() {
         seed
     } else {
-        1.0 + inverse_g0(p.alpha, target)
+        1.0 + inverse_g0(alpha, target)
     };
+    let p = params();
     solve_bracketed::<T>(|y| p.eval_y(y), target, seed, 0.0, 2.0)
 }
 
 /// True where eq. 6 in f64 is used as it is for f32 results (below).
-fn eq6_region(p: Params) -> bool {
-    p.g.abs() >= EQ6_MIN_G && p.alpha >= EQ6_MIN_ALPHA && p.alpha <= EQ6_MAX_ALPHA
+fn eq6_region(g: f64, alpha: f64) -> bool {
+    g.abs() >= EQ6_MIN_G && (EQ6_MIN_ALPHA..=EQ6_MAX_ALPHA).contains(&alpha)
 }
 
 /// Below this `y = 1 + μ` the eq. 6 shortcut is not taken: its absolute

@@ -221,11 +221,11 @@ impl<T: Real> Fog<T> {
             if self.alpha == T::ZERO {
                 // Draine with α = 0 is HG: the closed form, not Draine's solve
                 // (a two-lobe HG samples both lobes this way).
-                return super::HenyeyGreenstein::from_g(self.g_d).sample_cos_factored(v);
+                return super::HenyeyGreenstein::sample_cos_factored(self.g_d, v);
             }
             super::Draine::lobe(self.g_d, self.alpha).sample_cos(v)
         } else {
-            super::HenyeyGreenstein::from_g(self.g_hg).sample_cos_factored((u - w) / (T::ONE - w))
+            super::HenyeyGreenstein::sample_cos_factored(self.g_hg, (u - w) / (T::ONE - w))
         }
     }
 }

@@ -106,13 +106,23 @@ impl<T: Real> HenyeyGreenstein<T> {
     pub fn g(&self) -> T {
         self.g
     }
-    /// `F⁻¹(u)` by the factored forms in `T` (module docs) on every target,
-    /// `u` clamped to `[0, 1]`: one division and no constant that depends on
-    /// more than `1 ± g`, for lobe samplers that build the model per sample
-    /// (the f64 path's constants would cost two divisions more).
+    /// `F⁻¹(u)` for asymmetry `g ∈ (−1, 1)` by the factored forms in `T`
+    /// (module docs) on every target, `u` clamped to `[0, 1]`, without
+    /// building the model: one division and no constant beyond `1 ± g`, for
+    /// lobe samplers that meet a different `g` at every sample (the model's
+    /// density and f64-path constants would cost four divisions more).
     #[inline(always)]
-    pub(crate) fn sample_cos_factored(&self, u: T) -> T {
-        let (opm, omm, _) = self.factors(u.clamp01());
+    pub(crate) fn sample_cos_factored(g: T, u: T) -> T {
+        // Only the fields `factors` reads are meaningful in this value, and
+        // it does not leave this function.
+        let lobe = HenyeyGreenstein {
+            g,
+            omg: T::ONE - g,
+            opg: T::ONE + g,
+            pdf_k: T::NAN,
+            wide: PackedF64::new([f64::NAN; 5]),
+        };
+        let (opm, omm, _) = lobe.factors(u.clamp01());
         Self::cos_from(opm, omm)
     }
     /// `(1 + μ, 1 − μ)` for `μ = F⁻¹(u)` (module docs).

@@ -349,6 +349,8 @@ use libm::{sqrt as sqrt_f64, sqrtf as sqrt_f32};
 pub(crate) struct PackedF64<const N: usize>([[u32; 2]; N]);
 
 impl<const N: usize> PackedF64<N> {
+    /// All zeros (as a constant: no conversion code is generated for it).
+    pub(crate) const ZERO: Self = PackedF64([[0; 2]; N]);
     pub(crate) fn new(values: [f64; N]) -> Self {
         PackedF64(values.map(|v| {
             let b = v.to_bits();

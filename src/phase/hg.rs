@@ -98,7 +98,7 @@ impl<T: Real> HenyeyGreenstein<T> {
             wide: if Self::wide_path() {
                 wide_constants(g.to_f64())
             } else {
-                PackedF64::new([0.0; 5])
+                PackedF64::ZERO
             },
         }
     }
@@ -120,7 +120,7 @@ impl<T: Real> HenyeyGreenstein<T> {
             omg: T::ONE - g,
             opg: T::ONE + g,
             pdf_k: T::NAN,
-            wide: PackedF64::new([f64::NAN; 5]),
+            wide: PackedF64::ZERO,
         };
         let (opm, omm, _) = lobe.factors(u.clamp01());
         Self::cos_from(opm, omm)
@@ -258,7 +258,7 @@ impl<T: Real> HenyeyGreenstein<T> {
 fn wide_constants(g: f64) -> PackedF64<5> {
     let a = g.abs();
     if a < WIDE_G_MIN {
-        return PackedF64::new([0.0; 5]);
+        return PackedF64::ZERO;
     }
     let (c, h) = ((1.0 - a) * (1.0 + a), 0.5 / a);
     let sign = if g > 0.0 { 1.0 } else { -1.0 };

@@ -166,29 +166,26 @@ impl<T: Real> HenyeyGreenstein<T> {
         WIDE && core::mem::size_of::<T>() == 4
     }
 
-    /// The f64 path for `u ∈ [0, 1]` (module docs): `(t, q)` with
+    /// The f64 path for `u ∈ [0, 1]` (module docs): `(u', t, q)` with
     /// `t = u' + k` and `q = ±B/t²`, so that `μ = ±A − q`; `None` for
     /// `|g| < 2⁻¹⁰`.
     #[inline(always)]
-    fn wide_t(&self, u: f64) -> Option<(f64, f64)> {
+    fn wide_t(&self, u: f64) -> Option<(f64, f64, f64)> {
         let (k, b) = (self.wide.get(0), self.wide.get(2));
         if b == 0.0 {
             return None;
         }
         // u' is exact (1 − u of an f32 u), k ≥ 0: t is rounded once.
-        let t = if self.g > T::ZERO {
-            u + k
-        } else {
-            (1.0 - u) + k
-        };
-        Some((t, b / (t * t)))
+        let u1 = if self.g > T::ZERO { u } else { 1.0 - u };
+        let t = u1 + k;
+        Some((u1, t, b / (t * t)))
     }
 
     /// `cos θ` on the f64 path for `u ∈ [0, 1]`.
     #[inline(always)]
     fn wide_cos(&self, u: f64) -> f64 {
         match self.wide_t(u) {
-            Some((_, q)) => self.wide.get(1) - q,
+            Some((_, _, q)) => self.wide.get(1) - q,
             None => HenyeyGreenstein::<f64>::from_g(self.g.to_f64()).sample_cos_in_range(u),
         }
     }
@@ -196,15 +193,11 @@ impl<T: Real> HenyeyGreenstein<T> {
     /// `(cos θ, sin² θ, density)` on the f64 path for `u ∈ [0, 1]`.
     #[inline(always)]
     fn wide_cos_sin2_d(&self, u: f64) -> (f64, f64, f64) {
-        let Some((t, q)) = self.wide_t(u) else {
-            let h = HenyeyGreenstein::<f64>::from_g(self.g.to_f64());
-            let (opm, omm, d) = h.factors(u);
-            let mu = HenyeyGreenstein::<f64>::cos_from(opm, omm);
-            return (mu, opm * omm, h.pdf_k * d * d * d);
+        let Some((u1, t, q)) = self.wide_t(u) else {
+            return HenyeyGreenstein::<f64>::from_g(self.g.to_f64()).factored_cos_sin2_d(u);
         };
         // sin θ of the mirrored problem (g', u') is the same.
         let g = self.g.to_f64().abs();
-        let u1 = if self.g > T::ZERO { u } else { 1.0 - u };
         let gu = g * u1;
         let ab = ((1.0 - g) + gu) * (1.0 + gu);
         // sin θ = E q sqrt(u(1 − u) a b) with E q = 2 s²/(1 − g'²), E = 4g'/(1 − g'²).
@@ -213,20 +206,28 @@ impl<T: Real> HenyeyGreenstein<T> {
         (self.wide.get(1) - q, sin2, self.wide.get(4) * (t * t * t))
     }
 
+    /// `(cos θ, sin² θ, density)` by the factored forms in `T`, for
+    /// `u ∈ [0, 1]`.
+    #[inline(always)]
+    fn factored_cos_sin2_d(&self, u: T) -> (T, T, T) {
+        let (opm, omm, d) = self.factors(u);
+        (Self::cos_from(opm, omm), opm * omm, self.pdf_k * d * d * d)
+    }
+
     /// `(cos θ, sin θ, density)` for `u ∈ [0, 1]`, the density from the
     /// sampler's own `d` (see `sample_dir`).
     #[inline(always)]
     fn cos_sin_d(&self, u: T) -> (T, T, T) {
-        if Self::wide_path() {
+        let (mu, sin2, pdf) = if Self::wide_path() {
             // sin² θ rounded to f32 and its root taken there: within an ULP
             // of the exact sin θ, at a quarter of the cost of f64 roots in a
             // vectorised batch.
             let (mu, sin2, pdf) = self.wide_cos_sin2_d(u.to_f64());
-            return (T::from_f64(mu), T::from_f64(sin2).sqrt(), T::from_f64(pdf));
-        }
-        let (opm, omm, d) = self.factors(u);
-        let sin = (opm * omm).max_of(T::ZERO).sqrt();
-        (Self::cos_from(opm, omm), sin, self.pdf_k * d * d * d)
+            (T::from_f64(mu), T::from_f64(sin2), T::from_f64(pdf))
+        } else {
+            self.factored_cos_sin2_d(u)
+        };
+        (mu, sin2.max_of(T::ZERO).sqrt(), pdf)
     }
 
     /// `cos θ` from `(1 + μ, 1 − μ)`: `−1 + (1 + μ)` while that correction

@@ -35,7 +35,7 @@ opt-level = "s"
 "#;
 
 const LIB: &str = r#"#![no_std]
-use scatterkit::{HenyeyGreenstein, Phase, PhaseFunction, Vec3};
+use scatterkit::{HenyeyGreenstein, Phase, PhaseFunction, Rayleigh, Vec3};
 
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
@@ -55,6 +55,13 @@ pub extern "C" fn probe_hg_dir(g: f32, w: &[f32; 3], u1: f32, u2: f32, out: &mut
 #[unsafe(no_mangle)]
 pub extern "C" fn probe_rayleigh_dir(w: &[f32; 3], u1: f32, u2: f32, out: &mut [f32; 4]) {
     let (d, p) = Phase::<f32>::rayleigh().sample_dir(Vec3::new(w[0], w[1], w[2]), u1, u2);
+    *out = [d.x, d.y, d.z, p];
+}
+
+/// The same through the model type instead of the `Phase` enum.
+#[unsafe(no_mangle)]
+pub extern "C" fn probe_rayleigh_model_dir(w: &[f32; 3], u1: f32, u2: f32, out: &mut [f32; 4]) {
+    let (d, p) = Rayleigh.sample_dir(Vec3::new(w[0], w[1], w[2]), u1, u2);
     *out = [d.x, d.y, d.z, p];
 }
 "#;
@@ -144,7 +151,7 @@ fn bare_metal_library_and_its_code_size() {
          linked with `rust-lld --gc-sections` from that entry point alone (`opt-level = \"s\"`), \
          and of the C library's `sk_phase_sample_dir`, whose dispatch reaches every model \
          (Draine and the fog compute in f64, in software on these targets).\n\n\
-         | target | HG direction | Rayleigh direction | `sk_phase_sample_dir` (all models) |\n|---|---:|---:|---:|\n",
+         | target | HG direction | Rayleigh direction (`Phase`) | Rayleigh direction (`Rayleigh`) | `sk_phase_sample_dir` (all models) |\n|---|---:|---:|---:|---:|\n",
     );
     let mut built = 0;
     for target in TARGETS {
@@ -223,15 +230,16 @@ fn bare_metal_library_and_its_code_size() {
         };
         let (hg, hg_syms) = link(&probe, "probe_hg_dir", &[]);
         let (ray, ray_syms) = link(&probe, "probe_rayleigh_dir", &[]);
+        let (ray_model, _) = link(&probe, "probe_rayleigh_model_dir", &[]);
         let (all, _) = link(
             &capi,
             "sk_phase_sample_dir",
             &["-u", "sk_phase_hg", "-u", "sk_phase_rayleigh"],
         );
         println!(
-            "{target}: .text HG direction {hg} B, Rayleigh direction {ray} B, sk_phase_sample_dir {all} B"
+            "{target}: .text HG direction {hg} B, Rayleigh direction {ray} B (model type {ray_model} B), sk_phase_sample_dir {all} B"
         );
-        report += &format!("| `{target}` | {hg} | {ray} | {all} |\n");
+        report += &format!("| `{target}` | {hg} | {ray} | {ray_model} | {all} |\n");
         if target.starts_with("thumbv7em") {
             // Software double precision (the EABI helpers and the
             // compiler-builtins routines) and libm's software square root.

@@ -230,7 +230,7 @@ fn bare_metal_library_and_its_code_size() {
         };
         let (hg, hg_syms) = link(&probe, "probe_hg_dir", &[]);
         let (ray, ray_syms) = link(&probe, "probe_rayleigh_dir", &[]);
-        let (ray_model, _) = link(&probe, "probe_rayleigh_model_dir", &[]);
+        let (ray_model, ray_model_syms) = link(&probe, "probe_rayleigh_model_dir", &[]);
         let (all, _) = link(
             &capi,
             "sk_phase_sample_dir",
@@ -250,7 +250,12 @@ fn bare_metal_library_and_its_code_size() {
                     || s.contains("df2")
                     || s.contains("sqrt")
             };
-            for (name, syms) in [("HG", &hg_syms), ("Rayleigh", &ray_syms)] {
+            let probes = [
+                ("HG", &hg_syms),
+                ("Rayleigh", &ray_syms),
+                ("Rayleigh (model type)", &ray_model_syms),
+            ];
+            for (name, syms) in probes {
                 let bad: Vec<_> = syms.iter().filter(soft).collect();
                 assert!(
                     bad.is_empty(),

@@ -143,26 +143,27 @@ fn bound(f32: bool, g_lo: f64) -> f64 {
 
 #[test]
 fn stability_sweep_and_failure_map() {
-    let mut rows = Vec::new();
-    for (g_lo, g_hi, g_name) in G_BANDS {
-        let gs = g_band(g_lo, g_hi);
-        for (a_lo, a_hi, a_name) in A_BANDS {
-            let alphas = alpha_band(a_lo, a_hi);
-            let ours32 = band_error::<f32>(&gs, &alphas, ours);
-            let ours64 = band_error::<f64>(&gs, &alphas, ours);
-            let eq32 = band_error::<f32>(&gs, &alphas, sample_cos_eq6);
-            let eq64 = band_error::<f64>(&gs, &alphas, sample_cos_eq6);
-            assert!(
-                ours32.clean() && ours32.max <= bound(true, g_lo),
-                "f32 {g_name}, {a_name}: {ours32:?}"
-            );
-            assert!(
-                ours64.clean() && ours64.max <= bound(false, g_lo),
-                "f64 {g_name}, {a_name}: {ours64:?}"
-            );
-            rows.push((g_name, a_name, eq32, ours32, eq64, ours64));
-        }
-    }
+    let regions: Vec<_> = G_BANDS
+        .into_iter()
+        .flat_map(|g| A_BANDS.into_iter().map(move |a| (g, a)))
+        .collect();
+    // The regions on every core, the rows in order.
+    let rows = common::map_parallel(&regions, |&((g_lo, g_hi, g_name), (a_lo, a_hi, a_name))| {
+        let (gs, alphas) = (g_band(g_lo, g_hi), alpha_band(a_lo, a_hi));
+        let ours32 = band_error::<f32>(&gs, &alphas, ours);
+        let ours64 = band_error::<f64>(&gs, &alphas, ours);
+        let eq32 = band_error::<f32>(&gs, &alphas, sample_cos_eq6);
+        let eq64 = band_error::<f64>(&gs, &alphas, sample_cos_eq6);
+        assert!(
+            ours32.clean() && ours32.max <= bound(true, g_lo),
+            "f32 {g_name}, {a_name}: {ours32:?}"
+        );
+        assert!(
+            ours64.clean() && ours64.max <= bound(false, g_lo),
+            "f64 {g_name}, {a_name}: {ours64:?}"
+        );
+        (g_name, a_name, eq32, ours32, eq64, ours64)
+    });
     if std::env::var_os("SK_BLESS").is_some() {
         write_map(&rows);
     }

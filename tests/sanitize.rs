@@ -7,17 +7,18 @@ mod common;
 use common::cbuild::{build_program, build_program_with, root};
 use std::process::Command;
 
+/// The longest under valgrind first, so that the parallel runs end together.
 const PROGRAMS: [&str; 12] = [
+    "tests/c/matrix.c",
+    "c_examples/cloud_majorants.c",
+    "c_examples/surface_shares.c",
     "c_examples/rayleigh_histogram.c",
     "c_examples/hg_stratified.c",
     "c_examples/fog_histogram.c",
-    "c_examples/surface_shares.c",
     "c_examples/fog_slab.c",
-    "c_examples/cloud_majorants.c",
     "c_examples/mie_cloud.c",
     "c_examples/rayleigh_sky.c",
     "tests/c/bad_input.c",
-    "tests/c/matrix.c",
     "tests/c/golden.c",
     "tests/c/batch.c",
 ];
@@ -30,7 +31,8 @@ fn programs_are_clean_under_asan_and_ubsan() {
         "-fno-omit-frame-pointer",
         "-g",
     ];
-    for src in PROGRAMS {
+    // Two or more programs at a time: the machine's cores are otherwise idle.
+    common::for_each_parallel(&PROGRAMS, |src| {
         let exe = build_program_with(&root().join(src), false, &flags, "_asan");
         let out = Command::new(&exe)
             .env(
@@ -50,7 +52,7 @@ fn programs_are_clean_under_asan_and_ubsan() {
             !stderr.contains("runtime error") && !stderr.contains("Sanitizer"),
             "{src}: {stderr}"
         );
-    }
+    });
 }
 
 #[test]
@@ -64,7 +66,7 @@ fn programs_are_clean_under_valgrind() {
         have,
         "valgrind is not installed: every machine of this project has it (see README)"
     );
-    for src in PROGRAMS {
+    common::for_each_parallel(&PROGRAMS, |src| {
         let exe = build_program(&root().join(src), false);
         let out = Command::new("valgrind")
             .args([
@@ -82,5 +84,5 @@ fn programs_are_clean_under_valgrind() {
             out.status,
             String::from_utf8_lossy(&out.stderr)
         );
-    }
+    });
 }

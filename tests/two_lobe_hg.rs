@@ -34,35 +34,42 @@ const WS: [f64; 7] = [0.0, 1e-3, 0.1, 0.5, 0.9, 0.999, 1.0];
 
 #[test]
 fn inverse_is_accurate_over_the_whole_domain() {
-    let (mut e32, mut e64) = (0.0f64, (0.0f64, [0.0; 3]));
     let t = |x: f64| x as f32 as f64;
-    for g1 in GS {
-        for g2 in GS {
-            for w in WS {
-                let p = Phase::<f64>::two_lobe_hg(g1, g2, w).unwrap();
-                let p32 = Phase::<f32>::two_lobe_hg(g1 as f32, g2 as f32, w as f32).unwrap();
-                let mut prev = -2.0;
-                for u in u_values() {
-                    // dd::fog_inverse(g_hg, g_d, α, w_d): lobe 1 is the "Draine" lobe.
-                    let exact = dd::fog_inverse(g2, g1, 0.0, w, u);
-                    let got = p.sample_cos(u);
-                    assert!((-1.0..=1.0).contains(&got), "{g1} {g2} {w} {u}: {got}");
-                    assert!(got >= prev, "not monotone at {g1} {g2} {w} {u}");
-                    prev = got;
-                    let err = (got - exact).abs();
-                    assert!(err <= 1e-14, "{g1} {g2} {w} u {u}: error {err:e}");
-                    if err > e64.0 {
-                        e64 = (err, [g1, g2, w]);
-                    }
-                    let u32 = u as f32;
-                    let ex32 = dd::fog_inverse(t(g2), t(g1), 0.0, t(w), u32 as f64);
-                    let got32 = p32.sample_cos(u32);
-                    assert!(!got32.is_nan() && got32.abs() <= 1.0);
-                    e32 = e32.max((got32 as f64 - ex32).abs());
-                }
+    let params: Vec<_> = GS
+        .into_iter()
+        .flat_map(|g1| GS.into_iter().flat_map(move |g2| WS.map(|w| (g1, g2, w))))
+        .collect();
+    // (f32 error, (f64 error, where)) per parameter set, on every core.
+    let errors = common::map_parallel(&params, |&(g1, g2, w)| {
+        let (mut e32, mut e64) = (0.0f64, (0.0f64, [0.0; 3]));
+        let p = Phase::<f64>::two_lobe_hg(g1, g2, w).unwrap();
+        let p32 = Phase::<f32>::two_lobe_hg(g1 as f32, g2 as f32, w as f32).unwrap();
+        let mut prev = -2.0;
+        for u in u_values() {
+            // dd::fog_inverse(g_hg, g_d, α, w_d): lobe 1 is the "Draine" lobe.
+            let exact = dd::fog_inverse(g2, g1, 0.0, w, u);
+            let got = p.sample_cos(u);
+            assert!((-1.0..=1.0).contains(&got), "{g1} {g2} {w} {u}: {got}");
+            assert!(got >= prev, "not monotone at {g1} {g2} {w} {u}");
+            prev = got;
+            let err = (got - exact).abs();
+            assert!(err <= 1e-14, "{g1} {g2} {w} u {u}: error {err:e}");
+            if err > e64.0 {
+                e64 = (err, [g1, g2, w]);
             }
+            let u32 = u as f32;
+            let ex32 = dd::fog_inverse(t(g2), t(g1), 0.0, t(w), u32 as f64);
+            let got32 = p32.sample_cos(u32);
+            assert!(!got32.is_nan() && got32.abs() <= 1.0);
+            e32 = e32.max((got32 as f64 - ex32).abs());
         }
-    }
+        (e32, e64)
+    });
+    let e32 = errors.iter().map(|e| e.0).fold(0.0, f64::max);
+    let e64 = errors
+        .iter()
+        .map(|e| e.1)
+        .fold((0.0, [0.0; 3]), |a, b| if b.0 > a.0 { b } else { a });
     println!(
         "two-lobe HG: f32 {e32:.1e}; f64 {:.1e} (at g1, g2, w = {:?})",
         e64.0, e64.1

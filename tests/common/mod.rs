@@ -34,3 +34,35 @@ pub const CHI2_SAMPLES: usize = 1_000_000;
 pub fn uniform_grid(n: usize) -> impl Iterator<Item = f64> {
     (0..n).map(move |i| i as f64 / (n - 1) as f64)
 }
+
+/// Calls `f` on every item, on as many threads as the machine has cores
+/// (items taken in order as threads free up). A panic in `f` fails the
+/// caller when the threads are joined.
+pub fn for_each_parallel<I: Sync>(items: &[I], f: impl Fn(&I) + Sync) {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let next = AtomicUsize::new(0);
+    std::thread::scope(|s| {
+        for _ in 0..threads.min(items.len()) {
+            s.spawn(|| {
+                while let Some(item) = items.get(next.fetch_add(1, Ordering::Relaxed)) {
+                    f(item);
+                }
+            });
+        }
+    });
+}
+
+/// `items.iter().map(f).collect()`, computed on as many threads as the
+/// machine has cores; the results in the items' order.
+pub fn map_parallel<I: Sync, R: Send>(items: &[I], f: impl Fn(&I) -> R + Sync) -> Vec<R> {
+    let out: Vec<std::sync::Mutex<Option<R>>> =
+        items.iter().map(|_| std::sync::Mutex::new(None)).collect();
+    let indexed: Vec<(usize, &I)> = items.iter().enumerate().collect();
+    for_each_parallel(&indexed, |&(i, item)| {
+        *out[i].lock().unwrap() = Some(f(item));
+    });
+    out.into_iter()
+        .map(|m| m.into_inner().unwrap().expect("every item mapped"))
+        .collect()
+}

@@ -116,8 +116,13 @@ unsafe fn sample_cos<S: PhaseStore>(p: *const S, u: S::T) -> S::T {
 }
 
 /// One model's direction; writes the density through a non-NULL `pdf_out`.
+/// With the C calling convention of the entry points (the vector in
+/// registers both ways), so that the entry ends in a jump here: with Rust's,
+/// it called this, the vector went through the stack both ways, and the
+/// result's three 4-byte stores were read back as one 8-byte load, which
+/// store forwarding cannot serve.
 #[inline(never)]
-unsafe fn dir_of<T: Real, M: PhaseFunction<T>, V: CVec<T = T>>(
+unsafe extern "C" fn dir_of<T: Real, M: PhaseFunction<T>, V: CVec<T = T>>(
     m: &M,
     w_in: V,
     u1: T,

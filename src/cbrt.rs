@@ -169,12 +169,20 @@ pub fn cbrt_f32_steps(x: f32, steps: u32) -> f32 {
 /// relative, like [`cbrt_fast_f64`] at half its divisions), for arguments
 /// whose magnitude lies in `[1e-200, 1e200]`, where `t³` cannot overflow or
 /// underflow. Outside that range the result is not meaningful (callers check).
+/// Such arguments are normal, so the seed needs neither the check for zero,
+/// infinity and NaN nor the subnormal case (whose out-of-line call made the
+/// caller save its registers on every call).
 #[inline]
 pub(crate) fn cbrt_moderate_f64(x: f64) -> f64 {
-    if is_special_f64(x) {
-        return x;
-    }
-    step_product(step_product(seed_f64(x), x), x)
+    step_product(step_product(seed_normal_f64(x), x), x)
+}
+
+/// [`seed_f64`] for a normal `x`.
+#[inline(always)]
+fn seed_normal_f64(x: f64) -> f64 {
+    let sign = x.to_bits() & 0x8000_0000_0000_0000;
+    let high = ((x.to_bits() & 0x7fff_ffff_ffff_ffff) >> 32) as u32;
+    f64::from_bits(sign | (((high / 3 + B1_F64) as u64) << 32))
 }
 
 #[cfg(test)]

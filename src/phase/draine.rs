@@ -24,11 +24,15 @@
 //!    removed (`|g| ≥ 0.02`), or the exact `g = 0` solution (a depressed cubic)
 //!    for smaller `|g|`, or when eq. 6 is not finite. For f32 results where
 //!    this seed is already within ~10⁻¹¹ (`|g| ≥ 0.05`, `10⁻⁴ ≤ α ≤ 10`: the
-//!    region where eq. 6 works), it is the answer, and the sampler costs
-//!    about twice what eq. 6 in f32 does. For f32 objects with `α > 10`,
-//!    where eq. 6 is a poor seed, a table of the inverse built with the
-//!    object (`phase::seeds`) seeds the iteration instead: two Halley
-//!    steps, about 3× eq. 6 at α = 250–1000.
+//!    region where eq. 6 works), it is the answer. Such an object computes
+//!    eq. 6's constants (everything that does not depend on `u`, for both
+//!    orientations) when it is built, so that a sample costs only the chain
+//!    from `u` on: a square root, a cube root (two Lancaster steps, a
+//!    division each), two more square roots and two more divisions (about
+//!    1.3× eq. 6 in f32, through the C ABI). For f32 objects
+//!    with `α > 10`, where eq. 6 is a poor seed, a table of the inverse
+//!    built with the object (`phase::seeds`) seeds the iteration instead:
+//!    two Halley steps, about 3× eq. 6 at α = 250–1000.
 //! 4. **Halley's method safeguarded by bisection** on `[−1, 1]`: a step that
 //!    leaves the bracket is replaced by bisection, so the iteration converges
 //!    from any seed; it stops when a step and Newton's `|r/F'|` fall below
@@ -48,7 +52,7 @@ use super::hg::HenyeyGreenstein;
 use super::seeds::Seeds;
 use crate::error::Error;
 use crate::numeric::{Eval, depressed_cubic_root, solve_bracketed};
-use crate::real::Real;
+use crate::real::{PackedF64, Real};
 
 /// Draine's phase function with asymmetry-like parameter `g ∈ (−1, 1)` and
 /// `α ≥ 0` (finite). `α = 1` is Cornette–Shanks; `α = 0` is HG.
@@ -56,9 +60,21 @@ use crate::real::Real;
 pub struct Draine<T> {
     pub(super) g: T,
     pub(super) alpha: T,
-    /// Seeds of the inverse where eq. 6 is not the answer (`phase::seeds`;
-    /// f32 objects only, [`Seeds::NONE`] otherwise).
-    pub(super) seeds: Seeds,
+    /// What the sampler keeps beside the parameters (f32 objects only).
+    pub(super) aux: Aux,
+}
+
+/// What a Draine object's sampler keeps, built with the object.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Aux {
+    /// Nothing: f64 objects, and f32 objects outside the two cases below.
+    None,
+    /// Seeds of the inverse where eq. 6 is not the answer (`phase::seeds`):
+    /// f32 objects with `α > 10`.
+    Seeds(Seeds),
+    /// Eq. 6's constants in both orientations ([`Eq6::pack`]): f32 objects
+    /// in the region where eq. 6 is the answer.
+    Eq6(PackedF64<13>),
 }
 
 impl<T: Real> Draine<T> {
@@ -83,10 +99,12 @@ impl<T: Real> Draine<T> {
         let p = d.params();
         if core::mem::size_of::<T>() == 4 && p.alpha > EQ6_MAX_ALPHA {
             let oriented = |m: bool| if m { p.mirrored() } else { p };
-            d.seeds = Seeds::build(
+            d.aux = Aux::Seeds(Seeds::build(
                 |m| oriented(m).eval_y(0.0).density,
                 |m, t| inverse_tail::<f64>(oriented(m), t),
-            );
+            ));
+        } else if core::mem::size_of::<T>() == 4 && eq6_region(p.g, p.alpha) {
+            d.aux = Aux::Eq6(Eq6::pack(p.g, p.alpha));
         }
         d
     }
@@ -96,7 +114,7 @@ impl<T: Real> Draine<T> {
         Draine {
             g,
             alpha,
-            seeds: Seeds::NONE,
+            aux: Aux::None,
         }
     }
     /// Cornette–Shanks (1992): Draine with `α = 1`.
@@ -131,14 +149,23 @@ impl<T: Real> PhaseFunction<T> for Draine<T> {
     }
     #[inline]
     fn sample_cos(&self, u: T) -> T {
-        self.sample_cos_sin(u).0
+        let (g, alpha, u) = (self.g.to_f64(), self.alpha.to_f64(), u.clamp01().to_f64());
+        let mu = match &self.aux {
+            // Eq. 6 from the stored constants, inline; the rest out of line.
+            Aux::Eq6(c) => {
+                let (y, flip) = oriented(g, u, |g, t, m| eq6_tail::<T>(c, m, g, alpha, t));
+                f64::from_bits((y - 1.0).to_bits() ^ flip)
+            }
+            aux => inverse_cos::<T>(g, alpha, aux, u),
+        };
+        T::from_f64(mu)
     }
     /// `sin θ` from the f64 solution, so forward and backward lobes keep
     /// angles that `cos θ` in f32 cannot resolve.
     #[inline]
     fn sample_cos_sin(&self, u: T) -> (T, T) {
         let (g, alpha, u) = (self.g.to_f64(), self.alpha.to_f64(), u.clamp01().to_f64());
-        let (mu, sin) = inverse::<T>(g, alpha, &self.seeds, u);
+        let (mu, sin) = inverse::<T>(g, alpha, &self.aux, u);
         (T::from_f64(mu), T::from_f64(sin))
     }
     /// `g (1 + α(3 + 2g²)/5) / (1 + α(1 + 2g²)/3)`.
@@ -279,74 +306,196 @@ fn inverse_g0(alpha: f64, u: f64) -> f64 {
 
 /// Eq. 6 of Jendersie & d'Eon (2023) in f64, with the cancellation of
 /// `t5 + sqrt(t5² − t6³)` for `t5 < 0` removed (the other cube root of the
-/// resolvent, as in Cardano's formula; below) and `1 − g²` factored. It still divides
-/// by `g` and by `α`, so it is used where those are not small; NaN where its
-/// cube root's argument leaves `[1e-200, 1e200]`.
+/// resolvent, as in Cardano's formula; [`Eq6::seed`]) and `1 − g²` factored.
+/// It still divides by `g` and by `α`, so it is used where those are not
+/// small; NaN where its cube root's argument leaves `[1e-200, 1e200]`.
 ///
-/// The chain `sqrt → cbrt → sqrt → sqrt` is the sampler's latency, so every
-/// division that does not depend on `u` (by `t0`, by `2g`, by `t6³`) is taken
-/// as a reciprocal computed beside it, and `t6/c` as `t6 c² / m`
-/// (`c³ = m`, whose reciprocal is also ready before the cube root):
-/// two divisions remain on the chain instead of six.
+/// Everything that does not depend on `u` is a constant here: `t0`, `t1`,
+/// `t1 t2`, `t1³`, `t6`, `t6³`, `6(1 + g²)` and the reciprocals of `t0` and
+/// `2g`, and `t4`, linear in `u`, as `P + Q u`. An f32 object in the eq. 6
+/// region keeps them ([`Aux::Eq6`]); elsewhere they are formed per sample
+/// ([`seed_eq6`], with `t4` as published).
+#[derive(Clone, Copy, Debug)]
+struct Eq6 {
+    /// `t4 = P + Q u`.
+    p: f64,
+    q: f64,
+    t0: f64,
+    t1: f64,
+    /// `t1 t2` and `t1³`: `t5 = t0 (t1 t2 + t4²) + t1³`.
+    t1t2: f64,
+    t1_3: f64,
+    t6: f64,
+    t6_3: f64,
+    inv_t0: f64,
+    /// `6(1 + g²)`.
+    k: f64,
+    g: f64,
+    /// `1/(2g)`.
+    inv_2g: f64,
+}
+
+impl Eq6 {
+    /// The constants for `g` (signed as the problem is oriented) and `α`.
+    #[inline(always)]
+    fn new(g: f64, a: f64) -> Eq6 {
+        let g2 = g * g;
+        let omg2 = (1.0 - g) * (1.0 + g);
+        let t0 = a * omg2;
+        let t1 = -a * omg2 * (1.0 + g2);
+        let t2 = -3.0 * (-4.0 * g2 * omg2 + t1 * (1.0 + g2));
+        let t6 = -4.0 * t0 * g2 * omg2;
+        // t4 = 3g²(1 + t3) + α(2 + g²(1 + (1 + 2g²) t3)) with t3 = −g + 2gu.
+        // P (u = 0) and P + Q (u = 1) are t4 at the ends, both ≥ 0, so on
+        // the small tail (t4 between P and the midpoint of the two) P + Q u
+        // loses at most one bit.
+        let p = 3.0 * g2 * (1.0 - g) + a * (2.0 + g2 * (1.0 - (1.0 + 2.0 * g2) * g));
+        let q = 2.0 * g * g2 * (3.0 + a * (1.0 + 2.0 * g2));
+        Eq6 {
+            p,
+            q,
+            t0,
+            t1,
+            t1t2: t1 * t2,
+            t1_3: t1 * t1 * t1,
+            t6,
+            t6_3: t6 * t6 * t6,
+            inv_t0: 1.0 / t0,
+            k: 6.0 * (1.0 + g2),
+            g,
+            inv_2g: 0.5 / g,
+        }
+    }
+
+    /// Both orientations' constants for `g ≥ 0` or `g < 0` and `α`: `P` and
+    /// `Q` for `g` and for `−g`, then the rest (even in `g`, but for `1/(2g)`,
+    /// whose sign the mirror flips).
+    fn pack(g: f64, a: f64) -> PackedF64<13> {
+        let (e, m) = (Eq6::new(g, a), Eq6::new(-g, a));
+        PackedF64::new([
+            e.p, e.q, m.p, m.q, e.t0, e.t1, e.t1t2, e.t1_3, e.t6, e.t6_3, e.inv_t0, e.k, e.inv_2g,
+        ])
+    }
+
+    /// The constants [`pack`](Self::pack) stored, for the problem oriented
+    /// by `g`: the object's `g`, or its negation if `mirrored`.
+    #[inline(always)]
+    fn unpack(c: &PackedF64<13>, mirrored: bool, g: f64) -> Eq6 {
+        let i = 2 * mirrored as usize;
+        Eq6 {
+            p: c.get(i),
+            q: c.get(i + 1),
+            t0: c.get(4),
+            t1: c.get(5),
+            t1t2: c.get(6),
+            t1_3: c.get(7),
+            t6: c.get(8),
+            t6_3: c.get(9),
+            inv_t0: c.get(10),
+            k: c.get(11),
+            g,
+            inv_2g: f64::from_bits(c.get(12).to_bits() ^ ((mirrored as u64) << 63)),
+        }
+    }
+
+    /// `μ` for `u` by eq. 6, `t4` as `P + Q u`.
+    #[inline(always)]
+    fn seed(&self, u: f64) -> f64 {
+        self.seed_t4(self.p + self.q * u)
+    }
+
+    /// `μ` by eq. 6 from `t4`.
+    ///
+    /// The chain `sqrt → cbrt → sqrt → sqrt` is the sampler's latency, so
+    /// `t6/c` is taken as `t6 c² / m` (`c³ = m`, whose reciprocal is ready
+    /// before the cube root): two divisions remain on the chain.
+    #[inline(always)]
+    fn seed_t4(&self, t4: f64) -> f64 {
+        let t5 = self.t0 * (self.t1t2 + t4 * t4) + self.t1_3;
+        let root = Real::sqrt(t5 * t5 - self.t6_3);
+        // The resolvent's two cube roots `c± = cbrt(t5 ± root)` have the product
+        // `t6` (the cube of the product is `t5² − root² = t6³`), and eq. 6 needs
+        // their sum `c+ + t6/c+`. Taking `c = cbrt(t5 + sign(t5) root)` instead
+        // adds like signs, so the cancellation of `t5 + root` for `t5 < 0` is
+        // gone without a branch, and `t6/c = t6 c²/m` with `1/m` computed
+        // beside the cube root.
+        let m = t5 + root.copysign(t5);
+        let inv_m = 1.0 / m;
+        if !(m.abs() > 1e-200 && m.abs() < 1e200) {
+            return f64::NAN;
+        }
+        let c = crate::cbrt::cbrt_moderate_f64(m);
+        let t8 = 2.0 * (self.t1 + self.t6 * c * c * inv_m + c) * self.inv_t0;
+        let t9 = Real::sqrt(self.k + t8);
+        let d = Real::sqrt(self.k - t8 + 8.0 * t4 * self.inv_t0 / t9) - t9;
+        // g/2 + 1/(2g) − d²/(8g)
+        self.g * 0.5 + (1.0 - 0.25 * d * d) * self.inv_2g
+    }
+}
+
+/// Eq. 6 in f64 for `(g, α)` at `u` ([`Eq6`]), its constants formed here
+/// and `t4` as published, from `t3 = g (2u − 1)`.
 #[inline]
 fn seed_eq6(g: f64, a: f64, u: f64) -> f64 {
     let g2 = g * g;
-    let omg2 = (1.0 - g) * (1.0 + g);
-    let t0 = a * omg2;
-    let t1 = -a * omg2 * (1.0 + g2);
-    let t2 = -3.0 * (-4.0 * g2 * omg2 + t1 * (1.0 + g2));
-    let t6 = -4.0 * t0 * g2 * omg2;
-    let t6_3 = t6 * t6 * t6;
-    // Independent of u: off the critical path.
-    let (inv_t0, inv_2g) = (1.0 / t0, 0.5 / g);
     let t3 = g * (2.0 * u - 1.0);
     let t4 = 3.0 * g2 * (1.0 + t3) + a * (2.0 + g2 * (1.0 + (1.0 + 2.0 * g2) * t3));
-    let t5 = t0 * (t1 * t2 + t4 * t4) + t1 * t1 * t1;
-    let root = Real::sqrt(t5 * t5 - t6_3);
-    // The resolvent's two cube roots `c± = cbrt(t5 ± root)` have the product
-    // `t6` (the cube of the product is `t5² − root² = t6³`), and eq. 6 needs
-    // their sum `c+ + t6/c+`. Taking `c = cbrt(t5 + sign(t5) root)` instead
-    // adds like signs, so the cancellation of `t5 + root` for `t5 < 0` is
-    // gone without a branch, and `t6/c = t6 c²/m` with `1/m` computed
-    // beside the cube root.
-    let m = t5 + root.copysign(t5);
-    let inv_m = 1.0 / m;
-    if !(m.abs() > 1e-200 && m.abs() < 1e200) {
-        return f64::NAN;
-    }
-    let c = crate::cbrt::cbrt_moderate_f64(m);
-    let t8 = 2.0 * (t1 + t6 * c * c * inv_m + c) * inv_t0;
-    let k = 6.0 * (1.0 + g2);
-    let t9 = Real::sqrt(k + t8);
-    let d = Real::sqrt(k - t8 + 8.0 * t4 * inv_t0 / t9) - t9;
-    // g/2 + 1/(2g) − d²/(8g)
-    g * 0.5 + (1.0 - 0.25 * d * d) * inv_2g
+    Eq6::new(g, a).seed_t4(t4)
 }
 
 /// `F⁻¹(u)` in f64 for `u ∈ [0, 1]`, for results of precision `T` (module
-/// docs): `(cos θ, sin θ)`. With a seed table, Halley's iteration on
-/// `[0, 2]` starts from it; without, from eq. 6 (or the `g = 0` root).
-fn inverse<T: Real>(g: f64, alpha: f64, seeds: &Seeds, u: f64) -> (f64, f64) {
-    // The mirrored problem's parameters directly (one `Params` built),
-    // without a branch: with random u a branch on `u > 1/2` mispredicts
-    // half the time, and each miss discards the next samples' work that
-    // the processor had started. The mirror flips the sign of g and of μ.
-    let mirrored = u > 0.5;
-    let flip = (mirrored as u64) << 63;
-    let target = u.min(1.0 - u);
-    let g = f64::from_bits(g.to_bits() ^ flip);
-    let y = if seeds.is_some() {
-        let p = Params::new(g, alpha);
-        let seed = seeds.y(mirrored, target);
-        solve_bracketed::<T>(|y| p.eval_y(y), target, seed, 0.0, 2.0)
-    } else {
-        // The parameters (four divisions) only if the solver runs: where eq. 6
-        // is the answer they would occupy the divider that eq. 6's own
-        // chain of divisions and square roots waits on.
-        inverse_tail_lazy::<T>(g, alpha, target, || Params::new(g, alpha))
-    };
+/// docs): `(cos θ, sin θ)`.
+#[inline(always)]
+fn inverse<T: Real>(g: f64, alpha: f64, aux: &Aux, u: f64) -> (f64, f64) {
+    let (y, flip) = inverse_tail_of::<T>(g, alpha, aux, u);
     let (mu, sin) = from_tail(y, false);
     (f64::from_bits(mu.to_bits() ^ flip), sin)
+}
+
+/// `cos θ = F⁻¹(u)` alone (no `sin θ`), as [`inverse`].
+#[inline(never)]
+fn inverse_cos<T: Real>(g: f64, alpha: f64, aux: &Aux, u: f64) -> f64 {
+    let (y, flip) = inverse_tail_of::<T>(g, alpha, aux, u);
+    f64::from_bits((y - 1.0).to_bits() ^ flip)
+}
+
+/// The tail solution `y` of `F⁻¹(u)` and the sign bit that maps it to `μ`
+/// (`μ = ±(y − 1)`). With a seed table, Halley's iteration on `[0, 2]`
+/// starts from it; without, from eq. 6 (or the `g = 0` root).
+#[inline(always)]
+fn inverse_tail_of<T: Real>(g: f64, alpha: f64, aux: &Aux, u: f64) -> (f64, u64) {
+    oriented(g, u, |g, target, mirrored| {
+        // The parameters (four divisions) only if the solver runs: where
+        // eq. 6 is the answer they would occupy the divider that eq. 6's own
+        // chain of divisions and square roots waits on.
+        let params = || Params::new(g, alpha);
+        match aux {
+            Aux::Seeds(seeds) => {
+                let p = params();
+                let seed = seeds.y(mirrored, target);
+                solve_bracketed::<T>(|y| p.eval_y(y), target, seed, 0.0, 2.0)
+            }
+            Aux::Eq6(c) => eq6_tail::<T>(c, mirrored, g, alpha, target),
+            Aux::None => inverse_tail_lazy::<T>(g, alpha, target, params),
+        }
+    })
+}
+
+/// `tail(g', t, mirrored)` for the problem oriented so that
+/// `t = min(u, 1 − u)` is the smaller tail (`g' = −g`, mirrored, for
+/// `u > 1/2`), and the sign bit that flips `μ` back. The mirrored problem's
+/// parameters directly, without a branch: with random `u` a branch on
+/// `u > 1/2` mispredicts half the time, and each miss discards the next
+/// samples' work that the processor had started.
+#[inline(always)]
+fn oriented(g: f64, u: f64, tail: impl FnOnce(f64, f64, bool) -> f64) -> (f64, u64) {
+    let mirrored = u > 0.5;
+    let flip = (mirrored as u64) << 63;
+    let g = f64::from_bits(g.to_bits() ^ flip);
+    // The smaller of u and 1 − u (NaN for NaN u), as one `minsd`.
+    let v = 1.0 - u;
+    let t = if u < v { u } else { v };
+    (tail(g, t, mirrored), flip)
 }
 
 /// `(cos θ, sin θ)` from a tail solution `y = 1 + μ_tail` (of the mirrored
@@ -393,12 +542,45 @@ fn inverse_tail_lazy<T: Real>(
         // large enough for that absolute error to leave sin θ exact: done.
         return seed;
     }
+    solve_from::<T>(alpha, target, seed, params())
+}
+
+/// [`inverse_tail`] for an f32 object in the eq. 6 region, from its stored
+/// constants `c` ([`Aux::Eq6`]): eq. 6 is the answer wherever the tail
+/// solution `y` is at least [`EQ6_MIN_Y`] (the same test as in
+/// [`inverse_tail_lazy`], whose region test holds by construction here).
+#[inline(always)]
+fn eq6_tail<T: Real>(c: &PackedF64<13>, mirrored: bool, g: f64, alpha: f64, target: f64) -> f64 {
+    let seed = 1.0 + Eq6::unpack(c, mirrored, g).seed(target);
+    if target > 0.0 && (EQ6_MIN_Y..=2.0).contains(&seed) {
+        return seed;
+    }
+    eq6_tail_rest::<T>(g, alpha, target, seed)
+}
+
+/// The rest of [`eq6_tail`]: the ends, NaN, and the solver (cold, so that
+/// the code for the usual case runs straight through).
+#[cold]
+#[inline(never)]
+fn eq6_tail_rest<T: Real>(g: f64, alpha: f64, target: f64, seed: f64) -> f64 {
+    if target.is_nan() {
+        return f64::NAN;
+    }
+    if target <= 0.0 {
+        return 0.0;
+    }
+    solve_from::<T>(alpha, target, seed, Params::new(g, alpha))
+}
+
+/// The solver's part of [`inverse_tail_lazy`], out of line: where eq. 6 is
+/// the answer, the sampler does not set up the solver's stack frame.
+#[inline(never)]
+fn solve_from<T: Real>(alpha: f64, target: f64, seed: f64, p: Params) -> f64 {
     let seed = if seed.is_finite() {
         seed
     } else {
         1.0 + inverse_g0(alpha, target)
     };
-    let p = params();
     solve_bracketed::<T>(|y| p.eval_y(y), target, seed, 0.0, 2.0)
 }
 
@@ -408,11 +590,11 @@ fn eq6_region(g: f64, alpha: f64) -> bool {
 }
 
 /// Below this `y = 1 + μ` the eq. 6 shortcut is not taken: its absolute
-/// error in this region (≤ 1.3·10⁻¹¹, ≤ 6·10⁻¹³ for |g| ≥ 0.9; see
-/// docs/draine_accuracy.md) must stay below f32's resolution of
-/// `sin θ = sqrt(y (2 − y))`, whose relative error is `δy/(2y)`: ≤ 6·10⁻⁷ of
-/// an already tiny angle at `y = 10⁻⁵`, and 5·10⁻⁸ where |g| ≥ 0.9 (the lobes
-/// that reach the pole).
+/// error in this region (≤ 2·10⁻¹¹, measured 1.7·10⁻¹¹ by
+/// `tests/draine.rs`; ≤ 6·10⁻¹³ for |g| ≥ 0.9, docs/draine_accuracy.md)
+/// must stay below f32's resolution of `sin θ = sqrt(y (2 − y))`, whose
+/// relative error is `δy/(2y)`: ≤ 10⁻⁶ of an already tiny angle at
+/// `y = 10⁻⁵`, and 5·10⁻⁸ where |g| ≥ 0.9 (the lobes that reach the pole).
 const EQ6_MIN_Y: f64 = 1e-5;
 
 /// Where eq. 6 (in f64, on the small tail) is used as it is for f32 results:

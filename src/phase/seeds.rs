@@ -45,12 +45,6 @@ impl Seeds {
         seeds
     }
 
-    /// True when a table was built.
-    #[inline(always)]
-    pub(crate) fn is_some(&self) -> bool {
-        self.0[0][1] > 0.0
-    }
-
     /// The seed `y ≈ t·z(t)` at tail probability `t ∈ [0, ½]` for the tail
     /// `mirrored`, `z` linear between the nodes.
     #[inline(always)]

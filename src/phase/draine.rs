@@ -153,8 +153,8 @@ impl<T: Real> PhaseFunction<T> for Draine<T> {
         let mu = match &self.aux {
             // Eq. 6 from the stored constants, inline; the rest out of line.
             Aux::Eq6(c) => {
-                let (y, flip) = oriented(g, u, |g, t, m| eq6_tail::<T>(c, m, g, alpha, t));
-                f64::from_bits((y - 1.0).to_bits() ^ flip)
+                let (mu, flip) = oriented(g, u, |g, t, m| eq6_tail_cos::<T>(c, m, g, alpha, t));
+                f64::from_bits(mu.to_bits() ^ flip)
             }
             aux => inverse_cos::<T>(g, alpha, aux, u),
         };
@@ -398,13 +398,26 @@ impl Eq6 {
         }
     }
 
-    /// `μ` for `u` by eq. 6, `t4` as `P + Q u`.
+    /// `μ` for `u` by eq. 6 from the stored constants, `t4` as `P + Q u`,
+    /// and the operations after `t4` regrouped for a shorter chain:
+    /// `t5 = t0 t4² + (t0 t1 t2 + t1³)`, and `t6/c = c² (t6/m)` with `t6/m`
+    /// formed beside the cube root, so that `t8` is two operations after
+    /// `c`. (The per-sample path, [`seed_t4`](Self::seed_t4), keeps the
+    /// published grouping, and f64 results their bits.)
     #[inline(always)]
     fn seed(&self, u: f64) -> f64 {
-        self.seed_t4(self.p + self.q * u)
+        let t4 = self.p + self.q * u;
+        let t5 = self.t0 * (t4 * t4) + (self.t0 * self.t1t2 + self.t1_3);
+        let Some(m) = resolvent(t5, self.t6_3) else {
+            return f64::NAN;
+        };
+        let t6_m = self.t6 / m;
+        let c = crate::cbrt::cbrt_moderate_f64(m);
+        let t8 = ((self.t1 + c) + (c * c) * t6_m) * (2.0 * self.inv_t0);
+        self.finish(t4, t8)
     }
 
-    /// `μ` by eq. 6 from `t4`.
+    /// `μ` by eq. 6 from `t4`, grouped as published.
     ///
     /// The chain `sqrt → cbrt → sqrt → sqrt` is the sampler's latency, so
     /// `t6/c` is taken as `t6 c² / m` (`c³ = m`, whose reciprocal is ready
@@ -412,25 +425,39 @@ impl Eq6 {
     #[inline(always)]
     fn seed_t4(&self, t4: f64) -> f64 {
         let t5 = self.t0 * (self.t1t2 + t4 * t4) + self.t1_3;
-        let root = Real::sqrt(t5 * t5 - self.t6_3);
-        // The resolvent's two cube roots `c± = cbrt(t5 ± root)` have the product
-        // `t6` (the cube of the product is `t5² − root² = t6³`), and eq. 6 needs
-        // their sum `c+ + t6/c+`. Taking `c = cbrt(t5 + sign(t5) root)` instead
-        // adds like signs, so the cancellation of `t5 + root` for `t5 < 0` is
-        // gone without a branch, and `t6/c = t6 c²/m` with `1/m` computed
-        // beside the cube root.
-        let m = t5 + root.copysign(t5);
-        let inv_m = 1.0 / m;
-        if !(m.abs() > 1e-200 && m.abs() < 1e200) {
+        let Some(m) = resolvent(t5, self.t6_3) else {
             return f64::NAN;
-        }
+        };
+        let inv_m = 1.0 / m;
         let c = crate::cbrt::cbrt_moderate_f64(m);
         let t8 = 2.0 * (self.t1 + self.t6 * c * c * inv_m + c) * self.inv_t0;
+        self.finish(t4, t8)
+    }
+
+    /// Eq. 6 from `t8` on: `t9 = sqrt(6(1 + g²) + t8)`,
+    /// `d = sqrt(6(1 + g²) − t8 + 8 t4/(t0 t9)) − t9`, `μ = g/2 + (1 − d²/4)/(2g)`.
+    #[inline(always)]
+    fn finish(&self, t4: f64, t8: f64) -> f64 {
         let t9 = Real::sqrt(self.k + t8);
         let d = Real::sqrt(self.k - t8 + 8.0 * t4 * self.inv_t0 / t9) - t9;
         // g/2 + 1/(2g) − d²/(8g)
         self.g * 0.5 + (1.0 - 0.25 * d * d) * self.inv_2g
     }
+}
+
+/// The argument `m` of eq. 6's cube root, `t5 + sign(t5) sqrt(t5² − t6³)`,
+/// or `None` where it leaves `[1e-200, 1e200]`.
+///
+/// The resolvent's two cube roots `c± = cbrt(t5 ± root)` have the product
+/// `t6` (the cube of the product is `t5² − root² = t6³`), and eq. 6 needs
+/// their sum `c+ + t6/c+`. Taking `c = cbrt(t5 + sign(t5) root)` instead adds
+/// like signs, so the cancellation of `t5 + root` for `t5 < 0` is gone
+/// without a branch.
+#[inline(always)]
+fn resolvent(t5: f64, t6_3: f64) -> Option<f64> {
+    let root = Real::sqrt(t5 * t5 - t6_3);
+    let m = t5 + root.copysign(t5);
+    (m.abs() > 1e-200 && m.abs() < 1e200).then_some(m)
 }
 
 /// Eq. 6 in f64 for `(g, α)` at `u` ([`Eq6`]), its constants formed here
@@ -556,6 +583,23 @@ fn eq6_tail<T: Real>(c: &PackedF64<13>, mirrored: bool, g: f64, alpha: f64, targ
         return seed;
     }
     eq6_tail_rest::<T>(g, alpha, target, seed)
+}
+
+/// [`eq6_tail`] as `μ = y − 1` of the tail problem, without forming `y`
+/// where eq. 6 is the answer (for `cos θ` alone).
+#[inline(always)]
+fn eq6_tail_cos<T: Real>(
+    c: &PackedF64<13>,
+    mirrored: bool,
+    g: f64,
+    alpha: f64,
+    target: f64,
+) -> f64 {
+    let mu = Eq6::unpack(c, mirrored, g).seed(target);
+    if target > 0.0 && (EQ6_MIN_Y - 1.0..=1.0).contains(&mu) {
+        return mu;
+    }
+    eq6_tail_rest::<T>(g, alpha, target, 1.0 + mu) - 1.0
 }
 
 /// The rest of [`eq6_tail`]: the ends, NaN, and the solver (cold, so that

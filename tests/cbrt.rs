@@ -10,7 +10,9 @@ use scatterkit::cbrt::{cbrt_f32, cbrt_f64, cbrt_fast_f32, cbrt_fast_f64};
 /// Spacing of f32 values at `y` (a positive normal f32 magnitude).
 fn ulp32(y: f64) -> f64 {
     let e = ((y as f32).to_bits() >> 23) as i32;
-    2f64.powi(e - 127 - 23)
+    // 2^(e − 150), built from its bits (exact, as `powi` is for powers of
+    // two, without `powi`'s loop: this runs for every f32).
+    f64::from_bits(((e - 150 + 1023) as u64) << 52)
 }
 
 /// Spacing of f64 values at `y` (positive normal).

@@ -61,13 +61,11 @@ fn subnormal_seed_f32(mag: u32) -> u32 {
 fn seed_f64(x: f64) -> f64 {
     let sign = x.to_bits() & 0x8000_0000_0000_0000;
     let mag = x.to_bits() & 0x7fff_ffff_ffff_ffff;
-    let high = (mag >> 32) as u32;
-    let hx = if high < 0x0010_0000 {
-        subnormal_seed_f64(mag)
+    if ((mag >> 32) as u32) < 0x0010_0000 {
+        f64::from_bits(sign | ((subnormal_seed_f64(mag) as u64) << 32))
     } else {
-        high / 3 + B1_F64
-    };
-    f64::from_bits(sign | ((hx as u64) << 32))
+        seed_normal_f64(x)
+    }
 }
 
 /// The seed's high word for a subnormal magnitude, scaled by 2^54 (out of

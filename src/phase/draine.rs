@@ -28,8 +28,8 @@
 //!    eq. 6's constants (everything that does not depend on `u`, for both
 //!    orientations) when it is built, so that a sample costs only the chain
 //!    from `u` on: a square root, a cube root (two Lancaster steps, a
-//!    division each), two more square roots and two more divisions (about
-//!    1.3× eq. 6 in f32, through the C ABI). For f32 objects
+//!    division each), two more square roots and two more divisions
+//!    (1.2–1.3× eq. 6 in f32, through the C ABI). For f32 objects
 //!    with `α > 10`, where eq. 6 is a poor seed, a table of the inverse
 //!    built with the object (`phase::seeds`) seeds the iteration instead:
 //!    two Halley steps, about 3× eq. 6 at α = 250–1000.

@@ -153,7 +153,11 @@ impl<T: Real> PhaseFunction<T> for Draine<T> {
         let mu = match &self.aux {
             // Eq. 6 from the stored constants, inline; the rest out of line.
             Aux::Eq6(c) => {
-                let (mu, flip) = oriented(g, u, |g, t, m| eq6_tail_cos::<T>(c, m, g, alpha, t));
+                let (mu, flip) = oriented(g, u, |g, t, m| match eq6_stored(c, m, g, t) {
+                    // μ of the tail problem, without forming y = 1 + μ.
+                    Ok(mu) => mu,
+                    Err(mu) => eq6_rest::<T>(g, alpha, t, 1.0 + mu) - 1.0,
+                });
                 f64::from_bits(mu.to_bits() ^ flip)
             }
             aux => inverse_cos::<T>(g, alpha, aux, u),
@@ -502,7 +506,10 @@ fn inverse_tail_of<T: Real>(g: f64, alpha: f64, aux: &Aux, u: f64) -> (f64, u64)
                 let seed = seeds.y(mirrored, target);
                 solve_bracketed::<T>(|y| p.eval_y(y), target, seed, 0.0, 2.0)
             }
-            Aux::Eq6(c) => eq6_tail::<T>(c, mirrored, g, alpha, target),
+            Aux::Eq6(c) => match eq6_stored(c, mirrored, g, target) {
+                Ok(mu) => 1.0 + mu,
+                Err(mu) => eq6_rest::<T>(g, alpha, target, 1.0 + mu),
+            },
             Aux::None => inverse_tail_lazy::<T>(g, alpha, target, params),
         }
     })
@@ -572,41 +579,27 @@ fn inverse_tail_lazy<T: Real>(
     solve_from::<T>(alpha, target, seed, params())
 }
 
-/// [`inverse_tail`] for an f32 object in the eq. 6 region, from its stored
-/// constants `c` ([`Aux::Eq6`]): eq. 6 is the answer wherever the tail
-/// solution `y` is at least [`EQ6_MIN_Y`] (the same test as in
-/// [`inverse_tail_lazy`], whose region test holds by construction here).
+/// Eq. 6 for an f32 object in the eq. 6 region, from its stored constants
+/// `c` ([`Aux::Eq6`]), at tail probability `target`: `Ok(μ)` of the tail
+/// problem where it is the answer (`y = 1 + μ ≥` [`EQ6_MIN_Y`], the test of
+/// [`inverse_tail_lazy`], whose region test holds by construction here),
+/// else `Err(μ)` for [`eq6_rest`] to start from.
 #[inline(always)]
-fn eq6_tail<T: Real>(c: &PackedF64<13>, mirrored: bool, g: f64, alpha: f64, target: f64) -> f64 {
-    let seed = 1.0 + Eq6::unpack(c, mirrored, g).seed(target);
-    if target > 0.0 && (EQ6_MIN_Y..=2.0).contains(&seed) {
-        return seed;
-    }
-    eq6_tail_rest::<T>(g, alpha, target, seed)
-}
-
-/// [`eq6_tail`] as `μ = y − 1` of the tail problem, without forming `y`
-/// where eq. 6 is the answer (for `cos θ` alone).
-#[inline(always)]
-fn eq6_tail_cos<T: Real>(
-    c: &PackedF64<13>,
-    mirrored: bool,
-    g: f64,
-    alpha: f64,
-    target: f64,
-) -> f64 {
+fn eq6_stored(c: &PackedF64<13>, mirrored: bool, g: f64, target: f64) -> Result<f64, f64> {
     let mu = Eq6::unpack(c, mirrored, g).seed(target);
     if target > 0.0 && (EQ6_MIN_Y - 1.0..=1.0).contains(&mu) {
-        return mu;
+        Ok(mu)
+    } else {
+        Err(mu)
     }
-    eq6_tail_rest::<T>(g, alpha, target, 1.0 + mu) - 1.0
 }
 
-/// The rest of [`eq6_tail`]: the ends, NaN, and the solver (cold, so that
-/// the code for the usual case runs straight through).
+/// `y` where [`eq6_stored`] is not the answer: the ends, NaN, and the
+/// solver from `seed` (cold, so that the code for the usual case runs
+/// straight through).
 #[cold]
 #[inline(never)]
-fn eq6_tail_rest<T: Real>(g: f64, alpha: f64, target: f64, seed: f64) -> f64 {
+fn eq6_rest<T: Real>(g: f64, alpha: f64, target: f64, seed: f64) -> f64 {
     if target.is_nan() {
         return f64::NAN;
     }

@@ -65,6 +65,7 @@ pub(crate) struct Eval {
 /// `sqrt(tol)` relative to the distance to the nearer pole (the next error
 /// is then about `curvature · step³`), or when a step no longer moves `x`,
 /// or after [`MAX_NEWTON`] steps.
+#[inline]
 pub(crate) fn solve_bracketed<T: Real>(
     f: impl Fn(f64) -> Eval,
     target: f64,

@@ -17,11 +17,11 @@
 
 use super::PhaseFunction;
 use super::draine::{Params, from_tail, inverse_tail};
-use super::seeds::Seeds;
+use super::seeds::{HalfSeeds, Seeds};
 use crate::double_double::Dd;
 use crate::error::Error;
 use crate::numeric::{Eval, solve_bracketed};
-use crate::real::Real;
+use crate::real::{PackedF64, Real};
 
 /// The fog mixture. Built from its four parameters or from a droplet
 /// diameter ([`Fog::from_diameter`]); construction also tabulates the seeds
@@ -36,8 +36,19 @@ pub struct Fog<T> {
     /// iteration on the mixture converges in two steps for 97 % of `u` at
     /// 2 µm (three otherwise), and the lobes' own quantiles, one of them an
     /// iterative solve, are no longer needed as a bracket: 1.8× the paper's
-    /// lobe choice instead of 5×.
-    seeds: Seeds,
+    /// lobe choice instead of 5×. Two HG lobes also keep their lobe
+    /// choice's constants here.
+    aux: Aux,
+}
+
+/// What a fog object stores beyond its parameters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Aux {
+    /// The seeds of the exact inverse.
+    Seeds(Seeds),
+    /// An f32 two-lobe HG whose lobe choice takes [`Fog::two_hg_wide`]: the
+    /// seeds in 16 bits and each lobe's `(a, b, k)` in f64.
+    TwoHg(HalfSeeds, PackedF64<6>),
 }
 
 /// The four fitted parameters of the fog phase function at one diameter.
@@ -144,7 +155,7 @@ impl<T: Real> Fog<T> {
             g_d,
             alpha,
             w_d,
-            seeds: Seeds::NONE,
+            aux: Aux::Seeds(Seeds::NONE),
         };
         let (h, d, w) = fog.lobes();
         let oriented = |m: bool| {
@@ -154,7 +165,7 @@ impl<T: Real> Fog<T> {
                 (h, d)
             }
         };
-        fog.seeds = Seeds::build(
+        let seeds = Seeds::build(
             |m| {
                 let (h, d) = oriented(m);
                 mixture(h, d, w, 0.0).density
@@ -164,6 +175,10 @@ impl<T: Real> Fog<T> {
                 tail_by_lobes::<f64>(h, d, w, t)
             },
         );
+        fog.aux = match fog.wide_lobe_constants() {
+            Some(c) => Aux::TwoHg(seeds.to_half(), c),
+            None => Aux::Seeds(seeds),
+        };
         fog
     }
 
@@ -198,7 +213,7 @@ impl<T: Real> Fog<T> {
         if target.is_nan() {
             return (f64::NAN, f64::NAN);
         }
-        let seed = self.seeds.y(mirrored, target);
+        let seed = self.seed(mirrored, target);
         let mut y = solve_bracketed::<T>(|y| mixture(h, d, w, y), target, seed, 0.0, 2.0);
         if self.alpha == T::ZERO && T::EPSILON.to_f64() < 1e-10 {
             let g = (sign * self.g_hg.to_f64(), sign * self.g_d.to_f64());
@@ -207,13 +222,38 @@ impl<T: Real> Fog<T> {
         from_tail(y, mirrored)
     }
 
+    /// The tabulated seed of the tail solution at tail probability `target`.
+    #[inline(always)]
+    fn seed(&self, mirrored: bool, target: f64) -> f64 {
+        match &self.aux {
+            Aux::Seeds(s) => s.y(mirrored, target),
+            Aux::TwoHg(s, _) => s.y(mirrored, target),
+        }
+    }
+
     /// The paper's sampler (Jendersie & d'Eon 2023): the Draine lobe when
     /// `u < w_D` (or `w_D = 1`), with `u/w_D` reused inside it, else HG with
     /// `(u − w_D)/(1 − w_D)`. Exact in distribution; not monotone in `u`. `u`
-    /// is clamped to `[0, 1]`. The HG lobes take HG's factored forms in `T`
-    /// (within 3·10⁻⁷ in f32), whose constants cost no division per sample.
+    /// is clamped to `[0, 1]`. An f32 two-lobe HG on a target with fast
+    /// doubles samples its lobes in f64 from constants stored with the
+    /// object, without rescaling `u` ([`Self::two_hg_wide`]: within half an
+    /// ULP plus 10⁻⁹ of the lobe's exact sample); otherwise HG lobes take
+    /// HG's factored forms in `T` (within 3·10⁻⁷ of the lobe's exact sample
+    /// at the rescaled `u`), whose constants cost no division per sample.
+    #[inline]
     pub fn sample_cos_by_lobe(&self, u: T) -> T {
-        let (u, w) = (u.clamp01(), self.w_d);
+        let u = u.clamp01();
+        if let Aux::TwoHg(_, lobes) = &self.aux {
+            return T::from_f64(self.two_hg_wide(lobes, u.to_f64()));
+        }
+        self.by_lobe_rescaled(u)
+    }
+
+    /// The lobe choice with `u` rescaled into the chosen lobe: Draine lobes,
+    /// f64, and the f32 parameters [`Self::two_hg_wide`] does not take.
+    #[inline(never)]
+    fn by_lobe_rescaled(&self, u: T) -> T {
+        let w = self.w_d;
         // `w = 1` takes the first lobe at u = 1 too, so neither branch
         // divides by a zero weight (at u = 1, `(u − w)/(1 − w)` was 0/0).
         if u < w || w == T::ONE {
@@ -227,6 +267,70 @@ impl<T: Real> Fog<T> {
         } else {
             super::HenyeyGreenstein::sample_cos_factored(self.g_hg, (u - w) / (T::ONE - w))
         }
+    }
+
+    /// The constants of [`Self::two_hg_wide`] for lobes 0 (`u < w`, `g_d`)
+    /// and 1 (`g_hg`): `(a, b, k)` of each, or `None` where that sampler
+    /// does not apply: not an f32 two-lobe HG on a target with fast
+    /// doubles, or a lobe whose error bound (see there) passes 2²⁰ ε.
+    fn wide_lobe_constants(&self) -> Option<PackedF64<6>> {
+        if !super::hg::wide_path::<T>() || self.alpha != T::ZERO {
+            return None;
+        }
+        let w = self.w_d.to_f64();
+        let lobe = |g: f64, o: f64, l: f64| -> Option<[f64; 3]> {
+            let ga = g.abs();
+            // u − m is the distance from the lobe's pole μ = −1 (x ≥ 0
+            // below, mirrored for g < 0).
+            let m = if g > 0.0 { o } else { o + l };
+            let k = (1.0 - ga) * l;
+            let big_g = g + g;
+            let c0 = k - big_g * m;
+            let c = (1.0 - ga) * (1.0 + ga) * l;
+            let a = (1.0 + g * g) / big_g;
+            let consts = [a, c * c / (big_g * big_g * big_g), c0 / big_g];
+            // t = u + k is a sum of non-negative terms when k ≥ 0 (g > 0 in
+            // lobe 0); otherwise it cancels down to k/|2g| at the pole.
+            let amplification = if consts[2] >= 0.0 {
+                1.0
+            } else {
+                (c0.abs() + big_g.abs()) / k
+            };
+            let bound = amplification * (a.abs() + 1.0);
+            (bound <= (1u64 << 20) as f64).then_some(consts)
+        };
+        let l0 = lobe(self.g_d.to_f64(), 0.0, w)?;
+        let l1 = lobe(self.g_hg.to_f64(), w, 1.0 - w)?;
+        Some(PackedF64::new([l0[0], l0[1], l0[2], l1[0], l1[1], l1[2]]))
+    }
+
+    /// The lobe choice for two HG lobes in f64, for an f32 `u ∈ [0, 1]`,
+    /// without rescaling `u` and without a branch. Lobe `i` covers
+    /// `u ∈ [o, o + L)` (`(0, w)`, then `(w, 1 − w)`) and samples HG at
+    /// `v = (u − o)/L`. Multiplying the textbook inverse through by `L`,
+    /// `d = 1 − g + 2gv` becomes `D = (1 − g)L + 2g(u − o)` and
+    /// `μ = ((1 + g²) − (1 − g²)²L²/D²)/(2g)`; `g < 0` is the same formula
+    /// (the mirror image with `o + L − u` in place of `u − o`). With
+    /// `D = 2g·t`, `t = u + k`, this is `μ = a − b/t²`: one addition, one
+    /// square, one division and one subtraction, as HG's own f64 path, with
+    /// `(a, b, k)` of the chosen lobe loaded by its index.
+    ///
+    /// Error: `k` carries one rounding, relative to `|k|`. Where `k < 0`,
+    /// `t` cancels down to `(1 − |g|)L/(2|g|)` at the lobe's pole, so it is
+    /// accurate to a few ε times `A = (|2gk| + |2g|)/((1 − |g|)L)` relative
+    /// (`A = 1` where `k ≥ 0`: a sum of non-negative terms), and
+    /// `μ = a − b/t²`, whose subtracted term is at most `|a| + 1`, to a few
+    /// `ε·A·(|a| + 1)` absolute. Objects with `A(|a| + 1) > 2²⁰` (a lobe
+    /// share `L` or `1 − |g|` too small, or `|g|` too close to 0) take the
+    /// rescaling path; the rest are within half an f32 ULP plus `10⁻⁹` of
+    /// the lobe's exact sample at `u` (`tests/two_lobe_hg.rs`).
+    #[inline(always)]
+    fn two_hg_wide(&self, lobes: &PackedF64<6>, u: f64) -> f64 {
+        // NaN compares false: lobe 0, and NaN out.
+        let i = 3 * usize::from(u >= self.w_d.to_f64());
+        let (a, b, k) = (lobes.get(i), lobes.get(i + 1), lobes.get(i + 2));
+        let t = u + k;
+        a - b / (t * t)
     }
 }
 

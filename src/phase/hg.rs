@@ -57,7 +57,7 @@ const WIDE: bool = cfg!(any(
 /// Below this `|g|` the f64 path of the f32 sampler takes the factored forms:
 /// the rearranged textbook inverse's error, a few `ε (1 + g²)/(2|g|)`, would
 /// pass `3·10⁻¹³`.
-const WIDE_G_MIN: f64 = 1.0 / 1024.0;
+pub(super) const WIDE_G_MIN: f64 = 1.0 / 1024.0;
 
 /// Henyey–Greenstein with asymmetry `g ∈ (-1, 1)`; `g > 0` scatters forward.
 /// Holds `g` and the constants every sample needs, computed once.
@@ -163,7 +163,7 @@ impl<T: Real> HenyeyGreenstein<T> {
     /// on a target with fast doubles.
     #[inline(always)]
     fn wide_path() -> bool {
-        WIDE && core::mem::size_of::<T>() == 4
+        wide_path::<T>()
     }
 
     /// The f64 path for `u ∈ [0, 1]` (module docs): `(u', t, q)` with
@@ -253,6 +253,13 @@ impl<T: Real> HenyeyGreenstein<T> {
             (T::ONE + g) * (T::ONE + g) - T::TWO * g * (T::ONE + mu)
         }
     }
+}
+
+/// True for f32 on a target with fast doubles: where HG-based f32 samplers
+/// compute in f64 (module docs).
+#[inline(always)]
+pub(super) fn wide_path<T: Real>() -> bool {
+    WIDE && core::mem::size_of::<T>() == 4
 }
 
 /// The f64 path's constants (module docs) for `g` in f64.

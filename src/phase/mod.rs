@@ -292,6 +292,7 @@ impl<T: Real> Phase<T> {
     /// ([`Fog::sample_cos_by_lobe`]: one uniform picks the lobe and is reused
     /// inside it; exact in distribution, cheaper, not monotone in `u`); for
     /// every single-lobe phase function the same as `sample_cos`.
+    #[inline]
     pub fn sample_cos_by_lobe(&self, u: T) -> T {
         match self {
             Phase::Fog(f) => f.sample_cos_by_lobe(u),

@@ -8,7 +8,8 @@
 //! `t_k = k/(2K)`, with `z_0 = 1/f(pole)` its limit (`y/t` is bounded and
 //! smooth at `t → 0`, where `y` itself falls to zero like `t`). Linear
 //! interpolation gives a seed within a few per cent (3 % for the 2 µm fog).
-//! 26 floats: a phase object that holds one still fits in `sk_phase`.
+//! 26 floats: a phase object that holds one still fits in `sk_phase`
+//! ([`HalfSeeds`] keeps them in half the space).
 
 /// The largest seed: just below the pole `y = 2`.
 const Y_MAX: f64 = 2.0 - 1.0 / (1u64 << 20) as f64;
@@ -50,15 +51,53 @@ impl Seeds {
     #[inline(always)]
     pub(crate) fn y(&self, mirrored: bool, t: f64) -> f64 {
         let row = &self.0[mirrored as usize];
-        let s = (2 * K) as f64 * t;
-        // Saturating conversion and the min keep k in bounds (NaN gives 0).
-        let k = crate::real::Real::to_index(s).min(K - 1);
-        let f = s - k as f64;
-        match (row.get(k), row.get(k + 1)) {
-            // Kept inside (0, 2), where the solver takes a seed: a lobe so
-            // sharp that y ≈ 2 over the tail interpolates past 2.
-            (Some(&a), Some(&b)) => (t * (a as f64 + f * (b as f64 - a as f64))).min(Y_MAX),
-            _ => f64::NAN,
-        }
+        interpolate(|k| row.get(k).copied(), t)
+    }
+
+    /// The table in half the space ([`HalfSeeds`]).
+    pub(crate) fn to_half(self) -> HalfSeeds {
+        HalfSeeds(self.0.map(|row| row.map(HalfSeeds::encode)))
+    }
+}
+
+/// A seed table in half the space, for objects that need the other 52
+/// bytes: each node (positive) as a 16-bit float of our own, a 6-bit
+/// exponent for `[2⁻³¹, 2³³)` and 10 bits of significand (relative
+/// rounding ≤ 2⁻¹¹), far below the interpolation's own error.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct HalfSeeds([[u16; K + 1]; 2]);
+
+/// The f32 exponent field of the smallest [`HalfSeeds`] node, `2⁻³¹`.
+const HALF_EXP_BIAS: u32 = 127 - 31;
+
+impl HalfSeeds {
+    /// A positive f32 node to 16 bits, rounded to nearest, clamped into the
+    /// format's range.
+    fn encode(z: f32) -> u16 {
+        let (lo, hi) = (HALF_EXP_BIAS << 23, (HALF_EXP_BIAS + 64) << 23);
+        let bits = z.to_bits().clamp(lo, hi - (1 << 13) - 1) - lo;
+        ((bits + (1 << 12)) >> 13) as u16
+    }
+    /// As [`Seeds::y`].
+    #[inline(always)]
+    pub(crate) fn y(&self, mirrored: bool, t: f64) -> f64 {
+        let row = &self.0[mirrored as usize];
+        let node = |h: u16| f32::from_bits(((h as u32) << 13) + (HALF_EXP_BIAS << 23));
+        interpolate(|k| row.get(k).map(|&h| node(h)), t)
+    }
+}
+
+/// `t·z(t)` with `z` linear between the nodes `node(k)` at `t_k = k/(2K)`.
+#[inline(always)]
+fn interpolate(node: impl Fn(usize) -> Option<f32>, t: f64) -> f64 {
+    let s = (2 * K) as f64 * t;
+    // Saturating conversion and the min keep k in bounds (NaN gives 0).
+    let k = crate::real::Real::to_index(s).min(K - 1);
+    let f = s - k as f64;
+    match (node(k), node(k + 1)) {
+        // Kept inside (0, 2), where the solver takes a seed: a lobe so
+        // sharp that y ≈ 2 over the tail interpolates past 2.
+        (Some(a), Some(b)) => (t * (a as f64 + f * (b as f64 - a as f64))).min(Y_MAX),
+        _ => f64::NAN,
     }
 }

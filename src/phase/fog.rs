@@ -236,8 +236,9 @@ impl<T: Real> Fog<T> {
     /// `(u − w_D)/(1 − w_D)`. Exact in distribution; not monotone in `u`. `u`
     /// is clamped to `[0, 1]`. An f32 two-lobe HG on a target with fast
     /// doubles samples its lobes in f64 from constants stored with the
-    /// object, without rescaling `u` ([`Self::two_hg_wide`]: within half an
-    /// ULP plus 10⁻⁹ of the lobe's exact sample); otherwise HG lobes take
+    /// object, without rescaling `u` (HG's textbook inverse multiplied
+    /// through by the lobe's share of `[0, 1]`: within half an ULP plus
+    /// 10⁻⁹ of the lobe's exact sample); otherwise HG lobes take
     /// HG's factored forms in `T` (within 3·10⁻⁷ of the lobe's exact sample
     /// at the rescaled `u`), whose constants cost no division per sample.
     #[inline]

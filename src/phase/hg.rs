@@ -57,7 +57,7 @@ const WIDE: bool = cfg!(any(
 /// Below this `|g|` the f64 path of the f32 sampler takes the factored forms:
 /// the rearranged textbook inverse's error, a few `ε (1 + g²)/(2|g|)`, would
 /// pass `3·10⁻¹³`.
-pub(super) const WIDE_G_MIN: f64 = 1.0 / 1024.0;
+const WIDE_G_MIN: f64 = 1.0 / 1024.0;
 
 /// Henyey–Greenstein with asymmetry `g ∈ (-1, 1)`; `g > 0` scatters forward.
 /// Holds `g` and the constants every sample needs, computed once.
@@ -95,7 +95,7 @@ impl<T: Real> HenyeyGreenstein<T> {
             pdf_k: T::INV_4PI / (omg2 * omg2),
             // Only the f32 model on a target with fast doubles needs them
             // (elsewhere no double-precision code is linked).
-            wide: if Self::wide_path() {
+            wide: if wide_path::<T>() {
                 wide_constants(g.to_f64())
             } else {
                 PackedF64::ZERO
@@ -159,13 +159,6 @@ impl<T: Real> HenyeyGreenstein<T> {
         )
     }
 
-    /// True when this model's sampler takes the f64 path (module docs): f32
-    /// on a target with fast doubles.
-    #[inline(always)]
-    fn wide_path() -> bool {
-        wide_path::<T>()
-    }
-
     /// The f64 path for `u ∈ [0, 1]` (module docs): `(u', t, q)` with
     /// `t = u' + k` and `q = ±B/t²`, so that `μ = ±A − q`; `None` for
     /// `|g| < 2⁻¹⁰`.
@@ -218,7 +211,7 @@ impl<T: Real> HenyeyGreenstein<T> {
     /// sampler's own `d` (see `sample_dir`).
     #[inline(always)]
     fn cos_sin_d(&self, u: T) -> (T, T, T) {
-        let (mu, sin2, pdf) = if Self::wide_path() {
+        let (mu, sin2, pdf) = if wide_path::<T>() {
             // sin² θ rounded to f32 and its root taken there: within an ULP
             // of the exact sin θ, at a quarter of the cost of f64 roots in a
             // vectorised batch.
@@ -302,7 +295,7 @@ impl<T: Real> PhaseFunction<T> for HenyeyGreenstein<T> {
     }
     #[inline]
     fn sample_cos_in_range(&self, u: T) -> T {
-        if Self::wide_path() {
+        if wide_path::<T>() {
             return T::from_f64(self.wide_cos(u.to_f64()));
         }
         let (opm, omm, _) = self.factors(u);
@@ -364,7 +357,7 @@ mod tests {
     /// both sides of the 2⁻¹⁰ threshold and for both signs of g.
     #[test]
     fn f64_path_rounds_the_f64_sampler() {
-        if !HenyeyGreenstein::<f32>::wide_path() {
+        if !wide_path::<f32>() {
             return;
         }
         for g in [

@@ -65,6 +65,8 @@ pub mod cbrt;
 mod double_double;
 mod error;
 pub mod geometry;
+#[cfg(ifunc)]
+mod ifunc;
 pub mod majorant;
 mod measured;
 pub mod medium;

@@ -101,6 +101,13 @@ pub trait Real:
     fn from_index(i: usize) -> Self;
     /// The slice of `Self`'s precision from a pair of tables kept in both.
     fn pick<'a>(f32s: &'a [f32], f64s: &'a [f64]) -> &'a [Self];
+    /// The pair `(u, out)` as f32 slices if `Self` is f32, else `None` (for
+    /// loops written for f32 alone).
+    #[doc(hidden)]
+    fn as_f32_io<'a>(u: &'a [Self], out: &'a mut [Self]) -> Option<(&'a [f32], &'a mut [f32])>;
+    /// `u` as an f32 slice if `Self` is f32, else `None`.
+    #[doc(hidden)]
+    fn as_f32s(u: &[Self]) -> Option<&[f32]>;
     /// True unless NaN or ±∞.
     fn is_finite(self) -> bool;
     /// True for NaN.
@@ -135,7 +142,7 @@ pub trait Real:
 
 macro_rules! impl_real {
     ($t:ty, $sign:expr, $shift:expr, $scale:expr, $cbrt:path, $cbrt_fast:path,
-     $pick:expr, $sc2pi:path, $sqrt:path, $sincos:ident, $cos:ident, $log:ident, $log1p:ident,
+     $pick:expr, $as_f32:expr, $sc2pi:path, $sqrt:path, $sincos:ident, $cos:ident, $log:ident, $log1p:ident,
      $exp:ident, $expm1:ident, $pow:ident, $atan2:ident) => {
         impl Real for $t {
             const ZERO: Self = 0.0;
@@ -240,6 +247,17 @@ macro_rules! impl_real {
                 $pick(f32s, f64s)
             }
             #[inline(always)]
+            fn as_f32_io<'a>(
+                u: &'a [Self],
+                out: &'a mut [Self],
+            ) -> Option<(&'a [f32], &'a mut [f32])> {
+                $as_f32(u, out)
+            }
+            #[inline(always)]
+            fn as_f32s(u: &[Self]) -> Option<&[f32]> {
+                Self::as_f32_io(u, &mut []).map(|(u, _)| u)
+            }
+            #[inline(always)]
             fn is_finite(self) -> bool {
                 <$t>::is_finite(self)
             }
@@ -259,6 +277,7 @@ impl_real!(
     crate::cbrt::cbrt_f32,
     crate::cbrt::cbrt_fast_f32,
     |a, _| a,
+    |u, out| Some((u, out)),
     crate::azimuth::sin_cos_2pi_f32,
     sqrt_f32,
     sincosf,
@@ -278,6 +297,7 @@ impl_real!(
     crate::cbrt::cbrt_f64,
     crate::cbrt::cbrt_fast_f64,
     |_, b| b,
+    |_, _| None,
     crate::azimuth::sin_cos_2pi_f64,
     sqrt_f64,
     sincos,

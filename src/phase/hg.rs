@@ -174,6 +174,18 @@ impl<T: Real> HenyeyGreenstein<T> {
         Some((u1, t, b / (t * t)))
     }
 
+    /// The f64 path's constants for [`super::hg_batch`], if the f32 sampler
+    /// takes that path (`None` for f64, without fast doubles, and for
+    /// `|g| < 2⁻¹⁰`).
+    #[inline(always)]
+    fn wide_batch(&self) -> Option<super::hg_batch::Wide> {
+        let b = self.wide.get(2);
+        (wide_path::<T>() && b != 0.0).then(|| super::hg_batch::Wide {
+            kab: [self.wide.get(0), self.wide.get(1), b],
+            mirror: self.g <= T::ZERO,
+        })
+    }
+
     /// `cos θ` on the f64 path for `u ∈ [0, 1]`.
     #[inline(always)]
     fn wide_cos(&self, u: f64) -> f64 {
@@ -292,6 +304,20 @@ impl<T: Real> PhaseFunction<T> for HenyeyGreenstein<T> {
     #[inline]
     fn sample_cos(&self, u: T) -> T {
         self.sample_cos_in_range(u.clamp01())
+    }
+    /// On the f64 path, one loop over the slice that the compiler
+    /// vectorises (the `hg_batch` module), with the same bits as
+    /// [`sample_cos_in_range`](Self::sample_cos_in_range) per element.
+    #[inline]
+    fn sample_cos_each_in_range(&self, u: &[T], cos_out: &mut [T]) {
+        if let Some(w) = self.wide_batch() {
+            if let Some((u, out)) = T::as_f32_io(u, cos_out) {
+                return super::hg_batch::cos_n(w, u, out);
+            }
+        }
+        for (c, &ui) in cos_out.iter_mut().zip(u) {
+            *c = self.sample_cos_in_range(ui);
+        }
     }
     #[inline]
     fn sample_cos_in_range(&self, u: T) -> T {

@@ -15,6 +15,7 @@ pub mod fog;
 pub mod fournier_forand;
 pub mod gegenbauer;
 mod hg;
+mod hg_batch;
 mod isotropic;
 pub mod particle;
 pub mod particle_mie;
@@ -190,11 +191,34 @@ pub trait PhaseFunction<T: Real> {
 /// [`Error::Domain`] if any `u` is NaN or outside `[0, 1]`.
 #[inline]
 pub fn check_uniforms<T: Real>(u: &[T]) -> Result<(), Error> {
+    #[cfg(ifunc)]
+    let ok = match T::as_f32s(u) {
+        // SAFETY: `u` is valid for `u.len()` reads.
+        #[allow(unsafe_code)]
+        Some(u) => unsafe { sk__all_unit_f32(u.as_ptr(), u.len()) },
+        None => all_unit(u),
+    };
+    #[cfg(not(ifunc))]
+    let ok = all_unit(u);
+    if ok { Ok(()) } else { Err(Error::Domain) }
+}
+
+#[cfg(ifunc)]
+crate::ifunc::load_time_choice! {
+    /// [`all_unit`] from C: `true` if every one of the `n` floats at `u`
+    /// lies in `[0, 1]`; `u` valid for `n` reads.
+    sk__all_unit_f32: fn(u: *const f32, n: usize) -> bool {
+        // SAFETY: the symbol's contract.
+        all_unit(unsafe { core::slice::from_raw_parts(u, n) })
+    }
+}
+
+/// True if every `u` lies in `[0, 1]` (the loop of [`check_uniforms`]).
+#[inline(always)]
+fn all_unit<T: Real>(u: &[T]) -> bool {
     // `!(x >= 0 && x <= 1)` is true for NaN too; `fold` keeps this branch-free.
-    let bad = u
-        .iter()
-        .fold(false, |bad, &x| bad | !(x >= T::ZERO && x <= T::ONE));
-    if bad { Err(Error::Domain) } else { Ok(()) }
+    !u.iter()
+        .fold(false, |bad, &x| bad | !(x >= T::ZERO && x <= T::ONE))
 }
 
 /// One phase function, chosen at run time. A small `Copy` value with no
@@ -441,5 +465,38 @@ impl<T: Real> PhaseFunction<T> for Phase<T> {
         pdf_out: &mut [T],
     ) {
         dispatch!(self, m => m.sample_dir_each(w_in, u1, u2, out, pdf_out))
+    }
+}
+
+#[cfg(all(test, ifunc))]
+mod tests {
+    extern crate std;
+    use super::sk__all_unit_f32::{avx, sse2};
+
+    /// Both builds of the uniforms' check agree with the rule (NaN, −0,
+    /// the neighbours of 0 and 1, ±∞) at the first, a middle and the last
+    /// element, where this processor runs both.
+    #[test]
+    fn both_builds_check_alike() {
+        let u: std::vec::Vec<f32> = (0..=4099).map(|i| i as f32 / 4099.0).collect();
+        let avx_ok = std::is_x86_feature_detected!("avx");
+        if !avx_ok {
+            std::println!("AVX not available: the AVX build is not checked");
+        }
+        for bad in [-0.0f32, -1e-45, 1.000_000_1, f32::NAN, f32::INFINITY, 0.5] {
+            for at in [0, 7, 4099] {
+                let mut v = u.clone();
+                v[at] = bad;
+                let want = (0.0..=1.0).contains(&bad);
+                // SAFETY: valid for v.len() reads; AVX present where used.
+                #[allow(unsafe_code)]
+                unsafe {
+                    assert_eq!(sse2(v.as_ptr(), v.len()), want);
+                    if avx_ok {
+                        assert_eq!(avx(v.as_ptr(), v.len()), want);
+                    }
+                }
+            }
+        }
     }
 }

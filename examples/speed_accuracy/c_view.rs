@@ -319,7 +319,11 @@ pub(crate) fn c_tables(c: &std::collections::BTreeMap<String, (f64, f64)>, p: &P
          formulas written inline in C (xoshiro256++ inline in both, or behind `sk_rng` where the \
          call takes one; minimum of 15 interleaved rounds of 2¹⁸ samples). Errors are measured \
          in C against the library's double-precision sampler (directions: `|dot(w_in, w_out) − \
-         cos θ_exact|`).\n\n| what | ns per sample | max error in cos θ |\n|---|---:|---:|\n",
+         cos θ_exact|`). The C file is built for baseline x86-64 (SSE2), as a renderer shipped \
+         to every x86-64 machine is; on x86-64 Linux the library's HG cosine batch and its \
+         uniforms' check run an AVX build where the processor has AVX, picked when the \
+         program loads (`src/ifunc.rs`). A renderer that builds its own loop with `-mavx` \
+         gets the same width for the inline-C peers.\n\n| what | ns per sample | max error in cos θ |\n|---|---:|---:|\n",
     );
     for (key, _, label, _) in C_KEYS {
         let (t, e) = c[key];

@@ -17,8 +17,8 @@
 //! doubles the width at the same cost per instruction (AMD EPYC: 1.25 ns per
 //! `divpd` of 2 or 4 lanes). Both builds run the same IEEE operations in the
 //! same order: AVX adds width, not fused multiply–adds (which would round
-//! differently), so they return the same bits, which the tests below check
-//! wherever the processor runs both.
+//! differently), so they return the same bits, which the tests beside each
+//! use (`phase::hg_batch`, `phase`) check wherever the processor runs both.
 //!
 //! Not under cargo-fuzz (its sanitizer runtime is not set up when resolvers
 //! run) and not for Rust callers without the `ffi` feature (two versions of

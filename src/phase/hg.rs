@@ -170,8 +170,8 @@ impl<T: Real> HenyeyGreenstein<T> {
         }
         // u' is exact (1 − u of an f32 u), k ≥ 0: t is rounded once.
         let u1 = if self.g > T::ZERO { u } else { 1.0 - u };
-        let t = u1 + k;
-        Some((u1, t, b / (t * t)))
+        let (t, q) = super::hg_batch::wide_tq(k, b, u1);
+        Some((u1, t, q))
     }
 
     /// The f64 path's constants for [`super::hg_batch`], if the f32 sampler

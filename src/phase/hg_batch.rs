@@ -48,17 +48,22 @@ crate::ifunc::load_time_choice! {
     }
 }
 
+/// `t = u' + k` and `q = B/t²` on the f64 path (module docs): the one place
+/// the scalar sampler (`hg`'s `wide_t`) and the batch form them, so that their
+/// bits agree by construction.
+#[inline(always)]
+pub(super) fn wide_tq(k: f64, b: f64, u1: f64) -> (f64, f64) {
+    let t = u1 + k;
+    (t, b / (t * t))
+}
+
 /// The loop itself, written once for every build: the branch on the mirror
 /// outside, so that the compiler vectorises each arm.
 #[inline(always)]
 fn hg_wide_cos_each(kab: [f64; 3], mirror: bool, u: &[f32], out: &mut [f32]) {
     let [k, a, b] = kab;
-    // The operations and their order are the scalar sampler's (`hg`'s
-    // `wide_t` and `wide_cos`): `t = u' + k`, `A − B/(t·t)`.
-    let cos = |u1: f64| {
-        let t = u1 + k;
-        (a - b / (t * t)) as f32
-    };
+    // The scalar sampler's operations (`hg`'s `wide_cos`): `A − B/(u' + k)²`.
+    let cos = |u1: f64| (a - wide_tq(k, b, u1).1) as f32;
     if mirror {
         for (o, &x) in out.iter_mut().zip(u) {
             *o = cos(1.0 - x as f64);

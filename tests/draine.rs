@@ -392,7 +392,7 @@ fn fog_fits_are_valid_and_their_boundaries_documented() {
     }
 }
 
-/// Where eq. 6 is the answer for f32 objects (|g| ≥ 0.05, 10⁻⁴ ≤ α ≤ 10),
+/// Where eq. 6 is the answer for f32 objects (|g| ≥ 10⁻³, 10⁻⁴ ≤ α ≤ 10⁴),
 /// an object keeps eq. 6's constants and evaluates only the part that
 /// depends on u: its f32 results stay within half an f32 ULP of the f64
 /// sampler's (itself within 10⁻¹³) plus eq. 6's own error in f64, bounded
@@ -410,8 +410,9 @@ fn eq6_region_f32_is_within_half_an_ulp() {
         us.extend([d, 1.0 - d, 0.5 - d, 0.5 + d]);
     }
     let mut worst = 0.0f64;
-    for g in [0.05, -0.05, 0.3, -0.3, 0.6, -0.6, 0.9, -0.9, 0.99, -0.99] {
-        for alpha in [1e-4, 0.1, 1.0, 5.0, 10.0] {
+    let gs = [1e-3, 0.01, 0.05, 0.3, 0.6, 0.9, 0.99, 0.999];
+    for g in gs.into_iter().flat_map(|g| [g, -g]) {
+        for alpha in [1e-4, 0.1, 1.0, 5.0, 10.0, 30.0, 250.0, 1000.0, 1e4] {
             let p32 = Draine::<f32>::new(g as f32, alpha as f32).unwrap();
             let p64 = Draine::<f64>::new(g as f32 as f64, alpha as f32 as f64).unwrap();
             for &u in &us {

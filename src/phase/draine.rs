@@ -21,10 +21,11 @@
 //!    `(g, μ) → (−g, −μ)`); `1 − u` is exact there, and so `F` is always
 //!    evaluated where it is small and relatively accurate.
 //! 3. **A seed**: eq. 6 evaluated in f64 with its three cancellations
-//!    removed ([`Eq6`]: where `t5` changes sign, `t5 < 0` in the resolvent,
-//!    `g → 1`), for `|g| ≥ 10⁻³`; or the exact `g = 0` solution (a
-//!    depressed cubic) for smaller `|g|`, or when eq. 6 is not finite. For
-//!    f32 results where this seed is already within 2·10⁻¹² (`|g| ≥ 10⁻³`,
+//!    removed (where `t5` changes sign, `t5 < 0` in the resolvent, and
+//!    `g → 1`; the `Eq6` type in the source), for `|g| ≥ 10⁻³`; or the
+//!    exact `g = 0` solution (a depressed cubic) for smaller `|g|`, or when
+//!    eq. 6 is not finite. For f32 results where this seed is already
+//!    within 2.2·10⁻¹² (`|g| ≥ 10⁻³`,
 //!    `10⁻⁴ ≤ α ≤ 10⁴`), it is the answer. Such an object computes
 //!    eq. 6's constants (everything that does not depend on `u`, for both
 //!    orientations) when it is built, so that a sample costs only the chain
@@ -71,7 +72,8 @@ pub(super) enum Aux {
     /// Nothing: f64 objects, and f32 objects outside the two cases below.
     None,
     /// Seeds of the inverse where eq. 6 is not the answer (`phase::seeds`):
-    /// f32 objects with `α > 10`.
+    /// f32 objects with `α > 10` outside the eq. 6 region (`|g| < 10⁻³` or
+    /// `α > 10⁴`).
     Seeds(Seeds),
     /// Eq. 6's constants in both orientations ([`Eq6::pack`]): f32 objects
     /// in the region where eq. 6 is the answer.
@@ -323,7 +325,7 @@ fn inverse_g0(alpha: f64, u: f64) -> f64 {
 ///   cancellation), `t5 = t0 (t4 − r)(t4 + r)`, and `t4 − r = D + Q u`
 ///   with `D = P − r` taken as `(P² − r²)/(P + r)`,
 ///   `P² − r² = −g³ (1 − g)² (α²(4g² − g + 4) + 6α(2g² + g + 2) − 9g)`
-///   (expanded by hand, checked by computer algebra): `t5` keeps its
+///   (expanded and factored by computer algebra): `t5` keeps its
 ///   relative precision through its zero.
 /// - `t5 + sqrt(t5² − t6³)` cancels for `t5 < 0`: the other cube root of
 ///   the resolvent ([`resolvent`]).
@@ -331,7 +333,8 @@ fn inverse_g0(alpha: f64, u: f64) -> f64 {
 ///   `g → 1`: `P = (1 − g)(3g² + α(2 + 2g + 3g² + 2g³ + 2g⁴))`.
 ///
 /// It still divides by `g` and by `α`; measured against a 60-digit
-/// evaluation of the same formula, it is within 2·10⁻¹² in `μ` for
+/// evaluation of the same formula, it is within 2·10⁻¹² in `μ` (2.2·10⁻¹²
+/// against the iterative f64 inverse, a unit test below) for
 /// `|g| ≥ 10⁻³`, `10⁻⁴ ≤ α ≤ 10⁴` and `1 + μ ≥ 10⁻⁵` (the error grows like
 /// 6·10⁻¹⁶/|g| and with α: 10⁻¹⁰ at α = 10⁶). NaN where its cube root's
 /// argument leaves `[1e-200, 1e200]`.
@@ -621,7 +624,7 @@ fn eq6_region(g: f64, alpha: f64) -> bool {
 }
 
 /// Below this `y = 1 + μ` the eq. 6 shortcut is not taken: its absolute
-/// error in the eq. 6 region (≤ 2·10⁻¹², [`Eq6`]; the tests bound it by
+/// error in the eq. 6 region (≤ 2.2·10⁻¹², [`Eq6`]; the tests bound it by
 /// 2·10⁻¹¹) must stay below f32's resolution of `sin θ = sqrt(y (2 − y))`,
 /// whose relative error is `δy/(2y)`: ≤ 10⁻⁶ of an already tiny angle at
 /// `y = 10⁻⁵`.
@@ -629,7 +632,7 @@ const EQ6_MIN_Y: f64 = 1e-5;
 
 /// Where eq. 6 (in f64, on the small tail, [`Eq6`]) is used as it is for
 /// f32 results: `|g| ≥ 10⁻³`, `10⁻⁴ ≤ α ≤ 10⁴`, where it is within
-/// 2·10⁻¹² of the exact inverse (its error grows like 6·10⁻¹⁶/|g| below,
+/// 2.2·10⁻¹² of the exact inverse (its error grows like 6·10⁻¹⁶/|g| below,
 /// and with α above: 10⁻¹⁰ at α = 10⁶). The stability sweep and the eq. 6
 /// region test in `tests/draine.rs` hold this region to the same bounds as
 /// everything else.

@@ -395,9 +395,11 @@ fn fog_fits_are_valid_and_their_boundaries_documented() {
 /// Where eq. 6 is the answer for f32 objects (|g| ≥ 10⁻³, 10⁻⁴ ≤ α ≤ 10⁴),
 /// an object keeps eq. 6's constants and evaluates only the part that
 /// depends on u: its f32 results stay within half an f32 ULP of the f64
-/// sampler's (itself within 10⁻¹³) plus eq. 6's own error in f64, bounded
-/// by 2·10⁻¹¹ (the bound fixed before the run, from the eq. 6 column of
-/// docs/draine_accuracy.md: ≤ 1.3·10⁻¹¹ in that region).
+/// sampler's (itself within 10⁻¹³; 1.2·10⁻¹² for |g| < 0.05) plus eq. 6's
+/// own error in f64, bounded by 2·10⁻¹¹ (fixed when the region was
+/// |g| ≥ 0.05, α ≤ 10, from eq. 6's 1.3·10⁻¹¹ there, and kept for the
+/// wider region, where eq. 6 as rearranged in `src/phase/draine.rs` is
+/// within 2.2·10⁻¹²).
 #[test]
 fn eq6_region_f32_is_within_half_an_ulp() {
     let half_ulp = |x: f64| {

@@ -25,8 +25,8 @@
 //!    `g → 1`; the `Eq6` type in the source), for `|g| ≥ 10⁻³`; or the
 //!    exact `g = 0` solution (a depressed cubic) for smaller `|g|`, or when
 //!    eq. 6 is not finite. For f32 results where this seed is already
-//!    within 2.2·10⁻¹² (`|g| ≥ 10⁻³`,
-//!    `10⁻⁴ ≤ α ≤ 10⁴`), it is the answer. Such an object computes
+//!    within 2.2·10⁻¹² (`|g| ≥ 10⁻³`, `10⁻⁴ ≤ α ≤ 10⁴`), it is the
+//!    answer. Such an object computes
 //!    eq. 6's constants (everything that does not depend on `u`, for both
 //!    orientations) when it is built, so that a sample costs only the chain
 //!    from `u` on: a square root, a cube root (two Lancaster steps, a

@@ -12,6 +12,7 @@
 
 pub mod draine;
 pub mod fog;
+mod fog_inverse;
 pub mod fournier_forand;
 pub mod gegenbauer;
 mod hg;

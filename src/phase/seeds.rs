@@ -12,7 +12,7 @@
 //! ([`HalfSeeds`] keeps them in half the space).
 
 /// The largest seed: just below the pole `y = 2`.
-const Y_MAX: f64 = 2.0 - 1.0 / (1u64 << 20) as f64;
+pub(crate) const Y_MAX: f64 = 2.0 - 1.0 / (1u64 << 20) as f64;
 
 /// Intervals of the table of each tail.
 const K: usize = 12;
@@ -56,7 +56,7 @@ impl Seeds {
 
     /// The table in half the space ([`HalfSeeds`]).
     pub(crate) fn to_half(self) -> HalfSeeds {
-        HalfSeeds(self.0.map(|row| row.map(HalfSeeds::encode)))
+        HalfSeeds(self.0.map(|row| row.map(half_encode)))
     }
 }
 
@@ -71,20 +71,26 @@ pub(crate) struct HalfSeeds([[u16; K + 1]; 2]);
 const HALF_EXP_BIAS: u32 = 127 - 31;
 
 impl HalfSeeds {
-    /// A positive f32 node to 16 bits, rounded to nearest, clamped into the
-    /// format's range.
-    fn encode(z: f32) -> u16 {
-        let (lo, hi) = (HALF_EXP_BIAS << 23, (HALF_EXP_BIAS + 64) << 23);
-        let bits = z.to_bits().clamp(lo, hi - (1 << 13) - 1) - lo;
-        ((bits + (1 << 12)) >> 13) as u16
-    }
     /// As [`Seeds::y`].
     #[inline(always)]
     pub(crate) fn y(&self, mirrored: bool, t: f64) -> f64 {
         let row = &self.0[mirrored as usize];
-        let node = |h: u16| f32::from_bits(((h as u32) << 13) + (HALF_EXP_BIAS << 23));
-        interpolate(|k| row.get(k).map(|&h| node(h)), t)
+        interpolate(|k| row.get(k).map(|&h| half_decode(h)), t)
     }
+}
+
+/// A positive f32 node to the 16-bit format of [`HalfSeeds`], rounded to
+/// nearest, clamped into the format's range.
+pub(crate) fn half_encode(z: f32) -> u16 {
+    let (lo, hi) = (HALF_EXP_BIAS << 23, (HALF_EXP_BIAS + 64) << 23);
+    let bits = z.to_bits().clamp(lo, hi - (1 << 13) - 1) - lo;
+    ((bits + (1 << 12)) >> 13) as u16
+}
+
+/// The f32 value of a node stored by [`half_encode`]: a shift and an add.
+#[inline(always)]
+pub(crate) fn half_decode(h: u16) -> f32 {
+    f32::from_bits(((h as u32) << 13) + (HALF_EXP_BIAS << 23))
 }
 
 /// `t·z(t)` with `z` linear between the nodes `node(k)` at `t_k = k/(2K)`.

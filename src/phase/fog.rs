@@ -546,6 +546,36 @@ mod tests {
         std::println!("2 µm: seed within {seed_err:.1e}, series within {err:.1e} (relative)");
     }
 
+    /// Where the seed changes segment the f32 inverse stays monotone: every
+    /// f32 `u` within 2¹⁴ floats of `u_s` and `u_f` (and of the ends), for
+    /// fogs that take the table (d = 0.05, 0.5, 1, 2, 3 µm).
+    #[test]
+    fn monotone_across_segment_ends() {
+        for d in [0.05f32, 0.5, 1.0, 2.0, 3.0] {
+            let fog = Fog::<f32>::from_diameter(d).unwrap();
+            let Aux::Mixture(seeds) = &fog.aux else {
+                panic!("d = {d}: no mixture table");
+            };
+            let (u_s, u_f) = seeds.splits();
+            for end in [0.0f32, u_s, u_f, 1.0] {
+                let (lo, hi) = (
+                    end.to_bits().saturating_sub(1 << 14),
+                    end.to_bits() + (1 << 14),
+                );
+                let mut prev = f32::NEG_INFINITY;
+                for bits in lo..=hi {
+                    let u = f32::from_bits(bits);
+                    if !(0.0..=1.0).contains(&u) {
+                        continue;
+                    }
+                    let mu = fog.sample_cos(u);
+                    assert!(mu >= prev, "d = {d}: μ({u:e}) = {mu:e} < {prev:e}");
+                    prev = mu;
+                }
+            }
+        }
+    }
+
     /// Wherever an f32 object takes the series' result, it is within 10⁻¹⁰ of
     /// `y` (relative; bound fixed before the run) of the iterative solver's,
     /// over 400 random mixtures: `|g| ≤ 0.99`, α = 0 or 10⁻²…10³ (log

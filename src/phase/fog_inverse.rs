@@ -339,6 +339,12 @@ impl FogSeeds {
         (passes, worst)
     }
 
+    /// The segments' ends `(u_s, u_f)`.
+    #[cfg(test)]
+    pub(crate) fn splits(&self) -> (f32, f32) {
+        (self.u_s, self.u_f)
+    }
+
     /// Segment `j`'s frame and anchor `(mirrored, t_a, y_a)`.
     #[inline(always)]
     fn anchor(&self, j: usize) -> (bool, f64, f64) {

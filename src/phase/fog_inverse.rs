@@ -190,9 +190,10 @@ impl Mixture {
     }
 }
 
-/// The seed table (module docs): 13 nodes per segment in the 16-bit format
-/// of `seeds::HalfSeeds`, the split points, the trough anchor, each row's
-/// nodes per unit of `t`, and which segments take the series alone.
+/// The seed table (module docs): 13, 11 and 15 nodes for the three segments
+/// in the 16-bit format of `seeds::HalfSeeds`, the split points, the trough
+/// anchor, each segment's nodes per unit of `t`, and which segments passed
+/// their check (bit `j` for segment `j`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct FogSeeds {
     nodes: [u16; NODES],

@@ -10,10 +10,10 @@
 //!   monotone in `u` as the crate promises, computed in f64 from a table of
 //!   the inverse built with the object. f32 objects take one evaluation of
 //!   the mixture and its inverse series from the table's seed where the
-//!   table allows (every `u` for the fits at 1–2 µm and up to 0.1 µm, part
-//!   of `[0, 1]` at 0.5 and 2.5–5 µm; `phase::fog_inverse`), and otherwise,
-//!   as f64 objects always do, a safeguarded Halley iteration on the
-//!   mixture's CDF, solved in the smaller tail.
+//!   table allows (`phase::fog_inverse`: for the fits, every `u` at 0.05,
+//!   0.5, 1, 1.5 and 2 µm, half of `[0, 1]` or more at 2.5–10 µm), and
+//!   otherwise, as f64 objects always do, a safeguarded Halley iteration on
+//!   the mixture's CDF, solved in the smaller tail.
 //! * [`Fog::sample_cos_by_lobe`] is the paper's sampler: one uniform picks
 //!   the lobe (Draine when `u < w_D`) and is rescaled and reused inside it.
 //!   Cheaper, exact in distribution, but not monotone in `u` and not the
@@ -30,8 +30,8 @@ use crate::real::{PackedF64, Real};
 
 /// The fog mixture. Built from its four parameters or from a droplet
 /// diameter ([`Fog::from_diameter`]); construction also tabulates the seeds
-/// of its inverse (6–11 µs measured for f64 objects; 28–54 µs for f32 ones,
-/// which build and check three candidate tables): build it once per
+/// of its inverse (6–11 µs measured for f64 objects; 30–95 µs for f32 ones,
+/// which build and check up to six candidate tables): build it once per
 /// medium.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Fog<T> {
@@ -548,10 +548,11 @@ mod tests {
 
     /// Where the seed changes segment the f32 inverse stays monotone: every
     /// f32 `u` within 2¹⁴ floats of `u_s` and `u_f` (and of the ends), for
-    /// fogs that take the table (d = 0.05, 0.5, 1, 2, 3 µm).
+    /// fogs that take the table (d = 0.05, 0.5, 1, 2, 3, 10 µm; 0.5, 3 and
+    /// 10 µm tabulate the mean density).
     #[test]
     fn monotone_across_segment_ends() {
-        for d in [0.05f32, 0.5, 1.0, 2.0, 3.0] {
+        for d in [0.05f32, 0.5, 1.0, 2.0, 3.0, 10.0] {
             let fog = Fog::<f32>::from_diameter(d).unwrap();
             let Aux::Mixture(seeds) = &fog.aux else {
                 panic!("d = {d}: no mixture table");

@@ -30,11 +30,17 @@
 //! density between the anchor and `y`: smooth, and bounded by the density's
 //! extremes) at points evenly spaced in `t` (13, 11 and 15 of them), with
 //! its limit `1/F'(y_a)` at the anchor, and the seed is
-//! `y₀ = y_a + (t − t_a) z(t)`, `z` quadratic through three nodes. The pole
-//! segments keep the relative precision of `y` near the poles. `u_f` is the
-//! best of three candidates (`FORWARD_SPLITS`). For the 2 µm fog the seed
-//! is within 3.1·10⁻³ of `y` and the series within 7.3·10⁻¹³ (relative,
-//! 10⁵ values of `u`; `fog::tests`).
+//! `y₀ = y_a + (t − t_a) z(t)`, `z` quadratic through three nodes. Or the
+//! segments hold the mean density `1/z` itself, and `y₀ = y_a + (t − t_a)/z`
+//! costs a division: for a sharp HG lobe (`g → 1`) `z` near its pole grows
+//! like `1/(1 − |g| + 2|g|(1 − τ))²` in the lobe's own probability `τ`, a
+//! near pole just past `τ = 1`, while the mean density is a quadratic over
+//! a linear function of `τ` with its pole at `τ ≈ 2`. The pole segments keep
+//! the relative precision of `y` near the poles. `u_f` is the best of three
+//! candidates (`FORWARD_SPLITS`), and `1/z` is tried only where `z` leaves
+//! part of `[0, 1]` to the solver. For the 2 µm fog (`z`) the seed is within
+//! 3.1·10⁻³ of `y` and the series within 7.3·10⁻¹³ (relative, 10⁵ values of
+//! `u`; `fog::tests`).
 //!
 //! **When the series is taken.** Every segment is checked when the table is
 //! built: the series from the seed at the middle of each of its intervals
@@ -43,8 +49,8 @@
 //! of `y` (the next term, of order `a⁵`, is then far below f32 resolution);
 //! otherwise, and in segments that fail, the safeguarded Halley solver
 //! takes over from the series' result or the seed. Where the segments that
-//! pass cover less than half of `[0, 1]` (the fits for d ≳ 6 µm, whose HG
-//! lobe is too narrow for these rows) the object keeps the iterative
+//! pass cover less than half of `[0, 1]` (the fits from 11 µm up, whose
+//! HG lobe is too narrow for these rows) the object keeps the iterative
 //! solver's own table (`phase::seeds`) instead. f64 objects always do: their
 //! results need the solver to the last digits.
 
@@ -67,6 +73,10 @@ const NODES: usize = K[0] + K[1] + K[2] + 3;
 /// The least share of `[0, 1]` that segments taking the series must cover
 /// for the table to be used (module docs).
 const MIN_COVERAGE: f64 = 0.5;
+
+/// Covers within this of each other are equal (they are sums of f32
+/// widths).
+const COVERAGE_TIE: f64 = 1e-6;
 
 /// The candidates for the end `u_f` of the trough-side segment, from `u_s`:
 /// 15 % and 30 % of `[u_s, 1]` (best where the HG lobe is broad, as at
@@ -202,6 +212,8 @@ pub(crate) struct FogSeeds {
     y_a: f32,
     scale: [f32; 3],
     fast: u8,
+    /// The nodes hold the mean density `1/z` instead of `z` (module docs).
+    mean_density: bool,
 }
 
 /// Where a sample starts: its frame, target and seed.
@@ -235,39 +247,52 @@ impl FogSeeds {
         check: impl Fn(bool, f64, f64) -> f64,
     ) -> Option<FogSeeds> {
         let u_s = (eval(false, 1.0).cdf as f32).clamp(0.0, 1.0);
-        let mut seeds = FogSeeds {
-            nodes: [0; NODES],
-            u_s,
-            u_f: u_s,
-            y_a: exact(true, 1.0 - u_s as f64) as f32,
-            scale: [0.0; 3],
-            fast: 0,
-        };
         let fns = (&m, &eval, &exact, &check);
-        seeds.segment(0, fns);
         let mut best: Option<(f64, f64, FogSeeds)> = None;
-        for split in FORWARD_SPLITS {
-            let u_f = split(u_s);
-            if !(u_f >= u_s && u_f <= 1.0) {
-                continue;
+        // The mean density needs a division per sample: tried only where the
+        // inverse leaves part of [0, 1] to the solver.
+        for mean_density in [false, true] {
+            if best.as_ref().is_some_and(|b| b.0 >= 1.0 - COVERAGE_TIE) {
+                break;
             }
-            let mut trial = FogSeeds { u_f, ..seeds };
-            let (pass1, e1) = trial.segment(1, fns);
-            let (pass2, e2) = trial.segment(2, fns);
-            let covered = f64::from(u8::from(pass1)) * (u_f - u_s) as f64
-                + f64::from(u8::from(pass2)) * (1.0 - u_f) as f64;
-            let worse = e1.max(e2);
-            let better = match &best {
-                None => true,
-                Some((c, e, _)) => covered > *c || (covered == *c && worse < *e),
+            let mut seeds = FogSeeds {
+                nodes: [0; NODES],
+                u_s,
+                u_f: u_s,
+                y_a: exact(true, 1.0 - u_s as f64) as f32,
+                scale: [0.0; 3],
+                fast: 0,
+                mean_density,
             };
-            if better {
-                best = Some((covered, worse, trial));
+            let (pass0, e0) = seeds.segment(0, fns);
+            for split in FORWARD_SPLITS {
+                let u_f = split(u_s);
+                if !(u_f >= u_s && u_f <= 1.0) {
+                    continue;
+                }
+                let mut trial = FogSeeds { u_f, ..seeds };
+                let (pass1, e1) = trial.segment(1, fns);
+                let (pass2, e2) = trial.segment(2, fns);
+                let share = |pass: bool, width: f32| f64::from(u8::from(pass)) * width as f64;
+                let covered = share(pass0, u_s) + share(pass1, u_f - u_s) + share(pass2, 1.0 - u_f);
+                let worse = e0.max(e1).max(e2);
+                // Equal cover goes to the closer seeds of the same kind, and
+                // to the inverse mean density (no division) across kinds.
+                let better = match &best {
+                    None => true,
+                    Some((c, e, b)) => {
+                        covered > c + COVERAGE_TIE
+                            || (covered >= c - COVERAGE_TIE
+                                && b.mean_density == mean_density
+                                && worse < *e)
+                    }
+                };
+                if better {
+                    best = Some((covered, worse, trial));
+                }
             }
         }
         let (covered, _, seeds) = best?;
-        // Segment 0 counts too.
-        let covered = covered + f64::from(seeds.fast & 1) * u_s as f64;
         (covered >= MIN_COVERAGE).then_some(seeds)
     }
 
@@ -303,9 +328,15 @@ impl FogSeeds {
         let t_at = |k: f64| t0 + k / scale as f64;
         for (k, node) in row.iter_mut().enumerate().skip(1) {
             let t = t_at(k as f64);
-            *node = half_encode(((exact(mirrored, t) - y0) / (t - t0)) as f32);
+            let z = (exact(mirrored, t) - y0) / (t - t0);
+            *node = half_encode((if self.mean_density { 1.0 / z } else { z }) as f32);
         }
-        let z0 = (1.0 / eval(mirrored, y0).density) as f32;
+        let density = eval(mirrored, y0).density;
+        let z0 = (if self.mean_density {
+            density
+        } else {
+            1.0 / density
+        }) as f32;
         // A density of 0 or ∞ at the anchor leaves no limit: the next node.
         if let [first, next, ..] = row {
             *first = if z0.is_finite() && z0 > 0.0 {
@@ -377,7 +408,7 @@ impl FogSeeds {
         Start {
             mirrored,
             t,
-            y0: (y_a + dt * z).clamp(0.0, Y_MAX),
+            y0: (y_a + if self.mean_density { dt / z } else { dt * z }).clamp(0.0, Y_MAX),
             fast: self.fast & (1 << j) != 0,
         }
     }

@@ -41,8 +41,8 @@ pub struct Fog<T> {
     w_d: T,
     /// Seeds of the exact inverse: for an f32 object, where they serve, one
     /// evaluation of the mixture and its inverse series answer
-    /// (`phase::fog_inverse`; every `u` at 2 µm: 42 ns through the C ABI,
-    /// 1.41–1.42× the paper's lobe choice); otherwise the iterative solver's
+    /// (`phase::fog_inverse`; every `u` at 2 µm: 43 ns through the C ABI,
+    /// 1.43–1.44× the paper's lobe choice); otherwise the iterative solver's
     /// table. Two HG lobes whose lobe choice takes [`Fog::two_hg_wide`]
     /// keep their lobe choice's constants here too.
     aux: Aux,

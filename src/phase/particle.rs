@@ -65,7 +65,7 @@ pub enum Model {
 /// measured before eq. 6, rearranged, became the f32 answer for
 /// `|g| ≥ 10⁻³`, `10⁻⁴ ≤ α ≤ 10⁴`: 26 ns there through the C ABI, still
 /// above Rayleigh; the fog before its f32 inverse took one evaluation of
-/// the mixture: 43–107 ns over the fits from Rust, still above Draine.)
+/// the mixture: 43–103 ns over the fits from Rust, still above Draine.)
 pub const COST_ORDER: [Model; 5] = [
     Model::Isotropic,
     Model::HenyeyGreenstein,

@@ -57,6 +57,7 @@
 use super::seeds::{Y_MAX, half_decode, half_encode};
 use crate::numeric::Eval;
 use crate::real::Real;
+use core::cell::Cell;
 
 /// Intervals per segment (backward pole, trough side, forward pole): the
 /// forward pole's segment covers most of `[0, 1]` and the sharpest change of
@@ -216,6 +217,49 @@ pub(crate) struct FogSeeds {
     mean_density: bool,
 }
 
+/// The solutions a table build has found, by frame and target, so that the
+/// second kind of table (`FogSeeds::mean_density`) reuses the first's. In
+/// cells, so that it is an `Fn` without a borrow that could fail.
+struct Memo<F> {
+    solve: F,
+    keys: [Cell<(bool, u64)>; MEMO],
+    values: [Cell<f64>; MEMO],
+    len: Cell<usize>,
+}
+
+/// Solutions a [`Memo`] keeps: every node of segment 0 and of segments 1
+/// and 2 under each candidate split.
+const MEMO: usize = K[0] + (K[1] + K[2]) * FORWARD_SPLITS.len();
+
+impl<F: Fn(bool, f64) -> f64> Memo<F> {
+    fn new(solve: F) -> Self {
+        Memo {
+            solve,
+            keys: core::array::from_fn(|_| Cell::new((false, 0))),
+            values: core::array::from_fn(|_| Cell::new(0.0)),
+            len: Cell::new(0),
+        }
+    }
+
+    /// `solve(mirrored, t)`, found again or solved and kept while there is
+    /// room.
+    fn get(&self, mirrored: bool, t: f64) -> f64 {
+        let key = (mirrored, t.to_bits());
+        let kept = self.keys.iter().zip(&self.values).take(self.len.get());
+        if let Some((_, y)) = kept.into_iter().find(|(k, _)| k.get() == key) {
+            return y.get();
+        }
+        let y = (self.solve)(mirrored, t);
+        let len = self.len.get();
+        if let (Some(k), Some(v)) = (self.keys.get(len), self.values.get(len)) {
+            k.set(key);
+            v.set(y);
+            self.len.set(len + 1);
+        }
+        y
+    }
+}
+
 /// Where a sample starts: its frame, target and seed.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Start {
@@ -247,6 +291,11 @@ impl FogSeeds {
         check: impl Fn(bool, f64, f64) -> f64,
     ) -> Option<FogSeeds> {
         let u_s = (eval(false, 1.0).cdf as f32).clamp(0.0, 1.0);
+        let y_a = exact(true, 1.0 - u_s as f64) as f32;
+        // Both kinds of table put their nodes at the same points: solve each
+        // point once.
+        let memo = Memo::new(exact);
+        let exact = |mirrored: bool, t: f64| memo.get(mirrored, t);
         let fns = (&m, &eval, &exact, &check);
         let mut best: Option<(f64, f64, FogSeeds)> = None;
         // The mean density needs a division per sample: tried only where the
@@ -259,7 +308,7 @@ impl FogSeeds {
                 nodes: [0; NODES],
                 u_s,
                 u_f: u_s,
-                y_a: exact(true, 1.0 - u_s as f64) as f32,
+                y_a,
                 scale: [0.0; 3],
                 fast: 0,
                 mean_density,

@@ -31,8 +31,8 @@ use crate::real::{PackedF64, Real};
 /// The fog mixture. Built from its four parameters or from a droplet
 /// diameter ([`Fog::from_diameter`]); construction also tabulates the seeds
 /// of its inverse (6–11 µs measured for f64 objects; 32–67 µs for f32 ones,
-/// which build and check up to six candidate tables): build it once per
-/// medium.
+/// which build and check up to six candidate tables, with about 2 KB of
+/// stack for the solutions they share): build it once per medium.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Fog<T> {
     g_hg: T,

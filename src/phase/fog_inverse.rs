@@ -407,14 +407,11 @@ impl FogSeeds {
                 && (y - reference).abs() <= CHECK_TOL * reference;
             let seed_error = (s.y0 - reference).abs() / reference;
             // NaN counts as the worst.
-            worst = if seed_error <= worst {
-                worst
+            worst = if seed_error.is_nan() {
+                f64::INFINITY
             } else {
-                seed_error.max(worst)
+                worst.max(seed_error)
             };
-            if seed_error.is_nan() {
-                worst = f64::INFINITY;
-            }
         }
         self.fast |= u8::from(passes) << j;
         (passes, worst)

@@ -338,17 +338,21 @@ fn sqrt_f64(x: f64) -> f64 {
 #[allow(unsafe_code)]
 fn sqrt_f32(x: f32) -> f32 {
     let bits: u32;
-    // SAFETY: FPU instructions on registers only; s0 and the other
-    // caller-saved registers are declared clobbered (`clobber_abi`). The
-    // value travels through core registers because the compiler's `sreg`
-    // class needs double-precision VFP, which these FPUs may lack.
+    // SAFETY: FPU instructions on registers only. The value travels through
+    // core registers because the compiler's `sreg` class needs
+    // double-precision VFP, which these FPUs may lack; for the same reason s0
+    // cannot be declared clobbered (`clobber_abi("C")` names d16–d31, which
+    // a single-precision FPU reserves), so its contents are saved in r1 and
+    // put back: the block changes only r0 and r1, both declared.
     unsafe {
         core::arch::asm!(
+            "vmov r1, s0",
             "vmov s0, r0",
             "vsqrt.f32 s0, s0",
             "vmov r0, s0",
+            "vmov s0, r1",
             inlateout("r0") x.to_bits() => bits,
-            clobber_abi("C"),
+            out("r1") _,
             options(pure, nomem, nostack),
         );
     }
@@ -380,8 +384,22 @@ impl<const N: usize> PackedF64<N> {
     /// The `i`-th value, bit for bit as stored.
     #[inline(always)]
     pub(crate) fn get(&self, i: usize) -> f64 {
-        let [lo, hi] = self.0[i];
-        f64::from_bits(lo as u64 | ((hi as u64) << 32))
+        match self.0.get(i) {
+            Some(&[lo, hi]) => f64::from_bits(lo as u64 | ((hi as u64) << 32)),
+            // Only an empty pack (a model that keeps no f64 constants on
+            // this target) is read past its end: it reads as zeros.
+            None => 0.0,
+        }
+    }
+    /// The first `N` of `values` (a model that keeps fewer constants, or
+    /// none, on targets that do not use them).
+    pub(crate) fn first_of<const M: usize>(values: [f64; M]) -> Self {
+        let mut out = Self::ZERO;
+        for (slot, v) in out.0.iter_mut().zip(values) {
+            let b = v.to_bits();
+            *slot = [b as u32, (b >> 32) as u32];
+        }
+        out
     }
 }
 

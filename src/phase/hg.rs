@@ -54,6 +54,10 @@ const WIDE: bool = cfg!(any(
     target_arch = "aarch64"
 ));
 
+/// How many f64 constants the model keeps for that path: none where the f32
+/// sampler does not take it, so firmware builds neither store nor clear them.
+const WIDE_LEN: usize = if WIDE { 5 } else { 0 };
+
 /// Below this `|g|` the f64 path of the f32 sampler takes the factored forms:
 /// the rearranged textbook inverse's error, a few `ε (1 + g²)/(2|g|)`, would
 /// pass `3·10⁻¹³`.
@@ -72,7 +76,7 @@ pub struct HenyeyGreenstein<T> {
     /// The f32 sampler's f64 path (module docs): `k`, `±A`, `±B` (the sign
     /// of g), `4g'/(1 − g'²)` for `sin θ` and `8g'³/(4π (1 − g'²)²)` for the
     /// density, in f64; all zero for `|g| < 2⁻¹⁰` (the factored forms).
-    wide: PackedF64<5>,
+    wide: PackedF64<WIDE_LEN>,
 }
 
 impl<T: Real> HenyeyGreenstein<T> {
@@ -268,14 +272,14 @@ pub(super) fn wide_path<T: Real>() -> bool {
 }
 
 /// The f64 path's constants (module docs) for `g` in f64.
-fn wide_constants(g: f64) -> PackedF64<5> {
+fn wide_constants(g: f64) -> PackedF64<WIDE_LEN> {
     let a = g.abs();
     if a < WIDE_G_MIN {
         return PackedF64::ZERO;
     }
     let (c, h) = ((1.0 - a) * (1.0 + a), 0.5 / a);
     let sign = if g > 0.0 { 1.0 } else { -1.0 };
-    PackedF64::new([
+    PackedF64::first_of([
         (1.0 - a) * h,
         sign * (1.0 + a * a) * h,
         sign * (c * c) * (h * h * h),

@@ -440,7 +440,10 @@ impl<T: Real> PhaseFunction<T> for Phase<T> {
     fn sample_cos_sin(&self, u: T) -> (T, T) {
         dispatch!(self, m => m.sample_cos_sin(u))
     }
-    #[inline]
+    // Always inlined: where the caller's model is known (`Phase::rayleigh()`
+    // in firmware, say) the match folds to that one model, and a firmware
+    // image links only its code, not every model's (tests/bare_metal.rs).
+    #[inline(always)]
     fn sample_dir(&self, w_in: Vec3<T>, u1: T, u2: T) -> (Vec3<T>, T) {
         dispatch!(self, m => m.sample_dir(w_in, u1, u2))
     }

@@ -66,3 +66,15 @@ pub fn map_parallel<I: Sync, R: Send>(items: &[I], f: impl Fn(&I) -> R + Sync) -
         .map(|m| m.into_inner().unwrap().expect("every item mapped"))
         .collect()
 }
+
+/// A test that cannot run here says so on standard error, past the test
+/// harness's capture (which takes only `print!`/`eprint!`), so that cargo
+/// shows the line; with `SK_REQUIRE_ALL` set (as `.ci/run` sets it) a skip
+/// is a failure instead.
+pub fn skip(what: &str) {
+    use std::io::Write;
+    if std::env::var_os("SK_REQUIRE_ALL").is_some() {
+        panic!("SKIPPED, but SK_REQUIRE_ALL is set: {what}");
+    }
+    let _ = writeln!(std::io::stderr(), "SKIPPED: {what}");
+}

@@ -2,7 +2,7 @@
  * include/scatterkit.h, beside the peers' published formulas written inline
  * in C. Built at -O2 and linked against libscatterkit.a by the main example
  * (examples/speed_accuracy), which puts these points on the chart and in
- * docs/PERFORMANCE.md as "through the C ABI".
+ * docs/measured/PERFORMANCE.md as "through the C ABI".
  *
  * Peers, re-implemented from their published descriptions (not copied):
  *   pbrt-v4 SampleHenyeyGreenstein (Pharr, Jakob, Humphreys): the textbook

@@ -7,7 +7,7 @@
  * library's (sk_mie's terms), so both sum the same series; no angles.
  *
  * Built at -O2 and run by the main example (examples/speed_accuracy), which
- * writes the ratios to docs/PERFORMANCE.md. Timing: ns per sphere, the
+ * writes the ratios to docs/measured/PERFORMANCE.md. Timing: ns per sphere, the
  * minimum over ROUNDS interleaved rounds. Accuracy: the largest relative
  * difference in Q_ext, Q_sca and g between BHMIE and the library (which
  * agrees with Wiscombe's MIEV0 tests to all seven published digits).

@@ -116,7 +116,7 @@ fn draine_rejection<R: Rng>(g: f32, alpha: f32, r: &mut R) -> f32 {
 }
 
 /// Our Draine sampler, eq. 6 as published, and rejection from HG, in the
-/// regions of the accuracy map (`docs/draine_accuracy.md`).
+/// regions of the accuracy map (`docs/measured/draine_accuracy.md`).
 fn draine(c: &mut Criterion) {
     let mut g = c.benchmark_group("draine_sample_cos_f32");
     g.throughput(Throughput::Elements(1));

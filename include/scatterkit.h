@@ -60,7 +60,7 @@ typedef enum {
     /*
      Volume tracking used up its step budget before it could answer.
      */
-    SK_ERR_BUDGET = 5,
+    SK_ERR_BUDGET = 5
 } sk_status;
 
 /*
@@ -70,7 +70,7 @@ typedef enum {
 enum sk_rayleigh_method
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
-#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
  {
     /*
      von Neumann cube + acceptance (1 + mu^2)/2.
@@ -108,15 +108,15 @@ enum sk_rayleigh_method
      time): max error 4e-9, O(1), the fastest accurate direction sampler.
      (An addition to Frisvad's six.)
      */
-    SK_RAYLEIGH_TABLE = 7,
+    SK_RAYLEIGH_TABLE = 7
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
 typedef enum sk_rayleigh_method sk_rayleigh_method;
 #else
 typedef uint32_t sk_rayleigh_method;
-#endif // __STDC_VERSION__ >= 202311L
-#endif // __cplusplus
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
 
 /*
  What a table holds (passed as uint32_t; other values give SK_ERR_METHOD).
@@ -124,7 +124,7 @@ typedef uint32_t sk_rayleigh_method;
 enum sk_table_kind
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
-#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
  {
     /*
      Frisvad's tabulated Rayleigh CDF: n + 1 values at cos theta = -1 + 2i/n.
@@ -137,15 +137,15 @@ enum sk_table_kind
     /*
      Inverse CDF of a measured phase function, cubic Hermite: 2(n + 1) values.
      */
-    SK_TABLE_MEASURED = 2,
+    SK_TABLE_MEASURED = 2
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
 typedef enum sk_table_kind sk_table_kind;
 #else
 typedef uint32_t sk_table_kind;
-#endif // __STDC_VERSION__ >= 202311L
-#endif // __cplusplus
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
 
 /*
  How a surface scatters (passed as uint32_t; other values give SK_ERR_METHOD).
@@ -153,7 +153,7 @@ typedef uint32_t sk_table_kind;
 enum sk_surface_model
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
-#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
  {
     /*
      No scattering: mirror reflection or Snell refraction.
@@ -166,15 +166,15 @@ enum sk_surface_model
     /*
      Phong: cos(dtheta) = u^(1/(alpha+1)) about the specular direction.
      */
-    SK_SURFACE_PHONG = 2,
+    SK_SURFACE_PHONG = 2
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
 typedef enum sk_surface_model sk_surface_model;
 #else
 typedef uint32_t sk_surface_model;
-#endif // __STDC_VERSION__ >= 202311L
-#endif // __cplusplus
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
 
 /*
  Which share of rays scatters (passed as uint32_t).
@@ -182,7 +182,7 @@ typedef uint32_t sk_surface_model;
 enum sk_fraction_model
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
-#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
  {
     /*
      A constant share in [0, 1].
@@ -191,15 +191,15 @@ enum sk_fraction_model
     /*
      The scalar-scattering model from the RMS roughness.
      */
-    SK_FRACTION_SCALAR = 1,
+    SK_FRACTION_SCALAR = 1
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
 typedef enum sk_fraction_model sk_fraction_model;
 #else
 typedef uint32_t sk_fraction_model;
-#endif // __STDC_VERSION__ >= 202311L
-#endif // __cplusplus
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
 
 /*
  What happens to a Phong direction that lands on the wrong side of the
@@ -208,7 +208,7 @@ typedef uint32_t sk_fraction_model;
 enum sk_crossing_policy
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
-#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
  {
     /*
      SunSolve: polar angle theta > 90 deg about the leaving-side normal
@@ -223,15 +223,15 @@ enum sk_crossing_policy
     /*
      Reflect the direction across the surface plane.
      */
-    SK_CROSSING_MIRROR = 2,
+    SK_CROSSING_MIRROR = 2
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
 typedef enum sk_crossing_policy sk_crossing_policy;
 #else
 typedef uint32_t sk_crossing_policy;
-#endif // __STDC_VERSION__ >= 202311L
-#endif // __cplusplus
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
 
 /*
  What tracking found (written to `scattered_out`).
@@ -239,7 +239,7 @@ typedef uint32_t sk_crossing_policy;
 enum sk_track_event
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
-#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
  {
     /*
      No collision in the interval: t_out is t_max (the majorant-grid calls
@@ -257,15 +257,15 @@ enum sk_track_event
     /*
      A real collision in a caller's medium (its albedo decides).
      */
-    SK_TRACK_COLLIDED = 3,
+    SK_TRACK_COLLIDED = 3
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
 typedef enum sk_track_event sk_track_event;
 #else
 typedef uint32_t sk_track_event;
-#endif // __STDC_VERSION__ >= 202311L
-#endif // __cplusplus
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
 
 /*
  Where a grid's values sit in its box.
@@ -273,7 +273,7 @@ typedef uint32_t sk_track_event;
 enum sk_sampling
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
-#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
  {
     /*
      At the nodes lo + (hi - lo) i/(n - 1): the faces carry the outermost
@@ -284,15 +284,15 @@ enum sk_sampling
      At the cell centres lo + (hi - lo)(i + 1/2)/n, as pbrt-v4 and
      OpenVDB place voxels; held at the outermost value out to the faces.
      */
-    SK_SAMPLING_CELLS = 1,
+    SK_SAMPLING_CELLS = 1
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
 typedef enum sk_sampling sk_sampling;
 #else
 typedef uint32_t sk_sampling;
-#endif // __STDC_VERSION__ >= 202311L
-#endif // __cplusplus
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
 
 /*
  Which phase function an sk_phase holds (its tag, also the value of the
@@ -301,7 +301,7 @@ typedef uint32_t sk_sampling;
 enum sk_phase_model
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
-#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
  {
     /*
      Uniform over the sphere: no parameters.
@@ -335,15 +335,15 @@ enum sk_phase_model
      Fournier-Forand: `params[0]` = n, `params[1]` = nu = (3 - Junge
      slope)/2, `params[2]` = the backscatter fraction.
      */
-    SK_PHASE_FOURNIER_FORAND = 8,
+    SK_PHASE_FOURNIER_FORAND = 8
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
 typedef enum sk_phase_model sk_phase_model;
 #else
 typedef uint32_t sk_phase_model;
-#endif // __STDC_VERSION__ >= 202311L
-#endif // __cplusplus
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
 
 /*
  Which size distribution an sk_size_distribution holds.
@@ -351,7 +351,7 @@ typedef uint32_t sk_phase_model;
 enum sk_size_kind
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
-#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
  {
     /*
      Lognormal, n(r) proportional to exp(-ln^2(r/r_g) / (2 ln^2 sigma_g))
@@ -370,15 +370,15 @@ enum sk_size_kind
      no natural range: sk_size_distribution_range returns SK_ERR_DOMAIN,
      give r_min and r_max.
      */
-    SK_SIZE_JUNGE = 2,
+    SK_SIZE_JUNGE = 2
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
 typedef enum sk_size_kind sk_size_kind;
 #else
 typedef uint32_t sk_size_kind;
-#endif // __STDC_VERSION__ >= 202311L
-#endif // __cplusplus
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
 
 /*
  The models sk_phase_particle_mie chooses from.
@@ -386,7 +386,7 @@ typedef uint32_t sk_size_kind;
 enum sk_particle_model
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
-#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
  {
     /*
      Uniform over the sphere.
@@ -422,15 +422,15 @@ enum sk_particle_model
      Fournier-Forand with the best-fit n and nu (considered only without
      a table).
      */
-    SK_PARTICLE_FOURNIER_FORAND = 7,
+    SK_PARTICLE_FOURNIER_FORAND = 7
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
 typedef enum sk_particle_model sk_particle_model;
 #else
 typedef uint32_t sk_particle_model;
-#endif // __STDC_VERSION__ >= 202311L
-#endif // __cplusplus
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
 
 /*
  The caller's random number generator: `next_u64(state)` returns 64
@@ -1175,7 +1175,7 @@ typedef struct {
      Estimated relative errors of c_ext, c_sca, c_back and the absolute
      error of g: the difference between Simpson's rule on all nodes and
      on every other node, an estimate rather than a bound (within 2.6x of
-     the actual error in docs/polydisperse.md).
+     the actual error in docs/measured/polydisperse.md).
      */
     double errors[4];
     /*
@@ -1322,7 +1322,7 @@ typedef struct {
 
 #ifdef __cplusplus
 extern "C" {
-#endif // __cplusplus
+#endif /* __cplusplus */
 
 /*
  A uniform float in [0, 1) from one draw of `rng`, taken exactly as the
@@ -1829,7 +1829,7 @@ double sk_mie_phase(const sk_mie *m, double mu);
 /*
  Table sizes for a sphere of size parameter x in [1e-20, 1e5]:
  *angles = max(4000, 16 x) for sk_mie_tabulate and *intervals = max(16384,
- 64 x) for sk_table_measured_f64 (docs/mie_table.md measures them:
+ 64 x) for sk_table_measured_f64 (docs/measured/mie_table.md measures them:
  total-variation distance 2.8e-6 at x = 10, 2.5e-4 at 100, 1.2e-3 at
  1000).
  SK_ERR_NULL for NULL pointers, SK_ERR_DOMAIN for other x; nothing is
@@ -2846,7 +2846,7 @@ sk_vec3_f64 sk_table_sample_dir_f64(const sk_table_f64 *t,
                                     double *pdf_out);
 
 #ifdef __cplusplus
-}  // extern "C"
-#endif  // __cplusplus
+} /* extern "C" */
+#endif /* __cplusplus */
 
 #endif  /* SCATTERKIT_H */

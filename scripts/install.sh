@@ -2,14 +2,18 @@
 # Installs the C library the way cargo-c's `cargo cinstall` does, without
 # needing cargo-c: libscatterkit.a and/or the shared library into PREFIX/lib
 # (libscatterkit.so.MAJOR.MINOR, its SONAME, with the libscatterkit.so link
-# beside it), the headers into PREFIX/include, PREFIX/lib/pkgconfig/scatterkit.pc
-# and a CMake package in PREFIX/lib/cmake/scatterkit (find_package(scatterkit
-# CONFIG) gives the imported target scatterkit::scatterkit).
+# beside it), the headers into PREFIX/include, pkg-config files in
+# PREFIX/lib/pkgconfig (scatterkit.pc links the shared library where it is
+# installed, else the static one; scatterkit-static.pc always the static
+# one, by its path) and a CMake package in PREFIX/lib/cmake/scatterkit
+# (find_package(scatterkit CONFIG) gives the imported target
+# scatterkit::scatterkit).
 #
 #   scripts/install.sh PREFIX [--static-only | --shared-only]
 #
-# Then: cc app.c $(PKG_CONFIG_PATH=PREFIX/lib/pkgconfig pkg-config --cflags --libs scatterkit)
-# (add --static to pkg-config when linking the static library).
+# Then, with PKG_CONFIG_PATH=PREFIX/lib/pkgconfig:
+#   cc app.c $(pkg-config --cflags --libs scatterkit) -Wl,-rpath,PREFIX/lib   # shared
+#   cc app.c $(pkg-config --cflags --libs scatterkit-static)                  # static
 set -eu
 prefix=${1:?usage: scripts/install.sh PREFIX [--static-only | --shared-only]}
 mode=${2:-both}
@@ -40,6 +44,21 @@ Libs: -L\${libdir} -lscatterkit
 Libs.private: $native
 Cflags: -I\${includedir}
 PC
+# The static library by its path, so that no shared library beside it is
+# picked instead.
+if [ "$mode" != "--shared-only" ]; then
+  cat > "$prefix/lib/pkgconfig/scatterkit-static.pc" <<PC
+prefix=$prefix
+libdir=\${prefix}/lib
+includedir=\${prefix}/include
+
+Name: scatterkit-static
+Description: Light-scattering samplers for Monte Carlo light transport (static library)
+Version: $version
+Libs: \${libdir}/libscatterkit.a $native
+Cflags: -I\${includedir}
+PC
+fi
 # CMake: an imported target for the shared library if installed, else the
 # static one (with the native libraries a static link needs).
 mkdir -p "$prefix/lib/cmake/scatterkit"

@@ -14,7 +14,7 @@
 //!   `t ← t (t³ + 2x) / (2t³ + x)`. Each step turns a relative error ε into
 //!   about (2/3) ε³.
 //!
-//! Precision, measured by `tests/cbrt.rs` (README has the figures):
+//! Precision, measured by `tests/cbrt.rs` (`docs/guides/c_api.md` has the figures):
 //! * `f32`: two steps, carried out in `f64` arithmetic where the product form
 //!   above cannot overflow or underflow for any `f32` input (|t³| stays within
 //!   [1e-46, 4e38]). `cbrt_fast_f32` takes one step.
@@ -105,7 +105,7 @@ fn is_special_f64(x: f64) -> bool {
 }
 
 /// Cube root of an `f32`: within 1 ULP of the correctly rounded result on
-/// every input (measured exhaustively: see README).
+/// every input (measured exhaustively: `docs/guides/c_api.md`).
 #[inline]
 pub fn cbrt_f32(x: f32) -> f32 {
     if is_special_f32(x) {
@@ -126,7 +126,7 @@ pub fn cbrt_fast_f32(x: f32) -> f32 {
     step_product(seed_f32(x) as f64, x as f64) as f32
 }
 
-/// Cube root of an `f64`: about 1 ULP on every input (see README).
+/// Cube root of an `f64`: about 1 ULP on every input (`docs/guides/c_api.md`).
 #[inline]
 pub fn cbrt_f64(x: f64) -> f64 {
     if is_special_f64(x) {

@@ -368,7 +368,7 @@ pub fn table_angle(x: f64, j: usize, count: usize) -> f64 {
 /// Table sizes for a sphere of size parameter `x`: `(angles, intervals)`
 /// = `(max(4000, 16 x), max(16384, 64 x))`, for [`Mie::tabulate`] and
 /// [`Table::measured`](crate::Table::measured). Measured against the exact
-/// phase function (`docs/mie_table.md`, water, `m = 1.333`): total-variation
+/// phase function (`docs/measured/mie_table.md`, water, `m = 1.333`): total-variation
 /// distance 2.8·10⁻⁶ at `x = 10`, 2.5·10⁻⁴ at `x = 100`, 1.2·10⁻³ at
 /// `x = 1000`; `max |F(μ(u)) − u|` 6.5·10⁻⁷, 1.1·10⁻⁵, 6.8·10⁻⁶. The phase function of a
 /// large sphere oscillates with a period of about `π/x` in `θ`, and the
@@ -387,7 +387,7 @@ impl Mie<'_> {
     /// cosines). The table
     /// built from them takes the density as linear in `cos θ` between the
     /// angles; its accuracy as a function of the two sizes is measured in
-    /// `tests/mie_table.rs` and `docs/mie.md`.
+    /// `tests/mie_table.rs` and `docs/measured/mie_table.md`.
     pub fn tabulate(&self, cos_theta: &mut [f64], pdf: &mut [f64]) -> Result<(), Error> {
         let count = cos_theta.len();
         if count < 2 || pdf.len() != count {

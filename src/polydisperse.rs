@@ -18,7 +18,7 @@
 //! spheres, whose efficiencies carry narrow resonances in `x` that the
 //! grid samples almost at random, it is an estimate, not a bound: against
 //! sums at 65536 intervals the actual error was within 2.6× of it
-//! (`docs/polydisperse.md`, `tests/polydisperse.rs`). Raise `intervals`
+//! (`docs/measured/polydisperse.md`, `tests/polydisperse.rs`). Raise `intervals`
 //! until the estimate is small enough.
 
 use crate::error::Error;
@@ -203,7 +203,7 @@ pub struct Averages {
     /// Estimated relative errors of `c_ext`, `c_sca`, `c_back` and the
     /// absolute error of `g`, in that order (module docs). `c_back` is the
     /// slowest to converge: `Q_back` swings with a period in `x` far
-    /// shorter than the other efficiencies' (`docs/polydisperse.md`).
+    /// shorter than the other efficiencies' (`docs/measured/polydisperse.md`).
     pub errors: [f64; 4],
     /// Estimated largest relative error of the phase function over the
     /// cosines asked for.

@@ -9,7 +9,7 @@
 //! software square root. A target that is not installed is reported on
 //! standard error and skipped (a failure where `SK_REQUIRE_ALL` is set, as
 //! in CI). `SK_BLESS=1` writes the sizes
-//! to `docs/bare_metal.md`.
+//! to `docs/measured/bare_metal.md`.
 
 mod common;
 
@@ -301,6 +301,6 @@ fn bare_metal_library_and_its_code_size() {
                double-precision routine and use the FPU's `vsqrt.f32` (checked on the linked image's \
                symbol table by the test).\n";
     if built == TARGETS.len() && std::env::var_os("SK_BLESS").is_some() {
-        std::fs::write(root.join("docs/bare_metal.md"), report).unwrap();
+        std::fs::write(root.join("docs/measured/bare_metal.md"), report).unwrap();
     }
 }

@@ -113,4 +113,11 @@ fn direction_batches_agree_with_scalar_calls() {
 fn header_compiles_and_runs_as_cpp() {
     let out = run_source("tests/c/header.cpp", true);
     assert!(out.starts_with("C++: HG(0.5)"), "{out}");
+    // And under the later standards, with the same warnings as errors.
+    for std in ["c++17", "c++20"] {
+        let src = root().join("tests/c/header.cpp");
+        let exe = common::cbuild::build_program_with(&src, true, &[&format!("-std={std}")], std);
+        let (code, out) = run(&exe);
+        assert!(code == 0 && out.starts_with("C++: HG(0.5)"), "{std}: {out}");
+    }
 }

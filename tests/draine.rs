@@ -1,6 +1,6 @@
 //! Draine, Cornette–Shanks and fog: accuracy over the whole accepted domain
 //! against a double-double reference (the stability sweep), the failure map
-//! of eq. 6 beside ours (`docs/draine_accuracy.md`), chi² over the issue's
+//! of eq. 6 beside ours (`docs/measured/draine_accuracy.md`), chi² over the issue's
 //! parameter grid, and the fog fits.
 //!
 //! Regenerate the map: `SK_BLESS=1 cargo test --release --test draine`.
@@ -204,7 +204,8 @@ fn write_map(rows: &[(&str, &str, BandError, BandError, BandError, BandError)]) 
         )
         .unwrap();
     }
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/draine_accuracy.md");
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/measured/draine_accuracy.md");
     std::fs::write(path, s).unwrap();
 }
 
@@ -385,7 +386,7 @@ fn fog_fits_are_valid_and_their_boundaries_documented() {
     }
     if std::env::var_os("SK_BLESS").is_some() {
         std::fs::write(
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/fog_fits.md"),
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/measured/fog_fits.md"),
             s,
         )
         .unwrap();

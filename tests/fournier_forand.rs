@@ -232,7 +232,7 @@ fn published_cdf_fwd(n: f64, nu: f64, mu: f64) -> f64 {
     (1.0 - dn * d - (1.0 - dn) * s) / ((1.0 - d) * dn) + c * mu * (1.0 - mu * mu) / 8.0
 }
 
-/// `docs/fournier_forand_accuracy.md` (`SK_BLESS=1`): the published CDF
+/// `docs/measured/fournier_forand_accuracy.md` (`SK_BLESS=1`): the published CDF
 /// against this library's (itself within 1.2·10⁻¹⁵ of 50-digit inverses)
 /// on 20 001 cosines per parameter pair, and at the removable point δ = 1.
 #[test]
@@ -281,7 +281,7 @@ fn published_cdf_failure_map() {
         );
         std::fs::write(
             std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-                .join("docs/fournier_forand_accuracy.md"),
+                .join("docs/measured/fournier_forand_accuracy.md"),
             doc,
         )
         .unwrap();

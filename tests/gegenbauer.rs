@@ -2,7 +2,7 @@
 //! against 50-digit references (`scripts/gegenbauer_reference.py`, values in
 //! `tests/data/gegenbauer_reference.txt`) over α ∈ (−½, 1000] and |g| up to
 //! 0.999, the published inverse in f64 beside it (`SK_BLESS=1` writes the
-//! comparison to `docs/gegenbauer_accuracy.md`), monotonicity, the density
+//! comparison to `docs/measured/gegenbauer_accuracy.md`), monotonicity, the density
 //! against HG at α = ½, normalisation, the mean cosine, and chi².
 //!
 //! Bounds fixed before the first run: `max |cos θ error|` ≤ 2·10⁻⁷ in f32
@@ -115,7 +115,8 @@ fn inverse_against_50_digit_references() {
             doc += &format!("| {a} | {g} | {ours:.1e} | {p} |\n");
         }
         std::fs::write(
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/gegenbauer_accuracy.md"),
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("docs/measured/gegenbauer_accuracy.md"),
             doc,
         )
         .unwrap();

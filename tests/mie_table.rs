@@ -4,7 +4,7 @@
 //! For each size parameter and pair of sizes (angles tabulated, table
 //! intervals): the largest `|F(μ(u)) − u|` over `u` (F the exact CDF, μ(u)
 //! the table's sample) and the total-variation distance `½ ∫ |p_table −
-//! p| dω`, written to `docs/mie_table.md` by `SK_BLESS=1`. At the sizes
+//! p| dω`, written to `docs/measured/mie_table.md` by `SK_BLESS=1`. At the sizes
 //! `mie::table_sizes` recommends, `|F(μ(u)) − u| ≤ 10⁻³` and `TV ≤ 2·10⁻³`
 //! for x up to 1000. (The first bound tried, TV ≤ 10⁻³ with 4000 angles
 //! and 4096 intervals at every x, failed at x = 100 and 1000: the sizes
@@ -175,7 +175,8 @@ fn table_accuracy_against_exact_mie() {
              linear between the angles, before the inversion. The phase function of a large \
              sphere oscillates with period about `π/x` in θ: the sizes must grow with `x`.\n\n{doc}"
         );
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/mie_table.md");
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/measured/mie_table.md");
         std::fs::write(path, doc).unwrap();
     }
 }

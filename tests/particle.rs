@@ -2,8 +2,8 @@
 //! total-variation distance of the fog fit. The distance is checked here by
 //! an independent integral over μ (adaptive Simpson, split geometrically
 //! towards μ = 1 so the narrowest fog lobe is resolved). The choice table
-//! in README.md must match the one this test computes (`SK_BLESS=1` writes
-//! it to `docs/particle_choice_fog.md`; `tests/particle_mie.rs` measures the
+//! in `docs/guides/mie_and_particles.md` must match the one this test computes (`SK_BLESS=1` writes
+//! it to `docs/measured/particle_choice_fog.md`; `tests/particle_mie.rs` measures the
 //! candidates against real Mie instead).
 
 mod common;
@@ -57,19 +57,20 @@ fn chosen_models_are_within_tolerance() {
              `SK_BLESS=1 cargo test --release --test particle`; do not edit. Each cell: the \
              cheapest model within the total-variation distance of the fog fit, and its distance \
              (by quadrature). The fog fit is itself far from the real Mie phase function of \
-             droplets of one size (`docs/fog_vs_mie.md`); `docs/particle_choice.md` chooses \
+             droplets of one size (`docs/measured/fog_vs_mie.md`); `docs/measured/particle_choice.md` chooses \
              against Mie.\n\n{table}"
         );
-        let path =
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/particle_choice_fog.md");
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("docs/measured/particle_choice_fog.md");
         std::fs::write(path, doc).unwrap();
     }
-    let readme =
-        std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"))
-            .unwrap();
+    let guide = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/guides/mie_and_particles.md"),
+    )
+    .unwrap();
     assert!(
-        readme.contains(&table),
-        "README.md's choice table is out of date; it should read:\n{table}"
+        guide.contains(&table),
+        "docs/guides/mie_and_particles.md's choice table is out of date; it should read:\n{table}"
     );
 }
 

@@ -16,7 +16,7 @@
 //!   Fournier–Forand is never farther than Fournier–Forand with the scene's
 //!   own `n` and slope (plus the 10⁻³ of the quadrature).
 //!
-//! `SK_BLESS=1` writes `docs/ocean_particles.md`.
+//! `SK_BLESS=1` writes `docs/measured/ocean_particles.md`.
 
 use scatterkit::mie::{
     Complex, Mie, buffer_len as mie_buffer_len, size_parameter, table_angle, table_sizes, water,
@@ -287,6 +287,6 @@ fn ocean_particles() {
              variation one or two HG lobes are closer, and the chooser picks them. The reference \
              is converged: 512 intervals change no distance by more than 3·10⁻⁴.\n\n{doc}"
         );
-        std::fs::write(root.join("docs/ocean_particles.md"), text).unwrap();
+        std::fs::write(root.join("docs/measured/ocean_particles.md"), text).unwrap();
     }
 }

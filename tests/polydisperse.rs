@@ -100,7 +100,7 @@ fn a_very_narrow_distribution_is_one_sphere() {
 /// test holds the actual error to 3× the estimate (the largest ratio seen
 /// when the test was written: 2.6, for `c_back` of the lognormal fog at
 /// 16384 intervals, where the reference's own estimate is as large), and
-/// `docs/polydisperse.md` (`SK_BLESS=1`) shows every figure.
+/// `docs/measured/polydisperse.md` (`SK_BLESS=1`) shows every figure.
 #[test]
 fn error_estimate_against_converged_sums() {
     let mu: Vec<f64> = (0..=36)
@@ -184,7 +184,8 @@ fn error_estimate_against_converged_sums() {
              x which a grid in r samples almost at random, and Q_back (the glory) swings with a \
              period in x far shorter than Q_ext's. Choose the intervals from the estimate.\n\n{doc}"
         );
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/polydisperse.md");
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/measured/polydisperse.md");
         std::fs::write(path, doc).unwrap();
     }
 }

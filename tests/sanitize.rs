@@ -64,7 +64,7 @@ fn programs_are_clean_under_valgrind() {
         .unwrap_or(false);
     assert!(
         have,
-        "valgrind is not installed: every machine of this project has it (see README)"
+        "valgrind is not installed: every machine of this project has it"
     );
     common::for_each_parallel(&PROGRAMS, |src| {
         let exe = build_program(&root().join(src), false);

@@ -49,7 +49,7 @@ pub(crate) const PANELS: [(&str, &str, &str, (f64, f64)); 7] = [
         "Draine",
         "Draine and Cornette–Shanks",
         "max |cos θ − exact|",
-        (1e-8, 10.0),
+        (1e-9, 10.0),
     ),
     (
         "fog",
@@ -95,9 +95,12 @@ pub(crate) fn frontier<'a>(pts: &[&'a Entry]) -> Vec<&'a Entry> {
         .collect()
 }
 
-/// A label short enough for the chart (the tables keep the full names).
-pub(crate) fn short(name: &str) -> String {
-    name.replace("C ABI: ", "")
+/// A label short enough for the chart (the tables keep the full names);
+/// calls timed from C say so, so that no two labels of a panel read alike.
+pub(crate) fn short(e: &Entry) -> String {
+    let name = e
+        .name
+        .replace("C ABI: ", "")
         .replace(", sk_phase_sample_cos_n (4096)", ", batch")
         .replace(
             ", sk_phase_sample_cos_lobe (paper's lobe choice)",
@@ -108,67 +111,166 @@ pub(crate) fn short(name: &str) -> String {
         .replace(" cos θ loop, inline C", ", loop")
         .replace(" cos θ, inline C", "")
         .replace(", inline C", "")
-        .replace("peer: ", "")
+        .replace("peer: ", "");
+    if e.c_abi { format!("{name} (C)") } else { name }
+}
+
+/// Whether a point is a peer's formula rather than this library's code.
+pub(crate) fn is_peer(e: &Entry) -> bool {
+    e.name.contains("peer:")
+}
+
+/// This library's points and the peers' points: two colours.
+const OURS: &str = "#1f5fbf";
+const PEER: &str = "#d95f02";
+
+fn color(e: &Entry) -> &'static str {
+    if is_peer(e) { PEER } else { OURS }
+}
+
+/// Label text size (px).
+const FONT: f64 = 9.0;
+/// The farthest a label's box may be from its point (px); the chart test
+/// holds every label to it.
+pub(crate) const MAX_LABEL_DISTANCE: f64 = 200.0;
+
+/// Points closer than this (px) share one label site, a line each.
+const GROUP: f64 = 10.0;
+
+/// The height of a label's line (px).
+const LINE: f64 = 1.1 * FONT;
+
+/// A label farther than this from its point (px) gets a leader line.
+const LEADER: f64 = 10.0;
+
+/// The width of `text` at `FONT` px in DejaVu Sans (the advance widths, in
+/// em, of the character classes); the SVG fixes each label to this width
+/// with `textLength`, so the box the placer used is the box drawn.
+fn text_width(text: &str) -> f64 {
+    let em: f64 = text
+        .chars()
+        .map(|c| match c {
+            'i' | 'j' | 'l' | 'I' | '\'' | '|' => 0.28,
+            ' ' | '.' | ',' | ':' | ';' | '·' => 0.32,
+            'f' | 't' | 'r' | '(' | ')' | '[' | ']' | '/' | '-' => 0.4,
+            'm' | 'w' | 'M' | 'W' | '…' | '—' => 0.9,
+            '=' | '×' | '+' | '<' | '>' | '≤' | '−' => 0.84,
+            '0'..='9' => 0.64,
+            'A'..='Z' => 0.72,
+            _ => 0.62,
+        })
+        .sum();
+    em * FONT
 }
 
 /// The chart: one log-log panel per family, ns per sample (x) against max
-/// error (y); circles are Rust calls, triangles calls through the C ABI from
-/// C, squares (hollow triangles) exact-in-distribution samplers plotted at
-/// f32's rounding floor; dashed lines are curves (tables by n, cube-root
-/// steps); the black line is the Pareto frontier. Labels are placed so that
-/// none covers another label or a point; one that finds no free place is
-/// numbered and named under its panel.
+/// error (y). Blue is this library, orange the peers' formulas; circles are
+/// calls from Rust, triangles calls from C (through the C ABI for the
+/// library, written inline for the peers); hollow markers are exact in
+/// distribution and drawn at f32's rounding floor; dashed lines join a
+/// curve's points (tables by size, cube-root steps); the black line is the
+/// Pareto frontier. Every point carries one label, placed so that it covers
+/// no other label, point or line (with a leader line where it had to move
+/// away); under each panel, the peers still on its frontier.
 pub(crate) fn svg(es: &[Entry]) -> String {
-    let (pw, ph, gap_x, gap_y) = (470.0, 330.0, 110.0, 150.0);
+    let (pw, ph, gap_x, gap_y) = (560.0, 440.0, 110.0, 130.0);
+    let top = 96.0;
     let rows = PANELS.len().div_ceil(2) as f64;
-    let (w, h) = (2.0 * pw + gap_x + 90.0, rows * (ph + gap_y) + 20.0);
+    let (w, h) = (2.0 * pw + gap_x + 100.0, top + rows * (ph + gap_y));
     let mut s = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"9\">\n\
-         <rect width=\"{w}\" height=\"{h}\" fill=\"white\"/>\n"
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
+         font-family=\"DejaVu Sans, Verdana, sans-serif\" font-size=\"{FONT}\">\n\
+         <rect width=\"{w}\" height=\"{h}\" fill=\"white\"/>\n\
+         <text x=\"70\" y=\"26\" font-size=\"16\" font-weight=\"bold\">scatterkit against the peers: \
+         time per sample against max error (lower left is better)</text>\n"
     );
+    legend(&mut s, 70.0, 48.0);
     for (k, (family, title, ylabel, (y_lo, y_hi))) in PANELS.iter().enumerate() {
         let pts = panel_points(es, family);
         if pts.is_empty() {
             continue;
         }
         let x0 = 70.0 + (k % 2) as f64 * (pw + gap_x);
-        let y0 = 40.0 + (k / 2) as f64 * (ph + gap_y);
+        let y0 = top + 30.0 + (k / 2) as f64 * (ph + gap_y);
         let xl = match *family {
             "cbrt" => "ns per cube root",
             "Mie" => "ns per sample",
             _ => "ns per sample (f32)",
         };
-        panel(
-            &mut s,
-            &pts,
-            (x0, y0, pw, ph),
-            title,
-            xl,
-            ylabel,
-            *y_lo,
-            *y_hi,
-        );
+        let axes = Axes::new(&pts, (x0, y0, pw, ph), (*y_lo, *y_hi));
+        panel(&mut s, &pts, &axes, title, xl, ylabel);
     }
     s += "</svg>\n";
     s
 }
 
-pub(crate) const COLORS: [(&str, &str); 8] = [
-    ("Rayleigh", "#1f77b4"),
-    ("HG", "#2ca02c"),
-    ("Draine", "#d62728"),
-    ("fog", "#9467bd"),
-    ("isotropic", "#7f7f7f"),
-    ("cbrt", "#ff7f0e"),
-    ("Mie", "#17becf"),
-    ("FF", "#8c564b"),
-];
+/// The legend above the panels: what the colours and markers mean.
+fn legend(s: &mut String, x: f64, y: f64) {
+    let items: [(&str, &str, bool, &str); 4] = [
+        ("circle", OURS, true, "scatterkit, called from Rust"),
+        (
+            "triangle",
+            OURS,
+            true,
+            "scatterkit, called from C through the C ABI",
+        ),
+        (
+            "circle",
+            PEER,
+            true,
+            "peer's formula (pbrt-v4, Mitsuba 3, Cycles, papers), in Rust",
+        ),
+        ("triangle", PEER, true, "peer's formula, inline C"),
+    ];
+    for (i, (shape, col, fill, text)) in items.iter().enumerate() {
+        let (mx, my) = (x + (i % 2) as f64 * 520.0, y + (i / 2) as f64 * 16.0);
+        marker(s, shape, mx, my, col, *fill, None);
+        writeln!(
+            s,
+            "<text x=\"{}\" y=\"{}\" font-size=\"11\">{}</text>",
+            mx + 10.0,
+            my + 4.0,
+            esc(text)
+        )
+        .unwrap();
+    }
+    let y2 = y + 32.0;
+    marker(s, "circle", x, y2, OURS, false, None);
+    writeln!(
+        s,
+        "<text x=\"{}\" y=\"{}\" font-size=\"11\">hollow: exact in distribution (rejection), drawn at f32's rounding floor</text>\
+         <line x1=\"{}\" y1=\"{y2}\" x2=\"{}\" y2=\"{y2}\" stroke=\"black\" stroke-width=\"1.5\" opacity=\"0.6\"/>\
+         <text x=\"{}\" y=\"{}\" font-size=\"11\">Pareto frontier</text>\
+         <line x1=\"{}\" y1=\"{y2}\" x2=\"{}\" y2=\"{y2}\" stroke=\"#555\" stroke-dasharray=\"4,3\"/>\
+         <text x=\"{}\" y=\"{}\" font-size=\"11\">a curve: one method at several table sizes or steps</text>",
+        x + 10.0,
+        y2 + 4.0,
+        x + 520.0 - 6.0,
+        x + 520.0 + 14.0,
+        x + 520.0 + 20.0,
+        y2 + 4.0,
+        x + 520.0 + 130.0,
+        x + 520.0 + 150.0,
+        x + 520.0 + 156.0,
+        y2 + 4.0,
+    )
+    .unwrap();
+}
 
-pub(crate) fn color(family: &str) -> &'static str {
-    COLORS
-        .iter()
-        .find(|c| c.0 == family)
-        .map_or("black", |c| c.1)
+/// A marker at `(x, y)`; `data` is the point's `(x, y)` for the chart test
+/// (None for the legend's).
+fn marker(s: &mut String, shape: &str, x: f64, y: f64, col: &str, fill: bool, data: Option<()>) {
+    let fill = if fill { col } else { "none" };
+    let class = if data.is_some() {
+        format!(" class=\"marker\" data-point=\"{x:.1},{y:.1}\"")
+    } else {
+        String::new()
+    };
+    if shape == "triangle" {
+        writeln!(s, "<polygon{class} points=\"{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"{fill}\" stroke=\"{col}\" stroke-width=\"1.2\"/>", x, y - 5.0, x - 4.5, y + 3.5, x + 4.5, y + 3.5).unwrap();
+    } else {
+        writeln!(s, "<circle{class} cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"3.8\" fill=\"{fill}\" stroke=\"{col}\" stroke-width=\"1.2\"/>").unwrap();
+    }
 }
 
 /// Text for SVG.
@@ -181,59 +283,111 @@ pub(crate) fn esc(t: &str) -> String {
 /// An axis-aligned box `(x0, y0, x1, y1)` for the label placer.
 pub(crate) type Rect = (f64, f64, f64, f64);
 
-pub(crate) fn overlaps_any(r: Rect, taken: &[Rect]) -> bool {
-    taken
-        .iter()
-        .any(|t| r.0 < t.2 && t.0 < r.2 && r.1 < t.3 && t.1 < r.3)
+/// A line segment between two points (px).
+type Segment = ((f64, f64), (f64, f64));
+
+fn overlaps(r: Rect, t: Rect) -> bool {
+    r.0 < t.2 && t.0 < r.2 && r.1 < t.3 && t.1 < r.3
 }
 
-/// One log-log panel at `(x0, y0, pw, ph)`; x from the data, y over `[y_lo, y_hi]`.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn panel(
-    s: &mut String,
-    pts: &[&Entry],
-    (x0, y0, pw, ph): (f64, f64, f64, f64),
-    title: &str,
-    xl: &str,
-    yl: &str,
-    y_lo: f64,
-    y_hi: f64,
-) {
-    let (xmin, xmax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), e| {
-        (a.min(e.ns), b.max(e.ns))
-    });
-    let (lx0, lx1) = ((xmin * 0.8).log10().floor(), (xmax * 1.25).log10().ceil());
-    let (ly0, ly1) = (y_lo.log10(), y_hi.log10());
-    let px = |ns: f64| x0 + (ns.log10() - lx0) / (lx1 - lx0) * pw;
-    let py = |e: f64| y0 + ph - (e.clamp(y_lo, y_hi).log10() - ly0) / (ly1 - ly0) * ph;
+/// Whether the segment `a`–`b` meets the box `r` (the segment clipped to the
+/// box's slab in x, then tested in y).
+fn segment_hits(a: (f64, f64), b: (f64, f64), r: Rect) -> bool {
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, d, lo, hi) in [(a.0, b.0 - a.0, r.0, r.2), (a.1, b.1 - a.1, r.1, r.3)] {
+        if d.abs() < 1e-12 {
+            if p < lo || p > hi {
+                return false;
+            }
+        } else {
+            let (mut ta, mut tb) = ((lo - p) / d, (hi - p) / d);
+            if ta > tb {
+                std::mem::swap(&mut ta, &mut tb);
+            }
+            t0 = t0.max(ta);
+            t1 = t1.min(tb);
+            if t0 > t1 {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// The distance from a point to a box (0 inside).
+fn distance_to(p: (f64, f64), r: Rect) -> f64 {
+    let dx = (r.0 - p.0).max(p.0 - r.2).max(0.0);
+    let dy = (r.1 - p.1).max(p.1 - r.3).max(0.0);
+    dx.hypot(dy)
+}
+
+/// A panel's frame and its log-log scales.
+pub(crate) struct Axes {
+    frame: Rect,
+    lx: (f64, f64),
+    ly: (f64, f64),
+    y_range: (f64, f64),
+}
+
+impl Axes {
+    fn new(pts: &[&Entry], (x0, y0, pw, ph): (f64, f64, f64, f64), y_range: (f64, f64)) -> Axes {
+        let (xmin, xmax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), e| {
+            (a.min(e.ns), b.max(e.ns))
+        });
+        Axes {
+            frame: (x0, y0, x0 + pw, y0 + ph),
+            lx: ((xmin * 0.8).log10().floor(), (xmax * 1.25).log10().ceil()),
+            ly: (y_range.0.log10(), y_range.1.log10()),
+            y_range,
+        }
+    }
+    fn px(&self, ns: f64) -> f64 {
+        let (x0, _, x1, _) = self.frame;
+        x0 + (ns.log10() - self.lx.0) / (self.lx.1 - self.lx.0) * (x1 - x0)
+    }
+    fn py(&self, e: f64) -> f64 {
+        let (_, y0, _, y1) = self.frame;
+        let e = e.clamp(self.y_range.0, self.y_range.1);
+        y1 - (e.log10() - self.ly.0) / (self.ly.1 - self.ly.0) * (y1 - y0)
+    }
+    fn at(&self, e: &Entry) -> (f64, f64) {
+        (self.px(e.ns), self.py(e.err))
+    }
+}
+
+/// One panel: frame, grid, axis labels, curves, frontier, markers, labels,
+/// and the caption naming the peers on the frontier.
+fn panel(s: &mut String, pts: &[&Entry], ax: &Axes, title: &str, xl: &str, yl: &str) {
+    let (x0, y0, x1, y1) = ax.frame;
     writeln!(
         s,
-        "<rect x=\"{x0}\" y=\"{y0}\" width=\"{pw}\" height=\"{ph}\" fill=\"none\" stroke=\"#444\"/>\
+        "<rect x=\"{x0}\" y=\"{y0}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\"/>\
          <text x=\"{x0}\" y=\"{}\" font-size=\"13\" font-weight=\"bold\">{}</text>",
-        y0 - 22.0,
+        x1 - x0,
+        y1 - y0,
+        y0 - 8.0,
         esc(title)
     )
     .unwrap();
-    for d in (lx0 as i32)..=(lx1 as i32) {
-        let x = px(10f64.powi(d));
-        writeln!(s, "<line x1=\"{x}\" y1=\"{y0}\" x2=\"{x}\" y2=\"{}\" stroke=\"#ddd\"/><text x=\"{x}\" y=\"{}\" text-anchor=\"middle\">1e{d}</text>", y0 + ph, y0 + ph + 13.0).unwrap();
+    for d in (ax.lx.0 as i32)..=(ax.lx.1 as i32) {
+        let x = ax.px(10f64.powi(d));
+        writeln!(s, "<line x1=\"{x}\" y1=\"{y0}\" x2=\"{x}\" y2=\"{y1}\" stroke=\"#e4e4e4\"/><text x=\"{x}\" y=\"{}\" text-anchor=\"middle\">1e{d}</text>", y1 + 13.0).unwrap();
     }
-    for d in (ly0 as i32)..=(ly1 as i32) {
-        let y = py(10f64.powi(d));
-        writeln!(s, "<line x1=\"{x0}\" y1=\"{y}\" x2=\"{}\" y2=\"{y}\" stroke=\"#ddd\"/><text x=\"{}\" y=\"{}\" text-anchor=\"end\">1e{d}</text>", x0 + pw, x0 - 4.0, y + 3.0).unwrap();
+    for d in (ax.ly.0.round() as i32)..=(ax.ly.1.round() as i32) {
+        let y = ax.py(10f64.powi(d));
+        writeln!(s, "<line x1=\"{x0}\" y1=\"{y}\" x2=\"{x1}\" y2=\"{y}\" stroke=\"#e4e4e4\"/><text x=\"{}\" y=\"{}\" text-anchor=\"end\">1e{d}</text>", x0 - 4.0, y + 3.0).unwrap();
     }
     writeln!(
         s,
         "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-size=\"11\">{xl}</text>\
-         <text x=\"{}\" y=\"{}\" font-size=\"11\">{yl}</text>",
-        x0 + pw / 2.0,
-        y0 + ph + 28.0,
-        x0 + pw - 120.0,
-        y0 - 6.0
+         <text x=\"{x1}\" y=\"{}\" text-anchor=\"end\" font-size=\"11\">{yl}</text>",
+        (x0 + x1) / 2.0,
+        y1 + 28.0,
+        y0 - 8.0
     )
     .unwrap();
-    let col_of = |e: &Entry| color(e.family);
-    // Curves (tables by n, step counts).
+    // Data lines: the curves and the frontier. Labels keep off them.
+    let mut segments: Vec<Segment> = Vec::new();
     let mut curves: Vec<&str> = Vec::new();
     for c in pts.iter().filter_map(|e| e.curve) {
         if !curves.contains(&c) {
@@ -241,134 +395,347 @@ pub(crate) fn panel(
         }
     }
     for c in &curves {
-        let line: Vec<String> = pts
-            .iter()
-            .filter(|e| e.curve == Some(c))
-            .map(|e| format!("{:.1},{:.1}", px(e.ns), py(e.err)))
-            .collect();
-        writeln!(
+        let on: Vec<&&Entry> = pts.iter().filter(|e| e.curve == Some(c)).collect();
+        polyline(
             s,
-            "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-dasharray=\"4,3\"/>",
-            line.join(" "),
-            pts.iter()
-                .find(|e| e.curve == Some(c))
-                .map_or("black", |e| col_of(e))
-        )
-        .unwrap();
+            on.iter().map(|e| ax.at(e)),
+            &format!(
+                "class=\"data curve\" stroke=\"{}\" stroke-dasharray=\"4,3\"",
+                color(on[0])
+            ),
+            &mut segments,
+        );
     }
-    let front: Vec<String> = frontier(pts)
-        .iter()
-        .map(|e| format!("{:.1},{:.1}", px(e.ns), py(e.err)))
-        .collect();
-    writeln!(s, "<polyline points=\"{}\" fill=\"none\" stroke=\"black\" stroke-width=\"1.5\" opacity=\"0.6\"/>", front.join(" ")).unwrap();
+    let front = frontier(pts);
+    polyline(
+        s,
+        front.iter().map(|e| ax.at(e)),
+        "class=\"data frontier\" stroke=\"black\" stroke-width=\"1.5\" opacity=\"0.6\"",
+        &mut segments,
+    );
     // Markers; every marker's box is taken before any label is placed.
     let mut taken: Vec<Rect> = Vec::new();
     for e in pts {
-        let (x, y, col) = (px(e.ns), py(e.err), col_of(e));
+        let (x, y) = ax.at(e);
         taken.push((x - 5.0, y - 5.0, x + 5.0, y + 5.0));
-        if e.c_abi {
-            let fill = if e.rejection { "none" } else { col };
-            writeln!(s, "<polygon points=\"{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"{fill}\" stroke=\"{col}\"/>", x, y - 5.0, x - 4.5, y + 3.5, x + 4.5, y + 3.5).unwrap();
-        } else if e.rejection {
-            writeln!(s, "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"7\" height=\"7\" fill=\"none\" stroke=\"{col}\"/>", x - 3.5, y - 3.5).unwrap();
+        let shape = if e.c_abi || e.name.contains("inline C") {
+            "triangle"
         } else {
-            writeln!(
-                s,
-                "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"3.5\" fill=\"{col}\" opacity=\"0.8\"/>"
-            )
-            .unwrap();
-        }
+            "circle"
+        };
+        marker(s, shape, x, y, color(e), !e.rejection, Some(()));
     }
-    // The legend box is taken too.
-    let (lx, ly) = (x0 + pw - 190.0, y0 + 6.0);
-    taken.push((lx - 4.0, ly - 2.0, x0 + pw, ly + 52.0));
-    let legend = [
-        "● Rust call   ▲ through the C ABI, from C",
-        "□ / △ exact in distribution (at f32 floor)",
-        "– – curve (tables by n, steps)",
-        "—— Pareto frontier",
-    ];
-    for (i, t) in legend.iter().enumerate() {
-        writeln!(
-            s,
-            "<text x=\"{lx}\" y=\"{}\" fill=\"#333\">{t}</text>",
-            ly + 10.0 + 12.0 * i as f64
-        )
-        .unwrap();
-    }
-    // Labels: curves at their last point, other entries at their own; the
-    // first free place among right, left, above and below, at growing
-    // distances; a numbered tag otherwise.
-    let mut labelled: Vec<(String, f64, f64, &str)> = Vec::new();
+    // Labels: a curve's at its last point, every other point's at the point;
+    // the frontier's first, then from left to right.
+    // Sites: a curve's label at its last point; every other point's at the
+    // point, points whose markers touch (within `GROUP` px) sharing one
+    // site, with a line each.
+    let mut sites: Vec<Site> = Vec::new();
     for c in &curves {
         if let Some(last) = pts.iter().rev().find(|e| e.curve == Some(c)) {
-            labelled.push((c.to_string(), px(last.ns), py(last.err), col_of(last)));
+            sites.push(vec![(c.to_string(), ax.at(last), color(last))]);
         }
     }
-    for e in pts.iter().filter(|e| e.curve.is_none()) {
-        labelled.push((short(&e.name), px(e.ns), py(e.err), col_of(e)));
+    let curve_sites = sites.len();
+    let mut rest: Vec<&&Entry> = pts.iter().filter(|e| e.curve.is_none()).collect();
+    rest.sort_by(|a, b| a.ns.total_cmp(&b.ns));
+    for e in rest {
+        let p = ax.at(e);
+        let line = (short(e), p, color(e));
+        let near = |site: &&mut Site| {
+            let q = site[0].1;
+            (p.0 - q.0).hypot(p.1 - q.1) < GROUP
+        };
+        match sites[curve_sites..].iter_mut().find(|site| near(site)) {
+            Some(site) => site.push(line),
+            None => sites.push(vec![line]),
+        }
     }
+    // Sites in a crowd choose first (they have the fewest places).
+    let crowd = |site: &Site| {
+        let p = site[0].1;
+        let n = pts
+            .iter()
+            .filter(|o| {
+                let q = ax.at(o);
+                (p.0 - q.0).hypot(p.1 - q.1) < 30.0
+            })
+            .count();
+        std::cmp::Reverse(n)
+    };
+    sites[curve_sites..].sort_by_key(crowd);
+    // Rounds of growing radius over the sites not yet placed (see
+    // [`layout`]); sites left over go first in the next try, then shuffled
+    // orders, and the try that leaves the fewest is kept. Any site still left gets a numbered
+    // tag, its names under the panel.
+    let mut order = sites;
+    let (mut placed, mut left, mut free) = layout(order.clone(), &taken, &segments, ax.frame);
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    for attempt in 0..60 {
+        if left.is_empty() {
+            break;
+        }
+        if attempt < 12 {
+            let failed: Vec<String> = left.iter().map(|s| s[0].0.clone()).collect();
+            let (first, rest): (Vec<Site>, Vec<Site>) =
+                order.into_iter().partition(|s| failed.contains(&s[0].0));
+            order = first.into_iter().chain(rest).collect();
+        } else {
+            // Then orders shuffled by a fixed-seed generator (a chart drawn
+            // twice from the same figures comes out the same).
+            for i in (1..order.len()).rev() {
+                seed = seed
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                order.swap(i, (seed >> 33) as usize % (i + 1));
+            }
+        }
+        let next = layout(order.clone(), &taken, &segments, ax.frame);
+        if next.1.len() < left.len() {
+            (placed, left, free) = next;
+        }
+    }
+    let (mut taken, mut segments) = free;
     let mut footnotes = Vec::new();
-    for (text, x, y, col) in labelled {
-        let tw = 4.9 * text.chars().count() as f64;
-        let inside = |r: Rect| {
-            r.0 >= x0 + 2.0 && r.2 <= x0 + pw - 2.0 && r.1 >= y0 + 2.0 && r.3 <= y0 + ph - 2.0
-        };
-        let mut spot = None;
-        'search: for k in 0..8 {
-            let dy = 11.0 * k as f64;
-            for (bx, by) in [
-                (x + 6.0, y - 4.0 - dy),
-                (x + 6.0, y - 4.0 + dy),
-                (x - 6.0 - tw, y - 4.0 - dy),
-                (x - 6.0 - tw, y - 4.0 + dy),
-            ] {
-                let r = (bx, by - 6.0, bx + tw, by + 4.0);
-                if inside(r) && !overlaps_any(r, &taken) {
-                    spot = Some(r);
-                    break 'search;
-                }
-            }
+    for site in left {
+        let names: Vec<&str> = site.iter().map(|l| l.0.as_str()).collect();
+        footnotes.push(names.join("; "));
+        let tag = vec![(format!("[{}]", footnotes.len()), site[0].1, site[0].2)];
+        let spot = radii()
+            .find_map(|r| place_at(site_size(&tag), site[0].1, r, ax.frame, &taken, &segments));
+        if let Some(r) = spot {
+            keep(tag, r, &mut taken, &mut segments, &mut placed);
         }
-        let (r, shown) = match spot {
-            Some(r) => (Some(r), text.clone()),
-            None => {
-                footnotes.push(text.clone());
-                let tag = format!("[{}]", footnotes.len());
-                let tw = 5.5 * tag.len() as f64;
-                let cands = [
-                    (x + 5.0, y - 6.0),
-                    (x - 5.0 - tw, y - 6.0),
-                    (x - tw / 2.0, y - 10.0),
-                    (x - tw / 2.0, y + 14.0),
-                ];
-                let r = cands
-                    .iter()
-                    .map(|&(bx, by)| (bx, by - 6.0, bx + tw, by + 4.0))
-                    .find(|&r| !overlaps_any(r, &taken));
-                (r, tag)
-            }
-        };
-        if let Some(r) = r {
-            taken.push(r);
+    }
+    for (lines, spot) in &placed {
+        let (anchor, col) = (lines[0].1, lines[0].2);
+        if distance_to(anchor, *spot) > LEADER {
+            // A leader from the point to the nearest point of the box.
+            let q = (
+                anchor.0.clamp(spot.0, spot.2),
+                anchor.1.clamp(spot.1, spot.3),
+            );
+            writeln!(s, "<line class=\"leader\" x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{col}\" stroke-width=\"0.7\" opacity=\"0.8\"/>", anchor.0, anchor.1, q.0, q.1).unwrap();
+        }
+        for (i, (text, p, col)) in lines.iter().enumerate() {
+            let bottom = spot.1 + LINE * (i + 1) as f64;
             writeln!(
                 s,
-                "<text x=\"{:.1}\" y=\"{:.1}\" fill=\"{col}\">{}</text>",
-                r.0,
-                r.3 - 1.0,
-                esc(&shown)
+                "<text class=\"label\" data-point=\"{:.1},{:.1}\" x=\"{:.1}\" y=\"{:.1}\" textLength=\"{:.1}\" lengthAdjust=\"spacingAndGlyphs\" fill=\"{col}\">{}</text>",
+                p.0,
+                p.1,
+                spot.0,
+                bottom - 0.25 * FONT,
+                text_width(text),
+                esc(text)
             )
             .unwrap();
         }
     }
+    let mut y = y1 + 44.0;
     for (i, f) in footnotes.iter().enumerate() {
         writeln!(
             s,
-            "<text x=\"{x0}\" y=\"{}\" fill=\"#333\">[{}] {}</text>",
-            y0 + ph + 44.0 + 11.0 * i as f64,
+            "<text x=\"{x0}\" y=\"{y}\" fill=\"#333\">[{}] {}</text>",
             i + 1,
             esc(f)
         )
         .unwrap();
+        y += 11.0;
     }
+    let peers: Vec<String> = front
+        .iter()
+        .filter(|e| is_peer(e))
+        .map(|e| short(e))
+        .collect();
+    let caption = if peers.is_empty() {
+        "No peer is on this panel's frontier.".to_string()
+    } else {
+        format!("Peers on this panel's frontier: {}.", peers.join("; "))
+    };
+    writeln!(
+        s,
+        "<text x=\"{x0}\" y=\"{y}\" font-size=\"10\" fill=\"#333\">{}</text>",
+        esc(&caption)
+    )
+    .unwrap();
+}
+
+/// A label site: one line per point, `(text, point, colour)`.
+type Site<'a> = Vec<(String, (f64, f64), &'a str)>;
+
+/// The label text's size of a site (px).
+fn site_size(site: &Site) -> (f64, f64) {
+    let w = site.iter().fold(0.0f64, |a, l| a.max(text_width(&l.0)));
+    (w, LINE * site.len() as f64)
+}
+
+/// The taken boxes and the segments labels keep off.
+type Obstacles = (Vec<Rect>, Vec<Segment>);
+
+/// Places `sites` in this order, in rounds of growing radius (every site
+/// gets its chance at one radius before any goes farther out): the sites
+/// placed with their boxes, the sites left, and the obstacles after.
+fn layout<'a>(
+    sites: Vec<Site<'a>>,
+    taken: &[Rect],
+    segments: &[Segment],
+    frame: Rect,
+) -> (Vec<(Site<'a>, Rect)>, Vec<Site<'a>>, Obstacles) {
+    let (mut taken, mut segments) = (taken.to_vec(), segments.to_vec());
+    let mut placed = Vec::new();
+    let mut left = sites;
+    for radius in radii() {
+        let mut still = Vec::new();
+        for site in left {
+            match place_at(
+                site_size(&site),
+                site[0].1,
+                radius,
+                frame,
+                &taken,
+                &segments,
+            ) {
+                Some(r) => keep(site, r, &mut taken, &mut segments, &mut placed),
+                None => still.push(site),
+            }
+        }
+        left = still;
+    }
+    (placed, left, (taken, segments))
+}
+
+/// A site placed at `r`: its box and its leader are taken.
+fn keep<'a>(
+    site: Site<'a>,
+    r: Rect,
+    taken: &mut Vec<Rect>,
+    segments: &mut Vec<Segment>,
+    placed: &mut Vec<(Site<'a>, Rect)>,
+) {
+    taken.push(r);
+    let anchor = site[0].1;
+    if distance_to(anchor, r) > LEADER {
+        segments.push((anchor, (anchor.0.clamp(r.0, r.2), anchor.1.clamp(r.1, r.3))));
+    }
+    placed.push((site, r));
+}
+
+/// Draws a polyline and adds its segments to `segments`.
+fn polyline(
+    s: &mut String,
+    pts: impl Iterator<Item = (f64, f64)>,
+    style: &str,
+    segments: &mut Vec<Segment>,
+) {
+    let pts: Vec<(f64, f64)> = pts.collect();
+    segments.extend(pts.windows(2).map(|w| (w[0], w[1])));
+    let text: Vec<String> = pts
+        .iter()
+        .map(|p| format!("{:.1},{:.1}", p.0, p.1))
+        .collect();
+    writeln!(
+        s,
+        "<polyline points=\"{}\" fill=\"none\" {style}/>",
+        text.join(" ")
+    )
+    .unwrap();
+}
+
+/// The radii (px) at which labels are tried, nearest first: every site
+/// gets its chance at one radius before any site goes farther out. (Room is
+/// left for a site's other points, within `GROUP` px of the first.)
+fn radii() -> impl Iterator<Item = f64> {
+    (0..48)
+        .map(|k| 6.0 + 4.0 * k as f64)
+        .filter(|&r| r < MAX_LABEL_DISTANCE - GROUP)
+}
+
+/// A box of size `(w, h)` at distance `radius` from the point `p` that stays
+/// inside `frame`, covers no box in `taken` and no segment, and whose leader
+/// (if it needs one) crosses no taken box: 32 directions, the box's near
+/// edge or corner facing the point, and for the sideways directions the box
+/// also shifted up or down along its edge.
+fn place_at(
+    (w, h): (f64, f64),
+    p: (f64, f64),
+    radius: f64,
+    frame: Rect,
+    taken: &[Rect],
+    segments: &[Segment],
+) -> Option<Rect> {
+    let inside = |r: Rect| {
+        r.0 >= frame.0 + 2.0 && r.2 <= frame.2 - 2.0 && r.1 >= frame.1 + 2.0 && r.3 <= frame.3 - 2.0
+    };
+    // Right and left first, then ever steeper directions.
+    let order = (0..=8).flat_map(|k| {
+        let ks: Vec<i32> = if k == 0 {
+            vec![0, 16]
+        } else if k == 8 {
+            vec![8, 24]
+        } else {
+            vec![k, 32 - k, 16 - k, 16 + k]
+        };
+        ks.into_iter()
+    });
+    for k in order {
+        let a = k as f64 * std::f64::consts::PI / 16.0;
+        let (dx, dy) = (a.cos(), -a.sin());
+        let (ax, ay) = (p.0 + radius * dx, p.1 + radius * dy);
+        let bx = if dx > 0.3 {
+            ax
+        } else if dx < -0.3 {
+            ax - w
+        } else {
+            ax - w / 2.0
+        };
+        let by = if dy > 0.3 {
+            ay
+        } else if dy < -0.3 {
+            ay - h
+        } else {
+            ay - h / 2.0
+        };
+        let shifts: &[f64] = if dy.abs() <= 0.3 {
+            &[0.0, -0.5, 0.5]
+        } else {
+            &[0.0]
+        };
+        for &shift in shifts {
+            let r = (bx, by + shift * h, bx + w, by + (1.0 + shift) * h);
+            if fits(r, p, &inside, taken, segments) {
+                return Some(r);
+            }
+        }
+    }
+    None
+}
+
+/// Whether the box `r` for the point `p` is free (see [`place_at`]).
+fn fits(
+    r: Rect,
+    p: (f64, f64),
+    inside: &impl Fn(Rect) -> bool,
+    taken: &[Rect],
+    segments: &[Segment],
+) -> bool {
+    if !inside(r) || taken.iter().any(|&t| overlaps(r, t)) {
+        return false;
+    }
+    if segments.iter().any(|&(a, b)| segment_hits(a, b, r)) {
+        return false;
+    }
+    let d = distance_to(p, r);
+    if d <= LEADER {
+        return true;
+    }
+    // The leader, from 6 px out (markers that touch this one's are passed
+    // over) to the box.
+    let q = (p.0.clamp(r.0, r.2), p.1.clamp(r.1, r.3));
+    let k = 6.0 / d;
+    let start = (p.0 + k * (q.0 - p.0), p.1 + k * (q.1 - p.1));
+    !taken
+        .iter()
+        .filter(|&&t| distance_to(p, t) > 0.0)
+        .any(|&t| segment_hits(start, q, t))
 }

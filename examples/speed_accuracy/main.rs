@@ -4,11 +4,13 @@
 //!
 //!     cargo run --release --example speed_accuracy
 //!
-//! Prints markdown tables and writes `docs/speed_accuracy.csv`,
-//! `docs/speed_accuracy.svg` (one log-log panel per family: ns per sample
+//! Prints markdown tables and writes `speed_accuracy.csv`,
+//! `speed_accuracy.svg` (one log-log panel per family: ns per sample
 //! against max error, Rust calls and calls through the C ABI, the Pareto
-//! frontier drawn) and `docs/PERFORMANCE.md` (Frisvad's ratios, the
-//! project's speed targets and the C view, computed from this run). The C
+//! frontier drawn) and `PERFORMANCE.md` (Frisvad's ratios, the project's
+//! speed targets and the C view, computed from this run) to
+//! `target/speed_accuracy/`; with `SK_REFRESH_DOCS=1`, to `docs/measured/`
+//! instead, the copies the README and the guides show. The C
 //! view is `benches/c_abi.c`, built here with the `cc` crate at `-O2` against
 //! `libscatterkit.a` and run once.
 //!
@@ -128,6 +130,10 @@ fn main() -> std::io::Result<()> {
     for e in es.iter().filter(|e| e.family != "cbrt") {
         let cdf = if e.rejection {
             "exact (rejection)".into()
+        } else if e.cdf_err.is_nan() {
+            // Not measured (the C view times the call, its error is the
+            // Rust sampler's).
+            "—".into()
         } else {
             format!("{:.1e}", e.cdf_err)
         };
@@ -171,8 +177,7 @@ fn main() -> std::io::Result<()> {
     .unwrap();
     print!("{md}");
 
-    let docs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs");
-    std::fs::create_dir_all(&docs)?;
+    let docs = out_dir()?;
     std::fs::write(docs.join("speed_accuracy.csv"), csv(&es))?;
     std::fs::write(docs.join("speed_accuracy.svg"), svg(&es))?;
     let pairs = pairs();
@@ -191,15 +196,33 @@ fn main() -> std::io::Result<()> {
         + &mie_md
         + &pol_md;
     std::fs::write(docs.join("PERFORMANCE.md"), &perf)?;
+    // The targets once more, as the run's summary (every other section was
+    // printed above as it was measured).
+    let targets = perf.split_once("## Targets").map_or("", |(_, t)| t);
+    let targets = targets.split_once("\n## ").map_or(targets, |(t, _)| t);
+    println!("\n## Targets{targets}");
     println!(
-        "\n{}",
-        perf.split_once("## Targets")
-            .map_or("", |(_, t)| t)
-            .trim_start_matches(|c| c != '|')
-    );
-    println!(
-        "wrote docs/speed_accuracy.csv, docs/speed_accuracy.svg, docs/PERFORMANCE.md in {:.1} s",
+        "wrote PERFORMANCE.md, speed_accuracy.csv and speed_accuracy.svg to {} in {:.1} s",
+        docs.display(),
         start.elapsed().as_secs_f64()
     );
     Ok(())
+}
+
+/// Where the reports go: `target/speed_accuracy/` (beside the build, so a
+/// run leaves the checkout clean), or `docs/measured/`, the copies the
+/// README shows, with `SK_REFRESH_DOCS=1`.
+fn out_dir() -> std::io::Result<std::path::PathBuf> {
+    let dir = if std::env::var_os("SK_REFRESH_DOCS").is_some() {
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/measured")
+    } else {
+        // This program is `<target>/<profile>/examples/speed_accuracy`.
+        let exe = std::env::current_exe()?;
+        let target = exe.ancestors().nth(3).ok_or_else(|| {
+            std::io::Error::other("cannot tell the target directory from the program's path")
+        })?;
+        target.join("speed_accuracy")
+    };
+    std::fs::create_dir_all(&dir)?;
+    Ok(dir)
 }

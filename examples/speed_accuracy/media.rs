@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 /// Delta and ratio tracking through a cloud with 16³ local majorants and
 /// with one global majorant (a 1³ majorant grid, the same code): counts per
 /// ray, time per ray (interleaved), and how the cost grows with the ratio
-/// of peak to mean density. Markdown for `docs/PERFORMANCE.md`.
+/// of peak to mean density. Markdown for `docs/measured/PERFORMANCE.md`.
 pub(crate) fn media_report() -> String {
     use scatterkit::majorant::{DEFAULT_RES, Majorants};
     use scatterkit::medium::Event;

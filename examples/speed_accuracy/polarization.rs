@@ -109,7 +109,7 @@ fn run(tau: f64, ground: f64, photons: usize, seed: u64, exact: bool) -> Run {
     }
 }
 
-/// The section of `docs/PERFORMANCE.md`.
+/// The section of `docs/measured/PERFORMANCE.md`.
 pub(crate) fn polarization_report() -> String {
     let mut md = String::from(
         "\n## Polarised Rayleigh: the exact sampler against scalar sampling with matrix weights\n\n\

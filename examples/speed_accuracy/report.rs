@@ -1,4 +1,4 @@
-//! `docs/PERFORMANCE.md`: Frisvad's ratios, the speed targets and the
+//! `docs/measured/PERFORMANCE.md`: Frisvad's ratios, the speed targets and the
 //! peers still on the frontier.
 
 use crate::*;
@@ -29,7 +29,7 @@ pub(crate) fn frontier_peers(es: &[Entry]) -> String {
     s
 }
 
-/// `docs/PERFORMANCE.md`: Frisvad's Table 1 ratios beside ours, and the
+/// `docs/measured/PERFORMANCE.md`: Frisvad's Table 1 ratios beside ours, and the
 /// targets, all from this run.
 pub(crate) fn performance(
     es: &[Entry],

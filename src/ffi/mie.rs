@@ -154,7 +154,7 @@ pub unsafe extern "C" fn sk_mie_phase(m: *const sk_mie, mu: f64) -> f64 {
 
 /// Table sizes for a sphere of size parameter x in [1e-20, 1e5]:
 /// *angles = max(4000, 16 x) for sk_mie_tabulate and *intervals = max(16384,
-/// 64 x) for sk_table_measured_f64 (docs/mie_table.md measures them:
+/// 64 x) for sk_table_measured_f64 (docs/measured/mie_table.md measures them:
 /// total-variation distance 2.8e-6 at x = 10, 2.5e-4 at 100, 1.2e-3 at
 /// 1000).
 /// SK_ERR_NULL for NULL pointers, SK_ERR_DOMAIN for other x; nothing is

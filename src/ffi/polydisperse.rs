@@ -72,7 +72,7 @@ pub struct sk_mie_averages {
     /// Estimated relative errors of c_ext, c_sca, c_back and the absolute
     /// error of g: the difference between Simpson's rule on all nodes and
     /// on every other node, an estimate rather than a bound (within 2.6x of
-    /// the actual error in docs/polydisperse.md).
+    /// the actual error in docs/measured/polydisperse.md).
     pub errors: [f64; 4],
     /// Estimated largest relative error of the phase function.
     pub phase_error: f64,

@@ -317,7 +317,7 @@ fn inverse_g0(alpha: f64, u: f64) -> f64 {
 /// Eq. 6 of Jendersie & d'Eon (2023) in f64, rearranged where it cancels,
 /// and with everything that does not depend on `u` formed once.
 ///
-/// Three rearrangements (`docs/draine_accuracy.md` has the measured effect):
+/// Three rearrangements (`docs/measured/draine_accuracy.md` has the measured effect):
 /// - `t5 = t0 (t1 t2 + t4²) + t1³` is a sum of terms of size `α³` that
 ///   cancel where `t5` changes sign (there it lost up to 10⁻⁶ in `μ` at
 ///   α = 10⁴). Since `t1 t2 + t1³/t0 = −r²` with
@@ -569,7 +569,7 @@ fn inverse_tail_lazy<T: Real>(
     };
     if eq6_region(g, alpha) && core::mem::size_of::<T>() == 4 && (EQ6_MIN_Y..=2.0).contains(&seed) {
         // Eq. 6 in f64 on the small tail is within ~10⁻¹¹ here (see
-        // docs/draine_accuracy.md), 10³ finer than f32 resolves, and y is
+        // docs/measured/draine_accuracy.md), 10³ finer than f32 resolves, and y is
         // large enough for that absolute error to leave sin θ exact: done.
         return seed;
     }
@@ -647,7 +647,7 @@ const SEEDS_MIN_ALPHA: f64 = 10.0;
 /// Eq. 6 of Jendersie & d'Eon (2023) exactly as published, in the precision
 /// `T`: the reference the accuracy map and benchmarks compare against. It is
 /// NaN at `g = 0` and `α = 0` and inaccurate for small `|g|` and large `α`
-/// (see `docs/draine_accuracy.md`); use [`Draine::sample_cos`] instead.
+/// (see `docs/measured/draine_accuracy.md`); use [`Draine::sample_cos`] instead.
 pub fn sample_cos_eq6<T: Real>(g: T, alpha: T, u: T) -> T {
     let one = T::ONE;
     let (two, three, four, six, eight) = (

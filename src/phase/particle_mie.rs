@@ -9,7 +9,7 @@
 //! wide); the distance is `∫₀¹ (1 − p/p_Mie)₊ dv` over the Mie quantile `v`
 //! by the midpoint rule at [`MIE_NODES`] nodes, held in the caller's
 //! `work`. Candidates, in order of measured sampling cost (ns per `cos θ`,
-//! `docs/PERFORMANCE.md`): isotropic, HG (best g), Rayleigh, then either
+//! `docs/measured/PERFORMANCE.md`): isotropic, HG (best g), Rayleigh, then either
 //! the Mie table itself (`mie::table_sizes`; about 9 ns per f64 sample, so
 //! faster than Draine, 38–164 ns, or the fog fit, 270 ns, but it holds
 //! `2(intervals + 1)` doubles), or, without a table, Draine (best g and α),
@@ -29,7 +29,7 @@
 //! against tabulated data, whose quantiles are exact for its linear
 //! density. For Mie over a Junge distribution of ocean particles,
 //! Fournier–Forand's own scene, it measures Fournier–Forand 0.15–0.29 away
-//! and one or two HG lobes 0.02–0.11 (`docs/ocean_particles.md`).
+//! and one or two HG lobes 0.02–0.11 (`docs/measured/ocean_particles.md`).
 
 use super::particle::{
     MARGIN, Model, Quantiles, fit_draine, fit_fournier_forand, fit_hg, fit_two_lobe_hg,
@@ -57,7 +57,7 @@ pub struct MieChoice {
     pub phase: Option<Phase<f64>>,
     /// The chosen model's distance to Mie (0 for the table: it is the
     /// reference; the table built at `mie::table_sizes` adds its own, at
-    /// most 1.2·10⁻³ for `x ≤ 1000`, `docs/mie_table.md`).
+    /// most 1.2·10⁻³ for `x ≤ 1000`, `docs/measured/mie_table.md`).
     pub distance: f64,
     /// Whether `distance` is within the tolerance (without a table, none
     /// may be: the closest is returned).

@@ -398,7 +398,10 @@ fn nan_mueller<T: Real>() -> RayleighMueller<T> {
 /// for NULL pointers; SK_ERR_DOMAIN for an unconstructed model, a
 /// direction not of unit length (within 1e-3) or not finite, or an
 /// unphysical Stokes vector (I < 0, Q^2 + U^2 + V^2 > I^2, reference not of
-/// unit length). *out is written only on success.
+/// unit length; a relative 1e-6 of rounding is accepted). *out is written
+/// only on success. Every Stokes vector returned here and by the samplers
+/// has Q^2 + U^2 + V^2 <= I^2 (rounding above I is clamped), so an output is
+/// always accepted as the next input.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_rayleigh_polarized_eval(
     p: *const sk_rayleigh_polarized,

@@ -200,7 +200,8 @@ impl<T: Real> RayleighPolarized<T> {
     /// into the unit direction `w`, per steradian (the matrix over `4π`),
     /// referred to `out_reference` (unit, perpendicular to `w`): what
     /// next-event estimation adds towards a detector. `s.reference` must be
-    /// perpendicular to `k`.
+    /// perpendicular to `k`. The polarised part is clamped to `I` where
+    /// rounding would put it above.
     pub fn eval(&self, k: Vec3<T>, s: &Stokes<T>, w: Vec3<T>, out_reference: Vec3<T>) -> Stokes<T> {
         let e2 = k.cross(s.reference);
         let (mu, e_perp) = Self::plane(k, w, e2);
@@ -234,7 +235,9 @@ impl<T: Real> RayleighPolarized<T> {
     /// `k` from `u1`, `u2 ∈ [0, 1]` (clamped): the exact sampler of the
     /// module docs. The returned Stokes vector keeps `I` and refers to the
     /// new scattering plane (reference `∂ω/∂Θ`); the density is the
-    /// direction's. Monotone in each uniform.
+    /// direction's. Monotone in each uniform. The polarised part is clamped
+    /// to `I` where rounding would put it above (as in every Stokes vector
+    /// the library returns), so the output is always a valid input.
     pub fn sample(&self, k: Vec3<T>, s: &Stokes<T>, u1: T, u2: T) -> StokesSample<T> {
         let (u1, u2) = (u1.clamp01(), u2.clamp01());
         let (b1, b2) = onb(k);
@@ -268,7 +271,8 @@ impl<T: Real> RayleighPolarized<T> {
                 u: ratio(u),
                 v: ratio(v),
                 reference: perpendicular(b1, b2, phi).cross(dir),
-            },
+            }
+            .clamped(),
             pdf: pdf.unwrap_or(i * T::INV_4PI),
         }
     }
@@ -279,7 +283,8 @@ impl<T: Real> RayleighPolarized<T> {
     /// Stokes vector is `I · P S / P11` referred to the new scattering
     /// plane, so its `I` changes by `(P11 + P12 q_φ)/P11`. The density is
     /// `P11/4π`. Unbiased, but its weights' variance grows with the number
-    /// of scatterings where the exact sampler's does not.
+    /// of scatterings where the exact sampler's does not. The polarised part
+    /// is clamped to `I` where rounding would put it above.
     pub fn sample_scalar(&self, k: Vec3<T>, s: &Stokes<T>, u1: T, u2: T) -> StokesSample<T> {
         let (u1, u2) = (u1.clamp01(), u2.clamp01());
         let (b1, b2) = onb(k);
@@ -298,7 +303,8 @@ impl<T: Real> RayleighPolarized<T> {
                 u: w(u),
                 v: w(v),
                 reference: perpendicular(b1, b2, phi).cross(dir),
-            },
+            }
+            .clamped(),
             pdf: self.depol.pdf(mu),
         }
     }

@@ -336,7 +336,6 @@ pub(crate) fn c_tables(c: &std::collections::BTreeMap<String, (f64, f64)>, p: &P
         };
         writeln!(s, "| {label} | {t:.2} | {err} |").unwrap();
     }
-    let mark = |ok: bool| if ok { "met" } else { "**missed**" };
     let r = |a: &str, b: &str| ns(a) / ns(b);
     let best_rng = ["direct", "minimax", "table"]
         .map(|m| (m, ns(&format!("rayleigh_rng_dir.{m}"))))
@@ -346,48 +345,144 @@ pub(crate) fn c_tables(c: &std::collections::BTreeMap<String, (f64, f64)>, p: &P
     let hg_rust = p.hg.0 / p.hg.1;
     let d = |k: &str| r(&format!("draine_{k}.sk"), &format!("draine_{k}.eq6"));
     let two = |k: &str| r(&format!("two_lobe_cos.{k}"), "two_lobe_cos.c");
-    let rows: [(String, String, bool); 11] = [
+    let rows: [TargetRow; 12] = [
         ("`sk_phase_sample_dir` HG g = 0.7 ≤ 1.15× pbrt-v4 inline C".into(),
          format!("{:.2}× ({:.1} vs {:.1} ns)", r("hg_dir.sk", "hg_dir.pbrt"), ns("hg_dir.sk"), ns("hg_dir.pbrt")),
-         r("hg_dir.sk", "hg_dir.pbrt") <= 1.15),
+         vec![(r("hg_dir.sk", "hg_dir.pbrt"), 1.15)]),
         ("`sk_phase_sample_dir` Rayleigh ≤ 1.0× Mitsuba 3 inline C and ≤ 1.3× the inline-C isotropic direction".into(),
          format!("{:.2}× and {:.2}×", r("rayleigh_dir.sk", "rayleigh_dir.mitsuba"), r("rayleigh_dir.sk", "iso_dir.c")),
-         r("rayleigh_dir.sk", "rayleigh_dir.mitsuba") <= 1.0 && r("rayleigh_dir.sk", "iso_dir.c") <= 1.3),
+         vec![(r("rayleigh_dir.sk", "rayleigh_dir.mitsuba"), 1.0), (r("rayleigh_dir.sk", "iso_dir.c"), 1.3)]),
         ("`sk_phase_sample_dir_n` HG ≤ 0.8× the pbrt-v4 inline-C direction loop".into(),
          format!("{:.2}× ({:.2} vs {:.2} ns)", r("hg_dir_n.sk", "hg_dir_n.pbrt"), ns("hg_dir_n.sk"), ns("hg_dir_n.pbrt")),
-         r("hg_dir_n.sk", "hg_dir_n.pbrt") <= 0.8),
+         vec![(r("hg_dir_n.sk", "hg_dir_n.pbrt"), 0.8)]),
         ("`sk_phase_sample_cos_n` HG ≤ 1.0× the pbrt-v4 inline-C cosine loop".into(),
          format!("{:.2}× ({:.2} vs {:.2} ns)", r("hg_cos_n.sk", "hg_cos_n.pbrt"), ns("hg_cos_n.sk"), ns("hg_cos_n.pbrt")),
-         r("hg_cos_n.sk", "hg_cos_n.pbrt") <= 1.0),
+         vec![(r("hg_cos_n.sk", "hg_cos_n.pbrt"), 1.0)]),
         ("fastest `sk_rayleigh_sample_dir` method with max error ≤ 1e-6 ≤ 1.0× simplified rejection inline C".into(),
          format!("{:.2}× ({}, {:.1} vs {:.1} ns)", best_rng.1 / ns("rayleigh_dir.simplified"), best_rng.0, best_rng.1, ns("rayleigh_dir.simplified")),
-         best_rng.1 / ns("rayleigh_dir.simplified") <= 1.0),
+         vec![(best_rng.1 / ns("rayleigh_dir.simplified"), 1.0)]),
         ("fog `sk_phase_sample_cos` ≤ 2× `sk_phase_sample_cos_lobe`".into(),
          format!("{:.2}×", r("fog_cos.sk", "fog_cos.lobe")),
-         r("fog_cos.sk", "fog_cos.lobe") <= 2.0),
+         vec![(r("fog_cos.sk", "fog_cos.lobe"), 2.0)]),
         ("Draine `sk_phase_sample_cos` ≤ 1.3× eq. 6 inline C (g 0.5, α 1; g 0.9, α 10), ≤ 1.5× (α 250, 1000)".into(),
          format!("{:.2}×, {:.2}×; {:.2}×, {:.2}×", d("0.5_1"), d("0.9_10"), d("0.3_250"), d("0.01_1000")),
-         d("0.5_1") <= 1.3 && d("0.9_10") <= 1.3 && d("0.3_250") <= 1.5 && d("0.01_1000") <= 1.5),
+         vec![(d("0.5_1"), 1.3), (d("0.9_10"), 1.3), (d("0.3_250"), 1.5), (d("0.01_1000"), 1.5)]),
         ("two-lobe HG ≤ 1.3× two HG lobes chosen by one uniform, inline C: by lobe; exact inverse".into(),
          format!("{:.2}× ({:.1} vs {:.1} ns); {:.2}×", two("sk_lobe"), ns("two_lobe_cos.sk_lobe"), ns("two_lobe_cos.c"), two("sk")),
-         two("sk_lobe") <= 1.3),
+         vec![(two("sk_lobe"), 1.3)]),
         ("Fournier–Forand `sk_phase_sample_cos` ≤ 1.5× Cycles' sampler inline C".into(),
          format!("{:.2}× ({:.0} vs {:.0} ns; max error {:.1e} vs {:.1e})", r("ff_cos.sk", "ff_cos.cycles"), ns("ff_cos.sk"), ns("ff_cos.cycles"), c["ff_cos.sk"].1, c["ff_cos.cycles"].1),
-         r("ff_cos.sk", "ff_cos.cycles") <= 1.5),
+         vec![(r("ff_cos.sk", "ff_cos.cycles"), 1.5)]),
+        ("`sk_phase_sample_cos` HG g = 0.7 ≤ 1.5× pbrt-v4's formula inline C (one call per scattering event)".into(),
+         format!("{:.2}× ({:.2} vs {:.2} ns)", r("hg_cos.sk", "hg_cos.pbrt"), ns("hg_cos.sk"), ns("hg_cos.pbrt")),
+         vec![(r("hg_cos.sk", "hg_cos.pbrt"), 1.5)]),
         ("`sk_phase_sample_dir` isotropic ≤ 1.0× the inline-C isotropic direction".into(),
          format!("{:.2}× ({:.1} vs {:.1} ns)", r("iso_dir.sk", "iso_dir.c"), ns("iso_dir.sk"), ns("iso_dir.c")),
-         r("iso_dir.sk", "iso_dir.c") <= 1.0),
+         vec![(r("iso_dir.sk", "iso_dir.c"), 1.0)]),
         ("HG `sample_cos` in Rust ≤ 1.1× pbrt-v4's formula inlined (same RNG)".into(),
          format!("{hg_rust:.2}× ({:.2} vs {:.2} ns, interleaved)", p.hg.0, p.hg.1),
-         hg_rust <= 1.1),
+         vec![(hg_rust, 1.1)]),
     ];
     writeln!(
         s,
-        "\n## Targets through the C ABI\n\n| target | measured | |\n|---|---|---|"
+        "\n## Targets through the C ABI\n\nA target counts as met only with 10 % to spare \
+         (a ratio at most 1/1.1 of its limit), in three runs; one run is shown.\n\n\
+         | target | measured | |\n|---|---|---|"
     )
     .unwrap();
-    for (t, m, ok) in rows {
-        writeln!(s, "| {t} | {m} | {} |", mark(ok)).unwrap();
+    for (t, m, checks) in rows {
+        writeln!(s, "| {t} | {m} | {} |", mark(&checks)).unwrap();
+    }
+    s
+}
+
+/// A target: what it asks, what was measured, and its `(ratio, limit)`
+/// checks.
+type TargetRow = (String, String, Vec<(f64, f64)>);
+
+/// A target's verdict from its `(ratio, limit)` checks (each `ratio ≤
+/// limit`): met with 10 % to spare, met without it, or missed.
+pub(crate) fn mark(checks: &[(f64, f64)]) -> &'static str {
+    if checks.iter().all(|&(x, limit)| x * 1.1 <= limit) {
+        "met"
+    } else if checks.iter().all(|&(x, limit)| x <= limit) {
+        "met, **under 10 % margin**"
+    } else {
+        "**missed**"
+    }
+}
+
+/// The C view built as many renderers build themselves, `-O3
+/// -march=native`: the peers' inline C gets this processor's widest vectors
+/// and fused multiply-adds, the library is the same archive. `None` where
+/// the compiler rejects the flags.
+pub(crate) fn c_abi_native() -> Option<std::collections::BTreeMap<String, (f64, f64)>> {
+    run_c("benches/c_abi.c", &["-O3", "-march=native"])
+}
+
+/// The targets against peers built with `-O3 -march=native`.
+pub(crate) fn native_tables(c: &std::collections::BTreeMap<String, (f64, f64)>) -> String {
+    let ns = |k: &str| c[k].0;
+    let r = |a: &str, b: &str| ns(a) / ns(b);
+    let d = |k: &str| r(&format!("draine_{k}.sk"), &format!("draine_{k}.eq6"));
+    let mut s = String::from(
+        "\n## Through the C ABI, built with `-O3 -march=native`\n\nThe same `benches/c_abi.c` \
+         compiled with `-O3 -march=native`, as many renderers are: the peers' inline loops \
+         use this processor's widest vectors; the library is the same archive as above.\n\n\
+         | what | ns per sample |\n|---|---:|\n",
+    );
+    for (key, _, label, _) in C_KEYS {
+        writeln!(s, "| {label} | {:.2} |", ns(key)).unwrap();
+    }
+    let rows: [TargetRow; 5] = [
+        (
+            "`sk_phase_sample_cos_n` HG ≤ 0.8× the pbrt-v4 cosine loop".into(),
+            format!(
+                "{:.2}× ({:.2} vs {:.2} ns)",
+                r("hg_cos_n.sk", "hg_cos_n.pbrt"),
+                ns("hg_cos_n.sk"),
+                ns("hg_cos_n.pbrt")
+            ),
+            vec![(r("hg_cos_n.sk", "hg_cos_n.pbrt"), 0.8)],
+        ),
+        (
+            "`sk_phase_sample_dir_n` HG ≤ 0.5× the pbrt-v4 direction loop".into(),
+            format!(
+                "{:.2}× ({:.2} vs {:.2} ns)",
+                r("hg_dir_n.sk", "hg_dir_n.pbrt"),
+                ns("hg_dir_n.sk"),
+                ns("hg_dir_n.pbrt")
+            ),
+            vec![(r("hg_dir_n.sk", "hg_dir_n.pbrt"), 0.5)],
+        ),
+        (
+            "`sk_phase_sample_dir` HG ≤ 1.15× pbrt-v4".into(),
+            format!(
+                "{:.2}× ({:.1} vs {:.1} ns)",
+                r("hg_dir.sk", "hg_dir.pbrt"),
+                ns("hg_dir.sk"),
+                ns("hg_dir.pbrt")
+            ),
+            vec![(r("hg_dir.sk", "hg_dir.pbrt"), 1.15)],
+        ),
+        (
+            "`sk_phase_sample_dir` Rayleigh ≤ 1.3× the isotropic direction".into(),
+            format!("{:.2}×", r("rayleigh_dir.sk", "iso_dir.c")),
+            vec![(r("rayleigh_dir.sk", "iso_dir.c"), 1.3)],
+        ),
+        (
+            "Draine `sk_phase_sample_cos` ≤ 1.3× eq. 6 (g 0.5, α 1; g 0.9, α 10)".into(),
+            format!("{:.2}×, {:.2}×", d("0.5_1"), d("0.9_10")),
+            vec![(d("0.5_1"), 1.3), (d("0.9_10"), 1.3)],
+        ),
+    ];
+    writeln!(
+        s,
+        "\n## Targets through the C ABI, `-O3 -march=native`\n\n| target | measured | |\n|---|---|---|"
+    )
+    .unwrap();
+    for (t, m, checks) in rows {
+        writeln!(s, "| {t} | {m} | {} |", mark(&checks)).unwrap();
     }
     s
 }

@@ -62,6 +62,7 @@ pub(crate) use std::time::Instant;
 
 fn main() -> std::io::Result<()> {
     let start = Instant::now();
+    println!("Measured on {}.\n", machine());
     let mut es = Vec::new();
     rayleigh_entries(&mut es);
     hg_entries(&mut es);
@@ -183,6 +184,11 @@ fn main() -> std::io::Result<()> {
     let pairs = pairs();
     let c_md = c_tables(&c, &pairs);
     print!("{c_md}");
+    let native_md = c_abi_native().map_or_else(
+        || "\n## Through the C ABI, built with `-O3 -march=native`\n\nThis compiler rejected `-march=native`.\n".to_string(),
+        |n| native_tables(&n),
+    );
+    print!("{native_md}");
     let media_md = media_report();
     print!("{media_md}");
     let (mie_md, _) = mie_report(&es);
@@ -191,6 +197,7 @@ fn main() -> std::io::Result<()> {
     print!("{pol_md}");
     let perf = performance(&es, rayleigh_batch, hg_batch, &pairs)
         + &c_md
+        + &native_md
         + &frontier_peers(&es)
         + &media_md
         + &mie_md

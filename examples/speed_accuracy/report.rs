@@ -111,18 +111,19 @@ pub(crate) fn performance(
     s
 }
 
-/// The machine this run measured: the CPU model and the threads the
-/// process may use, as the operating system reports them.
-fn machine() -> String {
-    let model = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|c| {
-            c.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split_once(':'))
-                .map(|(_, m)| m.trim().to_string())
-        })
-        .unwrap_or_else(|| std::env::consts::ARCH.to_string());
+/// The machine this run measured: the CPU's vendor, model and family, and
+/// the threads the process may use, as the operating system reports them.
+pub(crate) fn machine() -> String {
+    let info = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
+    let field = |name: &str| {
+        info.lines()
+            .find(|l| l.starts_with(name))
+            .and_then(|l| l.split_once(':'))
+            .map(|(_, m)| m.trim().to_string())
+    };
+    let model = field("model name").unwrap_or_else(|| std::env::consts::ARCH.to_string());
+    let vendor = field("vendor_id").unwrap_or_default();
+    let family = field("cpu family").map_or(String::new(), |f| format!(", family {f}"));
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    format!("{model}, {threads} hardware threads")
+    format!("{model} ({vendor}{family}), {threads} hardware threads")
 }

@@ -27,6 +27,7 @@
  * library's double-precision sampler; -1 where not measured (rejection).
  * Output: one line per measurement, "key<TAB>ns<TAB>max_error". */
 #include "scatterkit.h"
+#include "scatterkit_inline.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -295,6 +296,7 @@ static void fill_batch(void) {
     } while (0)
 
 static sk_phase iso, hg, ray, fog, two, ff, draine[4];
+static sk_phase_cos_inline hgi;
 static sk_phase_f64 hg64, ray64, fog64, two64, ff64, draine64[4];
 static ff_coeffs ffc;
 static const float DRAINE_G[4] = {0.5f, 0.9f, 0.3f, 0.01f};
@@ -328,6 +330,7 @@ static void time_round(void) {
     });
     TIME("hg_cos.sk", acc += sk_phase_sample_cos(&hg, xo_float(&rng)));
     TIME("hg_cos.pbrt", acc += pbrt_hg_cos(0.7f, xo_float(&rng)));
+    TIME("hg_cos.inline", acc += sk_phase_cos_inline_sample(&hgi, xo_float(&rng)));
     TIME_BATCH("hg_cos_n.sk", sk_phase_sample_cos_n(&hg, bu1, bcos, BATCH));
     TIME_BATCH("hg_cos_n.pbrt", {
         int i;
@@ -447,6 +450,7 @@ static void accuracy(void) {
     MAX_DIR_ERR("hg_dir.pbrt", &hg64, pbrt_hg_dir(0.7f, W_IN, u1, u2, &pdf));
     MAX_ERR("hg_cos.sk", &hg64, sk_phase_sample_cos(&hg, u));
     MAX_ERR("hg_cos.pbrt", &hg64, pbrt_hg_cos(0.7f, u));
+    MAX_ERR("hg_cos.inline", &hg64, sk_phase_cos_inline_sample(&hgi, u));
     MAX_ERR("hg_cos_n.sk", &hg64, sk_phase_sample_cos(&hg, u));
     MAX_ERR("hg_cos_n.pbrt", &hg64, pbrt_hg_cos(0.7f, u));
     MAX_DIR_ERR("rayleigh_dir.sk", &ray64, sk_phase_sample_dir(&ray, W_IN, u1, u2, &pdf));
@@ -489,7 +493,8 @@ int main(void) {
         sk_phase_rayleigh_f64(&ray64) || sk_phase_fog_diameter_f64(2.0, &fog64) ||
         sk_phase_two_lobe_hg(0.8f, -0.3f, 0.9f, &two) || sk_phase_two_lobe_hg_f64(0.8, -0.3, 0.9, &two64) ||
         sk_phase_fournier_forand_backscatter(0.0183f, 1.1f, &ff) ||
-        sk_phase_fournier_forand_backscatter_f64(0.0183, 1.1, &ff64)) {
+        sk_phase_fournier_forand_backscatter_f64(0.0183, 1.1, &ff64) ||
+        sk_phase_cos_inline_init(&hg, &hgi)) {
         fprintf(stderr, "constructor failed\n");
         return 1;
     }

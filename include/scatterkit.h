@@ -890,6 +890,36 @@ typedef struct {
 } sk_particle_choice;
 
 /*
+ What `sk_phase_cos_inline_sample` (include/scatterkit_inline.h) needs to
+ draw cos theta without a call into the library: fill it with
+ sk_phase_cos_inline_init, then treat it as read-only. For a
+ Henyey-Greenstein phase on x86, x86-64 and AArch64 (|g| >= 2^-10) it
+ holds the constants of the f32 sampler's double-precision formula, so
+ the inline function returns sk_phase_sample_cos's bits; for every other
+ phase the constants are 0 and the inline function calls
+ sk_phase_sample_cos.
+ */
+typedef struct {
+    /*
+     k, A and B of cos theta = A - B / (u' + k)^2, computed in double and
+     rounded once to float; all 0 where the library is called instead.
+     */
+    double kab[3];
+    /*
+     1 where u' = 1 - u (g <= 0), else 0 (u' = u).
+     */
+    uint32_t mirror;
+    /*
+     Zero.
+     */
+    uint32_t reserved;
+    /*
+     The phase itself, for the calls that go to the library.
+     */
+    sk_phase phase;
+} sk_phase_cos_inline;
+
+/*
  What an sk_phase holds, for a host to hand to a device: the model (an
  sk_phase_model) and its parameters (`count` of them, the rest 0).
  */
@@ -2114,6 +2144,13 @@ float sk_phase_sample_cos(const sk_phase *p, float u);
  Double twin of `sk_phase_sample_cos`.
  */
 double sk_phase_sample_cos_f64(const sk_phase_f64 *p, double u);
+
+/*
+ Fills *out for sk_phase_cos_inline_sample from the phase *p (any model;
+ see sk_phase_cos_inline). SK_ERR_NULL for a NULL pointer; SK_ERR_DOMAIN
+ for an unconstructed phase. *out is written only on SK_OK.
+ */
+sk_status sk_phase_cos_inline_init(const sk_phase *p, sk_phase_cos_inline *out);
 
 /*
  CDF: P(cos theta <= cos_theta), the inverse map of `sk_phase_sample_cos`.

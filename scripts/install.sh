@@ -25,7 +25,7 @@ version=$(sed -n 's/^version = "\(.*\)"/\1/p' "$root/Cargo.toml" | head -n 1)
 # The native libraries a static link needs (`--print native-static-libs`).
 native="-lgcc_s -lutil -lrt -lpthread -lm -ldl -lc"
 mkdir -p "$prefix/lib/pkgconfig" "$prefix/include"
-cp "$root/include/scatterkit.h" "$root/include/scatterkit_table.h" "$prefix/include/"
+cp "$root/include/scatterkit.h" "$root/include/scatterkit_table.h" "$root/include/scatterkit_inline.h" "$prefix/include/"
 [ "$mode" = "--shared-only" ] || cp "$target/libscatterkit.a" "$prefix/lib/"
 soname=libscatterkit.so.$(echo "$version" | cut -d. -f1-2)
 if [ "$mode" != "--static-only" ]; then

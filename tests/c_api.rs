@@ -121,3 +121,24 @@ fn header_compiles_and_runs_as_cpp() {
         assert!(code == 0 && out.starts_with("C++: HG(0.5)"), "{std}: {out}");
     }
 }
+
+/// `include/scatterkit_inline.h` gives `sk_phase_sample_cos`'s bits: every
+/// float in `[0, 1]` for one HG phase at `-O2` (C99), every 5th at `-O3
+/// -march=native` (where FMA contraction could creep in) and every 7th as
+/// C89; both signs of g, a g below the inline path, other models.
+#[test]
+fn inline_cos_sampler_agrees_bit_for_bit() {
+    let src = root().join("tests/c/inline.c");
+    for (flags, suffix) in [
+        (vec![], ""),
+        (vec!["-O3", "-march=native", "-DSK_STRIDE=5"], "_native"),
+        (vec!["-std=c89", "-DSK_STRIDE=7"], "_c89"),
+    ] {
+        let exe = common::cbuild::build_program_with(&src, false, &flags, suffix);
+        let (code, out) = run(&exe);
+        assert!(
+            code == 0 && out.contains(" 0 differ (exact path 1)"),
+            "{flags:?}: {out}"
+        );
+    }
+}

@@ -107,6 +107,10 @@ pub(crate) fn short(e: &Entry) -> String {
             ", lobe choice",
         )
         .replace(", sk_phase_sample_cos (monotone inverse)", ", inverse")
+        .replace(
+            ", sk_phase_cos_inline_sample (scatterkit_inline.h)",
+            ", header inline",
+        )
         .replace(", sk_phase_sample_cos", "")
         .replace(" cos θ loop, inline C", ", loop")
         .replace(" cos θ, inline C", "")

@@ -743,6 +743,58 @@ pub unsafe extern "C" fn sk_phase_sample_cos_f64(p: *const sk_phase_f64, u: f64)
     unsafe { sample_cos(p, u) }
 }
 
+/// What `sk_phase_cos_inline_sample` (include/scatterkit_inline.h) needs to
+/// draw cos theta without a call into the library: fill it with
+/// sk_phase_cos_inline_init, then treat it as read-only. For a
+/// Henyey-Greenstein phase on x86, x86-64 and AArch64 (|g| >= 2^-10) it
+/// holds the constants of the f32 sampler's double-precision formula, so
+/// the inline function returns sk_phase_sample_cos's bits; for every other
+/// phase the constants are 0 and the inline function calls
+/// sk_phase_sample_cos.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct sk_phase_cos_inline {
+    /// k, A and B of cos theta = A - B / (u' + k)^2, computed in double and
+    /// rounded once to float; all 0 where the library is called instead.
+    pub kab: [f64; 3],
+    /// 1 where u' = 1 - u (g <= 0), else 0 (u' = u).
+    pub mirror: u32,
+    /// Zero.
+    pub reserved: u32,
+    /// The phase itself, for the calls that go to the library.
+    pub phase: sk_phase,
+}
+
+/// Fills *out for sk_phase_cos_inline_sample from the phase *p (any model;
+/// see sk_phase_cos_inline). SK_ERR_NULL for a NULL pointer; SK_ERR_DOMAIN
+/// for an unconstructed phase. *out is written only on SK_OK.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_cos_inline_init(
+    p: *const sk_phase,
+    out: *mut sk_phase_cos_inline,
+) -> sk_status {
+    if p.is_null() {
+        return sk_status::SK_ERR_NULL;
+    }
+    let r = match unsafe { load(p) } {
+        Some(ph) => {
+            let (kab, mirror) = match ph {
+                Phase::HenyeyGreenstein(h) => h.wide_constants().unwrap_or(([0.0; 3], false)),
+                _ => ([0.0; 3], false),
+            };
+            Ok(sk_phase_cos_inline {
+                kab,
+                mirror: mirror as u32,
+                reserved: 0,
+                // SAFETY: p is non-NULL and points to an sk_phase.
+                phase: unsafe { p.read() },
+            })
+        }
+        None => Err(Error::Domain),
+    };
+    unsafe { write_result(out, r) }
+}
+
 /// CDF: P(cos theta <= cos_theta), the inverse map of `sk_phase_sample_cos`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_phase_cdf(p: *const sk_phase, cos_theta: f32) -> f32 {

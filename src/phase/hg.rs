@@ -190,6 +190,15 @@ impl<T: Real> HenyeyGreenstein<T> {
         })
     }
 
+    /// The f64 path's `[k, A, B]` and whether `u` is mirrored, where the
+    /// f32 sampler takes that path: `cos θ = A − B/(u' + k)²` rounded once,
+    /// with `u' = 1 − u` if mirrored (the C layer hands them to the
+    /// header-only sampler of `include/scatterkit_inline.h`).
+    #[cfg_attr(not(feature = "ffi"), allow(dead_code))]
+    pub(crate) fn wide_constants(&self) -> Option<([f64; 3], bool)> {
+        self.wide_batch().map(|w| (w.kab, w.mirror))
+    }
+
     /// `cos θ` on the f64 path for `u ∈ [0, 1]`.
     #[inline(always)]
     fn wide_cos(&self, u: f64) -> f64 {

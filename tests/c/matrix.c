@@ -148,6 +148,27 @@ static void phase_constructors(void) {
 }
 
 /* Queries of every phase kind with each special argument. */
+/* The inline sampler's constants: NULL pointers, an unconstructed phase
+   (out untouched), an HG phase (constants set) and another model (constants
+   zero: the inline function calls the library). */
+static void phase_cos_inline(void) {
+    int i = 0;
+    sk_phase p, zero;
+    sk_phase_cos_inline c;
+    memset(&zero, 0, sizeof zero);
+    sk_phase_hg(0.3f, &p);
+    CHECK(sk_phase_cos_inline_init(NULL, &c) == SK_ERR_NULL);
+    CHECK(sk_phase_cos_inline_init(&p, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_cos_inline_init(NULL, NULL) == SK_ERR_NULL);
+    c.reserved = 99;
+    CHECK(sk_phase_cos_inline_init(&zero, &c) == SK_ERR_DOMAIN && c.reserved == 99);
+    CHECK(sk_phase_cos_inline_init(&p, &c) == SK_OK && c.reserved == 0 && c.kab[2] != 0.0 && c.mirror == 0);
+    sk_phase_hg(-0.3f, &p);
+    CHECK(sk_phase_cos_inline_init(&p, &c) == SK_OK && c.kab[2] != 0.0 && c.mirror == 1);
+    sk_phase_rayleigh(&p);
+    CHECK(sk_phase_cos_inline_init(&p, &c) == SK_OK && c.kab[0] == 0.0 && c.kab[1] == 0.0 && c.kab[2] == 0.0);
+}
+
 /* What a phase holds: the model and its parameters, as built. */
 static void phase_params(void) {
     int i = 0;
@@ -1078,6 +1099,7 @@ int main(void) {
     phase_constructors();
     phase_queries();
     phase_params();
+    phase_cos_inline();
     direction_batches();
     rayleigh_functions();
     tables();

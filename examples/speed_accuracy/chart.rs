@@ -98,8 +98,10 @@ pub(crate) fn frontier<'a>(pts: &[&'a Entry]) -> Vec<&'a Entry> {
 /// A label short enough for the chart (the tables keep the full names);
 /// calls timed from C say so, so that no two labels of a panel read alike.
 pub(crate) fn short(e: &Entry) -> String {
+    let native = e.name.starts_with("C ABI native: ");
     let name = e
         .name
+        .replace("C ABI native: ", "")
         .replace("C ABI: ", "")
         .replace(", sk_phase_sample_cos_n (4096)", ", batch")
         .replace(
@@ -116,7 +118,13 @@ pub(crate) fn short(e: &Entry) -> String {
         .replace(" cos θ, inline C", "")
         .replace(", inline C", "")
         .replace("peer: ", "");
-    if e.c_abi { format!("{name} (C)") } else { name }
+    if native {
+        format!("{name} (C, native)")
+    } else if e.c_abi {
+        format!("{name} (C)")
+    } else {
+        name
+    }
 }
 
 /// Whether a point is a peer's formula rather than this library's code.
@@ -139,7 +147,7 @@ const FONT: f64 = 9.0;
 pub(crate) const MAX_LABEL_DISTANCE: f64 = 200.0;
 
 /// Points closer than this (px) share one label site, a line each.
-const GROUP: f64 = 10.0;
+const GROUP: f64 = 14.0;
 
 /// The height of a label's line (px).
 const LINE: f64 = 1.1 * FONT;
@@ -177,8 +185,8 @@ fn text_width(text: &str) -> f64 {
 /// no other label, point or line (with a leader line where it had to move
 /// away); under each panel, the peers still on its frontier.
 pub(crate) fn svg(es: &[Entry]) -> String {
-    let (pw, ph, gap_x, gap_y) = (560.0, 440.0, 110.0, 130.0);
-    let top = 96.0;
+    let (pw, ph, gap_x, gap_y) = (600.0, 480.0, 110.0, 130.0);
+    let top = 112.0;
     let rows = PANELS.len().div_ceil(2) as f64;
     let (w, h) = (2.0 * pw + gap_x + 100.0, top + rows * (ph + gap_y));
     let mut s = format!(
@@ -210,7 +218,7 @@ pub(crate) fn svg(es: &[Entry]) -> String {
 
 /// The legend above the panels: what the colours and markers mean.
 fn legend(s: &mut String, x: f64, y: f64) {
-    let items: [(&str, &str, bool, &str); 4] = [
+    let items: [(&str, &str, bool, &str); 5] = [
         ("circle", OURS, true, "scatterkit, called from Rust"),
         (
             "triangle",
@@ -225,6 +233,12 @@ fn legend(s: &mut String, x: f64, y: f64) {
             "peer's formula (pbrt-v4, Mitsuba 3, Cycles, papers), in Rust",
         ),
         ("triangle", PEER, true, "peer's formula, inline C"),
+        (
+            "diamond",
+            PEER,
+            true,
+            "peer's formula, inline C built with -O3 -march=native (\"native\")",
+        ),
     ];
     for (i, (shape, col, fill, text)) in items.iter().enumerate() {
         let (mx, my) = (x + (i % 2) as f64 * 520.0, y + (i / 2) as f64 * 16.0);
@@ -238,7 +252,7 @@ fn legend(s: &mut String, x: f64, y: f64) {
         )
         .unwrap();
     }
-    let y2 = y + 32.0;
+    let y2 = y + 16.0 * items.len().div_ceil(2) as f64;
     marker(s, "circle", x, y2, OURS, false, None);
     writeln!(
         s,
@@ -270,7 +284,9 @@ fn marker(s: &mut String, shape: &str, x: f64, y: f64, col: &str, fill: bool, da
     } else {
         String::new()
     };
-    if shape == "triangle" {
+    if shape == "diamond" {
+        writeln!(s, "<polygon{class} points=\"{:.1},{:.1} {:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"{fill}\" stroke=\"{col}\" stroke-width=\"1.2\"/>", x, y - 5.0, x + 4.5, y, x, y + 5.0, x - 4.5, y).unwrap();
+    } else if shape == "triangle" {
         writeln!(s, "<polygon{class} points=\"{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"{fill}\" stroke=\"{col}\" stroke-width=\"1.2\"/>", x, y - 5.0, x - 4.5, y + 3.5, x + 4.5, y + 3.5).unwrap();
     } else {
         writeln!(s, "<circle{class} cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"3.8\" fill=\"{fill}\" stroke=\"{col}\" stroke-width=\"1.2\"/>").unwrap();
@@ -422,7 +438,9 @@ fn panel(s: &mut String, pts: &[&Entry], ax: &Axes, title: &str, xl: &str, yl: &
     for e in pts {
         let (x, y) = ax.at(e);
         taken.push((x - 5.0, y - 5.0, x + 5.0, y + 5.0));
-        let shape = if e.c_abi || e.name.contains("inline C") {
+        let shape = if e.name.starts_with("C ABI native: ") {
+            "diamond"
+        } else if e.c_abi || e.name.contains("inline C") {
             "triangle"
         } else {
             "circle"
@@ -475,7 +493,7 @@ fn panel(s: &mut String, pts: &[&Entry], ax: &Axes, title: &str, xl: &str, yl: &
     let mut order = sites;
     let (mut placed, mut left, mut free) = layout(order.clone(), &taken, &segments, ax.frame);
     let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-    for attempt in 0..60 {
+    for attempt in 0..150 {
         if left.is_empty() {
             break;
         }
@@ -538,11 +556,25 @@ fn panel(s: &mut String, pts: &[&Entry], ax: &Axes, title: &str, xl: &str, yl: &
     }
     let mut y = y1 + 44.0;
     for (i, f) in footnotes.iter().enumerate() {
+        // Wrapped to the panel's width.
+        let mut line = format!("[{}]", i + 1);
+        for word in f.split(' ') {
+            if text_width(&line) + text_width(word) > x1 - x0 {
+                writeln!(
+                    s,
+                    "<text x=\"{x0}\" y=\"{y}\" fill=\"#333\">{}</text>",
+                    esc(&line)
+                )
+                .unwrap();
+                y += 11.0;
+                line = String::from("    ");
+            }
+            line = format!("{line} {word}");
+        }
         writeln!(
             s,
-            "<text x=\"{x0}\" y=\"{y}\" fill=\"#333\">[{}] {}</text>",
-            i + 1,
-            esc(f)
+            "<text x=\"{x0}\" y=\"{y}\" fill=\"#333\">{}</text>",
+            esc(&line)
         )
         .unwrap();
         y += 11.0;
@@ -658,8 +690,8 @@ fn radii() -> impl Iterator<Item = f64> {
 /// A box of size `(w, h)` at distance `radius` from the point `p` that stays
 /// inside `frame`, covers no box in `taken` and no segment, and whose leader
 /// (if it needs one) crosses no taken box: 32 directions, the box's near
-/// edge or corner facing the point, and for the sideways directions the box
-/// also shifted up or down along its edge.
+/// edge or corner facing the point, and for the sideways, upward and
+/// downward directions the box also slid along its edge.
 fn place_at(
     (w, h): (f64, f64),
     p: (f64, f64),
@@ -700,13 +732,19 @@ fn place_at(
         } else {
             ay - h / 2.0
         };
-        let shifts: &[f64] = if dy.abs() <= 0.3 {
-            &[0.0, -0.5, 0.5]
+        // Sideways, the box may also slide up or down along its edge; above
+        // or below, it starts at the point (reading on from it) before it
+        // is centred or ends there.
+        let shifts: &[(f64, f64)] = if dy.abs() <= 0.3 {
+            &[(0.0, 0.0), (0.0, -0.5), (0.0, 0.5)]
+        } else if dx.abs() <= 0.3 {
+            &[(0.5, 0.0), (0.0, 0.0), (-0.5, 0.0)]
         } else {
-            &[0.0]
+            &[(0.0, 0.0)]
         };
-        for &shift in shifts {
-            let r = (bx, by + shift * h, bx + w, by + (1.0 + shift) * h);
+        for &(sx, sy) in shifts {
+            let x = bx + sx * (w - 12.0).max(0.0);
+            let r = (x, by + sy * h, x + w, by + (1.0 + sy) * h);
             if fits(r, p, &inside, taken, segments) {
                 return Some(r);
             }

@@ -242,7 +242,7 @@ fn legend(s: &mut String, x: f64, y: f64) {
     ];
     for (i, (shape, col, fill, text)) in items.iter().enumerate() {
         let (mx, my) = (x + (i % 2) as f64 * 520.0, y + (i / 2) as f64 * 16.0);
-        marker(s, shape, mx, my, col, *fill, None);
+        marker(s, shape, mx, my, col, *fill, false);
         writeln!(
             s,
             "<text x=\"{}\" y=\"{}\" font-size=\"11\">{}</text>",
@@ -253,7 +253,7 @@ fn legend(s: &mut String, x: f64, y: f64) {
         .unwrap();
     }
     let y2 = y + 16.0 * items.len().div_ceil(2) as f64;
-    marker(s, "circle", x, y2, OURS, false, None);
+    marker(s, "circle", x, y2, OURS, false, false);
     writeln!(
         s,
         "<text x=\"{}\" y=\"{}\" font-size=\"11\">hollow: exact in distribution (rejection), drawn at f32's rounding floor</text>\
@@ -275,11 +275,11 @@ fn legend(s: &mut String, x: f64, y: f64) {
     .unwrap();
 }
 
-/// A marker at `(x, y)`; `data` is the point's `(x, y)` for the chart test
-/// (None for the legend's).
-fn marker(s: &mut String, shape: &str, x: f64, y: f64, col: &str, fill: bool, data: Option<()>) {
+/// A marker at `(x, y)`; a data point's (`point`, not the legend's) carries
+/// its class and position for the chart test.
+fn marker(s: &mut String, shape: &str, x: f64, y: f64, col: &str, fill: bool, point: bool) {
     let fill = if fill { col } else { "none" };
-    let class = if data.is_some() {
+    let class = if point {
         format!(" class=\"marker\" data-point=\"{x:.1},{y:.1}\"")
     } else {
         String::new()
@@ -445,10 +445,8 @@ fn panel(s: &mut String, pts: &[&Entry], ax: &Axes, title: &str, xl: &str, yl: &
         } else {
             "circle"
         };
-        marker(s, shape, x, y, color(e), !e.rejection, Some(()));
+        marker(s, shape, x, y, color(e), !e.rejection, true);
     }
-    // Labels: a curve's at its last point, every other point's at the point;
-    // the frontier's first, then from left to right.
     // Sites: a curve's label at its last point; every other point's at the
     // point, points whose markers touch (within `GROUP` px) sharing one
     // site, with a line each.

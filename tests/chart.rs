@@ -3,7 +3,9 @@
 //! `SK_REFRESH_DOCS=1`) can be read without the README: every label sits
 //! within `MAX_DISTANCE` px of its point, and no label covers another label,
 //! a point, a data line or another label's leader; every point is labelled
-//! (or lies inside a curve, which is labelled at its last point).
+//! (or lies inside a curve, which is labelled at its last point, or in a
+//! site of touching points that had to take a numbered tag, its names
+//! under the panel).
 //!
 //! The chart states its geometry: each label is a `<text class="label">` with
 //! the point it names (`data-point`), its left edge `x`, its baseline `y` and
@@ -17,6 +19,9 @@ use std::path::Path;
 /// Labels stay within this distance of their point (px), the chart's own
 /// limit (`MAX_LABEL_DISTANCE` in `examples/speed_accuracy/chart.rs`).
 const MAX_DISTANCE: f64 = 200.0;
+/// Points closer than this (px) share one label site (`GROUP` in the
+/// chart's code).
+const GROUP: f64 = 14.0;
 /// The label font size and line height (px).
 const FONT: f64 = 9.0;
 const LINE: f64 = 1.1 * FONT;
@@ -165,7 +170,11 @@ fn problems(c: &Chart) -> Vec<String> {
     }
     let near = |a: Point, b: Point| (a.0 - b.0).abs() < 0.2 && (a.1 - b.1).abs() < 0.2;
     for m in &c.markers {
-        let labelled = c.labels.iter().any(|(_, p, _)| near(*p, *m));
+        // A label names its own point; a numbered tag (the names under the
+        // panel) names a site of touching points, within `GROUP` px.
+        let labelled = c.labels.iter().any(|(text, p, _)| {
+            near(*p, *m) || (text.starts_with('[') && (p.0 - m.0).hypot(p.1 - m.1) < GROUP)
+        });
         let on_curve = c.curves.iter().any(|cv| cv.iter().any(|q| near(*q, *m)));
         if !labelled && !on_curve {
             bad.push(format!("the point at {m:?} has no label"));

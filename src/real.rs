@@ -376,10 +376,7 @@ impl<const N: usize> PackedF64<N> {
     /// All zeros (as a constant: no conversion code is generated for it).
     pub(crate) const ZERO: Self = PackedF64([[0; 2]; N]);
     pub(crate) fn new(values: [f64; N]) -> Self {
-        PackedF64(values.map(|v| {
-            let b = v.to_bits();
-            [b as u32, (b >> 32) as u32]
-        }))
+        Self::first_of(values)
     }
     /// The `i`-th value, bit for bit as stored.
     #[inline(always)]

@@ -86,7 +86,9 @@ impl<T: Real> Stokes<T> {
             self.v.to_f64(),
         );
         let p2 = q * q + u * u + v * v;
-        if p2.is_nan() || p2 <= i * i {
+        // Only a polarised part above I is scaled: NaN anywhere is left as
+        // it is, for the caller to see.
+        if p2.partial_cmp(&(i * i)) != Some(core::cmp::Ordering::Greater) {
             return self;
         }
         let k = if i > 0.0 { i / p2.sqrt() } else { 0.0 };

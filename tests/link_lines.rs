@@ -10,24 +10,9 @@
 mod common;
 
 use common::cbuild::{root, static_lib};
+use common::readme;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-
-/// The `cc` lines of the README's `sh` code blocks.
-fn readme_cc_lines() -> Vec<String> {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let (mut in_sh, mut lines) = (false, Vec::new());
-    for l in readme.lines() {
-        if l.starts_with("```") {
-            in_sh = l == "```sh";
-            continue;
-        }
-        if in_sh && l.starts_with("cc ") {
-            lines.push(l.to_string());
-        }
-    }
-    lines
-}
 
 fn sh(dir: &Path, line: &str, env: &[(&str, &Path)]) -> String {
     let mut cmd = Command::new("sh");
@@ -46,13 +31,10 @@ fn sh(dir: &Path, line: &str, env: &[(&str, &Path)]) -> String {
 
 /// The README's C quick start, the program every line builds.
 fn quick_start() -> String {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    readme
-        .split("```c\n")
-        .nth(1)
-        .and_then(|b| b.split("```").next())
+    readme::blocks("c")
+        .into_iter()
+        .next()
         .expect("the README's C quick start")
-        .to_string()
 }
 
 /// What the quick start prints when it works.
@@ -69,16 +51,14 @@ fn workdir(name: &str) -> PathBuf {
     dir
 }
 
-/// The README's install line: `scripts/install.sh PREFIX [options]`.
-fn readme_install_line() -> Vec<String> {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let line = readme
-        .lines()
-        .find(|l| l.starts_with("scripts/install.sh "))
-        .expect("the README's install line");
+/// The options of the README's install line, `scripts/install.sh PREFIX
+/// [options]` (its comment left off).
+fn readme_install_options() -> Vec<String> {
+    let lines = readme::sh_lines("scripts/install.sh ");
+    let line = lines.first().expect("the README's install line");
     let code = line.split('#').next().unwrap();
     code.split_whitespace()
-        .skip(1)
+        .skip(2)
         .map(str::to_string)
         .collect()
 }
@@ -93,7 +73,7 @@ fn install(prefix: &Path, mode: Option<&str>) {
         .to_path_buf();
     let options: Vec<String> = match mode {
         Some(m) => vec![m.to_string()],
-        None => readme_install_line().into_iter().skip(1).collect(),
+        None => readme_install_options(),
     };
     let out = Command::new("sh")
         .arg(root().join("scripts/install.sh"))
@@ -111,7 +91,7 @@ fn install(prefix: &Path, mode: Option<&str>) {
 
 #[test]
 fn every_readme_link_line_builds_and_runs() {
-    let lines = readme_cc_lines();
+    let lines = readme::sh_lines("cc ");
     assert!(
         lines.len() >= 3,
         "the README lost its link lines: {lines:?}"
@@ -168,13 +148,10 @@ fn cmake_package_builds_an_app_where_cmake_is_installed() {
         common::skip("link_lines: cmake is not installed, the CMake route is not built");
         return;
     }
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let block: String = readme
-        .split("```cmake\n")
-        .nth(1)
-        .and_then(|b| b.split("```").next())
-        .expect("the README's cmake block")
-        .to_string();
+    let block = readme::blocks("cmake")
+        .into_iter()
+        .next()
+        .expect("the README's cmake block");
     let dir = workdir("cmake");
     let prefix = dir.join("prefix");
     install(&prefix, None);

@@ -8,24 +8,11 @@
 mod common;
 
 use common::cbuild::{build_program_with, root, run};
-
-fn readme() -> String {
-    std::fs::read_to_string(root().join("README.md")).unwrap()
-}
-
-/// The contents of the README's code blocks of one language.
-pub fn blocks(text: &str, lang: &str) -> Vec<String> {
-    let fence = format!("```{lang}\n");
-    text.split(&fence)
-        .skip(1)
-        .filter_map(|b| b.split("```").next())
-        .map(str::to_string)
-        .collect()
-}
+use common::readme::{blocks, text};
 
 #[test]
 fn readme_is_short_and_for_users() {
-    let text = readme();
+    let text = text();
     let lines = text.lines().count();
     assert!(lines <= 220, "README.md has {lines} lines (at most 220)");
     let lower = text.to_lowercase();
@@ -43,7 +30,7 @@ fn readme_is_short_and_for_users() {
 
 #[test]
 fn rust_quick_start_is_the_example() {
-    let block = blocks(&readme(), "rust");
+    let block = blocks("rust");
     let example = std::fs::read_to_string(root().join("examples/quick_start.rs")).unwrap();
     assert_eq!(
         block.len(),
@@ -58,7 +45,7 @@ fn rust_quick_start_is_the_example() {
 
 #[test]
 fn c_quick_start_builds_and_runs_in_every_standard() {
-    let block = blocks(&readme(), "c");
+    let block = blocks("c");
     assert_eq!(block.len(), 1, "the README should hold one C block");
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("readme");
     std::fs::create_dir_all(&dir).unwrap();

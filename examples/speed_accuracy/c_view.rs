@@ -12,6 +12,16 @@ pub(crate) fn c_abi() -> std::collections::BTreeMap<String, (f64, f64)> {
     run_c("benches/c_abi.c", &[]).expect("compiling benches/c_abi.c failed")
 }
 
+/// The target directory this example was built into: it runs as
+/// `<target>/<profile>/examples/speed_accuracy`.
+pub(crate) fn target_dir() -> std::path::PathBuf {
+    let exe = std::env::current_exe().expect("the example's own path");
+    exe.ancestors()
+        .nth(3)
+        .expect("the example runs from <target>/<profile>/examples/")
+        .to_path_buf()
+}
+
 /// Builds the C library (release profile) once, then `src` (relative to
 /// the crate) at `-O2` with `extra` flags against `libscatterkit.a`, runs
 /// it, and parses its `key<TAB>ns<TAB>error` lines. `None` if the compiler
@@ -25,9 +35,7 @@ pub(crate) fn run_c(
     use std::sync::Once;
     static BUILT: Once = Once::new();
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    // The example runs from <target>/release/examples/.
-    let exe = std::env::current_exe().expect("current exe");
-    let target: PathBuf = exe.ancestors().nth(3).expect("target dir").to_path_buf();
+    let target: PathBuf = target_dir();
     BUILT.call_once(|| {
         let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
         let ok = Command::new(cargo)

@@ -334,6 +334,11 @@ fn segment_hits(a: (f64, f64), b: (f64, f64), r: Rect) -> bool {
     true
 }
 
+/// The point of the box `r` nearest to `p` (where a leader from `p` ends).
+fn nearest_in(p: (f64, f64), r: Rect) -> (f64, f64) {
+    (p.0.clamp(r.0, r.2), p.1.clamp(r.1, r.3))
+}
+
 /// The distance from a point to a box (0 inside).
 fn distance_to(p: (f64, f64), r: Rect) -> f64 {
     let dx = (r.0 - p.0).max(p.0 - r.2).max(0.0);
@@ -484,38 +489,10 @@ fn panel(s: &mut String, pts: &[&Entry], ax: &Axes, title: &str, xl: &str, yl: &
         std::cmp::Reverse(n)
     };
     sites[curve_sites..].sort_by_key(crowd);
-    // Rounds of growing radius over the sites not yet placed (see
-    // [`layout`]); sites left over go first in the next try, then shuffled
-    // orders, and the try that leaves the fewest is kept. Any site still left gets a numbered
-    // tag, its names under the panel.
-    let mut order = sites;
-    let (mut placed, mut left, mut free) = layout(order.clone(), &taken, &segments, ax.frame);
-    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-    for attempt in 0..150 {
-        if left.is_empty() {
-            break;
-        }
-        if attempt < 12 {
-            let failed: Vec<String> = left.iter().map(|s| s[0].0.clone()).collect();
-            let (first, rest): (Vec<Site>, Vec<Site>) =
-                order.into_iter().partition(|s| failed.contains(&s[0].0));
-            order = first.into_iter().chain(rest).collect();
-        } else {
-            // Then orders shuffled by a fixed-seed generator (a chart drawn
-            // twice from the same figures comes out the same).
-            for i in (1..order.len()).rev() {
-                seed = seed
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                order.swap(i, (seed >> 33) as usize % (i + 1));
-            }
-        }
-        let next = layout(order.clone(), &taken, &segments, ax.frame);
-        if next.1.len() < left.len() {
-            (placed, left, free) = next;
-        }
-    }
-    let (mut taken, mut segments) = free;
+    // Any site the best layout leaves gets a numbered tag, its names under
+    // the panel.
+    let (mut placed, left, (mut taken, mut segments)) =
+        best_layout(sites, &taken, &segments, ax.frame);
     let mut footnotes = Vec::new();
     for site in left {
         let names: Vec<&str> = site.iter().map(|l| l.0.as_str()).collect();
@@ -531,10 +508,7 @@ fn panel(s: &mut String, pts: &[&Entry], ax: &Axes, title: &str, xl: &str, yl: &
         let (anchor, col) = (lines[0].1, lines[0].2);
         if distance_to(anchor, *spot) > LEADER {
             // A leader from the point to the nearest point of the box.
-            let q = (
-                anchor.0.clamp(spot.0, spot.2),
-                anchor.1.clamp(spot.1, spot.3),
-            );
+            let q = nearest_in(anchor, *spot);
             writeln!(s, "<line class=\"leader\" x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{col}\" stroke-width=\"0.7\" opacity=\"0.8\"/>", anchor.0, anchor.1, q.0, q.1).unwrap();
         }
         for (i, (text, p, col)) in lines.iter().enumerate() {
@@ -607,6 +581,44 @@ fn site_size(site: &Site) -> (f64, f64) {
 /// The taken boxes and the segments labels keep off.
 type Obstacles = (Vec<Rect>, Vec<Segment>);
 
+/// The layout that leaves the fewest sites unplaced: [`layout`] in the
+/// given order, then with the sites left over moved to the front (12
+/// tries), then in orders shuffled by a fixed-seed generator (a chart drawn
+/// twice from the same figures comes out the same), 150 tries in all.
+fn best_layout<'a>(
+    sites: Vec<Site<'a>>,
+    taken: &[Rect],
+    segments: &[Segment],
+    frame: Rect,
+) -> (Vec<(Site<'a>, Rect)>, Vec<Site<'a>>, Obstacles) {
+    let mut order = sites;
+    let mut best = layout(order.clone(), taken, segments, frame);
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    for attempt in 0..150 {
+        if best.1.is_empty() {
+            break;
+        }
+        if attempt < 12 {
+            let failed: Vec<String> = best.1.iter().map(|s| s[0].0.clone()).collect();
+            let (first, rest): (Vec<Site>, Vec<Site>) =
+                order.into_iter().partition(|s| failed.contains(&s[0].0));
+            order = first.into_iter().chain(rest).collect();
+        } else {
+            for i in (1..order.len()).rev() {
+                seed = seed
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                order.swap(i, (seed >> 33) as usize % (i + 1));
+            }
+        }
+        let next = layout(order.clone(), taken, segments, frame);
+        if next.1.len() < best.1.len() {
+            best = next;
+        }
+    }
+    best
+}
+
 /// Places `sites` in this order, in rounds of growing radius (every site
 /// gets its chance at one radius before any goes farther out): the sites
 /// placed with their boxes, the sites left, and the obstacles after.
@@ -650,7 +662,7 @@ fn keep<'a>(
     taken.push(r);
     let anchor = site[0].1;
     if distance_to(anchor, r) > LEADER {
-        segments.push((anchor, (anchor.0.clamp(r.0, r.2), anchor.1.clamp(r.1, r.3))));
+        segments.push((anchor, nearest_in(anchor, r)));
     }
     placed.push((site, r));
 }
@@ -771,7 +783,7 @@ fn fits(
     }
     // The leader, from 6 px out (markers that touch this one's are passed
     // over) to the box.
-    let q = (p.0.clamp(r.0, r.2), p.1.clamp(r.1, r.3));
+    let q = nearest_in(p, r);
     let k = 6.0 / d;
     let start = (p.0 + k * (q.0 - p.0), p.1 + k * (q.1 - p.1));
     !taken

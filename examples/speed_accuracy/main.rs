@@ -87,13 +87,7 @@ fn main() -> std::io::Result<()> {
         if !is_cos {
             continue;
         }
-        let mut e = if err < 0.0 {
-            Entry::rejection(family, format!("C ABI: {label}"), ns)
-        } else {
-            Entry::new(family, format!("C ABI: {label}"), ns, (err, f64::NAN))
-        };
-        e.c_abi = true;
-        es.push(e);
+        es.push(c_entry(family, format!("C ABI: {label}"), ns, err));
     }
     // The peers' inline C again, built with -O3 -march=native (the library's
     // calls are the same archive: only the peers' points move).
@@ -105,14 +99,7 @@ fn main() -> std::io::Result<()> {
         if !is_cos || !label.starts_with("peer:") {
             continue;
         }
-        let name = format!("C ABI native: {label}");
-        let mut e = if err < 0.0 {
-            Entry::rejection(family, name, ns)
-        } else {
-            Entry::new(family, name, ns, (err, f64::NAN))
-        };
-        e.c_abi = true;
-        es.push(e);
+        es.push(c_entry(family, format!("C ABI native: {label}"), ns, err));
     }
 
     let mut md = String::new();
@@ -242,13 +229,19 @@ fn out_dir() -> std::io::Result<std::path::PathBuf> {
     let dir = if std::env::var_os("SK_REFRESH_DOCS").is_some() {
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/measured")
     } else {
-        // This program is `<target>/<profile>/examples/speed_accuracy`.
-        let exe = std::env::current_exe()?;
-        let target = exe.ancestors().nth(3).ok_or_else(|| {
-            std::io::Error::other("cannot tell the target directory from the program's path")
-        })?;
-        target.join("speed_accuracy")
+        target_dir().join("speed_accuracy")
     };
     std::fs::create_dir_all(&dir)?;
     Ok(dir)
+}
+
+/// A point of the C view: `err < 0` marks a sampler exact in distribution.
+fn c_entry(family: &'static str, name: String, ns: f64, err: f64) -> Entry {
+    let mut e = if err < 0.0 {
+        Entry::rejection(family, name, ns)
+    } else {
+        Entry::new(family, name, ns, (err, f64::NAN))
+    };
+    e.c_abi = true;
+    e
 }

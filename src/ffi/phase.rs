@@ -779,7 +779,7 @@ pub unsafe extern "C" fn sk_phase_cos_inline_init(
     let r = match unsafe { load(p) } {
         Some(ph) => {
             let (kab, mirror) = match ph {
-                Phase::HenyeyGreenstein(h) => h.wide_constants().unwrap_or(([0.0; 3], false)),
+                Phase::HenyeyGreenstein(h) => h.wide_kab().unwrap_or(([0.0; 3], false)),
                 _ => ([0.0; 3], false),
             };
             Ok(sk_phase_cos_inline {

@@ -195,7 +195,7 @@ impl<T: Real> HenyeyGreenstein<T> {
     /// with `u' = 1 − u` if mirrored (the C layer hands them to the
     /// header-only sampler of `include/scatterkit_inline.h`).
     #[cfg_attr(not(feature = "ffi"), allow(dead_code))]
-    pub(crate) fn wide_constants(&self) -> Option<([f64; 3], bool)> {
+    pub(crate) fn wide_kab(&self) -> Option<([f64; 3], bool)> {
         self.wide_batch().map(|w| (w.kab, w.mirror))
     }
 

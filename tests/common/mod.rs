@@ -6,6 +6,7 @@ pub mod cbuild;
 pub mod chi2;
 pub mod dd;
 pub mod ks;
+pub mod readme;
 
 pub use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;

@@ -217,6 +217,22 @@ crate::ifunc::load_time_choice! {
 /// True if every `u` lies in `[0, 1]` (the loop of [`check_uniforms`]).
 #[inline(always)]
 fn all_unit<T: Real>(u: &[T]) -> bool {
+    // f32, on the bit patterns `b`: `u` is +0 or a positive number up to 1
+    // exactly when `b` ≤ 0x3F80_0000 (1.0), that is when neither `b` (NaN,
+    // −0 and negatives have the sign bit) nor `b + 0x407F_FFFF` (which
+    // reaches the sign bit for every `b` above 1.0 up to +NaN) has the sign
+    // bit set. Three integer operations per element, which SSE2 has, instead
+    // of two float compares; only if it fails (a bad value, or −0, which the
+    // rule accepts) does the exact loop below run.
+    if let Some(f) = T::as_f32s(u)
+        && f.iter().fold(0u32, |acc, &x| {
+            let b = x.to_bits();
+            acc | b | b.wrapping_add(0x407F_FFFF)
+        }) >> 31
+            == 0
+    {
+        return true;
+    }
     // `!(x >= 0 && x <= 1)` is true for NaN too; `fold` keeps this branch-free.
     !u.iter()
         .fold(false, |bad, &x| bad | !(x >= T::ZERO && x <= T::ONE))
@@ -472,33 +488,73 @@ impl<T: Real> PhaseFunction<T> for Phase<T> {
     }
 }
 
+#[cfg(test)]
+mod check_tests {
+    /// The bit-pattern test of `all_unit` agrees with the rule for every
+    /// 4099th f32 pattern and every pattern near 0, 1, −0, +∞ and NaN.
+    #[test]
+    fn bit_test_is_the_rule() {
+        extern crate std;
+        let near =
+            |c: u32| (c.saturating_sub(300)..=c.saturating_add(300)).collect::<std::vec::Vec<_>>();
+        let mut bits: std::vec::Vec<u32> = (0..=u32::MAX).step_by(4099).collect();
+        for c in [
+            0,
+            0x3F80_0000,
+            0x8000_0000,
+            0x7F80_0000,
+            0x7FC0_0000,
+            0xBF80_0000,
+            u32::MAX,
+        ] {
+            bits.extend(near(c));
+        }
+        for b in bits {
+            let x = f32::from_bits(b);
+            assert_eq!(
+                super::all_unit(&[0.5, x, 0.25]),
+                (0.0..=1.0).contains(&x),
+                "{b:#x}"
+            );
+        }
+    }
+}
+
 #[cfg(all(test, ifunc))]
 mod tests {
     extern crate std;
-    use super::sk__all_unit_f32::{avx, sse2};
+    use super::sk__all_unit_f32::BUILDS;
+    use crate::ifunc::detected;
 
-    /// Both builds of the uniforms' check agree with the rule (NaN, −0,
-    /// the neighbours of 0 and 1, ±∞) at the first, a middle and the last
-    /// element, where this processor runs both.
+    /// Every build of the uniforms' check agrees with the rule (NaN, −0,
+    /// the neighbours of 0 and 1, ±∞, a negative NaN) at the first, a middle
+    /// and the last element, for every build this processor runs.
     #[test]
-    fn both_builds_check_alike() {
+    fn all_builds_check_alike() {
         let u: std::vec::Vec<f32> = (0..=4099).map(|i| i as f32 / 4099.0).collect();
-        let avx_ok = std::is_x86_feature_detected!("avx");
-        if !avx_ok {
-            std::println!("AVX not available: the AVX build is not checked");
-        }
-        for bad in [-0.0f32, -1e-45, 1.000_000_1, f32::NAN, f32::INFINITY, 0.5] {
-            for at in [0, 7, 4099] {
-                let mut v = u.clone();
-                v[at] = bad;
-                let want = (0.0..=1.0).contains(&bad);
-                // SAFETY: valid for v.len() reads; AVX present where used.
-                #[allow(unsafe_code)]
-                unsafe {
-                    assert_eq!(sse2(v.as_ptr(), v.len()), want);
-                    if avx_ok {
-                        assert_eq!(avx(v.as_ptr(), v.len()), want);
-                    }
+        let bad = [
+            -0.0f32,
+            -1e-45,
+            1.000_000_1,
+            f32::NAN,
+            -f32::NAN,
+            f32::INFINITY,
+            0.5,
+        ];
+        for (needs, build) in BUILDS {
+            if needs > detected() {
+                std::println!("{needs:?} not available: its build is not checked");
+                continue;
+            }
+            for x in bad {
+                for at in [0, 7, 4099] {
+                    let mut v = u.clone();
+                    v[at] = x;
+                    let want = (0.0..=1.0).contains(&x);
+                    // SAFETY: valid for v.len() reads; the build's level is present.
+                    #[allow(unsafe_code)]
+                    let got = unsafe { build(v.as_ptr(), v.len()) };
+                    assert_eq!(got, want, "{needs:?}, {x} at {at}");
                 }
             }
         }

@@ -1,5 +1,5 @@
 //! Sets `cfg(ifunc)` where the C layer's HG cosine batch and uniforms' check
-//! are chosen once at load time, SSE2 to AVX-512 (`src/ifunc.rs`): the `ffi` feature on
+//! are chosen once at load time, SSE2 to AVX-512 (`src/math/arch.rs`): the `ffi` feature on
 //! x86-64 Linux with glibc (whose loader runs indirect-function resolvers),
 //! and not under cargo-fuzz (`cfg(fuzzing)`), whose sanitizer runtime would
 //! see a resolver run before it is set up.

@@ -60,25 +60,23 @@
 #![deny(unsafe_code)]
 #![deny(missing_debug_implementations)]
 
-pub mod azimuth;
-pub mod cbrt;
-mod double_double;
+// The layers, lowest first: each folder imports only from those above it
+// in this list (`tests/imports.rs`; `ARCHITECTURE.md` has the map).
+pub mod choose;
 mod error;
-pub mod geometry;
-#[cfg(ifunc)]
-mod ifunc;
-pub mod majorant;
-mod measured;
+mod math;
 pub mod medium;
 pub mod mie;
-mod numeric;
 pub mod phase;
-pub mod polydisperse;
-pub mod real;
-pub mod spectral;
 pub mod stokes;
 pub mod surface;
 pub mod table;
+
+// The numerics, the particle size distributions and the media's grids keep
+// their paths at the crate root.
+pub use math::{azimuth, cbrt, geometry, real};
+pub use medium::{majorant, spectral};
+pub use mie::polydisperse;
 
 #[cfg(feature = "ffi")]
 #[allow(unsafe_code)]

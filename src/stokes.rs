@@ -13,10 +13,10 @@
 //! changes `Q′ = cos 2α Q + sin 2α U`, `U′ = −sin 2α Q + cos 2α U` and
 //! leaves `I`, `V` (Mitsuba 3's `rotate_stokes_basis` convention).
 
-use crate::double_double::Dd;
 use crate::error::Error;
-use crate::geometry::{Vec3, onb};
-use crate::real::Real;
+use crate::math::double_double::Dd;
+use crate::math::geometry::{Vec3, onb};
+use crate::math::real::Real;
 
 /// A Stokes vector with its reference vector `e1` (unit, perpendicular to
 /// the direction of travel; module docs). `I ≥ 0` in any radiometric unit,

@@ -32,8 +32,8 @@
 //!   mirror image's.
 
 use crate::error::{Error, try_from_u32};
-use crate::geometry::{Vec3, direction_about_turns, onb, sin_from_cos};
-use crate::real::Real;
+use crate::math::geometry::{Vec3, direction_about_turns, onb, sin_from_cos};
+use crate::math::real::Real;
 use rand_core::Rng;
 
 /// Mirror reflection of the propagation direction `d` at a surface with

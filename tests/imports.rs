@@ -1,6 +1,7 @@
-//! The layering of `src/`: no import circle among its files, the shared
-//! numerics below every model, and tables above the phase functions, never
-//! the reverse. Reads the `crate::…` and `super::…` paths of every file
+//! The layering of `src/`: no import circle among its files, each folder
+//! importing only from the layers below it (`LAYERS`), the core knowing
+//! nothing of the C layer outside `math/arch.rs`, the shared numerics below
+//! every model, and tables above the phase functions, never the reverse. Reads the `crate::…` and `super::…` paths of every file
 //! (comments stripped), resolves each to the deepest file it names, and
 //! looks for cycles. A module's own `mod.rs` declaring and re-exporting its
 //! children is not an import of them.
@@ -100,7 +101,19 @@ fn graph() -> BTreeMap<String, BTreeSet<String>> {
         parent.pop();
         let mut deps = BTreeSet::new();
         for segs in paths_after(&code, "crate::") {
-            deps.extend(resolve(&modules, &segs));
+            match resolve(&modules, &segs) {
+                Some(m) => {
+                    deps.insert(m);
+                }
+                // A path into the root's own items (`crate::Error`, a
+                // re-export) names no file; one that names a module the
+                // tree lacks is a stale path the compiler would reject.
+                None => assert!(
+                    segs.len() <= 1 || segs[0].starts_with(char::is_uppercase),
+                    "{me}: crate::{} names no module of src/",
+                    segs.join("::")
+                ),
+            }
         }
         for segs in paths_after(&code, "super::") {
             let full: Vec<String> = parent.iter().cloned().chain(segs).collect();
@@ -157,10 +170,10 @@ fn no_import_circle_in_src() {
 #[test]
 fn numerics_sit_below_the_models_and_tables_above_the_phases() {
     let g = graph();
-    let numeric = &g["numeric"];
+    let numeric = &g["math::numeric"];
     assert!(
-        numeric.iter().all(|d| d == "real"),
-        "numeric imports {numeric:?}; it may import only real"
+        numeric.iter().all(|d| d == "math::real"),
+        "math::numeric imports {numeric:?}; it may import only math::real"
     );
     for (m, deps) in &g {
         if m.starts_with("phase") {
@@ -178,4 +191,80 @@ fn numerics_sit_below_the_models_and_tables_above_the_phases() {
             "{m} imports phase::rayleigh (the cubic root lives in numeric)"
         );
     }
+}
+
+/// The folders of `src/` (and its two top-level model files) from the
+/// bottom up: a module may import from its own folder (without a circle) and
+/// from folders of a lower rank, never from a higher or an equal one.
+const LAYERS: [(&str, u32); 10] = [
+    ("error", 0),
+    ("math", 1),
+    ("stokes", 2),
+    ("surface", 2),
+    ("mie", 2),
+    ("medium", 2),
+    ("phase", 3),
+    ("table", 4),
+    ("choose", 5),
+    ("ffi", 6),
+];
+
+fn rank(module: &str) -> u32 {
+    let top = module.split("::").next().unwrap_or("");
+    LAYERS
+        .iter()
+        .find(|(name, _)| *name == top)
+        .unwrap_or_else(|| panic!("{module}: its folder is not in LAYERS"))
+        .1
+}
+
+#[test]
+fn every_folder_imports_only_downward() {
+    let g = graph();
+    let mut wrong = Vec::new();
+    for (m, deps) in g.iter().filter(|(m, _)| !m.is_empty()) {
+        let top = m.split("::").next().unwrap();
+        for d in deps.iter().filter(|d| !d.is_empty()) {
+            let same = d.split("::").next() == Some(top);
+            if !same && rank(d) >= rank(m) {
+                wrong.push(format!("{m} -> {d}"));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "imports that run up or sideways: {wrong:?}"
+    );
+}
+
+/// The core (everything outside `ffi/`) names no `ffi` path, no `sk_`
+/// symbol and no `ffi` feature, except `math/arch.rs`, which defines the
+/// load-time choice of builds and names its symbols `sk__…`.
+#[test]
+fn the_core_knows_nothing_of_the_c_layer() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut all = Vec::new();
+    files(&src, &mut all);
+    let mut found = Vec::new();
+    for f in &all {
+        let rel = f
+            .strip_prefix(&src)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        if rel.starts_with("ffi/") || rel == "math/arch.rs" || rel == "lib.rs" {
+            continue;
+        }
+        let text = std::fs::read_to_string(f).unwrap();
+        for (n, line) in text.lines().enumerate() {
+            let code = line.split("//").next().unwrap_or("");
+            let sk = code
+                .match_indices("sk_")
+                .any(|(i, _)| !code[..i].ends_with(|c: char| c.is_alphanumeric() || c == '_'));
+            if sk || code.contains("crate::ffi") || code.contains("feature = \"ffi\"") {
+                found.push(format!("src/{rel}:{}: {}", n + 1, line.trim()));
+            }
+        }
+    }
+    assert!(found.is_empty(), "the core names the C layer: {found:#?}");
 }

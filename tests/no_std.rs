@@ -63,8 +63,8 @@ pub extern "C" fn nostd_sample(g: f32, u: f32) -> f32 {
     };
     let (mu, mut ph, mut sc) = ([1.0f64, -1.0], [0.0f64; 2], [0.0f64; 2]);
     let c = poly.average(&mu, &mut ph, &mut sc, &mut buf).map_or(f64::NAN, |a| a.c_ext);
-    let mut work = [0.0f64; scatterkit::phase::particle_mie::WORK_LEN];
-    let choice = scatterkit::phase::particle_mie::choose_mie(0.01, 0.55, None, 0.1, true, &mut buf, &mut work)
+    let mut work = [0.0f64; scatterkit::choose::mie::WORK_LEN];
+    let choice = scatterkit::choose::mie::choose_mie(0.01, 0.55, None, 0.1, true, &mut buf, &mut work)
         .map_or(f64::NAN, |c| c.distance);
     hg + d.z + scatterkit::cbrt::cbrt_f32(u) + q as f32 + (c + choice) as f32
 }

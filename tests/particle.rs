@@ -9,7 +9,7 @@
 mod common;
 
 use common::chi2::integrate;
-use scatterkit::phase::particle::{Model, choose};
+use scatterkit::choose::fog::{Model, choose};
 use scatterkit::{Phase, PhaseFunction};
 use std::f64::consts::TAU;
 
@@ -98,7 +98,7 @@ fn tiny_droplets_are_rayleigh() {
 #[test]
 fn looser_tolerance_never_costs_more() {
     let rank = |m: Model| {
-        scatterkit::phase::particle::COST_ORDER
+        scatterkit::choose::fog::COST_ORDER
             .iter()
             .position(|&c| c == m)
             .unwrap()

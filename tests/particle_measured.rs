@@ -1,4 +1,4 @@
-//! The chooser against tabulated data (`particle_mie::choose_measured`,
+//! The chooser against tabulated data (`choose::mie::choose_measured`,
 //! `sk_phase_particle_measured`), and the scene Fournier–Forand is built
 //! for: Mie averaged over a Junge (power-law) distribution of ocean
 //! particles.
@@ -18,12 +18,12 @@
 //!
 //! `SK_BLESS=1` writes `docs/measured/ocean_particles.md`.
 
+use scatterkit::choose::fog::Model;
+use scatterkit::choose::mie::{WORK_LEN, buffer_len, choose_measured, choose_mie};
 use scatterkit::mie::{
     Complex, Mie, buffer_len as mie_buffer_len, size_parameter, table_angle, table_sizes, water,
 };
 use scatterkit::phase::FournierForand;
-use scatterkit::phase::particle::Model;
-use scatterkit::phase::particle_mie::{WORK_LEN, buffer_len, choose_measured, choose_mie};
 use scatterkit::polydisperse::{Polydisperse, SizeDistribution};
 use scatterkit::{Error, Phase, PhaseFunction};
 use std::f64::consts::PI;
@@ -69,12 +69,7 @@ fn direct_tv(reference: &dyn Fn(f64) -> f64, p: &dyn Fn(f64) -> f64, steps: usiz
     PI * h * (inner + 0.5 * (f(0) + f(steps)))
 }
 
-fn choose(
-    cos: &[f64],
-    pdf: &[f64],
-    tol: f64,
-    table: bool,
-) -> scatterkit::phase::particle_mie::MieChoice {
+fn choose(cos: &[f64], pdf: &[f64], tol: f64, table: bool) -> scatterkit::choose::mie::MieChoice {
     let mut work = vec![0.0; WORK_LEN];
     choose_measured(cos, pdf, tol, table, &mut work).unwrap()
 }
@@ -270,7 +265,7 @@ fn ocean_particles() {
              density `∝ r^(−μ_J)` (`SizeDistribution::Junge`), relative index `n`: the Mie phase \
              function averaged over the distribution (`Polydisperse::average`, 128 Simpson \
              intervals in ln r, at the `mie::table_sizes` angles of the largest sphere), then \
-             `particle_mie::choose_measured` without a table. Columns: the total-variation \
+             `choose::mie::choose_measured` without a table. Columns: the total-variation \
              distance of each candidate's best fit; Fournier–Forand with the scene's own `n` and \
              `μ_J` (its derivation's parameters); and the share of scattering within 1° of \
              forward, Mie against that Fournier–Forand.\n\n\

@@ -336,7 +336,7 @@ pub(crate) fn c_tables(c: &std::collections::BTreeMap<String, (f64, f64)>, p: &P
          cos θ_exact|`). The C file is built for baseline x86-64 (SSE2), as a renderer shipped \
          to every x86-64 machine is; on x86-64 Linux the library's HG cosine batch and its \
          uniforms' check run the widest of an SSE2, AVX, AVX2 and AVX-512 build the \
-         processor has, picked when the program loads (`src/ifunc.rs`). A renderer that \
+         processor has, picked when the program loads (`src/math/arch.rs`). A renderer that \
          builds its own loop with `-march=native` gets the same width for the inline-C peers: \
          the next section.\n\n| what | ns per sample | max error in cos θ |\n|---|---:|---:|\n",
     );

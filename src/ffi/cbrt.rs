@@ -1,6 +1,6 @@
 //! Cube roots (libm-style names).
 
-use crate::cbrt;
+use crate::math::cbrt;
 
 /// Cube root: Kahan seed + two Lancaster steps; within 1 ULP of the correctly
 /// rounded result on every float. +-0, +-inf and NaN are returned as they are.

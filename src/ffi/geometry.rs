@@ -6,7 +6,7 @@ unsafe fn onb_into<V: CVec>(n: V, b1: *mut V, b2: *mut V) {
     if b1.is_null() || b2.is_null() {
         return;
     }
-    let (a, b) = crate::geometry::onb(n.to_vec());
+    let (a, b) = crate::math::geometry::onb(n.to_vec());
     // SAFETY: non-NULL out-pointers are writable (module contract).
     unsafe {
         b1.write(V::from_vec(a));

@@ -3,10 +3,10 @@
 use super::medium::{GridStore, load};
 use super::{CRng, CVec, sk_rng, sk_status, sk_vec3, sk_vec3_f64, slice_in, slice_out};
 use crate::error::Error;
-use crate::geometry::Vec3;
-use crate::majorant::{Majorants, Track, Transmittance, majorant_len};
+use crate::math::geometry::Vec3;
+use crate::math::real::Real;
 use crate::medium::Ray;
-use crate::real::Real;
+use crate::medium::majorant::{Majorants, Track, Transmittance, majorant_len};
 use core::ffi::c_void;
 
 /// A grid of majorants (sigma_maj per length unit, >= 0) over a world box,

@@ -5,9 +5,9 @@ use super::{
     write_result,
 };
 use crate::error::Error;
-use crate::geometry::Vec3;
+use crate::math::geometry::Vec3;
+use crate::math::real::Real;
 use crate::medium::{self, Event, Grid, Ray, Sampling, grid_len, valid_box};
-use crate::real::Real;
 use core::ffi::c_void;
 
 /// What tracking found (written to `scattered_out`).
@@ -182,15 +182,7 @@ pub(crate) unsafe fn load<'a, S: GridStore>(g: *const S) -> Option<Grid<'a, S::T
     let count = grid_len(n[0] as usize, n[1] as usize, n[2] as usize)?;
     let density = unsafe { slice_in(ptr, count) }.ok()?;
     let n = [n[0] as usize, n[1] as usize, n[2] as usize];
-    Some(Grid::from_parts(
-        density,
-        n,
-        sa,
-        ss,
-        max,
-        (lo, hi),
-        sampling,
-    ))
+    Grid::from_parts(density, n, sa, ss, max, (lo, hi), sampling).ok()
 }
 
 unsafe fn grid_new<S: GridStore>(

@@ -54,8 +54,8 @@ pub use surface::*;
 pub use table::*;
 
 use crate::error::Error;
-use crate::geometry::Vec3;
-use crate::real::Real;
+use crate::math::geometry::Vec3;
+use crate::math::real::Real;
 use core::convert::Infallible;
 use core::ffi::{c_char, c_void};
 

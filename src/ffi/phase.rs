@@ -10,8 +10,8 @@ use super::{
     write_result,
 };
 use crate::error::Error;
-use crate::phase::{Phase, PhaseFunction, check_uniforms, dispatch};
-use crate::real::Real;
+use crate::math::real::Real;
+use crate::phase::{Phase, PhaseFunction, PhaseVisitor, check_uniforms};
 
 /// A phase function (float). A plain value with no pointers inside: build it
 /// with an `sk_phase_*` constructor, then copy it and share it freely across
@@ -76,10 +76,30 @@ pub(crate) unsafe fn load<'a, S: PhaseStore>(p: *const S) -> Option<&'a Phase<S:
     // SAFETY: p points to an S (module contract), which begins with the u32
     // tag of the repr(C, u32) enum; the payload is floats, valid for any bits.
     let tag = unsafe { p.cast::<u32>().read() };
-    if tag == 0 || tag > Phase::<S::T>::LAST_TAG {
+    if tag == 0 || tag > LAST_TAG {
         return None;
     }
     Some(unsafe { &*p.cast::<Phase<S::T>>() })
+}
+
+/// The discriminant of `Phase`'s last variant: valid tags are
+/// `1..=LAST_TAG` (`Phase` is `#[repr(C, u32)]` with tags from 1).
+const LAST_TAG: u32 = 8;
+
+/// The tag of each variant, matched exhaustively: a new model fails to
+/// compile here until its tag is listed and `LAST_TAG` follows.
+#[cfg(test)]
+fn tag_of<T: Real>(p: &Phase<T>) -> u32 {
+    match p {
+        Phase::Isotropic(_) => 1,
+        Phase::Rayleigh(_) => 2,
+        Phase::RayleighDepolarized(_) => 3,
+        Phase::HenyeyGreenstein(_) => 4,
+        Phase::Draine(_) => 5,
+        Phase::Fog(_) => 6,
+        Phase::Gegenbauer(_) => 7,
+        Phase::FournierForand(_) => 8,
+    }
 }
 
 unsafe fn construct<S: PhaseStore>(out: *mut S, r: Result<Phase<S::T>, Error>) -> sk_status {
@@ -108,9 +128,20 @@ fn cos_of<T: Real, M: PhaseFunction<T>>(m: &M, u: T) -> T {
     m.sample_cos(u)
 }
 
+/// [`cos_of`] on the model inside a `Phase`.
+struct CosOf<T>(T);
+
+impl<T: Real> PhaseVisitor<T> for CosOf<T> {
+    type Output = T;
+    #[inline(always)]
+    fn visit<M: PhaseFunction<T>>(self, m: &M) -> T {
+        cos_of(m, self.0)
+    }
+}
+
 unsafe fn sample_cos<S: PhaseStore>(p: *const S, u: S::T) -> S::T {
     match unsafe { load(p) } {
-        Some(ph) => dispatch!(ph, m => cos_of(m, u)),
+        Some(ph) => ph.visit(CosOf(u)),
         None => S::T::NAN,
     }
 }
@@ -137,6 +168,24 @@ unsafe extern "C" fn dir_of<T: Real, M: PhaseFunction<T>, V: CVec<T = T>>(
     V::from_vec(dir)
 }
 
+/// [`dir_of`] on the model inside a `Phase`, with a `pdf_out` the caller
+/// vouches for (NULL or writable).
+struct DirOf<T, V> {
+    w_in: V,
+    u1: T,
+    u2: T,
+    pdf_out: *mut T,
+}
+
+impl<T: Real, V: CVec<T = T>> PhaseVisitor<T> for DirOf<T, V> {
+    type Output = V;
+    #[inline(always)]
+    fn visit<M: PhaseFunction<T>>(self, m: &M) -> V {
+        // SAFETY: pdf_out is NULL or writable (the entry points' contract).
+        unsafe { dir_of(m, self.w_in, self.u1, self.u2, self.pdf_out) }
+    }
+}
+
 unsafe fn sample_dir<S: PhaseStore, V: CVec<T = S::T>>(
     p: *const S,
     w_in: V,
@@ -145,7 +194,12 @@ unsafe fn sample_dir<S: PhaseStore, V: CVec<T = S::T>>(
     pdf_out: *mut S::T,
 ) -> V {
     match unsafe { load(p) } {
-        Some(ph) => dispatch!(ph, m => unsafe { dir_of(m, w_in, u1, u2, pdf_out) }),
+        Some(ph) => ph.visit(DirOf {
+            w_in,
+            u1,
+            u2,
+            pdf_out,
+        }),
         None => {
             let nan = S::T::NAN;
             // SAFETY: as in dir_of.
@@ -535,7 +589,7 @@ pub extern "C" fn sk_particle_mie_buffer_len(
     m: super::mie::sk_complex,
 ) -> usize {
     let m = (m.re != 0.0 || m.im != 0.0).then(|| crate::mie::Complex::new(m.re, m.im));
-    crate::phase::particle_mie::buffer_len(diameter_um, wavelength_um, m).unwrap_or(0)
+    crate::choose::mie::buffer_len(diameter_um, wavelength_um, m).unwrap_or(0)
 }
 
 /// The honest chooser: the cheapest model whose total-variation distance to
@@ -566,8 +620,8 @@ pub unsafe extern "C" fn sk_phase_particle_mie(
     work_len: usize,
     out: *mut sk_particle_choice,
 ) -> sk_status {
+    use crate::choose::mie::choose_mie;
     use crate::mie::Complex;
-    use crate::phase::particle_mie::choose_mie;
     if buf.is_null() || work.is_null() || out.is_null() {
         return sk_status::SK_ERR_NULL;
     }
@@ -607,8 +661,8 @@ pub unsafe extern "C" fn sk_phase_particle_mie(
     unsafe { write_result(out, r) }
 }
 
-fn choice_to_c(c: crate::phase::particle_mie::MieChoice) -> sk_particle_choice {
-    use crate::phase::particle::Model;
+fn choice_to_c(c: crate::choose::mie::MieChoice) -> sk_particle_choice {
+    use crate::choose::fog::Model;
     let model = match c.model {
         Model::Isotropic => sk_particle_model::SK_PARTICLE_ISOTROPIC,
         Model::HenyeyGreenstein => sk_particle_model::SK_PARTICLE_HG,
@@ -658,7 +712,7 @@ pub unsafe extern "C" fn sk_phase_particle_measured(
     work_len: usize,
     out: *mut sk_particle_choice,
 ) -> sk_status {
-    use crate::phase::particle_mie::choose_measured;
+    use crate::choose::mie::choose_measured;
     if cos_theta.is_null() || pdf.is_null() || work.is_null() || out.is_null() {
         return sk_status::SK_ERR_NULL;
     }
@@ -779,7 +833,7 @@ pub unsafe extern "C" fn sk_phase_cos_inline_init(
     let r = match unsafe { load(p) } {
         Some(ph) => {
             let (kab, mirror) = match ph {
-                Phase::HenyeyGreenstein(h) => h.wide_kab().unwrap_or(([0.0; 3], false)),
+                Phase::HenyeyGreenstein(h) => h.f64_path_constants().unwrap_or(([0.0; 3], false)),
                 _ => ([0.0; 3], false),
             };
             Ok(sk_phase_cos_inline {
@@ -1045,5 +1099,33 @@ pub unsafe extern "C" fn sk_phase_get_params_f64(
             count,
             params,
         })
+    }
+}
+
+#[cfg(test)]
+mod tag_tests {
+    use super::*;
+
+    /// Every model's stored tag is the one `tag_of` lists, in `1..=LAST_TAG`,
+    /// and the last variant's is `LAST_TAG`.
+    #[test]
+    fn tags_match_the_repr() {
+        let models: [Phase<f32>; 8] = [
+            Phase::isotropic(),
+            Phase::rayleigh(),
+            Phase::rayleigh_depolarized(0.03).unwrap(),
+            Phase::henyey_greenstein(0.7).unwrap(),
+            Phase::draine(0.5, 1.0).unwrap(),
+            Phase::fog_diameter(2.0).unwrap(),
+            Phase::gegenbauer(0.5, 0.7).unwrap(),
+            Phase::fournier_forand_backscatter(0.0183, 1.1).unwrap(),
+        ];
+        for m in &models {
+            // SAFETY: Phase is repr(C, u32): it begins with its u32 tag.
+            let stored = unsafe { (m as *const Phase<f32>).cast::<u32>().read() };
+            assert_eq!(stored, tag_of(m));
+            assert!((1..=LAST_TAG).contains(&stored));
+        }
+        assert_eq!(tag_of(&models[7]), LAST_TAG);
     }
 }

@@ -2,8 +2,8 @@
 
 use super::{CVec, sk_status, sk_vec3, sk_vec3_f64, write_result};
 use crate::error::Error;
+use crate::math::real::Real;
 use crate::phase::{RayleighMueller, RayleighPolarized, StokesSample};
-use crate::real::Real;
 use crate::stokes::Stokes;
 
 /// A Stokes vector (I, Q, U, V) with its reference vector: Q is the light

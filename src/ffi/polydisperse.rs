@@ -3,7 +3,7 @@
 use super::mie::sk_complex;
 use super::{fits, overlaps, sk_status, slice_in, slice_out, write_result};
 use crate::mie::Complex;
-use crate::polydisperse::{Averages, Polydisperse, SizeDistribution};
+use crate::mie::polydisperse::{Averages, Polydisperse, SizeDistribution};
 
 /// Which size distribution an sk_size_distribution holds.
 #[repr(u32)]

@@ -4,8 +4,8 @@ use super::{
     CRng, CVec, SOA_BLOCK, check_soa, sk_rng, sk_status, sk_vec3, sk_vec3_f64, slice_out,
     soa_blocks, write_result,
 };
+use crate::math::real::Real;
 use crate::phase::rayleigh::{self, RayleighMethod};
-use crate::real::Real;
 
 /// The sampling methods of Frisvad (2011) for `sk_rayleigh_*` (passed as
 /// uint32_t; other values give SK_ERR_METHOD).

@@ -4,7 +4,7 @@ use super::majorant::{MajStore, load_maj};
 use super::medium::{GridStore, load};
 use super::{CRng, CVec, overlaps, sk_rng, sk_status, sk_vec3, sk_vec3_f64, slice_in, slice_out};
 use crate::medium::Ray;
-use crate::spectral::{MAX_CHANNELS, Ratios, Spectrum};
+use crate::medium::spectral::{MAX_CHANNELS, Ratios, Spectrum};
 
 /// The channels (wavelength samples) of a spectral medium: coefficients per
 /// unit density, `channels` of each (1 to 16), and the hero channel whose
@@ -66,7 +66,7 @@ unsafe fn spectral<G, S, P>(
     rng: *mut sk_rng,
     (weight, r_u, r_l): (*mut G::T, *mut G::T, *mut G::T),
     f: impl FnOnce(
-        &crate::majorant::Majorants<'_, G::T>,
+        &crate::medium::majorant::Majorants<'_, G::T>,
         &crate::medium::Grid<'_, G::T>,
         &Spectrum<'_, G::T>,
         &mut CRng,

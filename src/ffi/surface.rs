@@ -2,8 +2,8 @@
 
 use super::{CRng, CVec, sk_rng, sk_status, sk_vec3, sk_vec3_f64, write_result};
 use crate::error::Error;
-use crate::geometry::Vec3;
-use crate::real::Real;
+use crate::math::geometry::Vec3;
+use crate::math::real::Real;
 use crate::surface::{self, CrossingPolicy, Fraction, Surface, SurfaceModel};
 
 /// How a surface scatters (passed as uint32_t; other values give SK_ERR_METHOD).

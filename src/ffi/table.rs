@@ -2,8 +2,8 @@
 
 use super::phase::{PhaseStore, load};
 use super::{CVec, sk_status, sk_vec3, sk_vec3_f64, slice_in, slice_out, write_result};
-use crate::geometry::Vec3;
-use crate::real::Real;
+use crate::math::geometry::Vec3;
+use crate::math::real::Real;
 use crate::table::{Table, TableKind};
 
 /// What a table holds (passed as uint32_t; other values give SK_ERR_METHOD).

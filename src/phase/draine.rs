@@ -49,12 +49,12 @@
 //! the same iteration applies; the density tends to the α → ∞ limit
 //! `∝ μ² p_HG`, and `F` stays finite for every α below f64's overflow.
 
-use super::PhaseFunction;
+use super::function::PhaseFunction;
 use super::hg::HenyeyGreenstein;
 use super::seeds::Seeds;
 use crate::error::Error;
-use crate::numeric::{Eval, depressed_cubic_root, solve_bracketed};
-use crate::real::{PackedF64, Real};
+use crate::math::numeric::{Eval, depressed_cubic_root, solve_bracketed};
+use crate::math::real::{PackedF64, Real};
 
 /// Draine's phase function with asymmetry-like parameter `g ∈ (−1, 1)` and
 /// `α ≥ 0` (finite). `α = 1` is Cornette–Shanks; `α = 0` is HG.
@@ -434,7 +434,7 @@ impl Eq6 {
             return f64::NAN;
         };
         let t6_m = self.t6 / m;
-        let c = crate::cbrt::cbrt_moderate_f64(m);
+        let c = crate::math::cbrt::cbrt_moderate_f64(m);
         let t8 = ((self.t1 + c) + (c * c) * t6_m) * (2.0 * self.inv_t0);
         self.finish(t4, t8)
     }

@@ -29,10 +29,10 @@
 //! (bisection where a step leaves it), seeded from the forward power law
 //! `F_fwd ≈ δ^{−ν}` corrected by a 16-node table built with the object.
 
-use super::PhaseFunction;
+use super::function::PhaseFunction;
 use crate::error::Error;
-use crate::numeric::{newton_bracketed, simpson_unit};
-use crate::real::Real;
+use crate::math::numeric::{newton_bracketed, simpson_unit};
+use crate::math::real::Real;
 
 /// Fournier–Forand with relative index `n ∈ (1, 1.8]` and Junge slope
 /// `μ_J ∈ (3, 5)` (ocean particles: `n` 1.02–1.2, `μ_J` 3.5–4.5).

@@ -23,10 +23,10 @@
 //! `D` (where `α L_1 > 0`) in closed form and turns them into `1 + μ` or
 //! `1 − μ` with `expm1`, never through `y`.
 
-use super::PhaseFunction;
+use super::function::PhaseFunction;
 use crate::error::Error;
-use crate::numeric::simpson_unit;
-use crate::real::{PackedF64, Real};
+use crate::math::numeric::simpson_unit;
+use crate::math::real::{PackedF64, Real};
 
 /// The Gegenbauer kernel phase function with `α ∈ (−½, 1000]` and
 /// `g ∈ (−1, 1)`.

@@ -1,7 +1,7 @@
 //! Isotropic scattering: `p(μ) = 1/(4π)`.
 
-use super::PhaseFunction;
-use crate::real::Real;
+use super::function::PhaseFunction;
+use crate::math::real::Real;
 
 /// Uniform scattering over the sphere. Mean cosine 0.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

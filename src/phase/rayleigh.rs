@@ -8,11 +8,11 @@
 //! what follows, so the output distribution stays exact, and a broken RNG
 //! (one that returns a constant) cannot hang the caller.
 
-use super::PhaseFunction;
+use super::function::PhaseFunction;
 use crate::error::{Error, try_from_u32};
-use crate::geometry::{Vec3, direction_about_turns, sin_from_cos};
-use crate::numeric::depressed_cubic_root;
-use crate::real::Real;
+use crate::math::geometry::{Vec3, direction_about_turns, sin_from_cos};
+use crate::math::numeric::depressed_cubic_root;
+use crate::math::real::Real;
 use rand_core::Rng;
 
 /// Rejection loops give up after this many trials (the cheapest acceptance,

@@ -9,10 +9,10 @@
 //! `x³ + 3a x = 2b` with `a = (1 + 3γ)/(1 − γ)`, `b = 2(1 + 2γ)(2u − 1)/(1 − γ)`,
 //! solved by the same cancellation-free Cardano root as plain Rayleigh.
 
-use super::PhaseFunction;
+use super::function::PhaseFunction;
 use crate::error::Error;
-use crate::numeric::depressed_cubic_root;
-use crate::real::Real;
+use crate::math::numeric::depressed_cubic_root;
+use crate::math::real::Real;
 
 /// Depolarised Rayleigh scattering; `rho = 0` is plain Rayleigh. Mean cosine 0.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -36,12 +36,13 @@
 //! instead would give a Kepler-like equation with `e` up to 1, singular at
 //! 90°.
 
-use super::{PhaseFunction, RayleighDepolarized};
-use crate::double_double::Dd;
+use super::RayleighDepolarized;
+use super::function::PhaseFunction;
 use crate::error::Error;
-use crate::geometry::{Vec3, direction_about_turns, onb, sin_from_cos};
-use crate::numeric::depressed_cubic_root;
-use crate::real::Real;
+use crate::math::double_double::Dd;
+use crate::math::geometry::{Vec3, direction_about_turns, onb, sin_from_cos};
+use crate::math::numeric::depressed_cubic_root;
+use crate::math::real::Real;
 use crate::stokes::{Stokes, cross_exact, double_angle};
 
 /// The non-zero elements of the normalised Rayleigh Mueller matrix at one

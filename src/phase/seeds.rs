@@ -98,7 +98,7 @@ pub(crate) fn half_decode(h: u16) -> f32 {
 fn interpolate(node: impl Fn(usize) -> Option<f32>, t: f64) -> f64 {
     let s = (2 * K) as f64 * t;
     // Saturating conversion and the min keep k in bounds (NaN gives 0).
-    let k = crate::real::Real::to_index(s).min(K - 1);
+    let k = crate::math::real::Real::to_index(s).min(K - 1);
     let f = s - k as f64;
     match (node(k), node(k + 1)) {
         // Kept inside (0, 2), where the solver takes a seed: a lobe so

@@ -3,7 +3,7 @@
 //! Directions are unit propagation directions (the crate's convention): the way light
 //! travels, not the way pbrt's `wo` points.
 
-use crate::real::Real;
+use crate::math::real::Real;
 use core::ops::{Add, Mul, Neg, Sub};
 
 /// A 3-vector. `#[repr(C)]`: the same layout as the C `sk_vec3` (f32) and
@@ -161,7 +161,7 @@ pub fn direction_about_sin<T: Real>(axis: Vec3<T>, mu: T, sin_theta: T, phi: T) 
 /// [`direction_about_sin`]) and azimuth `φ = 2π·turns` about the unit vector
 /// `axis`, for `turns ∈ [0, 1]` (a uniform, as every sampler draws it; NaN
 /// gives NaN). The azimuth's sine and cosine come from
-/// [`crate::azimuth`]: reduced exactly in turns, within 1 ULP, and without a
+/// [`crate::math::azimuth`]: reduced exactly in turns, within 1 ULP, and without a
 /// library call.
 #[inline(always)]
 pub fn direction_about_turns<T: Real>(axis: Vec3<T>, mu: T, sin_theta: T, turns: T) -> Vec3<T> {

@@ -54,9 +54,9 @@
 //! solver's own table (`phase::seeds`) instead. f64 objects always do: their
 //! results need the solver to the last digits.
 
-use super::seeds::{Y_MAX, half_decode, half_encode};
-use crate::numeric::Eval;
-use crate::real::Real;
+use crate::math::numeric::Eval;
+use crate::math::real::Real;
+use crate::phase::seeds::{Y_MAX, half_decode, half_encode};
 use core::cell::Cell;
 
 /// Intervals per segment (backward pole, trough side, forward pole): the

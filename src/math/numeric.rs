@@ -3,9 +3,9 @@
 //! `g = 0`), the safeguarded Halley/bisection solver and its tolerances
 //! (Draine, fog), and cubic Hermite interpolation of a tabulated inverse CDF
 //! (tables). Models and tables import this module; it imports only
-//! [`crate::real`].
+//! [`crate::math::real`].
 
-use crate::real::Real;
+use crate::math::real::Real;
 
 /// The real root of the depressed cubic `x³ + 3a·x = 2b` for `a > 0`
 /// (Cardano; the only real root since the cubic is increasing).

@@ -30,7 +30,9 @@
 #![allow(unsafe_code)]
 
 /// Defines `$sym`, an indirect function with the C signature given, whose
-/// builds both run `$body` (module docs); `$body` sees the arguments and the
+/// builds all run `$body` (module docs), exported to the linker as
+/// `sk__$sym` (hidden: not part of the shared library's interface, but a
+/// name of the library's own in a static archive); `$body` sees the arguments and the
 /// invoking module's items. The builds are `$sym::BUILDS` (with their
 /// [`Level`]), for tests.
 macro_rules! load_time_choice {
@@ -46,26 +48,27 @@ macro_rules! load_time_choice {
             // directive, whichever codegen unit `resolve` lands in. Hidden:
             // not exported from the shared library.
             core::arch::global_asm!(
-                concat!(".pushsection .text.", stringify!($sym), ",\"ax\",@progbits"),
-                concat!(".globl ", stringify!($sym)),
-                concat!(".hidden ", stringify!($sym)),
-                concat!(".type ", stringify!($sym), ", @gnu_indirect_function"),
+                concat!(".pushsection .text.", "sk__", stringify!($sym), ",\"ax\",@progbits"),
+                concat!(".globl ", "sk__", stringify!($sym)),
+                concat!(".hidden ", "sk__", stringify!($sym)),
+                concat!(".type ", "sk__", stringify!($sym), ", @gnu_indirect_function"),
                 ".p2align 4",
-                concat!(stringify!($sym), ":"),
+                concat!("sk__", stringify!($sym), ":"),
                 "jmp {resolve}",
-                concat!(".size ", stringify!($sym), ", . - ", stringify!($sym)),
+                concat!(".size ", "sk__", stringify!($sym), ", . - ", "sk__", stringify!($sym)),
                 ".popsection",
                 resolve = sym resolve,
             );
 
             unsafe extern "C" {
                 /// Resolved once by the loader to one of [`BUILDS`].
+                #[link_name = concat!("sk__", stringify!($sym))]
                 pub(crate) fn $sym($($arg: $ty),*) $(-> $ret)?;
             }
 
             /// Runs before `main`: registers and the processor only.
             extern "C" fn resolve() -> unsafe extern "C" fn($($ty),*) $(-> $ret)? {
-                let level = $crate::ifunc::level();
+                let level = $crate::math::arch::level();
                 let mut best = sse2 as unsafe extern "C" fn($($ty),*) $(-> $ret)?;
                 for (needs, build) in BUILDS {
                     if needs <= level {
@@ -77,11 +80,11 @@ macro_rules! load_time_choice {
 
             /// Every build with the level it needs, narrowest first.
             #[allow(dead_code)]
-            pub(crate) const BUILDS: [($crate::ifunc::Level, unsafe extern "C" fn($($ty),*) $(-> $ret)?); 4] = [
-                ($crate::ifunc::Level::Sse2, sse2),
-                ($crate::ifunc::Level::Avx, avx),
-                ($crate::ifunc::Level::Avx2, avx2),
-                ($crate::ifunc::Level::Avx512, avx512),
+            pub(crate) const BUILDS: [($crate::math::arch::Level, unsafe extern "C" fn($($ty),*) $(-> $ret)?); 4] = [
+                ($crate::math::arch::Level::Sse2, sse2),
+                ($crate::math::arch::Level::Avx, avx),
+                ($crate::math::arch::Level::Avx2, avx2),
+                ($crate::math::arch::Level::Avx512, avx512),
             ];
 
             /// The SSE2 build.
@@ -93,21 +96,21 @@ macro_rules! load_time_choice {
             /// The AVX build.
             ///
             /// # Safety
-            /// As [`sse2`], and [`Level::Avx`]($crate::ifunc::Level) usable.
+            /// As [`sse2`], and [`Level::Avx`]($crate::math::arch::Level) usable.
             #[target_feature(enable = "avx")]
             unsafe extern "C" fn avx($($arg: $ty),*) $(-> $ret)? $body
 
             /// The AVX2 + FMA build.
             ///
             /// # Safety
-            /// As [`sse2`], and [`Level::Avx2`]($crate::ifunc::Level) usable.
+            /// As [`sse2`], and [`Level::Avx2`]($crate::math::arch::Level) usable.
             #[target_feature(enable = "avx2,fma")]
             unsafe extern "C" fn avx2($($arg: $ty),*) $(-> $ret)? $body
 
             /// The AVX-512 build.
             ///
             /// # Safety
-            /// As [`sse2`], and [`Level::Avx512`]($crate::ifunc::Level) usable.
+            /// As [`sse2`], and [`Level::Avx512`]($crate::math::arch::Level) usable.
             #[target_feature(enable = "avx512f,avx512vl,avx512bw,avx512dq,avx2,fma")]
             unsafe extern "C" fn avx512($($arg: $ty),*) $(-> $ret)? $body
         }

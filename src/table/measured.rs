@@ -2,10 +2,10 @@
 //! linear in `cos θ` between them: validation, and the inverse CDF swept
 //! segment by segment (the CDF is quadratic on each). Shared by
 //! `Table::measured` and the chooser against data
-//! (`phase::particle_mie::choose_measured`), below both.
+//! (`choose::mie::choose_measured`), below both.
 
 use crate::error::Error;
-use crate::real::Real;
+use crate::math::real::Real;
 
 /// Validated measured data: `m` points in increasing `cos θ` order (the
 /// caller's order reversed if it was decreasing).

@@ -31,12 +31,12 @@
 //! Fournier–Forand's own scene, it measures Fournier–Forand 0.15–0.29 away
 //! and one or two HG lobes 0.02–0.11 (`docs/measured/ocean_particles.md`).
 
-use super::particle::{
+use super::fog::{
     MARGIN, Model, Quantiles, fit_draine, fit_fournier_forand, fit_hg, fit_two_lobe_hg,
 };
-use super::{Draine, Fog, FournierForand, HenyeyGreenstein, Phase, PhaseFunction};
 use crate::error::Error;
 use crate::mie::{self, Complex, Mie};
+use crate::phase::{Draine, Fog, FournierForand, HenyeyGreenstein, Phase, PhaseFunction};
 
 /// Quadrature nodes of the distance to Mie (the midpoint rule in the Mie
 /// quantile): more than the fog chooser's 512, for the oscillations of a
@@ -151,7 +151,7 @@ pub fn choose_measured(
     }
     let work = work.get_mut(..WORK_LEN).ok_or(Error::Size)?;
     let (mu, density) = work.split_at_mut_checked(MIE_NODES).ok_or(Error::Size)?;
-    crate::measured::measured_quantiles(cos_theta, pdf, mu, density)?;
+    crate::table::measured::measured_quantiles(cos_theta, pdf, mu, density)?;
     let r = Quantiles { mu, density };
     let nan = f64::NAN;
     Ok(choose_among(

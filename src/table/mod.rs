@@ -16,12 +16,14 @@
 //! Layout of the Hermite kinds: `2(n + 1)` values `μ_i, d_i` interleaved,
 //! `d_i = (dμ/du)(u_i) / n` (the slope per interval).
 
+pub(crate) mod measured;
+
 use crate::error::{Error, try_from_u32};
-use crate::geometry::{Vec3, direction_about_turns, sin_from_cos};
-use crate::measured::Measured;
-use crate::numeric::hermite;
+use crate::math::geometry::{Vec3, direction_about_turns, sin_from_cos};
+use crate::math::numeric::hermite;
+use crate::math::real::Real;
 use crate::phase::{PhaseFunction, Rayleigh};
-use crate::real::Real;
+use crate::table::measured::Measured;
 
 /// What a table holds (the C enum `sk_table_kind`).
 #[repr(u32)]

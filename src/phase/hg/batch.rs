@@ -6,7 +6,7 @@
 //! The loop is bound by the f64 divider: with the C layer on x86-64 Linux it
 //! is chosen when the program is loaded, the widest build the processor
 //! runs (AVX and wider: four divisions per instruction instead of SSE2's
-//! two; `crate::ifunc`).
+//! two; `crate::math::arch`).
 
 /// The f64 path's constants for a batch: `k`, `A` and `B` with the sign of
 /// `g` (the `hg` module's `wide` values 0–2), and whether `u' = 1 − u`.
@@ -27,7 +27,7 @@ pub(super) fn cos_n(w: Wide, u: &[f32], out: &mut [f32]) {
         // (a shared and an exclusive borrow).
         #[allow(unsafe_code)]
         unsafe {
-            sk__hg_wide_cos_n(&w.kab, w.mirror, u.as_ptr(), out.as_mut_ptr(), n)
+            hg_wide_cos_n(&w.kab, w.mirror, u.as_ptr(), out.as_mut_ptr(), n)
         }
     }
     #[cfg(not(ifunc))]
@@ -35,11 +35,11 @@ pub(super) fn cos_n(w: Wide, u: &[f32], out: &mut [f32]) {
 }
 
 #[cfg(ifunc)]
-crate::ifunc::load_time_choice! {
+crate::math::arch::load_time_choice! {
     /// [`hg_wide_cos_each`] from C: `(k, A, B)` at `kab`, the mirror, and
     /// `n` uniforms in `[0, 1]` at `u` to `n` cosines at `out`, which must
     /// not overlap `u`.
-    sk__hg_wide_cos_n: fn(kab: *const [f64; 3], mirror: bool, u: *const f32, out: *mut f32, n: usize) {
+    hg_wide_cos_n: fn(kab: *const [f64; 3], mirror: bool, u: *const f32, out: *mut f32, n: usize) {
         // SAFETY: the symbol's contract.
         let (kab, u, out) = unsafe {
             (*kab, core::slice::from_raw_parts(u, n), core::slice::from_raw_parts_mut(out, n))
@@ -78,8 +78,8 @@ fn hg_wide_cos_each(kab: [f64; 3], mirror: bool, u: &[f32], out: &mut [f32]) {
 #[cfg(all(test, ifunc))]
 mod tests {
     extern crate std;
-    use super::sk__hg_wide_cos_n::BUILDS;
-    use crate::ifunc::detected;
+    use super::hg_wide_cos_n::BUILDS;
+    use crate::math::arch::detected;
 
     /// Every build gives the bits of the SSE2 build, where this processor
     /// runs it.

@@ -12,14 +12,17 @@
 //! (ratio tracking) rather than a biased answer. A zero majorant, or a ray
 //! that misses the medium, returns at once: no interaction, transmittance 1.
 
+pub mod majorant;
+pub mod spectral;
+
 use crate::error::{Error, try_from_u32};
-use crate::geometry::Vec3;
-use crate::real::Real;
+use crate::math::geometry::Vec3;
+use crate::math::real::Real;
 use rand_core::Rng;
 
 /// The most tentative collisions one tracking call takes (2²⁰); a medium of
 /// majorant optical depth beyond ~10⁶ along one ray reports
-/// [`Error::Budget`]. The majorant-grid calls ([`crate::majorant`]) take
+/// [`Error::Budget`]. The majorant-grid calls ([`crate::medium::majorant`]) take
 /// the caller's budget instead.
 pub const MAX_STEPS: u32 = 1 << 20;
 
@@ -212,7 +215,7 @@ try_from_u32!(Sampling: Nodes, Cells);
 /// # Example
 ///
 /// A 2×2×2 grid over a world box, tracked directly with its one majorant
-/// and through 4³ local majorants (`crate::majorant`) in caller memory:
+/// and through 4³ local majorants (`crate::medium::majorant`) in caller memory:
 ///
 /// ```
 /// use scatterkit::majorant::Majorants;
@@ -303,11 +306,16 @@ impl<'a, T: Real> Grid<'a, T> {
         Ok((grid, max_density))
     }
 
-    /// A grid from parts a previous [`Grid::new`] validated (the C layer
-    /// keeps them in `sk_grid`). `density` must hold `nx·ny·nz` values.
-    #[cfg_attr(not(feature = "ffi"), allow(dead_code))]
+    /// A grid from the parts of one that [`Grid::new`] (and
+    /// [`with_box`](Self::with_box)) accepted, as a caller that stores grids
+    /// as plain values keeps them (the C layer's `sk_grid` does): the
+    /// densities, `[nx, ny, nz]`, `σ_a` and `σ_s` in inverse world units, the
+    /// largest density, the box and the sampling. [`Error::Size`] unless
+    /// every count is at least 1 and `density` holds `nx·ny·nz` values;
+    /// other parts are taken as given (parts `Grid::new` would refuse give
+    /// wrong answers, never a panic).
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn from_parts(
+    pub fn from_parts(
         density: &'a [T],
         n: [usize; 3],
         sigma_a: T,
@@ -315,8 +323,13 @@ impl<'a, T: Real> Grid<'a, T> {
         max_density: T,
         (lo, hi): (Vec3<T>, Vec3<T>),
         sampling: Sampling,
-    ) -> Self {
-        Grid {
+    ) -> Result<Self, Error> {
+        let count = n.iter().try_fold(
+            1usize,
+            |acc, &k| if k == 0 { None } else { acc.checked_mul(k) },
+        );
+        let density = count.and_then(|c| density.get(..c)).ok_or(Error::Size)?;
+        Ok(Grid {
             density,
             n,
             sigma_a,
@@ -325,7 +338,7 @@ impl<'a, T: Real> Grid<'a, T> {
             lo,
             hi,
             sampling,
-        }
+        })
     }
 
     /// The grid placed in the world box `[lo, hi]` instead of the unit cube.
@@ -474,7 +487,7 @@ impl<'a, T: Real> Grid<'a, T> {
     /// ends soon after the transmittance is gone. [`Error::Domain`] for a
     /// ray [`Ray`] does not accept; [`Error::Budget`] when [`MAX_STEPS`] is reached (a
     /// medium far below its one majorant over a long ray: walk
-    /// [`crate::majorant::Majorants`] instead).
+    /// [`crate::medium::majorant::Majorants`] instead).
     pub fn ratio_track<R: Rng + ?Sized>(&self, ray: Ray<T>, rng: &mut R) -> Result<T, Error> {
         let (o, d) = ray.checked()?;
         let Some((t0, t1)) = clip_box(o, d, self.lo, self.hi, ray.t_min, ray.t_max) else {

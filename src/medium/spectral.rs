@@ -29,10 +29,10 @@
 //! no allocation); outputs are written only on success.
 
 use crate::error::Error;
-use crate::geometry::Vec3;
-use crate::majorant::{Majorants, Tentative, Track};
+use crate::math::geometry::Vec3;
+use crate::math::real::Real;
+use crate::medium::majorant::{Majorants, Tentative, Track};
 use crate::medium::{Event, Grid, ROULETTE_BELOW, Ray};
-use crate::real::Real;
 use rand_core::Rng;
 
 /// The most channels one spectral call takes.

@@ -19,14 +19,16 @@
 //!   Cheaper, exact in distribution, but not monotone in `u` and not the
 //!   inverse of [`PhaseFunction::cdf`].
 
-use super::PhaseFunction;
+mod inverse;
+
 use super::draine::{Params, from_tail, inverse_tail};
-use super::fog_inverse::{FogSeeds, Mixture};
+use super::function::PhaseFunction;
 use super::seeds::{HalfSeeds, Seeds};
-use crate::double_double::Dd;
 use crate::error::Error;
-use crate::numeric::{Eval, solve_bracketed};
-use crate::real::{PackedF64, Real};
+use crate::math::double_double::Dd;
+use crate::math::numeric::{Eval, solve_bracketed};
+use crate::math::real::{PackedF64, Real};
+use inverse::{FogSeeds, Mixture};
 
 /// The fog mixture. Built from its four parameters or from a droplet
 /// diameter ([`Fog::from_diameter`]); construction also tabulates the seeds
@@ -510,7 +512,7 @@ mod tests {
 
     /// `(start, series result, taken)` for `u` of an object with a mixture
     /// table.
-    fn fast_path<T: Real>(fog: &Fog<T>, u: f64) -> (super::super::fog_inverse::Start, f64, bool) {
+    fn fast_path<T: Real>(fog: &Fog<T>, u: f64) -> (super::inverse::Start, f64, bool) {
         let Aux::Mixture(seeds) = &fog.aux else {
             panic!("no mixture table");
         };

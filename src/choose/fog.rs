@@ -23,11 +23,11 @@
 //! since its f32 inverse takes one evaluation of the mixture) while the fog
 //! is the reference itself, and Fournier–Forand costs more (350 ns).
 
-use super::draine::Params;
-use super::fournier_forand;
-use super::{Draine, Fog, HenyeyGreenstein, Phase, PhaseFunction};
 use crate::error::Error;
-use crate::real::Real;
+use crate::math::real::Real;
+use crate::phase::draine::Params;
+use crate::phase::fournier_forand;
+use crate::phase::{Draine, Fog, HenyeyGreenstein, Phase, PhaseFunction};
 
 /// Quadrature nodes for the distance (midpoint rule in the fog's quantile).
 pub const NODES: usize = 512;
@@ -192,7 +192,7 @@ pub(crate) fn fit_draine(r: &Quantiles) -> (f64, f64, f64) {
 /// # Example
 ///
 /// ```
-/// use scatterkit::phase::particle::{Model, choose};
+/// use scatterkit::choose::fog::{Model, choose};
 ///
 /// // Droplets far below the wavelength: Rayleigh is close enough.
 /// let (_, model, _) = choose(0.01, 0.01).unwrap();

@@ -3,7 +3,7 @@
 //!
 //! [`Real`] is implemented for `f32` and `f64` only (it is sealed). Its math
 //! functions are `libm`'s, except [`Real::cbrt`] and [`Real::cbrt_fast`],
-//! which are this crate's own (see [`crate::cbrt`]).
+//! which are this crate's own (see [`crate::math::cbrt`]).
 
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -74,14 +74,14 @@ pub trait Real:
     fn copysign(self, sign: Self) -> Self;
     /// Cube root, ≤ ~1 ULP on every input (this crate's Kahan + Lancaster).
     fn cbrt(self) -> Self;
-    /// Cube root with one Lancaster step fewer (see [`crate::cbrt`]).
+    /// Cube root with one Lancaster step fewer (see [`crate::math::cbrt`]).
     fn cbrt_fast(self) -> Self;
     /// Sine and cosine of an angle in radians.
     fn sin_cos(self) -> (Self, Self);
     /// Cosine of an angle in radians.
     fn cos(self) -> Self;
     /// `(sin 2π·self, cos 2π·self)` for `self ∈ [0, 1]` (a fraction of a
-    /// turn), reduced exactly: see [`crate::azimuth`].
+    /// turn), reduced exactly: see [`crate::math::azimuth`].
     fn sin_cos_2pi(self) -> (Self, Self);
     /// Natural logarithm.
     fn ln(self) -> Self;
@@ -274,11 +274,11 @@ impl_real!(
     1u32 << 31,
     40,
     1.0 / (1u64 << 24) as f32,
-    crate::cbrt::cbrt_f32,
-    crate::cbrt::cbrt_fast_f32,
+    crate::math::cbrt::cbrt_f32,
+    crate::math::cbrt::cbrt_fast_f32,
     |a, _| a,
     |u, out| Some((u, out)),
-    crate::azimuth::sin_cos_2pi_f32,
+    crate::math::azimuth::sin_cos_2pi_f32,
     sqrt_f32,
     sincosf,
     cosf,
@@ -294,11 +294,11 @@ impl_real!(
     1u64 << 63,
     11,
     1.0 / (1u64 << 53) as f64,
-    crate::cbrt::cbrt_f64,
-    crate::cbrt::cbrt_fast_f64,
+    crate::math::cbrt::cbrt_f64,
+    crate::math::cbrt::cbrt_fast_f64,
     |_, b| b,
     |_, _| None,
-    crate::azimuth::sin_cos_2pi_f64,
+    crate::math::azimuth::sin_cos_2pi_f64,
     sqrt_f64,
     sincos,
     cos,

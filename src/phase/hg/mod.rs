@@ -41,10 +41,12 @@
 //! (Cortex-M and the like) the f32 sampler keeps to f32 and the factored
 //! forms above.
 
-use super::PhaseFunction;
+mod batch;
+
+use super::function::PhaseFunction;
 use crate::error::Error;
-use crate::geometry::{Vec3, direction_about_turns};
-use crate::real::{PackedF64, Real};
+use crate::math::geometry::{Vec3, direction_about_turns};
+use crate::math::real::{PackedF64, Real};
 
 /// Whether the f32 sampler computes in f64 (module docs): on processors whose
 /// double precision runs in hardware at the speed of single.
@@ -174,7 +176,7 @@ impl<T: Real> HenyeyGreenstein<T> {
         }
         // u' is exact (1 − u of an f32 u), k ≥ 0: t is rounded once.
         let u1 = if self.g > T::ZERO { u } else { 1.0 - u };
-        let (t, q) = super::hg_batch::wide_tq(k, b, u1);
+        let (t, q) = batch::wide_tq(k, b, u1);
         Some((u1, t, q))
     }
 
@@ -182,20 +184,21 @@ impl<T: Real> HenyeyGreenstein<T> {
     /// takes that path (`None` for f64, without fast doubles, and for
     /// `|g| < 2⁻¹⁰`).
     #[inline(always)]
-    fn wide_batch(&self) -> Option<super::hg_batch::Wide> {
+    fn wide_batch(&self) -> Option<batch::Wide> {
         let b = self.wide.get(2);
-        (wide_path::<T>() && b != 0.0).then(|| super::hg_batch::Wide {
+        (wide_path::<T>() && b != 0.0).then(|| batch::Wide {
             kab: [self.wide.get(0), self.wide.get(1), b],
             mirror: self.g <= T::ZERO,
         })
     }
 
-    /// The f64 path's `[k, A, B]` and whether `u` is mirrored, where the
-    /// f32 sampler takes that path: `cos θ = A − B/(u' + k)²` rounded once,
-    /// with `u' = 1 − u` if mirrored (the C layer hands them to the
-    /// header-only sampler of `include/scatterkit_inline.h`).
-    #[cfg_attr(not(feature = "ffi"), allow(dead_code))]
-    pub(crate) fn wide_kab(&self) -> Option<([f64; 3], bool)> {
+    /// The constants of the f32 sampler's f64 path, `[k, A, B]`, and whether
+    /// `u` is mirrored, where the f32 sampler takes that path (`None`
+    /// elsewhere): `cos θ = A − B/(u' + k)²` evaluated in f64 and rounded
+    /// once to f32, with `u' = 1 − u` if mirrored and `u` otherwise. With
+    /// them a loop of one's own (a GPU kernel, the header-only sampler of
+    /// `include/scatterkit_inline.h`) returns the sampler's bits.
+    pub fn f64_path_constants(&self) -> Option<([f64; 3], bool)> {
         self.wide_batch().map(|w| (w.kab, w.mirror))
     }
 
@@ -325,7 +328,7 @@ impl<T: Real> PhaseFunction<T> for HenyeyGreenstein<T> {
     fn sample_cos_each_in_range(&self, u: &[T], cos_out: &mut [T]) {
         if let Some(w) = self.wide_batch() {
             if let Some((u, out)) = T::as_f32_io(u, cos_out) {
-                return super::hg_batch::cos_n(w, u, out);
+                return batch::cos_n(w, u, out);
             }
         }
         for (c, &ui) in cos_out.iter_mut().zip(u) {

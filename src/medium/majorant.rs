@@ -25,11 +25,11 @@
 //! collisions is the caller's budget ([`Error::Budget`] when it runs out).
 
 use crate::error::Error;
-use crate::geometry::Vec3;
+use crate::math::geometry::Vec3;
+use crate::math::real::Real;
 use crate::medium::{
     Event, Grid, ROULETTE_BELOW, Ray, clip_box, exponential_step, grid_len, to_local, valid_box,
 };
-use crate::real::Real;
 use rand_core::Rng;
 
 /// pbrt-v4's default majorant resolution per axis (16³ cells).

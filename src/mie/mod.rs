@@ -33,8 +33,10 @@
 //! * `a_n = ((D_n/m + n/x) ψ_n − ψ_{n−1}) / ((D_n/m + n/x) ξ_n − ξ_{n−1})`,
 //!   `b_n` likewise with `m D_n`.
 
+pub mod polydisperse;
+
 use crate::error::Error;
-use crate::numeric::newton_bracketed;
+use crate::math::numeric::newton_bracketed;
 
 /// A complex number (f64): the refractive index and the series terms.
 /// `repr(C)`: the C layer's `sk_complex` is the same pair.
@@ -293,9 +295,13 @@ impl<'a> Mie<'a> {
         self.ab
     }
 
-    /// A solved sphere from its parts (the C layer keeps them in `sk_mie`).
-    #[cfg_attr(not(feature = "ffi"), allow(dead_code))]
-    pub(crate) fn from_parts(x: f64, ab: &'a [Complex], efficiencies: Efficiencies) -> Self {
+    /// A solved sphere from the parts of an earlier solve: its size
+    /// parameter ([`x`](Self::x)), coefficients
+    /// ([`coefficients`](Self::coefficients)) and efficiencies, as a caller
+    /// that keeps the coefficients in its own buffer stores them (the C
+    /// layer's `sk_mie` does). Parts of different solves give a sphere that
+    /// is safe to use but describes no particle.
+    pub fn from_parts(x: f64, ab: &'a [Complex], efficiencies: Efficiencies) -> Self {
         Mie {
             x,
             ab,

@@ -1,12 +1,12 @@
 //! Majorant grids and tracking through them.
 
 use super::medium::{GridStore, load};
-use super::{CRng, CVec, sk_rng, sk_status, sk_vec3, sk_vec3_f64, slice_in, slice_out};
+use super::{CFn, CRng, CVec, bind, sk_rng, sk_status, sk_vec3, sk_vec3_f64, slice_in, slice_out};
 use crate::error::Error;
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
-use crate::medium::Ray;
 use crate::medium::majorant::{Majorants, Track, Transmittance, majorant_len};
+use crate::medium::{Grid, Ray};
 use core::ffi::c_void;
 
 /// A grid of majorants (sigma_maj per length unit, >= 0) over a world box,
@@ -132,19 +132,22 @@ pub(crate) trait MajStore: Copy {
     type V: CVec<T = Self::T>;
     type Track: Copy;
     type Tr: Copy;
+    type Coef: Copy;
     fn pack(sigma: *const Self::T, m: [u32; 3], lo: Self::V, hi: Self::V) -> Self;
     fn unpack(&self) -> (*const Self::T, [u32; 3], Self::V, Self::V);
     fn track(t: Track<Self::T>) -> Self::Track;
     fn tr(t: Transmittance<Self::T>) -> Self::Tr;
+    fn pair(k: Self::Coef) -> (Self::T, Self::T);
 }
 
 macro_rules! impl_maj_store {
-    ($c:ty, $t:ty, $v:ty, $track:ident, $tr:ident) => {
+    ($c:ty, $t:ty, $v:ty, $track:ident, $tr:ident, $coef:ident) => {
         impl MajStore for $c {
             type T = $t;
             type V = $v;
             type Track = $track;
             type Tr = $tr;
+            type Coef = $coef;
             fn pack(sigma: *const $t, m: [u32; 3], lo: $v, hi: $v) -> Self {
                 Self {
                     sigma,
@@ -171,16 +174,27 @@ macro_rules! impl_maj_store {
                     steps: t.steps,
                 }
             }
+            fn pair(k: $coef) -> ($t, $t) {
+                (k.sigma_a, k.sigma_s)
+            }
         }
     };
 }
-impl_maj_store!(sk_majorants, f32, sk_vec3, sk_track_result, sk_ratio_result);
+impl_maj_store!(
+    sk_majorants,
+    f32,
+    sk_vec3,
+    sk_track_result,
+    sk_ratio_result,
+    sk_coefficients
+);
 impl_maj_store!(
     sk_majorants_f64,
     f64,
     sk_vec3_f64,
     sk_track_result_f64,
-    sk_ratio_result_f64
+    sk_ratio_result_f64,
+    sk_coefficients_f64
 );
 
 /// `[m0, m1, m2]` as `usize`.
@@ -267,27 +281,79 @@ unsafe fn new_maj<S: MajStore>(
     unsafe { write(out, r, |()| S::pack(sigma, m, lo, hi)) }
 }
 
-/// Tracking through a grid: both kinds.
+/// Delta or ratio tracking: the walk of `Majorants` each runs, through a
+/// grid or a caller's medium, and the C result it writes.
+trait Kind<S: MajStore> {
+    /// What the walk returns.
+    type Found;
+    /// The C result it becomes.
+    type Out;
+    fn grid(w: Walk<'_, S::T>, g: &Grid<'_, S::T>) -> Result<Self::Found, Error>;
+    fn func(
+        w: Walk<'_, S::T>,
+        f: &dyn Fn(Vec3<S::T>) -> (S::T, S::T),
+    ) -> Result<Self::Found, Error>;
+    fn out(x: Self::Found) -> Self::Out;
+}
+
+/// One walk's majorants, ray, budget and generator.
+struct Walk<'a, T: Real> {
+    m: &'a Majorants<'a, T>,
+    ray: Ray<T>,
+    budget: u32,
+    rng: &'a mut CRng,
+}
+
+/// Delta tracking ([`Kind`]).
+struct Delta;
+/// Ratio tracking ([`Kind`]).
+struct Ratio;
+
+impl<S: MajStore> Kind<S> for Delta {
+    type Found = Track<S::T>;
+    type Out = S::Track;
+    fn grid(w: Walk<'_, S::T>, g: &Grid<'_, S::T>) -> Result<Self::Found, Error> {
+        w.m.delta_track(g, w.ray, w.budget, w.rng)
+    }
+    fn func(
+        w: Walk<'_, S::T>,
+        f: &dyn Fn(Vec3<S::T>) -> (S::T, S::T),
+    ) -> Result<Self::Found, Error> {
+        w.m.delta_track_fn(f, w.ray, w.budget, w.rng)
+    }
+    fn out(x: Self::Found) -> Self::Out {
+        S::track(x)
+    }
+}
+
+impl<S: MajStore> Kind<S> for Ratio {
+    type Found = Transmittance<S::T>;
+    type Out = S::Tr;
+    fn grid(w: Walk<'_, S::T>, g: &Grid<'_, S::T>) -> Result<Self::Found, Error> {
+        w.m.ratio_track(g, w.ray, w.budget, w.rng)
+    }
+    fn func(
+        w: Walk<'_, S::T>,
+        f: &dyn Fn(Vec3<S::T>) -> (S::T, S::T),
+    ) -> Result<Self::Found, Error> {
+        w.m.ratio_track_fn(f, w.ray, w.budget, w.rng)
+    }
+    fn out(x: Self::Found) -> Self::Out {
+        S::tr(x)
+    }
+}
+
+/// Tracking of kind `K` through grid `g` and its majorants `m` from `o`
+/// along `d` over `[0, t_max]`, both precisions.
 #[allow(clippy::too_many_arguments)]
-unsafe fn grid_track<G: GridStore, S: MajStore<T = G::T, V = G::V>, X, V>(
+unsafe fn grid_track<K: Kind<S>, G: GridStore, S: MajStore<T = G::T, V = G::V>>(
     m: *const S,
     g: *const G,
-    o: G::V,
-    d: G::V,
+    [o, d]: [G::V; 2],
     t_max: G::T,
     budget: u32,
     rng: *mut sk_rng,
-    out: *mut V,
-    run: impl Fn(
-        &Majorants<'_, G::T>,
-        &crate::medium::Grid<'_, G::T>,
-        Vec3<G::T>,
-        Vec3<G::T>,
-        G::T,
-        u32,
-        &mut CRng,
-    ) -> Result<X, Error>,
-    conv: impl Fn(X) -> V,
+    out: *mut K::Out,
 ) -> sk_status {
     if g.is_null() || out.is_null() {
         return sk_status::SK_ERR_NULL;
@@ -302,31 +368,31 @@ unsafe fn grid_track<G: GridStore, S: MajStore<T = G::T, V = G::V>, X, V>(
     let Some(grid) = (unsafe { load(g) }) else {
         return sk_status::SK_ERR_SIZE;
     };
-    let res = run(&maj, &grid, o.to_vec(), d.to_vec(), t_max, budget, &mut r);
-    unsafe { write(out, res, conv) }
+    let ray = Ray::new(o.to_vec(), d.to_vec(), t_max);
+    let walk = Walk {
+        m: &maj,
+        ray,
+        budget,
+        rng: &mut r,
+    };
+    unsafe { write(out, K::grid(walk, &grid), K::out) }
 }
 
-/// Tracking through a caller's medium: both kinds.
+/// Tracking of kind `K` through the caller's medium `f` and majorants `m`
+/// from `o` along `d` over `[t_min, t_max]`, both precisions.
 #[allow(clippy::too_many_arguments)]
-unsafe fn fn_track<S: MajStore, X, V>(
+unsafe fn fn_track<K: Kind<S>, S: MajStore>(
+    (f, ctx): (CFn<S::V, S::Coef>, *mut c_void),
     m: *const S,
-    coefficients: impl Fn(S::V) -> (S::T, S::T),
-    o: S::V,
-    d: S::V,
+    [o, d]: [S::V; 2],
     (t_min, t_max): (S::T, S::T),
     budget: u32,
     rng: *mut sk_rng,
-    out: *mut V,
-    run: impl Fn(
-        &Majorants<'_, S::T>,
-        &dyn Fn(Vec3<S::T>) -> (S::T, S::T),
-        [Vec3<S::T>; 2],
-        (S::T, S::T),
-        u32,
-        &mut CRng,
-    ) -> Result<X, Error>,
-    conv: impl Fn(X) -> V,
+    out: *mut K::Out,
 ) -> sk_status {
+    let Some(coefficients) = bind(f, ctx) else {
+        return sk_status::SK_ERR_NULL;
+    };
     if out.is_null() {
         return sk_status::SK_ERR_NULL;
     }
@@ -337,16 +403,15 @@ unsafe fn fn_track<S: MajStore, X, V>(
         Ok(x) => x,
         Err(e) => return e,
     };
-    let f = |p: Vec3<S::T>| coefficients(S::V::from_vec(p));
-    let res = run(
-        &maj,
-        &f,
-        [o.to_vec(), d.to_vec()],
-        (t_min, t_max),
+    let f = |p: Vec3<S::T>| S::pair(coefficients(S::V::from_vec(p)));
+    let ray = Ray::new(o.to_vec(), d.to_vec(), t_max).segment(t_min, t_max);
+    let walk = Walk {
+        m: &maj,
+        ray,
         budget,
-        &mut r,
-    );
-    unsafe { write(out, res, conv) }
+        rng: &mut r,
+    };
+    unsafe { write(out, K::func(walk, &f), K::out) }
 }
 
 /// The number of majorants of an mx*my*mz grid (pbrt-v4 uses 16*16*16);
@@ -442,20 +507,7 @@ pub unsafe extern "C" fn sk_delta_track_majorants(
     rng: *mut sk_rng,
     out: *mut sk_track_result,
 ) -> sk_status {
-    unsafe {
-        grid_track(
-            m,
-            g,
-            o,
-            d,
-            t_max,
-            budget,
-            rng,
-            out,
-            |m, g, o, d, t, b, r| m.delta_track(g, Ray::new(o, d, t), b, r),
-            sk_majorants::track,
-        )
-    }
+    unsafe { grid_track::<Delta, _, _>(m, g, [o, d], t_max, budget, rng, out) }
 }
 
 /// Double twin of `sk_delta_track_majorants`.
@@ -470,20 +522,7 @@ pub unsafe extern "C" fn sk_delta_track_majorants_f64(
     rng: *mut sk_rng,
     out: *mut sk_track_result_f64,
 ) -> sk_status {
-    unsafe {
-        grid_track(
-            m,
-            g,
-            o,
-            d,
-            t_max,
-            budget,
-            rng,
-            out,
-            |m, g, o, d, t, b, r| m.delta_track(g, Ray::new(o, d, t), b, r),
-            sk_majorants_f64::track,
-        )
-    }
+    unsafe { grid_track::<Delta, _, _>(m, g, [o, d], t_max, budget, rng, out) }
 }
 
 /// Ratio tracking through grid g walking its majorants m (arguments and
@@ -500,20 +539,7 @@ pub unsafe extern "C" fn sk_ratio_track_majorants(
     rng: *mut sk_rng,
     out: *mut sk_ratio_result,
 ) -> sk_status {
-    unsafe {
-        grid_track(
-            m,
-            g,
-            o,
-            d,
-            t_max,
-            budget,
-            rng,
-            out,
-            |m, g, o, d, t, b, r| m.ratio_track(g, Ray::new(o, d, t), b, r),
-            sk_majorants::tr,
-        )
-    }
+    unsafe { grid_track::<Ratio, _, _>(m, g, [o, d], t_max, budget, rng, out) }
 }
 
 /// Double twin of `sk_ratio_track_majorants`.
@@ -528,20 +554,7 @@ pub unsafe extern "C" fn sk_ratio_track_majorants_f64(
     rng: *mut sk_rng,
     out: *mut sk_ratio_result_f64,
 ) -> sk_status {
-    unsafe {
-        grid_track(
-            m,
-            g,
-            o,
-            d,
-            t_max,
-            budget,
-            rng,
-            out,
-            |m, g, o, d, t, b, r| m.ratio_track(g, Ray::new(o, d, t), b, r),
-            sk_majorants_f64::tr,
-        )
-    }
+    unsafe { grid_track::<Ratio, _, _>(m, g, [o, d], t_max, budget, rng, out) }
 }
 
 /// Delta tracking through the caller's medium f(ctx, p) = (sigma_a,
@@ -562,28 +575,7 @@ pub unsafe extern "C" fn sk_delta_track_majorants_fn(
     rng: *mut sk_rng,
     out: *mut sk_track_result,
 ) -> sk_status {
-    let Some(f) = f else {
-        return sk_status::SK_ERR_NULL;
-    };
-    // SAFETY: the caller's callback with the caller's context.
-    let c = |p: sk_vec3| {
-        let k = unsafe { f(ctx, p) };
-        (k.sigma_a, k.sigma_s)
-    };
-    unsafe {
-        fn_track(
-            m,
-            c,
-            o,
-            d,
-            (t_min, t_max),
-            budget,
-            rng,
-            out,
-            |m, f, [o, d], (a, b), n, r| m.delta_track_fn(f, Ray::new(o, d, b).segment(a, b), n, r),
-            sk_majorants::track,
-        )
-    }
+    unsafe { fn_track::<Delta, _>((f, ctx), m, [o, d], (t_min, t_max), budget, rng, out) }
 }
 
 /// Double twin of `sk_delta_track_majorants_fn`.
@@ -600,28 +592,7 @@ pub unsafe extern "C" fn sk_delta_track_majorants_fn_f64(
     rng: *mut sk_rng,
     out: *mut sk_track_result_f64,
 ) -> sk_status {
-    let Some(f) = f else {
-        return sk_status::SK_ERR_NULL;
-    };
-    // SAFETY: the caller's callback with the caller's context.
-    let c = |p: sk_vec3_f64| {
-        let k = unsafe { f(ctx, p) };
-        (k.sigma_a, k.sigma_s)
-    };
-    unsafe {
-        fn_track(
-            m,
-            c,
-            o,
-            d,
-            (t_min, t_max),
-            budget,
-            rng,
-            out,
-            |m, f, [o, d], (a, b), n, r| m.delta_track_fn(f, Ray::new(o, d, b).segment(a, b), n, r),
-            sk_majorants_f64::track,
-        )
-    }
+    unsafe { fn_track::<Delta, _>((f, ctx), m, [o, d], (t_min, t_max), budget, rng, out) }
 }
 
 /// Ratio tracking through the caller's medium (arguments and errors as
@@ -640,28 +611,7 @@ pub unsafe extern "C" fn sk_ratio_track_majorants_fn(
     rng: *mut sk_rng,
     out: *mut sk_ratio_result,
 ) -> sk_status {
-    let Some(f) = f else {
-        return sk_status::SK_ERR_NULL;
-    };
-    // SAFETY: the caller's callback with the caller's context.
-    let c = |p: sk_vec3| {
-        let k = unsafe { f(ctx, p) };
-        (k.sigma_a, k.sigma_s)
-    };
-    unsafe {
-        fn_track(
-            m,
-            c,
-            o,
-            d,
-            (t_min, t_max),
-            budget,
-            rng,
-            out,
-            |m, f, [o, d], (a, b), n, r| m.ratio_track_fn(f, Ray::new(o, d, b).segment(a, b), n, r),
-            sk_majorants::tr,
-        )
-    }
+    unsafe { fn_track::<Ratio, _>((f, ctx), m, [o, d], (t_min, t_max), budget, rng, out) }
 }
 
 /// Double twin of `sk_ratio_track_majorants_fn`.
@@ -678,26 +628,5 @@ pub unsafe extern "C" fn sk_ratio_track_majorants_fn_f64(
     rng: *mut sk_rng,
     out: *mut sk_ratio_result_f64,
 ) -> sk_status {
-    let Some(f) = f else {
-        return sk_status::SK_ERR_NULL;
-    };
-    // SAFETY: the caller's callback with the caller's context.
-    let c = |p: sk_vec3_f64| {
-        let k = unsafe { f(ctx, p) };
-        (k.sigma_a, k.sigma_s)
-    };
-    unsafe {
-        fn_track(
-            m,
-            c,
-            o,
-            d,
-            (t_min, t_max),
-            budget,
-            rng,
-            out,
-            |m, f, [o, d], (a, b), n, r| m.ratio_track_fn(f, Ray::new(o, d, b).segment(a, b), n, r),
-            sk_majorants_f64::tr,
-        )
-    }
+    unsafe { fn_track::<Ratio, _>((f, ctx), m, [o, d], (t_min, t_max), budget, rng, out) }
 }

@@ -1,8 +1,8 @@
 //! Participating media.
 
 use super::{
-    CRng, CVec, fits, overlaps, sk_rng, sk_status, sk_vec3, sk_vec3_f64, slice_in, slice_out,
-    write_result,
+    CFn, CRng, CVec, bind, fits, overlaps, sk_rng, sk_status, sk_vec3, sk_vec3_f64, slice_in,
+    slice_out, write_result,
 };
 use crate::error::Error;
 use crate::math::geometry::Vec3;
@@ -261,11 +261,8 @@ unsafe fn homogeneous<T: Real>(
     sigma_s: *const T,
     channels: usize,
     t_max: T,
-    u_channel: T,
-    u_dist: T,
-    t_out: *mut T,
-    scattered_out: *mut u32,
-    weight_out: *mut T,
+    [u_channel, u_dist]: [T; 2],
+    (t_out, scattered_out, weight_out): (*mut T, *mut u32, *mut T),
 ) -> sk_status {
     if channels == 0 || !fits::<T>(channels) {
         return sk_status::SK_ERR_SIZE;
@@ -345,16 +342,16 @@ unsafe fn ratio_grid<S: GridStore>(
 /// Delta tracking through the caller's density `sigma` (in C vector terms).
 #[allow(clippy::too_many_arguments)]
 unsafe fn delta_fn<V: CVec>(
-    sigma: impl Fn(V) -> V::T,
+    (f, ctx): (CFn<V, V::T>, *mut c_void),
     sigma_maj: V::T,
-    o: V,
-    d: V,
-    t_min: V::T,
-    t_max: V::T,
+    [o, d]: [V; 2],
+    (t_min, t_max): (V::T, V::T),
     rng: *mut sk_rng,
-    t_out: *mut V::T,
-    event_out: *mut u32,
+    (t_out, event_out): (*mut V::T, *mut u32),
 ) -> sk_status {
+    let Some(sigma) = bind(f, ctx) else {
+        return sk_status::SK_ERR_NULL;
+    };
     let Some(mut r) = (unsafe { CRng::from_ptr(rng) }) else {
         return sk_status::SK_ERR_NULL;
     };
@@ -371,15 +368,17 @@ unsafe fn delta_fn<V: CVec>(
 }
 
 /// Ratio tracking through the caller's density `sigma`; NaN on any error.
+#[allow(clippy::too_many_arguments)]
 unsafe fn ratio_fn<V: CVec>(
-    sigma: impl Fn(V) -> V::T,
+    (f, ctx): (CFn<V, V::T>, *mut c_void),
     sigma_maj: V::T,
-    o: V,
-    d: V,
-    t_min: V::T,
-    t_max: V::T,
+    [o, d]: [V; 2],
+    (t_min, t_max): (V::T, V::T),
     rng: *mut sk_rng,
 ) -> V::T {
+    let Some(sigma) = bind(f, ctx) else {
+        return V::T::NAN;
+    };
     let Some(mut r) = (unsafe { CRng::from_ptr(rng) }) else {
         return V::T::NAN;
     };
@@ -441,19 +440,8 @@ pub unsafe extern "C" fn sk_homogeneous_sample(
     scattered_out: *mut u32,
     weight_out: *mut f32,
 ) -> sk_status {
-    unsafe {
-        homogeneous(
-            sigma_t,
-            sigma_s,
-            channels,
-            t_max,
-            u_channel,
-            u_dist,
-            t_out,
-            scattered_out,
-            weight_out,
-        )
-    }
+    let out = (t_out, scattered_out, weight_out);
+    unsafe { homogeneous(sigma_t, sigma_s, channels, t_max, [u_channel, u_dist], out) }
 }
 
 /// Double twin of `sk_homogeneous_sample`.
@@ -469,19 +457,8 @@ pub unsafe extern "C" fn sk_homogeneous_sample_f64(
     scattered_out: *mut u32,
     weight_out: *mut f64,
 ) -> sk_status {
-    unsafe {
-        homogeneous(
-            sigma_t,
-            sigma_s,
-            channels,
-            t_max,
-            u_channel,
-            u_dist,
-            t_out,
-            scattered_out,
-            weight_out,
-        )
-    }
+    let out = (t_out, scattered_out, weight_out);
+    unsafe { homogeneous(sigma_t, sigma_s, channels, t_max, [u_channel, u_dist], out) }
 }
 
 /// A density grid over the unit cube (sk_grid_set_box and
@@ -648,23 +625,8 @@ pub unsafe extern "C" fn sk_delta_track_fn(
     t_out: *mut f32,
     scattered_out: *mut u32,
 ) -> sk_status {
-    let Some(f) = f else {
-        return sk_status::SK_ERR_NULL;
-    };
-    // SAFETY: the caller's callback with the caller's context.
-    unsafe {
-        delta_fn(
-            |p| f(ctx, p),
-            sigma_maj,
-            o,
-            d,
-            t_min,
-            t_max,
-            rng,
-            t_out,
-            scattered_out,
-        )
-    }
+    let out = (t_out, scattered_out);
+    unsafe { delta_fn((f, ctx), sigma_maj, [o, d], (t_min, t_max), rng, out) }
 }
 
 /// Double twin of `sk_delta_track_fn`.
@@ -681,23 +643,8 @@ pub unsafe extern "C" fn sk_delta_track_fn_f64(
     t_out: *mut f64,
     scattered_out: *mut u32,
 ) -> sk_status {
-    let Some(f) = f else {
-        return sk_status::SK_ERR_NULL;
-    };
-    // SAFETY: the caller's callback with the caller's context.
-    unsafe {
-        delta_fn(
-            |p| f(ctx, p),
-            sigma_maj,
-            o,
-            d,
-            t_min,
-            t_max,
-            rng,
-            t_out,
-            scattered_out,
-        )
-    }
+    let out = (t_out, scattered_out);
+    unsafe { delta_fn((f, ctx), sigma_maj, [o, d], (t_min, t_max), rng, out) }
 }
 
 /// Ratio tracking through the caller's medium (arguments as
@@ -716,11 +663,7 @@ pub unsafe extern "C" fn sk_ratio_track_fn(
     t_max: f32,
     rng: *mut sk_rng,
 ) -> f32 {
-    let Some(f) = f else {
-        return f32::NAN;
-    };
-    // SAFETY: the caller's callback with the caller's context.
-    unsafe { ratio_fn(|p| f(ctx, p), sigma_maj, o, d, t_min, t_max, rng) }
+    unsafe { ratio_fn((f, ctx), sigma_maj, [o, d], (t_min, t_max), rng) }
 }
 
 /// Double twin of `sk_ratio_track_fn`.
@@ -735,9 +678,5 @@ pub unsafe extern "C" fn sk_ratio_track_fn_f64(
     t_max: f64,
     rng: *mut sk_rng,
 ) -> f64 {
-    let Some(f) = f else {
-        return f64::NAN;
-    };
-    // SAFETY: the caller's callback with the caller's context.
-    unsafe { ratio_fn(|p| f(ctx, p), sigma_maj, o, d, t_min, t_max, rng) }
+    unsafe { ratio_fn((f, ctx), sigma_maj, [o, d], (t_min, t_max), rng) }
 }

@@ -205,6 +205,19 @@ pub unsafe extern "C" fn sk_uniform_f64(rng: *mut sk_rng) -> f64 {
     unsafe { CRng::from_ptr(rng) }.map_or(f64::NAN, |mut r| f64::uniform(&mut r))
 }
 
+/// A caller's callback with its context pointer, as the C API takes them:
+/// `sk_density_fn` is `CFn<sk_vec3, f32>`, `sk_medium_fn` is
+/// `CFn<sk_vec3, sk_coefficients>`.
+pub(crate) type CFn<A, R> = Option<unsafe extern "C" fn(ctx: *mut c_void, a: A) -> R>;
+
+/// The caller's callback bound to its context; `None` for a NULL callback.
+pub(crate) fn bind<A, R>(f: CFn<A, R>, ctx: *mut c_void) -> Option<impl Fn(A) -> R> {
+    let f = f?;
+    // SAFETY: the caller's callback with the caller's context (the entry
+    // points' contract).
+    Some(move |a| unsafe { f(ctx, a) })
+}
+
 /// Writes `r`'s value through `out` on success; the status either way.
 #[inline(always)]
 pub(crate) unsafe fn write_result<V>(out: *mut V, r: Result<V, Error>) -> sk_status {

@@ -37,15 +37,34 @@ pub struct sk_phase_f64 {
 pub(crate) trait PhaseStore: Copy {
     /// The float type of the phase stored.
     type T: Real;
+    /// The C type `sk_phase_get_params` writes for it.
+    type Params;
     const ZEROED: Self;
+    fn params(model: u32, count: u32, params: [Self::T; 4]) -> Self::Params;
 }
 impl PhaseStore for sk_phase {
     type T = f32;
+    type Params = sk_phase_params;
     const ZEROED: Self = sk_phase { opaque: [0; 32] };
+    fn params(model: u32, count: u32, params: [f32; 4]) -> sk_phase_params {
+        sk_phase_params {
+            model,
+            count,
+            params,
+        }
+    }
 }
 impl PhaseStore for sk_phase_f64 {
     type T = f64;
+    type Params = sk_phase_params_f64;
     const ZEROED: Self = sk_phase_f64 { opaque: [0; 32] };
+    fn params(model: u32, count: u32, params: [f64; 4]) -> sk_phase_params_f64 {
+        sk_phase_params_f64 {
+            model,
+            count,
+            params,
+        }
+    }
 }
 
 const _: () = {
@@ -941,17 +960,8 @@ pub unsafe extern "C" fn sk_phase_sample_dir_n(
     pdf_out: *mut f32,
     n: usize,
 ) -> sk_status {
-    unsafe {
-        sample_dir_n(
-            p,
-            [w_x, w_y, w_z],
-            u1,
-            u2,
-            [out_x, out_y, out_z],
-            pdf_out,
-            n,
-        )
-    }
+    let (w, out) = ([w_x, w_y, w_z], [out_x, out_y, out_z]);
+    unsafe { sample_dir_n(p, w, u1, u2, out, pdf_out, n) }
 }
 
 /// Double twin of `sk_phase_sample_dir_n`.
@@ -970,17 +980,8 @@ pub unsafe extern "C" fn sk_phase_sample_dir_n_f64(
     pdf_out: *mut f64,
     n: usize,
 ) -> sk_status {
-    unsafe {
-        sample_dir_n(
-            p,
-            [w_x, w_y, w_z],
-            u1,
-            u2,
-            [out_x, out_y, out_z],
-            pdf_out,
-            n,
-        )
-    }
+    let (w, out) = ([w_x, w_y, w_z], [out_x, out_y, out_z]);
+    unsafe { sample_dir_n(p, w, u1, u2, out, pdf_out, n) }
 }
 
 /// Which phase function an sk_phase holds (its tag, also the value of the
@@ -1056,17 +1057,13 @@ fn model_params<T: Real>(p: &Phase<T>) -> (sk_phase_model, u32, [T; 4]) {
 }
 
 /// Writes `make(model, count, params)` for the phase behind `p` to *out.
-unsafe fn get_params<S: PhaseStore, P>(
-    p: *const S,
-    out: *mut P,
-    make: impl Fn(u32, u32, [S::T; 4]) -> P,
-) -> sk_status {
+unsafe fn get_params<S: PhaseStore>(p: *const S, out: *mut S::Params) -> sk_status {
     if p.is_null() || out.is_null() {
         return sk_status::SK_ERR_NULL;
     }
     let r = unsafe { load(p) }.ok_or(Error::Domain).map(|ph| {
         let (model, count, params) = model_params(ph);
-        make(model as u32, count, params)
+        S::params(model as u32, count, params)
     });
     unsafe { write_result(out, r) }
 }
@@ -1078,13 +1075,7 @@ pub unsafe extern "C" fn sk_phase_get_params(
     p: *const sk_phase,
     out: *mut sk_phase_params,
 ) -> sk_status {
-    unsafe {
-        get_params(p, out, |model, count, params| sk_phase_params {
-            model,
-            count,
-            params,
-        })
-    }
+    unsafe { get_params(p, out) }
 }
 
 /// Double twin of `sk_phase_get_params`.
@@ -1093,13 +1084,7 @@ pub unsafe extern "C" fn sk_phase_get_params_f64(
     p: *const sk_phase_f64,
     out: *mut sk_phase_params_f64,
 ) -> sk_status {
-    unsafe {
-        get_params(p, out, |model, count, params| sk_phase_params_f64 {
-            model,
-            count,
-            params,
-        })
-    }
+    unsafe { get_params(p, out) }
 }
 
 #[cfg(test)]

@@ -282,18 +282,8 @@ pub unsafe extern "C" fn sk_ratio_track_spectral(
     r_u: *mut f32,
     r_l: *mut f32,
 ) -> sk_status {
-    unsafe {
-        ratio::<_, super::sk_majorants, _>(
-            m,
-            g,
-            s,
-            (o, d, t_max),
-            budget,
-            rng,
-            steps_out,
-            (weight, r_u, r_l),
-        )
-    }
+    let out = (weight, r_u, r_l);
+    unsafe { ratio(m, g, s, (o, d, t_max), budget, rng, steps_out, out) }
 }
 
 /// Double twin of `sk_ratio_track_spectral`.
@@ -312,16 +302,6 @@ pub unsafe extern "C" fn sk_ratio_track_spectral_f64(
     r_u: *mut f64,
     r_l: *mut f64,
 ) -> sk_status {
-    unsafe {
-        ratio::<_, super::sk_majorants_f64, _>(
-            m,
-            g,
-            s,
-            (o, d, t_max),
-            budget,
-            rng,
-            steps_out,
-            (weight, r_u, r_l),
-        )
-    }
+    let out = (weight, r_u, r_l);
+    unsafe { ratio(m, g, s, (o, d, t_max), budget, rng, steps_out, out) }
 }

@@ -203,9 +203,7 @@ fn phong<V: CVec>(axis: V, normal: V, alpha: V::T, policy: u32, u1: V::T, u2: V:
 unsafe fn surface_new<S: SurfaceStore>(
     model: u32,
     phong_alpha: S::T,
-    fraction_model: u32,
-    fraction: S::T,
-    sigma_rms: S::T,
+    (fraction_model, fraction, sigma_rms): (u32, S::T, S::T),
     policy: u32,
     out: *mut S,
 ) -> sk_status {
@@ -427,17 +425,8 @@ pub unsafe extern "C" fn sk_surface_new(
     policy: u32,
     out: *mut sk_surface,
 ) -> sk_status {
-    unsafe {
-        surface_new(
-            model,
-            phong_alpha,
-            fraction_model,
-            fraction,
-            sigma_rms,
-            policy,
-            out,
-        )
-    }
+    let frac = (fraction_model, fraction, sigma_rms);
+    unsafe { surface_new(model, phong_alpha, frac, policy, out) }
 }
 
 /// Double twin of `sk_surface_new`.
@@ -451,17 +440,8 @@ pub unsafe extern "C" fn sk_surface_new_f64(
     policy: u32,
     out: *mut sk_surface_f64,
 ) -> sk_status {
-    unsafe {
-        surface_new(
-            model,
-            phong_alpha,
-            fraction_model,
-            fraction,
-            sigma_rms,
-            policy,
-            out,
-        )
-    }
+    let frac = (fraction_model, fraction, sigma_rms);
+    unsafe { surface_new(model, phong_alpha, frac, policy, out) }
 }
 
 /// One interaction of a ray along `d` with the surface of geometric normal

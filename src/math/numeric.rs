@@ -198,19 +198,36 @@ pub(crate) fn newton_bracketed(fd: impl Fn(f64) -> (f64, f64), lo: f64, hi: f64,
     x
 }
 
-/// `∫₀¹ f(u) du` by composite Simpson with `n` (even) intervals.
+/// `∫₀¹ f(u) du` by composite Simpson with `n` intervals (a multiple of
+/// 4), extrapolated once (Richardson, which makes it Boole's rule): with the
+/// Simpson sums `S_h` over all `n + 1` points and `S_2h` over every other
+/// one, `(16 S_h − S_2h)/15` cancels the `h⁴` term of the error, for no
+/// more evaluations of `f`. For an integrand that is smooth but steep where
+/// a phase function's density is small (the inverse CDF `μ(u)` of a peaked
+/// model), plain Simpson at 4096 intervals was off by 1.5·10⁻⁹.
 pub(crate) fn simpson_unit(f: impl Fn(f64) -> f64, n: usize) -> f64 {
     let h = 1.0 / n as f64;
-    let mut sum = 0.0;
+    let (mut fine, mut coarse) = (0.0, 0.0);
     for i in 0..=n {
-        let c = if i == 0 || i == n {
+        let y = f(i as f64 * h);
+        let end = i == 0 || i == n;
+        fine += y * if end {
             1.0
         } else if i % 2 == 1 {
             4.0
         } else {
             2.0
         };
-        sum += c * f(i as f64 * h);
+        if i % 2 == 0 {
+            coarse += y * if end {
+                1.0
+            } else if i % 4 == 2 {
+                4.0
+            } else {
+                2.0
+            };
+        }
     }
-    sum * h / 3.0
+    let (s_h, s_2h) = (fine * h / 3.0, coarse * 2.0 * h / 3.0);
+    (16.0 * s_h - s_2h) / 15.0
 }

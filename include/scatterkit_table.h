@@ -4,7 +4,7 @@
  * from a table built by the library (sk_table_inverse, sk_table_measured,
  * sk_table_rayleigh_cdf in scatterkit.h) without linking it: a GPU shader, a
  * CUDA or OpenCL kernel, firmware. Plain C99 that also compiles as C++,
- * CUDA and OpenCL C; no library call, no allocation. tests/table_header.rs
+ * CUDA and OpenCL C; no library call, no allocation. tests/c_abi/table_header.rs
  * checks every function here bit for bit against sk_table_sample_cos over
  * 2^20 + 1 values of u for several tables, compiled as C99 and as C++.
  *

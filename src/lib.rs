@@ -61,7 +61,7 @@
 #![deny(missing_debug_implementations)]
 
 // The layers, lowest first: each folder imports only from those above it
-// in this list (`tests/imports.rs`; `ARCHITECTURE.md` has the map).
+// in this list (`tests/layering.rs`; `ARCHITECTURE.md` has the map).
 pub mod choose;
 mod error;
 mod math;

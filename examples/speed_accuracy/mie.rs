@@ -183,7 +183,7 @@ pub(crate) fn mie_report(es: &[Entry]) -> (String, bool) {
          BHMIE starts the downward recurrence for `D_n` at `max(N, |mx|) + 15`; for the nearly \
          real index of water that start has not converged at `x = 1000` and `10⁴`, and its \
          results differ from the library's in the third to fourth digit (the library agrees \
-         with the series summed in 40 digits at `x = 1000` to 10⁻¹⁴, `tests/mie.rs`). The \
+         with the series summed in 40 digits at `x = 1000` to 10⁻¹⁴, `tests/models/mie.rs`). The \
          library starts at `max(N, |mx|) + 8 (|mx|/2)^{{1/3}} + 16`, eight widths of the Airy-type \
          region past `|mx|`, where the start error decays."
     )

@@ -15,7 +15,7 @@
 //! fog is, taken by the midpoint rule at [`NODES`] points held on the stack.
 //! A model is accepted when its estimate is at most `(1 − MARGIN)` times the
 //! tolerance, which covers the quadrature error (measured ≤ 2 % of the
-//! distance in `tests/particle.rs`).
+//! distance in `tests/models/choose_fog.rs`).
 //!
 //! Two-lobe HG and Fournier–Forand are candidates against real Mie
 //! (`particle_mie`) only: against the fog fit, two-lobe HG's exact inverse

@@ -20,7 +20,7 @@
 //! vectorises. f32 is computed in f32 alone (no double precision, for targets
 //! without a double-precision unit).
 //!
-//! Measured (`tests/azimuth.rs`): f32 within 1.65 ULP on every float in
+//! Measured (`tests/models/azimuth.rs`): f32 within 1.65 ULP on every float in
 //! `[0, 1]` (exhaustive); f64 within 1.64 ULP on 2·10⁶ random `u` and the
 //! points next to each quadrant boundary, against a double-double reference;
 //! `|sin² + cos² − 1|` ≤ 2.1·10⁻⁷ (f32) and 3.5·10⁻¹⁶ (f64).

@@ -14,7 +14,7 @@
 //!   `t ← t (t³ + 2x) / (2t³ + x)`. Each step turns a relative error ε into
 //!   about (2/3) ε³.
 //!
-//! Precision, measured by `tests/cbrt.rs` (`docs/guides/c_api.md` has the figures):
+//! Precision, measured by `tests/models/cbrt.rs` (`docs/guides/c_api.md` has the figures):
 //! * `f32`: two steps, carried out in `f64` arithmetic where the product form
 //!   above cannot overflow or underflow for any `f32` input (|t³| stays within
 //!   [1e-46, 4e38]). `cbrt_fast_f32` takes one step.

@@ -393,7 +393,7 @@ impl Mie<'_> {
     /// cosines). The table
     /// built from them takes the density as linear in `cos θ` between the
     /// angles; its accuracy as a function of the two sizes is measured in
-    /// `tests/mie_table.rs` and `docs/measured/mie_table.md`.
+    /// `tests/models/mie_table.rs` and `docs/measured/mie_table.md`.
     pub fn tabulate(&self, cos_theta: &mut [f64], pdf: &mut [f64]) -> Result<(), Error> {
         let count = cos_theta.len();
         if count < 2 || pdf.len() != count {

@@ -18,7 +18,7 @@
 //! spheres, whose efficiencies carry narrow resonances in `x` that the
 //! grid samples almost at random, it is an estimate, not a bound: against
 //! sums at 65536 intervals the actual error was within 2.6× of it
-//! (`docs/measured/polydisperse.md`, `tests/polydisperse.rs`). Raise `intervals`
+//! (`docs/measured/polydisperse.md`, `tests/models/polydisperse.rs`). Raise `intervals`
 //! until the estimate is small enough.
 
 use crate::error::Error;

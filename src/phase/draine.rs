@@ -634,7 +634,7 @@ const EQ6_MIN_Y: f64 = 1e-5;
 /// f32 results: `|g| ≥ 10⁻³`, `10⁻⁴ ≤ α ≤ 10⁴`, where it is within
 /// 2.2·10⁻¹² of the exact inverse (its error grows like 6·10⁻¹⁶/|g| below,
 /// and with α above: 10⁻¹⁰ at α = 10⁶). The stability sweep and the eq. 6
-/// region test in `tests/draine.rs` hold this region to the same bounds as
+/// region test in `tests/models/draine.rs` hold this region to the same bounds as
 /// everything else.
 const EQ6_MIN_G: f64 = 1e-3;
 const EQ6_MIN_ALPHA: f64 = 1e-4;
@@ -694,7 +694,7 @@ mod tests {
     }
 
     /// Eq. 6 as rearranged ([`Eq6`]) against the iterative f64 inverse
-    /// (itself within 10⁻¹³, `tests/draine.rs`) over the eq. 6 region, on a
+    /// (itself within 10⁻¹³, `tests/models/draine.rs`) over the eq. 6 region, on a
     /// grid of u and around the zero of `t5` (`t4 = r`), where eq. 6 as
     /// published cancels: within 5·10⁻¹² (bound fixed before the run, from
     /// 2·10⁻¹² measured against a 60-digit evaluation of the same formula).

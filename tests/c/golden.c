@@ -1,5 +1,5 @@
 /* Golden values through the C API: fixed inputs, every sampler, f32 and f64,
- * printed as exact bit patterns. tests/golden.rs prints the same lines
+ * printed as exact bit patterns. tests/c_abi/golden.rs prints the same lines
  * through the Rust API; both must equal tests/golden/golden.txt. */
 #include <inttypes.h>
 #include <stdint.h>

@@ -1,7 +1,7 @@
 /* The bad-input matrix: every function of include/scatterkit.h, called with
  * NULL in each pointer argument, NaN, +-inf, -0, a subnormal and +-max in each
  * float argument, out-of-range enum values, and n = 0 and n = SIZE_MAX, and
- * checked against the documented status or NaN. tests/matrix.rs fails if a
+ * checked against the documented status or NaN. tests/c_abi/matrix.rs fails if a
  * header function does not appear here. Exits with the number of failures. */
 #include <float.h>
 #include <math.h>

@@ -1,7 +1,7 @@
 /* include/scatterkit_table.h against the library: every table kind, float
  * and double, several resolutions, 2^20 + 1 evenly spaced u plus u outside
  * [0, 1], NaN and the ends, compared bit for bit with sk_table_sample_cos.
- * Compiled as C99 and as C++ by tests/table_header.rs. Exits with the
+ * Compiled as C99 and as C++ by tests/c_abi/table_header.rs. Exits with the
  * number of mismatches. */
 #include <math.h>
 #include <stdio.h>

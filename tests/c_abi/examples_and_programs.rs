@@ -3,7 +3,7 @@
 //! crate's compiler (`-std=c99 -Wall -Wextra -Werror`, and the header once as
 //! C++), links them statically, runs them and checks their output.
 
-mod common;
+use crate::common;
 
 use common::cbuild::{root, run, run_source};
 

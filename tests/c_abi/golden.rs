@@ -3,9 +3,9 @@
 //! through the Rust API (here) and once through the C API
 //! (`tests/c/golden.c`). A change to any sampler's output fails this test
 //! until the file is regenerated on purpose:
-//! `SK_BLESS=1 cargo test --release --test golden`.
+//! `SK_BLESS=1 cargo test --release --test c_abi golden::`.
 
-mod common;
+use crate::common;
 
 use common::cbuild::{build_program, root, run};
 use rand_xoshiro::rand_core::TryRng;
@@ -259,7 +259,7 @@ fn golden_values_through_rust_and_c() {
     assert!(
         rust == golden,
         "Rust output differs from tests/golden/golden.txt at line {:?}; if the change is intended, \
-         SK_BLESS=1 cargo test --release --test golden",
+         SK_BLESS=1 cargo test --release --test c_abi golden::",
         first_diff(&rust, &golden)
     );
     let exe = build_program(&root().join("tests/c/golden.c"), false);

@@ -2,7 +2,7 @@
 //! test fails if a function declared in `include/scatterkit.h` does not
 //! appear in the matrix.
 
-mod common;
+use crate::common;
 
 use common::cbuild::{build_program, root, run};
 

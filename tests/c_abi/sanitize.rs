@@ -2,7 +2,7 @@
 //! UndefinedBehaviorSanitizer (gcc, errors fatal, leaks checked), and under
 //! valgrind's memcheck (`--error-exitcode=1`, leaks are errors).
 
-mod common;
+use crate::common;
 
 use common::cbuild::{build_program, build_program_with, root};
 use std::process::Command;

@@ -5,7 +5,7 @@
 //! `[0, 1]`, NaN and the ends) for every table kind, f32 and f64, at four
 //! resolutions.
 
-mod common;
+use crate::common;
 
 use common::cbuild::{build_program_with, root, run};
 

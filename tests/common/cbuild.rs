@@ -60,9 +60,14 @@ pub fn build_program_with(src: &Path, cpp: bool, extra: &[&str], suffix: &str) -
     let lib = static_lib();
     let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c_programs");
     std::fs::create_dir_all(&out_dir).unwrap();
+    // A name of its own per build: tests of one binary run on parallel
+    // threads, and two may build the same source.
+    static BUILDS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let exe = out_dir.join(format!(
-        "{}{suffix}",
-        src.file_stem().unwrap().to_string_lossy()
+        "{}{suffix}-{}-{n}",
+        src.file_stem().unwrap().to_string_lossy(),
+        std::process::id()
     ));
     let triple = host_triple();
     let compiler = cc::Build::new()

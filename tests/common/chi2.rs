@@ -122,6 +122,19 @@ pub fn chi2_directions(
     pdf: &dyn Fn(f64) -> f64,
     w_in: [f64; 3],
     n_samples: usize,
+    sample: impl FnMut() -> [f64; 3],
+) -> Chi2 {
+    let p_mu = |lo, hi| std::f64::consts::TAU * integrate(pdf, lo, hi, 1e-10);
+    chi2_directions_by_cells(&p_mu, w_in, n_samples, sample)
+}
+
+/// As [`chi2_directions`], with the probability of each `cos θ` cell
+/// `P(lo < μ ≤ hi)` given directly (from a CDF: for densities that are
+/// infinite at an end, which quadrature cannot take).
+pub fn chi2_directions_by_cells(
+    p_mu: &dyn Fn(f64, f64) -> f64,
+    w_in: [f64; 3],
+    n_samples: usize,
     mut sample: impl FnMut() -> [f64; 3],
 ) -> Chi2 {
     let w_in = norm(w_in);
@@ -141,9 +154,9 @@ pub fn chi2_directions(
             -1.0 + 2.0 * i as f64 / N_MU as f64,
             -1.0 + 2.0 * (i + 1) as f64 / N_MU as f64,
         );
-        let p_mu = std::f64::consts::TAU * integrate(pdf, lo, hi, 1e-10);
+        let p = p_mu(lo, hi);
         for j in 0..N_PHI {
-            expected[i * N_PHI + j] = n_samples as f64 * p_mu / N_PHI as f64;
+            expected[i * N_PHI + j] = n_samples as f64 * p / N_PHI as f64;
         }
     }
     pearson(&observed, &expected)

@@ -2,7 +2,7 @@
 //! twins are checked by `tests/c/batch.c`), and reject bad input writing
 //! nothing.
 
-mod common;
+use crate::common;
 
 use rand_xoshiro::rand_core::Rng;
 use scatterkit::{Error, Phase, PhaseFunction, RayleighMethod, Real, Vec3, rayleigh};

@@ -3,7 +3,7 @@
 //! unit directions, `sample_cos` and `cdf` invert each other, and every
 //! constructor rejects exactly its documented invalid set.
 
-mod common;
+use crate::common;
 
 use common::{Xoshiro256PlusPlus, rng};
 use scatterkit::surface::{CrossingPolicy, Fraction, Surface, SurfaceModel};

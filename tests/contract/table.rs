@@ -2,7 +2,7 @@
 //! n = 32 within 10⁻⁶, the fog at 2 µm for n = 64…1024), measured-data tables
 //! against the density they were measured from, monotonicity and validation.
 
-mod common;
+use crate::common;
 
 use common::chi2::chi2_directions;
 use common::{CHI2_SAMPLES, dd, rng, uniform_grid};

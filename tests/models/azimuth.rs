@@ -3,7 +3,7 @@
 //! before measuring: f32 ≤ 2 ULP, f64 ≤ 4 ULP, and `sin² + cos²` within
 //! 4 ULP of 1 (f32) and 8 ULP (f64).
 
-mod common;
+use crate::common;
 
 use common::dd::Dd;
 use rand_xoshiro::rand_core::Rng;

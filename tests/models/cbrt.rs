@@ -2,7 +2,7 @@
 //! f32 (normals and subnormals), and 10⁷ doubles spread over every binade
 //! (subnormals included) against a double-double reference.
 
-mod common;
+use crate::common;
 
 use common::dd::Dd;
 use scatterkit::cbrt::{cbrt_f32, cbrt_f64, cbrt_fast_f32, cbrt_fast_f64};

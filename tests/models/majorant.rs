@@ -6,7 +6,7 @@
 //! ray leaves the box, and the built majorants bound the interpolated
 //! density everywhere.
 
-mod common;
+use crate::common;
 
 use common::rng;
 use scatterkit::majorant::{DEFAULT_RES, Majorants, majorant_len};

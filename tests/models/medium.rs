@@ -5,7 +5,7 @@
 //! estimator's, rays that miss, start or end inside the medium, a callback
 //! density above its majorant, the step cap, and bad input.
 
-mod common;
+use crate::common;
 
 use common::chi2::threshold;
 use common::ks::{ks_critical, ks_statistic};

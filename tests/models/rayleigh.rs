@@ -2,7 +2,7 @@
 //! wrong method rejected by the same test, the direct method's accuracy
 //! against a double-double reference, and the paper's tabulation figures.
 
-mod common;
+use crate::common;
 
 use common::chi2::{chi2_directions, gamma_q, threshold};
 use common::dd;

@@ -16,7 +16,7 @@
 //!   variants with `U` flipped, `Q` flipped, `ρ` ignored and the inverse
 //!   ratio in the azimuth CDF are rejected at the same level.
 
-mod common;
+use crate::common;
 
 use common::chi2::{pearson, threshold};
 use common::dd::Dd;

@@ -6,7 +6,7 @@
 //! escape, absorption and scattering shares (`weight / mean(r_u)` on each
 //! event). Plus bad input.
 
-mod common;
+use crate::common;
 
 use common::rng;
 use scatterkit::majorant::Majorants;

@@ -2,7 +2,7 @@
 //! equals Lambert), the crossing policies, Fresnel, Snell, the scattering
 //! fractions, and `Surface::interact`'s shares against the formulas.
 
-mod common;
+use crate::common;
 
 use common::chi2::{chi2_directions, threshold};
 use common::ks::{ks_critical, ks_statistic};

@@ -13,7 +13,7 @@
 //! Stokes reference turned by 90° without turning Q and U, Mitsuba 2's bug)
 //! give rms z ≥ 20.
 
-mod common;
+use crate::common;
 
 use scatterkit::phase::RayleighPolarized;
 use scatterkit::stokes::meridian_reference;

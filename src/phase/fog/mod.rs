@@ -407,7 +407,7 @@ impl<T: Real> Fog<T> {
     /// `ε·A·(|a| + 1)` absolute. Objects with `A(|a| + 1) > 2²⁰` (a lobe
     /// share `L` or `1 − |g|` too small, or `|g|` too close to 0) take the
     /// rescaling path; the rest are within half an f32 ULP plus `10⁻⁹` of
-    /// the lobe's exact sample at `u` (`tests/two_lobe_hg.rs`).
+    /// the lobe's exact sample at `u` (`tests/models/two_lobe_hg.rs`).
     #[inline(always)]
     fn two_hg_wide(&self, lobes: &PackedF64<6>, u: f64) -> f64 {
         // NaN compares false: lobe 0, and NaN out.

@@ -36,7 +36,7 @@
 //! `d³` as in f64. The path is monotone in `u`: each
 //! step (`u' + k`, the square of a positive number, a positive constant over
 //! it, a constant minus that, the rounding to f32) is a monotone function
-//! rounded correctly, and rounding preserves order (`tests/phase.rs` checks
+//! rounded correctly, and rounding preserves order (`tests/models/hg_and_depolarised.rs` checks
 //! every float `u` for eight g). On targets without fast doubles
 //! (Cortex-M and the like) the f32 sampler keeps to f32 and the factored
 //! forms above.
@@ -372,7 +372,7 @@ mod tests {
     /// The f32 factored forms, which targets without fast doubles take: on
     /// x86-64 the samplers do not reach them, so they are checked here
     /// against the f64 sampler (itself within 6·10⁻¹⁶ of a double-double
-    /// reference, `tests/phase.rs`). The bound is the 2.83·10⁻⁷ these forms
+    /// reference, `tests/models/hg_and_depolarised.rs`). The bound is the 2.83·10⁻⁷ these forms
     /// were measured at over the same g before the f64 path existed.
     #[test]
     fn f32_factored_forms_stay_accurate() {

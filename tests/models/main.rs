@@ -1,0 +1,28 @@
+//! Each model against references nobody here wrote: double-double and
+//! 40–60-digit evaluations, published tables, independent Monte Carlo.
+//! One file per model (or family); one test binary. The contract every
+//! phase model shares is `tests/contract/`.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod azimuth;
+mod cbrt;
+mod choose_fog;
+mod choose_measured;
+mod choose_mie;
+mod draine;
+mod fournier_forand;
+mod gegenbauer;
+mod hg_and_depolarised;
+mod majorant;
+mod medium;
+mod mie;
+mod mie_table;
+mod polydisperse;
+mod rayleigh;
+mod rayleigh_polarized;
+mod spectral;
+mod surface;
+mod two_lobe_hg;
+mod vector_mc;

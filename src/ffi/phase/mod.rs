@@ -1,0 +1,333 @@
+//! Phase functions.
+//!
+//! `sk_phase` holds a [`Phase<f32>`] (`sk_phase_f64` a `Phase<f64>`) in
+//! private storage. Every call checks the stored tag before it reads the
+//! value, so a NULL, zeroed or never-constructed phase gives NaN or an error
+//! rather than undefined behaviour.
+
+use super::{
+    CVec, SOA_BLOCK, check_soa, map_arrays, sk_status, sk_vec3, sk_vec3_f64, soa_blocks,
+    write_result,
+};
+use crate::error::Error;
+use crate::math::real::Real;
+use crate::phase::{Phase, PhaseFunction, PhaseVisitor, check_uniforms};
+
+/// A phase function (float). A plain value with no pointers inside: build it
+/// with an `sk_phase_*` constructor, then copy it and share it freely across
+/// threads. Its contents are private, and some of its bytes are padding a
+/// constructor need not define: compare phases with sk_phase_get_params,
+/// not memcmp.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct sk_phase {
+    /// Private storage; do not read or write.
+    pub opaque: [u32; 32],
+}
+
+/// A phase function (double); see `sk_phase`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct sk_phase_f64 {
+    /// Private storage; do not read or write.
+    pub opaque: [u64; 32],
+}
+
+/// Storage of a [`Phase<T>`] behind a C type.
+pub(crate) trait PhaseStore: Copy {
+    /// The float type of the phase stored.
+    type T: Real;
+    /// The C type `sk_phase_get_params` writes for it.
+    type Params;
+    const ZEROED: Self;
+    fn params(model: u32, count: u32, params: [Self::T; 4]) -> Self::Params;
+}
+macro_rules! impl_phase_store {
+    ($c:ident, $t:ty, $params:ident) => {
+        impl PhaseStore for $c {
+            type T = $t;
+            type Params = $params;
+            const ZEROED: Self = $c { opaque: [0; 32] };
+            fn params(model: u32, count: u32, params: [$t; 4]) -> $params {
+                $params {
+                    model,
+                    count,
+                    params,
+                }
+            }
+        }
+    };
+}
+impl_phase_store!(sk_phase, f32, sk_phase_params);
+impl_phase_store!(sk_phase_f64, f64, sk_phase_params_f64);
+
+const _: () = {
+    use core::mem::{align_of, size_of};
+    assert!(size_of::<Phase<f32>>() <= size_of::<sk_phase>());
+    assert!(align_of::<Phase<f32>>() <= align_of::<sk_phase>());
+    assert!(size_of::<Phase<f64>>() <= size_of::<sk_phase_f64>());
+    assert!(align_of::<Phase<f64>>() <= align_of::<sk_phase_f64>());
+};
+
+/// Packs a phase into zeroed storage. The enum's padding (after the tag,
+/// and past a shorter variant) need not be written: compare two phases by
+/// their parameters (sk_phase_get_params), not by their bytes.
+fn store<S: PhaseStore>(phase: Phase<S::T>) -> S {
+    let mut s = S::ZEROED;
+    // SAFETY: size and alignment checked above; S is plain bytes.
+    unsafe { (&mut s as *mut S).cast::<Phase<S::T>>().write(phase) };
+    s
+}
+
+/// The phase behind `p`, or `None` if `p` is NULL or its tag is not one
+/// `store` writes.
+#[inline(always)]
+pub(crate) unsafe fn load<'a, S: PhaseStore>(p: *const S) -> Option<&'a Phase<S::T>> {
+    if p.is_null() {
+        return None;
+    }
+    // SAFETY: p points to an S (module contract), which begins with the u32
+    // tag of the repr(C, u32) enum; the payload is floats, valid for any bits.
+    let tag = unsafe { p.cast::<u32>().read() };
+    if tag == 0 || tag > LAST_TAG {
+        return None;
+    }
+    Some(unsafe { &*p.cast::<Phase<S::T>>() })
+}
+
+/// The discriminant of `Phase`'s last variant: valid tags are
+/// `1..=LAST_TAG` (`Phase` is `#[repr(C, u32)]` with tags from 1).
+const LAST_TAG: u32 = 8;
+
+/// The tag of each variant, matched exhaustively: a new model fails to
+/// compile here until its tag is listed and `LAST_TAG` follows.
+#[cfg(test)]
+fn tag_of<T: Real>(p: &Phase<T>) -> u32 {
+    match p {
+        Phase::Isotropic(_) => 1,
+        Phase::Rayleigh(_) => 2,
+        Phase::RayleighDepolarized(_) => 3,
+        Phase::HenyeyGreenstein(_) => 4,
+        Phase::Draine(_) => 5,
+        Phase::Fog(_) => 6,
+        Phase::Gegenbauer(_) => 7,
+        Phase::FournierForand(_) => 8,
+    }
+}
+
+unsafe fn construct<S: PhaseStore>(out: *mut S, r: Result<Phase<S::T>, Error>) -> sk_status {
+    unsafe { write_result(out, r.map(store)) }
+}
+
+unsafe fn pdf<S: PhaseStore>(p: *const S, cos_theta: S::T) -> S::T {
+    unsafe { load(p) }.map_or(S::T::NAN, |ph| ph.pdf(cos_theta))
+}
+
+unsafe fn cdf<S: PhaseStore>(p: *const S, cos_theta: S::T) -> S::T {
+    unsafe { load(p) }.map_or(S::T::NAN, |ph| ph.cdf(cos_theta))
+}
+
+unsafe fn mean_cosine<S: PhaseStore>(p: *const S) -> S::T {
+    unsafe { load(p) }.map_or(S::T::NAN, |ph| ph.mean_cosine())
+}
+
+// The scalar entry points check the pointer and the tag, then jump to one
+// function per model (`#[inline(never)]`): the entry stays a check and a
+// jump, and each model's code saves only the registers it needs, instead of
+// every call paying the prologue of the largest model.
+
+#[inline(never)]
+fn cos_of<T: Real, M: PhaseFunction<T>>(m: &M, u: T) -> T {
+    m.sample_cos(u)
+}
+
+/// [`cos_of`] on the model inside a `Phase`.
+struct CosOf<T>(T);
+
+impl<T: Real> PhaseVisitor<T> for CosOf<T> {
+    type Output = T;
+    #[inline(always)]
+    fn visit<M: PhaseFunction<T>>(self, m: &M) -> T {
+        cos_of(m, self.0)
+    }
+}
+
+unsafe fn sample_cos<S: PhaseStore>(p: *const S, u: S::T) -> S::T {
+    match unsafe { load(p) } {
+        Some(ph) => ph.visit(CosOf(u)),
+        None => S::T::NAN,
+    }
+}
+
+/// One model's direction; writes the density through a non-NULL `pdf_out`.
+/// With the C calling convention of the entry points (the vector in
+/// registers both ways), so that the entry ends in a jump here: with Rust's,
+/// it called this, the vector went through the stack both ways, and the
+/// result's three 4-byte stores were read back as one 8-byte load, which
+/// store forwarding cannot serve.
+#[inline(never)]
+unsafe extern "C" fn dir_of<T: Real, M: PhaseFunction<T>, V: CVec<T = T>>(
+    m: &M,
+    w_in: V,
+    u1: T,
+    u2: T,
+    pdf_out: *mut T,
+) -> V {
+    let (dir, pdf) = m.sample_dir(w_in.to_vec(), u1, u2);
+    // SAFETY: a non-NULL pdf_out is writable (module contract).
+    if let Some(out) = unsafe { pdf_out.as_mut() } {
+        *out = pdf;
+    }
+    V::from_vec(dir)
+}
+
+/// [`dir_of`] on the model inside a `Phase`, with a `pdf_out` the caller
+/// vouches for (NULL or writable).
+struct DirOf<T, V> {
+    w_in: V,
+    u1: T,
+    u2: T,
+    pdf_out: *mut T,
+}
+
+impl<T: Real, V: CVec<T = T>> PhaseVisitor<T> for DirOf<T, V> {
+    type Output = V;
+    #[inline(always)]
+    fn visit<M: PhaseFunction<T>>(self, m: &M) -> V {
+        // SAFETY: pdf_out is NULL or writable (the entry points' contract).
+        unsafe { dir_of(m, self.w_in, self.u1, self.u2, self.pdf_out) }
+    }
+}
+
+unsafe fn sample_dir<S: PhaseStore, V: CVec<T = S::T>>(
+    p: *const S,
+    w_in: V,
+    u1: S::T,
+    u2: S::T,
+    pdf_out: *mut S::T,
+) -> V {
+    match unsafe { load(p) } {
+        Some(ph) => ph.visit(DirOf {
+            w_in,
+            u1,
+            u2,
+            pdf_out,
+        }),
+        None => {
+            let nan = S::T::NAN;
+            // SAFETY: as in dir_of.
+            if let Some(out) = unsafe { pdf_out.as_mut() } {
+                *out = nan;
+            }
+            V::from_vec(crate::Vec3::new(nan, nan, nan))
+        }
+    }
+}
+
+/// The phase behind `p` for a batch call: `SK_ERR_NULL` for NULL,
+/// `SK_ERR_DOMAIN` for one never constructed.
+unsafe fn load_batch<'a, S: PhaseStore>(p: *const S) -> Result<&'a Phase<S::T>, sk_status> {
+    if p.is_null() {
+        return Err(sk_status::SK_ERR_NULL);
+    }
+    unsafe { load(p) }.ok_or(sk_status::SK_ERR_DOMAIN)
+}
+
+unsafe fn sample_cos_n<S: PhaseStore>(
+    p: *const S,
+    u: *const S::T,
+    cos_out: *mut S::T,
+    n: usize,
+) -> sk_status {
+    let ph = match unsafe { load_batch(p) } {
+        Ok(ph) => ph,
+        Err(e) => return e,
+    };
+    unsafe {
+        map_arrays(u, cos_out, n, check_uniforms, |u, out| {
+            ph.sample_cos_each_in_range(u, out);
+            Ok(())
+        })
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+unsafe fn sample_dir_n<S: PhaseStore>(
+    p: *const S,
+    w: [*const S::T; 3],
+    u1: *const S::T,
+    u2: *const S::T,
+    out: [*mut S::T; 3],
+    pdf_out: *mut S::T,
+    n: usize,
+) -> sk_status {
+    let ph = match unsafe { load_batch(p) } {
+        Ok(ph) => ph,
+        Err(e) => return e,
+    };
+    let [ox, oy, oz] = out;
+    let inputs = [w[0], w[1], w[2], u1, u2];
+    let outputs = [(ox, false), (oy, false), (oz, false), (pdf_out, true)];
+    if let Err(e) = check_soa(&inputs, &outputs, n) {
+        return e;
+    }
+    if n == 0 {
+        return sk_status::SK_OK;
+    }
+    // SAFETY: checked above: u1 and u2 hold n elements.
+    let (u1_s, u2_s) = unsafe {
+        (
+            core::slice::from_raw_parts(u1, n),
+            core::slice::from_raw_parts(u2, n),
+        )
+    };
+    if let Err(e) = check_uniforms(u1_s).and_then(|()| check_uniforms(u2_s)) {
+        return e.into();
+    }
+    let run = |i: &[[S::T; SOA_BLOCK]; 5], o: &mut [[S::T; SOA_BLOCK]; 4], len: usize| {
+        let [ix, iy, iz, a, b] = i.each_ref().map(|x| x.get(..len).unwrap_or(&[]));
+        let [ox, oy, oz, pdf] = o.each_mut().map(|x| x.get_mut(..len).unwrap_or(&mut []));
+        ph.sample_dir_each([ix, iy, iz], a, b, [ox, oy, oz], pdf);
+    };
+    unsafe { soa_blocks(inputs, [ox, oy, oz, pdf_out], n, run) };
+    sk_status::SK_OK
+}
+
+#[cfg(test)]
+mod tag_tests {
+    use super::*;
+
+    /// Every model's stored tag is the one `tag_of` lists, in `1..=LAST_TAG`,
+    /// and the last variant's is `LAST_TAG`.
+    #[test]
+    fn tags_match_the_repr() {
+        let models: [Phase<f32>; 8] = [
+            Phase::isotropic(),
+            Phase::rayleigh(),
+            Phase::rayleigh_depolarized(0.03).unwrap(),
+            Phase::henyey_greenstein(0.7).unwrap(),
+            Phase::draine(0.5, 1.0).unwrap(),
+            Phase::fog_diameter(2.0).unwrap(),
+            Phase::gegenbauer(0.5, 0.7).unwrap(),
+            Phase::fournier_forand_backscatter(0.0183, 1.1).unwrap(),
+        ];
+        for m in &models {
+            // SAFETY: Phase is repr(C, u32): it begins with its u32 tag.
+            let stored = unsafe { (m as *const Phase<f32>).cast::<u32>().read() };
+            assert_eq!(stored, tag_of(m));
+            assert!((1..=LAST_TAG).contains(&stored));
+        }
+        assert_eq!(tag_of(&models[7]), LAST_TAG);
+    }
+}
+
+// The entry points, in the order of the header (cbindgen reads them in
+// this order).
+mod new;
+pub use new::*;
+mod choose;
+pub use choose::*;
+mod sample;
+pub use sample::*;
+mod params;
+pub use params::*;

@@ -15,13 +15,13 @@
 //!
 //! Why wider builds: the loops here are bound by the f64 divider or by loads,
 //! and wider vectors do more per instruction (AMD EPYC, Zen 4: 1.25 ns per
-//! `divpd` of 2 or 4 lanes; the uniforms' check takes the 256-bit integer
-//! maximum of AVX2). All builds run the same IEEE operations in the same
+//! `divpd` of 2 or 4 lanes; the uniforms' check's integer operations are
+//! 256 bits wide from AVX2 on). All builds run the same IEEE operations in the same
 //! order: Rust never contracts a multiply and an add into a fused
 //! multiply–add (which would round differently) unless the code asks for
 //! one, and the code here does not, so the builds return the same bits,
-//! which the tests beside each use (`phase::hg_batch`, `phase`) check for
-//! every build this processor runs.
+//! which the tests beside each use (`phase::hg::batch`, `phase::function`)
+//! check for every build this processor runs.
 //!
 //! Not under cargo-fuzz (its sanitizer runtime is not set up when resolvers
 //! run) and not for Rust callers without the `ffi` feature (two versions of
@@ -32,8 +32,8 @@
 /// Defines `$sym`, an indirect function with the C signature given, whose
 /// builds all run `$body` (module docs), exported to the linker as
 /// `sk__$sym` (hidden: not part of the shared library's interface, but a
-/// name of the library's own in a static archive); `$body` sees the arguments and the
-/// invoking module's items. The builds are `$sym::BUILDS` (with their
+/// name of the library's own in a static archive); `$body` sees the
+/// arguments and the invoking module's items. The builds are `$sym::BUILDS` (with their
 /// [`Level`]), for tests.
 macro_rules! load_time_choice {
     ($(#[$doc:meta])* $sym:ident: fn($($arg:ident: $ty:ty),* $(,)?) $(-> $ret:ty)? $body:block) => {

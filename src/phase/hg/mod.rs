@@ -180,7 +180,7 @@ impl<T: Real> HenyeyGreenstein<T> {
         Some((u1, t, q))
     }
 
-    /// The f64 path's constants for [`super::hg_batch`], if the f32 sampler
+    /// The f64 path's constants for [`batch`], if the f32 sampler
     /// takes that path (`None` for f64, without fast doubles, and for
     /// `|g| < 2⁻¹⁰`).
     #[inline(always)]
@@ -322,7 +322,7 @@ impl<T: Real> PhaseFunction<T> for HenyeyGreenstein<T> {
         self.sample_cos_in_range(u.clamp01())
     }
     /// On the f64 path, one loop over the slice that the compiler
-    /// vectorises (the `hg_batch` module), with the same bits as
+    /// vectorises (the `batch` module), with the same bits as
     /// [`sample_cos_in_range`](Self::sample_cos_in_range) per element.
     #[inline]
     fn sample_cos_each_in_range(&self, u: &[T], cos_out: &mut [T]) {

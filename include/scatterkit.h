@@ -1350,6 +1350,36 @@ typedef struct {
     uint32_t kind;
 } sk_table_f64;
 
+/*
+ Majorants and minorants over the same cells of one box: the control
+ extinction of residual ratio tracking is each cell's minorant. Build it
+ with sk_extrema_build (from a grid) or sk_extrema_new (your own).
+ */
+typedef struct {
+    /*
+     The majorants (sigma_maj per length unit).
+     */
+    sk_majorants max;
+    /*
+     The minorants (per length unit, at most the majorants).
+     */
+    sk_majorants min;
+} sk_extrema;
+
+/*
+ Majorants and minorants (double); see `sk_extrema`.
+ */
+typedef struct {
+    /*
+     The majorants.
+     */
+    sk_majorants_f64 max;
+    /*
+     The minorants.
+     */
+    sk_majorants_f64 min;
+} sk_extrema_f64;
+
 #ifdef __cplusplus
 extern "C" {
 #endif /* __cplusplus */
@@ -2884,6 +2914,112 @@ sk_vec3_f64 sk_table_sample_dir_f64(const sk_table_f64 *t,
                                     double u1,
                                     double u2,
                                     double *pdf_out);
+
+/*
+ Fills max_out[0 .. mx*my*mz] with the majorants of grid g (as
+ sk_majorants_build) and min_out with its minorants: each cell gets
+ (sigma_a + sigma_s) times the smallest grid value whose interpolation
+ reaches into it, so the minorants bound the density from below
+ everywhere. Writes *ext_out borrowing both arrays. SK_ERR_NULL for NULL
+ pointers; SK_ERR_SIZE for a zero dimension, out_len <
+ sk_majorant_len(mx, my, mz) or a malformed grid; SK_ERR_DOMAIN if the
+ two arrays overlap.
+ */
+sk_status sk_extrema_build(const sk_grid *g,
+                           uint32_t mx,
+                           uint32_t my,
+                           uint32_t mz,
+                           float *max_out,
+                           float *min_out,
+                           size_t out_len,
+                           sk_extrema *ext_out);
+
+/*
+ Double twin of `sk_extrema_build`.
+ */
+sk_status sk_extrema_build_f64(const sk_grid_f64 *g,
+                               uint32_t mx,
+                               uint32_t my,
+                               uint32_t mz,
+                               double *max_out,
+                               double *min_out,
+                               size_t out_len,
+                               sk_extrema_f64 *ext_out);
+
+/*
+ Pairs your own majorants and minorants (each built or checked by
+ sk_majorants_new) into *ext_out. SK_ERR_NULL for NULL pointers;
+ SK_ERR_SIZE for malformed ones; SK_ERR_DOMAIN unless both have the same
+ cells and box and every minorant is at most its cell's majorant.
+ */
+sk_status sk_extrema_new(const sk_majorants *max, const sk_majorants *min, sk_extrema *ext_out);
+
+/*
+ Double twin of `sk_extrema_new`.
+ */
+sk_status sk_extrema_new_f64(const sk_majorants_f64 *max,
+                             const sk_majorants_f64 *min,
+                             sk_extrema_f64 *ext_out);
+
+/*
+ Residual ratio tracking (Novak et al. 2014) through grid g with the
+ extrema e (arguments and errors as sk_ratio_track_majorants): the
+ transmittance exp(-integral of the minorants) along the ray, exact, times
+ ratio tracking of the residual at the rate majorant - minorant. An
+ unbiased estimate over [0, t_max]; exact where the density is constant
+ in each cell. SK_ERR_DOMAIN also for a cell whose minorant exceeds its
+ majorant.
+ */
+sk_status sk_residual_ratio_track(const sk_extrema *e,
+                                  const sk_grid *g,
+                                  sk_vec3 o,
+                                  sk_vec3 d,
+                                  float t_max,
+                                  uint32_t budget,
+                                  sk_rng *rng,
+                                  sk_ratio_result *out);
+
+/*
+ Double twin of `sk_residual_ratio_track`.
+ */
+sk_status sk_residual_ratio_track_f64(const sk_extrema_f64 *e,
+                                      const sk_grid_f64 *g,
+                                      sk_vec3_f64 o,
+                                      sk_vec3_f64 d,
+                                      double t_max,
+                                      uint32_t budget,
+                                      sk_rng *rng,
+                                      sk_ratio_result_f64 *out);
+
+/*
+ Residual ratio tracking through the caller's medium f(ctx, p) = (sigma_a,
+ sigma_s) with the extrema e, over [t_min, t_max] (arguments and errors
+ as sk_ratio_track_majorants_fn).
+ */
+sk_status sk_residual_ratio_track_fn(sk_medium_fn f,
+                                     void *ctx,
+                                     const sk_extrema *e,
+                                     sk_vec3 o,
+                                     sk_vec3 d,
+                                     float t_min,
+                                     float t_max,
+                                     uint32_t budget,
+                                     sk_rng *rng,
+                                     sk_ratio_result *out);
+
+/*
+ Double twin of `sk_residual_ratio_track_fn`.
+ */
+sk_status sk_residual_ratio_track_fn_f64(sk_medium_fn_f64 f,
+                                         void *ctx,
+                                         const sk_extrema_f64 *e,
+                                         sk_vec3_f64 o,
+                                         sk_vec3_f64 d,
+                                         double t_min,
+                                         double t_max,
+                                         uint32_t budget,
+                                         sk_rng *rng,
+                                         sk_ratio_result_f64 *out);
 
 #ifdef __cplusplus
 } /* extern "C" */

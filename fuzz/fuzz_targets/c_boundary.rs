@@ -275,6 +275,42 @@ fuzz_target!(|data: &[u8]| {
                     let t = tk.assume_init();
                     assert!(t.t >= 0.0 && t.event <= 2 && t.steps <= budget, "{t:?}");
                 }
+                // Residual ratio tracking with the grid's extrema at the
+                // same resolution: a transmittance (a weight may pass 1 by
+                // the minorants' rounding, never by more).
+                let (mut hi8, mut lo8) = ([0.0f32; 64], [0.0f32; 64]);
+                let mut ext = core::mem::MaybeUninit::<sk_extrema>::uninit();
+                if sk_extrema_build(
+                    &g,
+                    mx,
+                    my,
+                    mz,
+                    hi8.as_mut_ptr(),
+                    lo8.as_mut_ptr(),
+                    64,
+                    ext.as_mut_ptr(),
+                ) == sk_status::SK_OK
+                {
+                    let ext = ext.assume_init();
+                    let mut out = core::mem::MaybeUninit::<sk_ratio_result>::uninit();
+                    if sk_residual_ratio_track(
+                        &ext,
+                        &g,
+                        o,
+                        d,
+                        x(32),
+                        budget,
+                        &mut rng,
+                        out.as_mut_ptr(),
+                    ) == sk_status::SK_OK
+                    {
+                        let r = out.assume_init();
+                        assert!(
+                            (0.0..=1.0 + 1e-5).contains(&r.tr) && r.steps <= budget,
+                            "{r:?}"
+                        );
+                    }
+                }
             }
         }
     }

@@ -217,7 +217,11 @@ pub(crate) unsafe fn load_maj<'a, S: MajStore>(
 }
 
 /// Writes `Ok` values through `out` (checked non-NULL by the caller).
-unsafe fn write<V, X>(out: *mut V, r: Result<X, Error>, f: impl Fn(X) -> V) -> sk_status {
+pub(super) unsafe fn write<V, X>(
+    out: *mut V,
+    r: Result<X, Error>,
+    f: impl Fn(X) -> V,
+) -> sk_status {
     match r {
         // SAFETY: the callers checked `out` for NULL.
         Ok(x) => unsafe {

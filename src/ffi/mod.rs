@@ -39,6 +39,8 @@ mod rayleigh;
 mod spectral;
 mod surface;
 mod table;
+// Declared last: its entry points follow the others in the header.
+mod residual;
 
 pub use cbrt::*;
 pub use geometry::*;
@@ -49,6 +51,7 @@ pub use phase::*;
 pub use polarization::*;
 pub use polydisperse::*;
 pub use rayleigh::*;
+pub use residual::*;
 pub use spectral::*;
 pub use surface::*;
 pub use table::*;

@@ -115,15 +115,47 @@ impl<'a, T: Real> Majorants<'a, T> {
         Self::build_scaled(grid, m, out, T::ONE)
     }
 
+    /// Fills `out` with the minorants of `grid` on an `m` division of its
+    /// box and borrows them: each cell gets `(σ_a + σ_s)` times the
+    /// smallest grid value whose interpolation reaches into the cell (the
+    /// same reach as [`build`](Self::build)), less a few ULP. A trilinear
+    /// interpolation is a convex combination of the values it reaches, so
+    /// it never falls below them: the minorants bound `σ_t` from below
+    /// everywhere in the cell, as residual ratio tracking's control
+    /// ([`Extrema`](super::residual::Extrema)) needs. Errors as
+    /// [`Majorants::new`].
+    pub fn build_minorants(
+        grid: &Grid<'_, T>,
+        m: [usize; 3],
+        out: &'a mut [T],
+    ) -> Result<Self, Error> {
+        let (sa, ss) = grid.coefficients();
+        let scale = (sa + ss) * (T::ONE - T::from_f64(4.0) * T::EPSILON);
+        Self::build_with(grid, m, out, scale, T::INFINITY, T::min_of)
+    }
+
     fn build_scaled(
         grid: &Grid<'_, T>,
         m: [usize; 3],
         out: &'a mut [T],
         coefficient: T,
     ) -> Result<Self, Error> {
+        let scale = coefficient * (T::ONE + T::from_f64(4.0) * T::EPSILON);
+        Self::build_with(grid, m, out, scale, T::ZERO, T::max_of)
+    }
+
+    /// Each cell of `out` gets `scale` times `pick` folded, from `first`,
+    /// over the grid values whose interpolation reaches into the cell.
+    fn build_with(
+        grid: &Grid<'_, T>,
+        m: [usize; 3],
+        out: &'a mut [T],
+        scale: T,
+        first: T,
+        pick: fn(T, T) -> T,
+    ) -> Result<Self, Error> {
         let count = majorant_len(m).ok_or(Error::Size)?;
         let cells = out.get_mut(..count).ok_or(Error::Size)?;
-        let scale = coefficient * (T::ONE + T::from_f64(4.0) * T::EPSILON);
         let [nx, ny, nz] = grid.dims();
         let mut cells = cells.iter_mut();
         for c in 0..m[2] {
@@ -132,16 +164,16 @@ impl<'a, T: Real> Majorants<'a, T> {
                 let (j0, j1) = reach(grid, b, m[1], ny);
                 for a in 0..m[0] {
                     let (i0, i1) = reach(grid, a, m[0], nx);
-                    let mut max = T::ZERO;
+                    let mut folded = first;
                     for k in k0..=k1 {
                         for j in j0..=j1 {
                             for i in i0..=i1 {
-                                max = max.max_of(grid.value(i, j, k));
+                                folded = pick(folded, grid.value(i, j, k));
                             }
                         }
                     }
                     if let Some(cell) = cells.next() {
-                        *cell = scale * max;
+                        *cell = scale * folded;
                     }
                 }
             }
@@ -158,6 +190,11 @@ impl<'a, T: Real> Majorants<'a, T> {
     /// The world box `(lo, hi)`.
     pub fn bounds(&self) -> (Vec3<T>, Vec3<T>) {
         (self.lo, self.hi)
+    }
+
+    /// The value of cell `c` (0 outside the grid).
+    pub(crate) fn at(&self, c: [usize; 3]) -> T {
+        self.get(c[0], c[1], c[2])
     }
 
     /// The majorant of cell `(i, j, k)` (0 outside the grid).
@@ -304,6 +341,21 @@ impl<'a, T: Real> Majorants<'a, T> {
         rate: T,
         budget: u32,
         rng: &mut R,
+        visit: impl FnMut(Tentative<T>, &mut R) -> Result<Option<X>, Error>,
+    ) -> Result<Walk<T, X>, Error> {
+        self.walk_cells(ray, rate, |c| self.at(c), budget, rng, visit)
+    }
+
+    /// [`walk_at_rate`](Self::walk_at_rate) over this grid's cells and box
+    /// with the cell values `value(cell)` in place of this grid's own (a
+    /// residual `σ_maj − σ_c`, say).
+    pub(crate) fn walk_cells<R: Rng + ?Sized, X>(
+        &self,
+        ray: Ray<T>,
+        rate: T,
+        value_of: impl Fn([usize; 3]) -> T,
+        budget: u32,
+        rng: &mut R,
         mut visit: impl FnMut(Tentative<T>, &mut R) -> Result<Option<X>, Error>,
     ) -> Result<Walk<T, X>, Error> {
         let (o, d) = ray.checked()?;
@@ -333,7 +385,7 @@ impl<'a, T: Real> Majorants<'a, T> {
         let mut since = T::ZERO;
         for _ in 0..=(self.m[0] + self.m[1] + self.m[2]) {
             let t_end = dda.next_face().min_of(tb).max_of(t_cell);
-            let value = self.get(dda.cell[0], dda.cell[1], dda.cell[2]);
+            let value = value_of(dda.cell);
             let sigma_maj = rate * value;
             let mut t = t_cell;
             // An empty cell (majorant 0) is crossed without a draw.
@@ -350,6 +402,7 @@ impl<'a, T: Real> Majorants<'a, T> {
                 t = next;
                 let c = Tentative {
                     p: o + d * t,
+                    cell: dda.cell,
                     value,
                     since,
                 };
@@ -375,6 +428,8 @@ impl<'a, T: Real> Majorants<'a, T> {
 pub(crate) struct Tentative<T> {
     /// Where.
     pub(crate) p: Vec3<T>,
+    /// The cell it lies in.
+    pub(crate) cell: [usize; 3],
     /// The value of the cell it lies in.
     pub(crate) value: T,
     /// `∫ value dt` along the ray since the previous tentative collision.
@@ -488,7 +543,7 @@ fn reach<T: Real>(grid: &Grid<'_, T>, c: usize, m: usize, n: usize) -> (usize, u
 
 /// `(σ_a, σ_s)` of the grid at `p`.
 #[inline(always)]
-fn grid_coefficients<T: Real>(grid: &Grid<'_, T>, p: Vec3<T>) -> (T, T) {
+pub(super) fn grid_coefficients<T: Real>(grid: &Grid<'_, T>, p: Vec3<T>) -> (T, T) {
     let (sa, ss) = grid.coefficients();
     let rho = grid.density(p);
     (sa * rho, ss * rho)
@@ -496,7 +551,7 @@ fn grid_coefficients<T: Real>(grid: &Grid<'_, T>, p: Vec3<T>) -> (T, T) {
 
 /// The coefficients if both are `≥ 0` with a sum within `sigma_maj`.
 #[inline(always)]
-fn within<T: Real>((sa, ss): (T, T), sigma_maj: T) -> Result<(T, T), Error> {
+pub(super) fn within<T: Real>((sa, ss): (T, T), sigma_maj: T) -> Result<(T, T), Error> {
     if sa >= T::ZERO && ss >= T::ZERO && sa + ss <= sigma_maj {
         Ok((sa, ss))
     } else {

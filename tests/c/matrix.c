@@ -792,6 +792,77 @@ static void majorants(void) {
     CHECK(sk_delta_track_majorants(&big, &g, o, d, 1e6f, 0, &rng, &tr) == SK_ERR_BUDGET);
     CHECK(sk_ratio_track_majorants_fn_f64(coeff64, NULL, &bigd, od, dd, 0, 1e6, 0, &rng, &rrd) == SK_ERR_BUDGET);
     {
+        /* Extrema (majorants with minorants) and residual ratio tracking:
+         * the grid is constant (sigma_t 1), so its minorants sit just below
+         * its majorants, and swapping them inverts every cell. */
+        float hi8[8], lo8[8];
+        double hi8d[8], lo8d[8];
+        const float zeros8[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+        const double zeros8d[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+        sk_majorants z;
+        sk_majorants_f64 zd;
+        sk_extrema e, e2, eb;
+        sk_extrema_f64 ed, ebd;
+        CHECK(sk_extrema_build(&g, 2, 2, 2, hi8, lo8, 8, &e) == SK_OK && lo8[0] <= hi8[0] && lo8[0] > 0.99f);
+        CHECK(sk_extrema_build_f64(&gd, 2, 2, 2, hi8d, lo8d, 8, &ed) == SK_OK);
+        CHECK(sk_extrema_build(NULL, 2, 2, 2, hi8, lo8, 8, &e2) == SK_ERR_NULL);
+        CHECK(sk_extrema_build(&g, 2, 2, 2, NULL, lo8, 8, &e2) == SK_ERR_NULL);
+        CHECK(sk_extrema_build_f64(&gd, 2, 2, 2, hi8d, NULL, 8, &ed) == SK_ERR_NULL);
+        CHECK(sk_extrema_build_f64(&gd, 2, 2, 2, hi8d, lo8d, 8, NULL) == SK_ERR_NULL);
+        CHECK(sk_extrema_build(&g, 2, 2, 2, hi8, lo8, 7, &e2) == SK_ERR_SIZE);
+        CHECK(sk_extrema_build(&g, 0, 2, 2, hi8, lo8, 8, &e2) == SK_ERR_SIZE);
+        CHECK(sk_extrema_build(&g, 2, 2, 2, hi8, hi8 + 1, 8, &e2) == SK_ERR_DOMAIN);
+        CHECK(sk_extrema_new(&e.max, &e.min, &e2) == SK_OK);
+        CHECK(sk_extrema_new(&e.min, &e.max, &e2) == SK_ERR_DOMAIN);
+        CHECK(sk_extrema_new(&m, &big, &e2) == SK_ERR_DOMAIN);
+        CHECK(sk_extrema_new(NULL, &e.min, &e2) == SK_ERR_NULL && sk_extrema_new(&e.max, &e.min, NULL) == SK_ERR_NULL);
+        CHECK(sk_extrema_new_f64(&ed.max, &ed.min, &ebd) == SK_OK && sk_extrema_new_f64(&ed.min, &ed.max, &ebd) == SK_ERR_DOMAIN);
+        CHECK(sk_extrema_new_f64(NULL, &ed.min, &ebd) == SK_ERR_NULL);
+        CHECK(sk_majorants_new(zeros8, 2, 2, 2, zero, one, &z) == SK_OK && sk_extrema_new(&big, &z, &eb) == SK_OK);
+        CHECK(sk_majorants_new_f64(zeros8d, 2, 2, 2, zerod, oned, &zd) == SK_OK && sk_extrema_new_f64(&bigd, &zd, &ebd) == SK_OK);
+        /* Tracking: the constant grid is exact (no draw); bad rays, NULLs. */
+        rr.tr = 7.0f;
+        CHECK(sk_residual_ratio_track(&e, &g, o, d, 3, 0, &rng, &rr) == SK_OK && rr.steps == 0 &&
+              fabsf(rr.tr - expf(-1.0f)) < 1e-6f);
+        CHECK(sk_residual_ratio_track_f64(&ed, &gd, od, dd, 3, 0, &rng, &rrd) == SK_OK && fabs(rrd.tr - exp(-1.0)) < 1e-14);
+        rr.tr = 7.0f;
+        CHECK(sk_residual_ratio_track(&e, &g, o, zero, 3, 10, &rng, &rr) == SK_ERR_DOMAIN && rr.tr == 7.0f);
+        CHECK(sk_residual_ratio_track(&e, &g, o, d, -1, 10, &rng, &rr) == SK_ERR_DOMAIN);
+        CHECK(sk_residual_ratio_track_f64(&ed, &gd, od, dd, NAN, 10, &rng, &rrd) == SK_ERR_DOMAIN);
+        CHECK(sk_residual_ratio_track(NULL, &g, o, d, 3, 10, &rng, &rr) == SK_ERR_NULL);
+        CHECK(sk_residual_ratio_track(&e, NULL, o, d, 3, 10, &rng, &rr) == SK_ERR_NULL);
+        CHECK(sk_residual_ratio_track(&e, &g, o, d, 3, 10, &no_fn, &rr) == SK_ERR_NULL);
+        CHECK(sk_residual_ratio_track_f64(&ed, &gd, od, dd, 3, 10, &rng, NULL) == SK_ERR_NULL);
+        /* Malformed, inverted (bypassing sk_extrema_new), another box. */
+        e2 = e;
+        e2.min.mx = 0;
+        CHECK(sk_residual_ratio_track(&e2, &g, o, d, 3, 10, &rng, &rr) == SK_ERR_SIZE);
+        e2.max = e.min;
+        e2.min = e.max;
+        CHECK(sk_residual_ratio_track(&e2, &g, o, d, 3, 10, &rng, &rr) == SK_ERR_DOMAIN);
+        e2 = e;
+        e2.min.hi.x = 2;
+        CHECK(sk_residual_ratio_track(&e2, &g, o, d, 3, 10, &rng, &rr) == SK_ERR_DOMAIN);
+        g2 = g;
+        sk_grid_set_box(&g2, zero, (sk_vec3){2, 1, 1});
+        CHECK(sk_residual_ratio_track(&e, &g2, o, d, 3, 10, &rng, &rr) == SK_ERR_DOMAIN);
+        /* The caller's medium against a majorant of 50 and a zero control:
+         * draws are certain, so the coefficient check runs. */
+        for (i = 0; i < NS; i++) {
+            ctxf = FS[i];
+            CHECK(sk_residual_ratio_track_fn(coeff32, &ctxf, &eb, o, d, 0, 3, 1000, &rng, &rr) ==
+                  (FS[i] >= 0.0f && FS[i] <= 49.0f ? SK_OK : SK_ERR_DOMAIN));
+            ctxd = DS[i];
+            CHECK(sk_residual_ratio_track_fn_f64(coeff64, &ctxd, &ebd, od, dd, 0, 3, 1000, &rng, &rrd) ==
+                  (DS[i] >= 0.0 && DS[i] <= 49.0 ? SK_OK : SK_ERR_DOMAIN));
+        }
+        i = 0;
+        CHECK(sk_residual_ratio_track_fn(NULL, NULL, &eb, o, d, 0, 3, 10, &rng, &rr) == SK_ERR_NULL);
+        CHECK(sk_residual_ratio_track_fn_f64(coeff64, NULL, NULL, od, dd, 0, 3, 10, &rng, &rrd) == SK_ERR_NULL);
+        CHECK(sk_residual_ratio_track_fn(coeff32, NULL, &eb, o, d, 0, 3, 10, &no_fn, &rr) == SK_ERR_NULL);
+        CHECK(sk_residual_ratio_track_fn_f64(coeff64, NULL, &ebd, od, dd, 0, 1e6, 0, &rng, &rrd) == SK_ERR_BUDGET);
+    }
+    {
         /* Spectral tracking: density majorants (the grid's coefficients sum
          * to 1), three channels, hero 1. */
         float sa[3] = {0.1f, 0.2f, 0.0f}, ss[3] = {0.3f, 0.0f, 0.5f}, w[3], u[3], l[3];

@@ -22,6 +22,7 @@ mod mie_table;
 mod polydisperse;
 mod rayleigh;
 mod rayleigh_polarized;
+mod residual;
 mod spectral;
 mod surface;
 mod two_lobe_hg;

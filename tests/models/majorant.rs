@@ -15,7 +15,7 @@ use scatterkit::{Error, Grid, Ray, Real, Sampling, Vec3};
 
 /// A cloud-like 12×10×9 density: a dense core, a thin shell, and empty
 /// regions (a slab of zeros and a zero corner).
-fn cloud() -> Vec<f64> {
+pub(crate) fn cloud() -> Vec<f64> {
     let n = [12usize, 10, 9];
     let mut v = Vec::with_capacity(n[0] * n[1] * n[2]);
     for k in 0..n[2] {
@@ -36,7 +36,7 @@ fn cloud() -> Vec<f64> {
 
 /// `∫ σ_t` along the ray over `[0, t]` by composite Simpson (the
 /// interpolated density is piecewise cubic along a ray; 40 000 panels).
-fn optical_depth(g: &Grid<'_, f64>, o: Vec3<f64>, d: Vec3<f64>, t: f64) -> f64 {
+pub(crate) fn optical_depth(g: &Grid<'_, f64>, o: Vec3<f64>, d: Vec3<f64>, t: f64) -> f64 {
     let d = d * (1.0 / d.length());
     let (sa, ss) = g.coefficients();
     let n = 40_000;
@@ -49,7 +49,7 @@ fn optical_depth(g: &Grid<'_, f64>, o: Vec3<f64>, d: Vec3<f64>, t: f64) -> f64 {
     sum * h / 3.0
 }
 
-fn mean_se(xs: &[f64]) -> (f64, f64) {
+pub(crate) fn mean_se(xs: &[f64]) -> (f64, f64) {
     let n = xs.len() as f64;
     let m = xs.iter().sum::<f64>() / n;
     let v = xs.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0);
@@ -57,7 +57,7 @@ fn mean_se(xs: &[f64]) -> (f64, f64) {
 }
 
 /// The rays: (origin, direction, t_max).
-fn rays() -> Vec<(Vec3<f64>, Vec3<f64>, f64)> {
+pub(crate) fn rays() -> Vec<(Vec3<f64>, Vec3<f64>, f64)> {
     vec![
         // From outside, through the core.
         (Vec3::new(-0.3, 0.45, 0.5), Vec3::new(1.0, 0.05, -0.02), 2.0),

@@ -1,0 +1,192 @@
+//! Residual ratio tracking (Novák, Selle & Jarosz, "Residual Ratio
+//! Tracking for Estimating Attenuation in Participating Media", ACM TOG
+//! 33(6), 2014, §4): the transmittance `exp(−∫σ_t)` split as
+//! `exp(−∫σ_c) · exp(−∫(σ_t − σ_c))`, with the control extinction `σ_c`
+//! each cell's minorant. The first factor is exact, summed cell by cell
+//! along the ray; the second is ratio tracking at the residual majorant
+//! `σ_maj − σ_c`. Where the density varies little within a cell the
+//! residual is small: few tentative collisions, each weight near 1. In a
+//! medium that is constant in each cell (minorant = majorant = `σ_t`) no
+//! collision is drawn and the estimate is exact.
+//!
+//! An [`Extrema`] pairs a grid's majorants with its minorants over the
+//! same cells; [`Extrema::build`] fills both from a density [`Grid`] in
+//! one pass each ([`Majorants::build`], [`Majorants::build_minorants`]).
+
+use crate::error::Error;
+use crate::math::geometry::Vec3;
+use crate::math::real::Real;
+use crate::medium::majorant::{Majorants, Tentative, Transmittance, grid_coefficients};
+use crate::medium::{Grid, ROULETTE_BELOW, Ray};
+use rand_core::Rng;
+
+/// Majorants and minorants (per length unit) over the same cells of the
+/// same box: `0 ≤ minorant ≤ majorant` in every cell.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Extrema<'a, T> {
+    max: Majorants<'a, T>,
+    min: Majorants<'a, T>,
+}
+
+impl<'a, T: Real> Extrema<'a, T> {
+    /// Pairs `max` with `min`: [`Error::Domain`] unless both have the same
+    /// cells and box and every minorant is at most its cell's majorant.
+    /// Each must bound `σ_t` over its closed cell, from above and from
+    /// below; tracking reports [`Error::Domain`] where `σ_t` exceeds a
+    /// majorant. A minorant above `σ_t` keeps the estimate unbiased (its
+    /// weights exceed 1) but costs variance.
+    pub fn new(max: Majorants<'a, T>, min: Majorants<'a, T>) -> Result<Self, Error> {
+        let pair = Self::paired(max, min)?;
+        let m = max.dims();
+        for k in 0..m[2] {
+            for j in 0..m[1] {
+                for i in 0..m[0] {
+                    if min.get(i, j, k) > max.get(i, j, k) {
+                        return Err(Error::Domain);
+                    }
+                }
+            }
+        }
+        Ok(pair)
+    }
+
+    /// [`new`](Self::new) without the pass over the cells, for values a
+    /// caller stores (the C layer's `sk_extrema`): same cells and box, else
+    /// [`Error::Domain`]. Tracking still reports a cell whose minorant
+    /// exceeds its majorant as [`Error::Domain`] when a ray crosses it.
+    pub(crate) fn paired(max: Majorants<'a, T>, min: Majorants<'a, T>) -> Result<Self, Error> {
+        if max.dims() != min.dims() || max.bounds() != min.bounds() {
+            return Err(Error::Domain);
+        }
+        Ok(Extrema { max, min })
+    }
+
+    /// The majorants of `grid` into `max_out` and its minorants into
+    /// `min_out`, on an `m` division of its box, borrowed. Errors as
+    /// [`Majorants::new`].
+    pub fn build(
+        grid: &Grid<'_, T>,
+        m: [usize; 3],
+        max_out: &'a mut [T],
+        min_out: &'a mut [T],
+    ) -> Result<Self, Error> {
+        let max = Majorants::build(grid, m, max_out)?;
+        let min = Majorants::build_minorants(grid, m, min_out)?;
+        Self::new(max, min)
+    }
+
+    /// The majorants.
+    pub fn majorants(&self) -> Majorants<'a, T> {
+        self.max
+    }
+
+    /// The minorants.
+    pub fn minorants(&self) -> Majorants<'a, T> {
+        self.min
+    }
+
+    /// `∫ σ_c` along `ray` (the control's optical depth), cell by cell.
+    /// [`Error::Domain`] for a ray [`Ray`] does not accept.
+    pub fn control_depth(&self, ray: Ray<T>) -> Result<T, Error> {
+        // At rate 0 the walk draws nothing: its tail is the integral of the
+        // cell values over the whole ray, and the generator is not touched.
+        let mut none = NoDraws;
+        let walk = self
+            .min
+            .walk_at_rate(ray, T::ZERO, 0, &mut none, |_, _| Ok(None::<()>))?;
+        Ok(walk.tail)
+    }
+
+    /// Residual ratio tracking through `grid` (whose extrema these must be:
+    /// same box, else [`Error::Domain`]) along `ray`: an unbiased estimate
+    /// of the transmittance, with the Russian roulette of ratio tracking on
+    /// the residual factor. Budget and errors as
+    /// [`Majorants::ratio_track`].
+    pub fn residual_ratio_track<R: Rng + ?Sized>(
+        &self,
+        grid: &Grid<'_, T>,
+        ray: Ray<T>,
+        budget: u32,
+        rng: &mut R,
+    ) -> Result<Transmittance<T>, Error> {
+        if grid.bounds() != self.max.bounds() {
+            return Err(Error::Domain);
+        }
+        self.residual_ratio_track_fn(|p| grid_coefficients(grid, p), ray, budget, rng)
+    }
+
+    /// Residual ratio tracking through a caller's medium,
+    /// `coefficients(p) = (σ_a, σ_s)` at a world point (both `≥ 0`, their
+    /// sum within the majorant of the cell holding `p`, else
+    /// [`Error::Domain`]), along `ray`.
+    pub fn residual_ratio_track_fn<R: Rng + ?Sized>(
+        &self,
+        coefficients: impl Fn(Vec3<T>) -> (T, T),
+        ray: Ray<T>,
+        budget: u32,
+        rng: &mut R,
+    ) -> Result<Transmittance<T>, Error> {
+        let control = self.control_depth(ray)?;
+        let (floor, quarter, four) = (
+            T::from_f64(ROULETTE_BELOW),
+            T::from_f64(0.25),
+            T::from_f64(4.0),
+        );
+        let mut tr = T::ONE;
+        let visit = |c: Tentative<T>, r: &mut R| {
+            let (sa, ss) = coefficients(c.p);
+            let (sigma_c, sigma_maj) = (self.min.at(c.cell), self.max.at(c.cell));
+            if !(sa >= T::ZERO && ss >= T::ZERO && sa + ss <= sigma_maj) {
+                return Err(Error::Domain);
+            }
+            // c.value is the residual majorant σ_maj − σ_c of the cell.
+            tr *= T::ONE - (sa + ss - sigma_c) / c.value;
+            if tr < floor {
+                tr = if T::uniform(r) < quarter {
+                    tr * four
+                } else {
+                    T::ZERO
+                };
+            }
+            Ok((tr == T::ZERO).then_some(()))
+        };
+        // A cell whose minorant exceeds its majorant (values a caller
+        // stored) would be crossed without a draw: the walk notes it.
+        let inverted = core::cell::Cell::new(false);
+        let residual = |cell: [usize; 3]| {
+            let r = self.max.at(cell) - self.min.at(cell);
+            if r < T::ZERO {
+                inverted.set(true);
+            }
+            r
+        };
+        let walk = self
+            .max
+            .walk_cells(ray, T::ONE, residual, budget, rng, visit)?;
+        if inverted.get() {
+            return Err(Error::Domain);
+        }
+        let tr = if walk.found.is_some() { T::ZERO } else { tr };
+        Ok(Transmittance {
+            tr: tr * (-control).exp(),
+            steps: walk.steps,
+        })
+    }
+}
+
+/// A generator for walks that draw nothing (rate 0): never called.
+struct NoDraws;
+
+impl rand_core::TryRng for NoDraws {
+    type Error = core::convert::Infallible;
+    fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+        Ok(0)
+    }
+    fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+        Ok(0)
+    }
+    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+        dst.fill(0);
+        Ok(())
+    }
+}

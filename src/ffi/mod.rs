@@ -39,7 +39,8 @@ mod rayleigh;
 mod spectral;
 mod surface;
 mod table;
-// Declared last: its entry points follow the others in the header.
+// Declared last: their entry points follow the others in the header.
+mod ray_march;
 mod residual;
 
 pub use cbrt::*;
@@ -50,6 +51,7 @@ pub use mie::*;
 pub use phase::*;
 pub use polarization::*;
 pub use polydisperse::*;
+pub use ray_march::*;
 pub use rayleigh::*;
 pub use residual::*;
 pub use spectral::*;

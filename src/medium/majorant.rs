@@ -209,6 +209,17 @@ impl<'a, T: Real> Majorants<'a, T> {
             .unwrap_or(T::ZERO)
     }
 
+    /// `∫ σ_maj` along `ray` (the majorant optical depth), cell by cell:
+    /// [`Error::Domain`] for a ray [`Ray`] does not accept. Rounded up, a
+    /// step count for [`ray_march`](super::ray_march) that gives each
+    /// stratum about one majorant mean free path.
+    pub fn optical_depth(&self, ray: Ray<T>) -> Result<T, Error> {
+        // At rate 0 the walk draws nothing (its generator is never called)
+        // and its tail is the integral of the cell values along the ray.
+        let walk = self.walk_at_rate(ray, T::ZERO, 0, &mut NoDraws, |_, _| Ok(None::<()>))?;
+        Ok(walk.tail)
+    }
+
     /// Delta tracking through `grid` (whose majorants these must be: same
     /// box, else [`Error::Domain`]) along `ray`: at each tentative
     /// collision one uniform `ξ` decides, absorption if `ξ σ_maj < σ_a`,
@@ -556,5 +567,22 @@ pub(super) fn within<T: Real>((sa, ss): (T, T), sigma_maj: T) -> Result<(T, T), 
         Ok((sa, ss))
     } else {
         Err(Error::Domain)
+    }
+}
+
+/// A generator for walks that draw nothing (rate 0): never called.
+pub(super) struct NoDraws;
+
+impl rand_core::TryRng for NoDraws {
+    type Error = core::convert::Infallible;
+    fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+        Ok(0)
+    }
+    fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+        Ok(0)
+    }
+    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+        dst.fill(0);
+        Ok(())
     }
 }

@@ -13,6 +13,7 @@
 //! that misses the medium, returns at once: no interaction, transmittance 1.
 
 pub mod majorant;
+pub mod ray_march;
 pub mod residual;
 pub mod spectral;
 

@@ -88,13 +88,7 @@ impl<'a, T: Real> Extrema<'a, T> {
     /// `∫ σ_c` along `ray` (the control's optical depth), cell by cell.
     /// [`Error::Domain`] for a ray [`Ray`] does not accept.
     pub fn control_depth(&self, ray: Ray<T>) -> Result<T, Error> {
-        // At rate 0 the walk draws nothing: its tail is the integral of the
-        // cell values over the whole ray, and the generator is not touched.
-        let mut none = NoDraws;
-        let walk = self
-            .min
-            .walk_at_rate(ray, T::ZERO, 0, &mut none, |_, _| Ok(None::<()>))?;
-        Ok(walk.tail)
+        self.min.optical_depth(ray)
     }
 
     /// Residual ratio tracking through `grid` (whose extrema these must be:
@@ -171,22 +165,5 @@ impl<'a, T: Real> Extrema<'a, T> {
             tr: tr * (-control).exp(),
             steps: walk.steps,
         })
-    }
-}
-
-/// A generator for walks that draw nothing (rate 0): never called.
-struct NoDraws;
-
-impl rand_core::TryRng for NoDraws {
-    type Error = core::convert::Infallible;
-    fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
-        Ok(0)
-    }
-    fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
-        Ok(0)
-    }
-    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
-        dst.fill(0);
-        Ok(())
     }
 }

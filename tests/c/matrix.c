@@ -863,6 +863,47 @@ static void majorants(void) {
         CHECK(sk_residual_ratio_track_fn_f64(coeff64, NULL, &ebd, od, dd, 0, 1e6, 0, &rng, &rrd) == SK_ERR_BUDGET);
     }
     {
+        /* The majorant optical depth and the unbiased ray marcher: the grid
+         * is constant (sigma_t 1) and the ray crosses 1 unit of it, so the
+         * march is exact. */
+        sk_grid g3;
+        float depth = sk_majorants_optical_depth(&m, o, d, 0, 3);
+        CHECK(fabsf(depth - 1.0f) < 1e-5f);
+        CHECK(fabs(sk_majorants_optical_depth_f64(&md, od, dd, 0, 3) - 1.0) < 1e-12);
+        CHECK(isnan(sk_majorants_optical_depth(NULL, o, d, 0, 3)) && isnan(sk_majorants_optical_depth(&m, o, zero, 0, 3)));
+        CHECK(isnan(sk_majorants_optical_depth_f64(&md, od, dd, 3, 1)) && isnan(sk_majorants_optical_depth_f64(&md, od, dd, NAN, 1)));
+        rr.tr = 7.0f;
+        CHECK(sk_ray_march_transmittance(&g, o, d, 3, 4, 1000, &rng, &rr) == SK_OK && fabsf(rr.tr - expf(-1.0f)) < 1e-6f);
+        CHECK(sk_ray_march_transmittance_f64(&gd, od, dd, 3, 4, 1000, &rng, &rrd) == SK_OK && fabs(rrd.tr - exp(-1.0)) < 1e-14);
+        rr.tr = 7.0f;
+        CHECK(sk_ray_march_transmittance(&g, o, d, 3, 0, 1000, &rng, &rr) == SK_ERR_DOMAIN && rr.tr == 7.0f);
+        CHECK(sk_ray_march_transmittance(&g, o, zero, 3, 4, 1000, &rng, &rr) == SK_ERR_DOMAIN);
+        CHECK(sk_ray_march_transmittance(&g, o, d, -1, 4, 1000, &rng, &rr) == SK_ERR_DOMAIN);
+        CHECK(sk_ray_march_transmittance_f64(&gd, od, dd, NAN, 4, 1000, &rng, &rrd) == SK_ERR_DOMAIN);
+        CHECK(sk_ray_march_transmittance(&g, o, d, 3, 4, 3, &rng, &rr) == SK_ERR_BUDGET);
+        CHECK(sk_ray_march_transmittance(NULL, o, d, 3, 4, 1000, &rng, &rr) == SK_ERR_NULL);
+        CHECK(sk_ray_march_transmittance(&g, o, d, 3, 4, 1000, &no_fn, &rr) == SK_ERR_NULL);
+        CHECK(sk_ray_march_transmittance_f64(&gd, od, dd, 3, 4, 1000, &rng, NULL) == SK_ERR_NULL);
+        g3 = g;
+        g3.sampling = 9;
+        CHECK(sk_ray_march_transmittance(&g3, o, d, 3, 4, 1000, &rng, &rr) == SK_ERR_SIZE);
+        /* The caller's medium: sigma_a = f (float) or sigma_s = x (double)
+         * next to 0.25; an optical depth that overflows is DOMAIN. */
+        for (i = 0; i < NS; i++) {
+            ctxf = FS[i];
+            CHECK(sk_ray_march_transmittance_fn(coeff32, &ctxf, o, d, 0, 3, 4, 1000, &rng, &rr) ==
+                  (FS[i] >= 0.0f && FS[i] < 1e30f ? SK_OK : SK_ERR_DOMAIN));
+            ctxd = DS[i];
+            CHECK(sk_ray_march_transmittance_fn_f64(coeff64, &ctxd, od, dd, 0, 3, 4, 1000, &rng, &rrd) ==
+                  (DS[i] >= 0.0 && DS[i] < 1e300 ? SK_OK : SK_ERR_DOMAIN));
+        }
+        i = 0;
+        CHECK(sk_ray_march_transmittance_fn(coeff32, NULL, o, d, 0, INFINITY, 4, 1000, &rng, &rr) == SK_ERR_DOMAIN);
+        CHECK(sk_ray_march_transmittance_fn(NULL, NULL, o, d, 0, 3, 4, 1000, &rng, &rr) == SK_ERR_NULL);
+        CHECK(sk_ray_march_transmittance_fn_f64(coeff64, NULL, od, dd, 0, 3, 4, 1000, &no_fn, &rrd) == SK_ERR_NULL);
+        CHECK(sk_ray_march_transmittance_fn_f64(coeff64, NULL, od, dd, 0, 3, 4, 1000, &rng, NULL) == SK_ERR_NULL);
+    }
+    {
         /* Spectral tracking: density majorants (the grid's coefficients sum
          * to 1), three channels, hero 1. */
         float sa[3] = {0.1f, 0.2f, 0.0f}, ss[3] = {0.3f, 0.0f, 0.5f}, w[3], u[3], l[3];

@@ -20,6 +20,7 @@ mod medium;
 mod mie;
 mod mie_table;
 mod polydisperse;
+mod ray_march;
 mod rayleigh;
 mod rayleigh_polarized;
 mod residual;

@@ -1,0 +1,188 @@
+//! The unbiased ray-marching transmittance estimator
+//! (`medium::ray_march`): unbiased against the optical depth integrated
+//! along the ray over the rays and grids of `majorant.rs`, 4·10⁴ rays per
+//! case at 4σ, with the step count from the majorant optical depth; the
+//! check rejects the biased ray marcher (`exp(−X)` of one march alone);
+//! exact for a constant medium; through a callback; variance × density
+//! evaluations against ratio tracking.
+
+use super::majorant::{cloud, mean_se, optical_depth, rays};
+use crate::common::rng;
+use scatterkit::majorant::Majorants;
+use scatterkit::medium::ray_march::{ray_march_transmittance, ray_march_transmittance_fn};
+use scatterkit::{Error, Grid, Ray, Real, Sampling, Vec3};
+
+/// Strata for a ray: the majorant optical depth rounded up, at least 1.
+fn strata(maj: &Majorants<'_, f64>, ray: Ray<f64>) -> u32 {
+    maj.optical_depth(ray).unwrap().ceil().max(1.0) as u32
+}
+
+/// Unbiased on every ray of every case; the biased marcher (one jittered
+/// march, `exp(−X)`, which Jensen's inequality pulls above `exp(−τ)`) with
+/// the same strata fails the check on the ray through the core in every
+/// case.
+#[test]
+fn ray_marching_is_unbiased() {
+    let values = cloud();
+    let (lo, hi) = (Vec3::new(-0.5, -1.0, 0.25), Vec3::new(1.5, 0.5, 1.0));
+    let mut case = 0;
+    for sampling in [Sampling::Nodes, Sampling::Cells] {
+        for boxed in [false, true] {
+            let mut g = Grid::new(&values, 12, 10, 9, 0.4, 1.1)
+                .unwrap()
+                .with_sampling(sampling);
+            if boxed {
+                g = g.with_box(lo, hi).unwrap();
+            }
+            let mut store = [0.0; 16 * 16 * 16];
+            let maj = Majorants::build(&g, [16; 3], &mut store).unwrap();
+            let mut r = rng(90 + case);
+            for (k, (o, d, t_max)) in rays().into_iter().enumerate() {
+                let (o, d) = if boxed {
+                    let e = hi - lo;
+                    (
+                        Vec3::new(lo.x + o.x * e.x, lo.y + o.y * e.y, lo.z + o.z * e.z),
+                        Vec3::new(d.x * e.x, d.y * e.y, d.z * e.z),
+                    )
+                } else {
+                    (o, d)
+                };
+                let ray = Ray::new(o, d, t_max);
+                let n = strata(&maj, ray);
+                let p = (-optical_depth(&g, o, d, t_max)).exp();
+                let tr: Vec<f64> = (0..40_000)
+                    .map(|_| {
+                        ray_march_transmittance(&g, ray, n, 1 << 20, &mut r)
+                            .unwrap()
+                            .tr
+                    })
+                    .collect();
+                let (m, se) = mean_se(&tr);
+                assert!(
+                    (m - p).abs() <= 4.0 * se + 1e-12,
+                    "{sampling:?} box {boxed} ray {k}: {m} ± {se} vs {p} ({n} strata)"
+                );
+                if k == 0 {
+                    let biased: Vec<f64> = (0..40_000)
+                        .map(|_| (-march(&g, o, d, t_max, n, f64::uniform(&mut r))).exp())
+                        .collect();
+                    let (mb, sb) = mean_se(&biased);
+                    assert!(
+                        (mb - p).abs() > 4.0 * sb,
+                        "{sampling:?} box {boxed}: the biased marcher passes ({mb} ± {sb} vs {p})"
+                    );
+                }
+            }
+            case += 1;
+        }
+    }
+}
+
+/// One jittered march of `∫ σ_t` over `[0, t_max]` with `n` strata and
+/// offset `u` (the test's own, for the biased marcher).
+fn march(g: &Grid<'_, f64>, o: Vec3<f64>, d: Vec3<f64>, t_max: f64, n: u32, u: f64) -> f64 {
+    let d = d * (1.0 / d.length());
+    let (sa, ss) = g.coefficients();
+    let h = t_max / n as f64;
+    (0..n)
+        .map(|j| (sa + ss) * g.density(o + d * ((j as f64 + u) * h)) * h)
+        .sum()
+}
+
+/// A constant medium marches exactly: every estimate is `exp(−σ ℓ)`.
+#[test]
+fn a_constant_medium_has_zero_variance() {
+    let values = [2.5f64; 27];
+    let g = Grid::new(&values, 3, 3, 3, 0.3, 0.9).unwrap();
+    let mut r = rng(6);
+    // Along x through the middle: 1 unit inside the box.
+    let ray = Ray::new(Vec3::new(-0.5, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 3.0);
+    let want = (-3.0f64).exp();
+    for _ in 0..1000 {
+        let t = ray_march_transmittance(&g, ray, 4, 1 << 10, &mut r).unwrap();
+        assert!((t.tr - want).abs() <= 1e-12, "{} vs {want}", t.tr);
+    }
+}
+
+/// Through a callback: a spherical blob `σ_t = σ₀ (1 − r²/R²)` of radius
+/// `R` crossed through its centre, `τ = 4σ₀R/3`; unbiased at 4σ; a
+/// negative coefficient and an infinite segment are `Error::Domain`.
+#[test]
+fn through_a_callback() {
+    let (s0, rad) = (3.0f64, 0.8f64);
+    let c = Vec3::new(0.0, 0.0, 0.0);
+    let blob = move |p: Vec3<f64>| {
+        let q = p - c;
+        let r2 = q.dot(q) / (rad * rad);
+        (0.0, (s0 * (1.0 - r2)).max(0.0))
+    };
+    let ray = Ray::new(Vec3::new(-1.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), 2.0);
+    let p = (-4.0 * s0 * rad / 3.0).exp();
+    let mut r = rng(12);
+    let tr: Vec<f64> = (0..40_000)
+        .map(|_| {
+            ray_march_transmittance_fn(blob, ray, 8, 1 << 20, &mut r)
+                .unwrap()
+                .tr
+        })
+        .collect();
+    let (m, se) = mean_se(&tr);
+    assert!((m - p).abs() <= 4.0 * se, "{m} ± {se} vs {p}");
+    let bad = |_: Vec3<f64>| (-1.0, 0.0);
+    assert_eq!(
+        ray_march_transmittance_fn(bad, ray, 8, 100, &mut r).err(),
+        Some(Error::Domain)
+    );
+    let endless = Ray::new(ray.origin, ray.dir, f64::INFINITY);
+    assert_eq!(
+        ray_march_transmittance_fn(blob, endless, 8, 100, &mut r).err(),
+        Some(Error::Domain)
+    );
+    assert_eq!(
+        ray_march_transmittance_fn(blob, ray, 0, 100, &mut r).err(),
+        Some(Error::Domain)
+    );
+    assert_eq!(
+        ray_march_transmittance_fn(blob, ray, 8, 7, &mut r).err(),
+        Some(Error::Budget)
+    );
+}
+
+/// Variance × density evaluations per ray on the cloud, against ratio
+/// tracking with the same 16³ majorants (printed; the figures are in
+/// `docs/guides/media.md`). No threshold: which wins depends on the ray.
+#[test]
+fn variance_and_cost_against_ratio_tracking() {
+    let values = cloud();
+    let g = Grid::new(&values, 12, 10, 9, 0.4, 1.1).unwrap();
+    let mut store = [0.0; 16 * 16 * 16];
+    let maj = Majorants::build(&g, [16; 3], &mut store).unwrap();
+    let mut r = rng(13);
+    let n = 20_000;
+    for (k, (o, d, t_max)) in rays().into_iter().enumerate() {
+        let ray = Ray::new(o, d, t_max);
+        let strata = strata(&maj, ray);
+        let (mut a, mut b, mut sa, mut sb) = (vec![], vec![], 0u64, 0u64);
+        for _ in 0..n {
+            let x = maj.ratio_track(&g, ray, 1 << 20, &mut r).unwrap();
+            let y = ray_march_transmittance(&g, ray, strata, 1 << 20, &mut r).unwrap();
+            (sa, sb) = (sa + x.steps as u64, sb + y.steps as u64);
+            a.push(x.tr);
+            b.push(y.tr);
+        }
+        let var = |v: &[f64]| {
+            let (_, se) = mean_se(v);
+            se * se * v.len() as f64
+        };
+        let (ca, cb) = (sa as f64 / n as f64, sb as f64 / n as f64);
+        let (va, vb) = (var(&a), var(&b));
+        let gain = if vb * cb > 0.0 {
+            format!("{:.1}× lower", (va * ca) / (vb * cb))
+        } else {
+            "ray marching exact".to_string()
+        };
+        eprintln!(
+            "ray {k}: ratio var {va:.3e} × {ca:.2} evals, ray marching ({strata} strata) var {vb:.3e} × {cb:.2} evals: {gain}"
+        );
+    }
+}

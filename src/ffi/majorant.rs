@@ -232,6 +232,33 @@ pub(super) unsafe fn write<V, X>(
     }
 }
 
+/// The caller's generator for a call that writes through `out`:
+/// `SK_ERR_NULL` if either is NULL (or the generator's callback is).
+pub(super) unsafe fn rng_for<V>(out: *mut V, rng: *mut sk_rng) -> Result<CRng, sk_status> {
+    if out.is_null() {
+        return Err(sk_status::SK_ERR_NULL);
+    }
+    unsafe { CRng::from_ptr(rng) }.ok_or(sk_status::SK_ERR_NULL)
+}
+
+/// The grid behind a non-NULL `g`: `SK_ERR_SIZE` for a malformed one.
+pub(super) unsafe fn grid_at<'a, G: GridStore>(g: *const G) -> Result<Grid<'a, G::T>, sk_status> {
+    unsafe { load(g) }.ok_or(sk_status::SK_ERR_SIZE)
+}
+
+/// Writes what a tracking call found through `out` (as [`write`]), or
+/// returns the status of the check that stopped it first.
+pub(super) unsafe fn finish<V, X>(
+    out: *mut V,
+    found: Result<Result<X, Error>, sk_status>,
+    f: impl Fn(X) -> V,
+) -> sk_status {
+    match found {
+        Ok(r) => unsafe { write(out, r, f) },
+        Err(e) => e,
+    }
+}
+
 unsafe fn build<G: GridStore, S: MajStore<T = G::T, V = G::V>>(
     g: *const G,
     m: [u32; 3],
@@ -359,27 +386,25 @@ unsafe fn grid_track<K: Kind<S>, G: GridStore, S: MajStore<T = G::T, V = G::V>>(
     rng: *mut sk_rng,
     out: *mut K::Out,
 ) -> sk_status {
-    if g.is_null() || out.is_null() {
-        return sk_status::SK_ERR_NULL;
-    }
-    let Some(mut r) = (unsafe { CRng::from_ptr(rng) }) else {
-        return sk_status::SK_ERR_NULL;
+    let found = || {
+        if g.is_null() {
+            return Err(sk_status::SK_ERR_NULL);
+        }
+        let mut r = unsafe { rng_for(out, rng) }?;
+        let (maj, grid) = unsafe { (load_maj(m)?, grid_at(g)?) };
+        let ray = Ray::new(o.to_vec(), d.to_vec(), t_max);
+        let (m, rng) = (&maj, &mut r);
+        Ok(K::grid(
+            Walk {
+                m,
+                ray,
+                budget,
+                rng,
+            },
+            &grid,
+        ))
     };
-    let maj = match unsafe { load_maj(m) } {
-        Ok(x) => x,
-        Err(e) => return e,
-    };
-    let Some(grid) = (unsafe { load(g) }) else {
-        return sk_status::SK_ERR_SIZE;
-    };
-    let ray = Ray::new(o.to_vec(), d.to_vec(), t_max);
-    let walk = Walk {
-        m: &maj,
-        ray,
-        budget,
-        rng: &mut r,
-    };
-    unsafe { write(out, K::grid(walk, &grid), K::out) }
+    unsafe { finish(out, found(), K::out) }
 }
 
 /// Tracking of kind `K` through the caller's medium `f` and majorants `m`
@@ -394,28 +419,24 @@ unsafe fn fn_track<K: Kind<S>, S: MajStore>(
     rng: *mut sk_rng,
     out: *mut K::Out,
 ) -> sk_status {
-    let Some(coefficients) = bind(f, ctx) else {
-        return sk_status::SK_ERR_NULL;
+    let found = || {
+        let coefficients = bind(f, ctx).ok_or(sk_status::SK_ERR_NULL)?;
+        let mut r = unsafe { rng_for(out, rng) }?;
+        let maj = unsafe { load_maj(m) }?;
+        let f = |p: Vec3<S::T>| S::pair(coefficients(S::V::from_vec(p)));
+        let ray = Ray::new(o.to_vec(), d.to_vec(), t_max).segment(t_min, t_max);
+        let (m, rng) = (&maj, &mut r);
+        Ok(K::func(
+            Walk {
+                m,
+                ray,
+                budget,
+                rng,
+            },
+            &f,
+        ))
     };
-    if out.is_null() {
-        return sk_status::SK_ERR_NULL;
-    }
-    let Some(mut r) = (unsafe { CRng::from_ptr(rng) }) else {
-        return sk_status::SK_ERR_NULL;
-    };
-    let maj = match unsafe { load_maj(m) } {
-        Ok(x) => x,
-        Err(e) => return e,
-    };
-    let f = |p: Vec3<S::T>| S::pair(coefficients(S::V::from_vec(p)));
-    let ray = Ray::new(o.to_vec(), d.to_vec(), t_max).segment(t_min, t_max);
-    let walk = Walk {
-        m: &maj,
-        ray,
-        budget,
-        rng: &mut r,
-    };
-    unsafe { write(out, K::func(walk, &f), K::out) }
+    unsafe { finish(out, found(), K::out) }
 }
 
 /// The number of majorants of an mx*my*mz grid (pbrt-v4 uses 16*16*16);

@@ -1,9 +1,9 @@
 //! The unbiased ray-marching transmittance estimator, and the majorant
 //! optical depth that sets its step count.
 
-use super::majorant::{MajStore, load_maj, write};
-use super::medium::{GridStore, load};
-use super::{CFn, CRng, CVec, bind, sk_rng, sk_status};
+use super::majorant::{MajStore, finish, grid_at, load_maj, rng_for};
+use super::medium::GridStore;
+use super::{CFn, CVec, bind, sk_rng, sk_status};
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
 use crate::medium::Ray;
@@ -30,18 +30,16 @@ unsafe fn march_grid<G: GridStore, S: MajStore<T = G::T, V = G::V>>(
     rng: *mut sk_rng,
     out: *mut S::Tr,
 ) -> sk_status {
-    if g.is_null() || out.is_null() {
-        return sk_status::SK_ERR_NULL;
-    }
-    let Some(mut r) = (unsafe { CRng::from_ptr(rng) }) else {
-        return sk_status::SK_ERR_NULL;
+    let found = || {
+        if g.is_null() {
+            return Err(sk_status::SK_ERR_NULL);
+        }
+        let mut r = unsafe { rng_for(out, rng) }?;
+        let grid = unsafe { grid_at(g) }?;
+        let ray = Ray::new(o.to_vec(), d.to_vec(), t_max);
+        Ok(ray_march_transmittance(&grid, ray, n, budget, &mut r))
     };
-    let Some(grid) = (unsafe { load(g) }) else {
-        return sk_status::SK_ERR_SIZE;
-    };
-    let ray = Ray::new(o.to_vec(), d.to_vec(), t_max);
-    let res = ray_march_transmittance(&grid, ray, n, budget, &mut r);
-    unsafe { write(out, res, S::tr) }
+    unsafe { finish(out, found(), S::tr) }
 }
 
 /// The estimate through a caller's medium, both precisions.
@@ -54,19 +52,14 @@ unsafe fn march_fn<S: MajStore>(
     rng: *mut sk_rng,
     out: *mut S::Tr,
 ) -> sk_status {
-    let Some(coefficients) = bind(f, ctx) else {
-        return sk_status::SK_ERR_NULL;
+    let found = || {
+        let coefficients = bind(f, ctx).ok_or(sk_status::SK_ERR_NULL)?;
+        let mut r = unsafe { rng_for(out, rng) }?;
+        let f = |p: Vec3<S::T>| S::pair(coefficients(S::V::from_vec(p)));
+        let ray = Ray::new(o.to_vec(), d.to_vec(), t_max).segment(t_min, t_max);
+        Ok(ray_march_transmittance_fn(f, ray, n, budget, &mut r))
     };
-    if out.is_null() {
-        return sk_status::SK_ERR_NULL;
-    }
-    let Some(mut r) = (unsafe { CRng::from_ptr(rng) }) else {
-        return sk_status::SK_ERR_NULL;
-    };
-    let f = |p: Vec3<S::T>| S::pair(coefficients(S::V::from_vec(p)));
-    let ray = Ray::new(o.to_vec(), d.to_vec(), t_max).segment(t_min, t_max);
-    let res = ray_march_transmittance_fn(f, ray, n, budget, &mut r);
-    unsafe { write(out, res, S::tr) }
+    unsafe { finish(out, found(), S::tr) }
 }
 
 /// The majorant optical depth along the ray from o along d over

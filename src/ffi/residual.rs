@@ -1,9 +1,9 @@
 //! Residual ratio tracking: majorants paired with minorants.
 
-use super::majorant::{MajStore, load_maj, write};
+use super::majorant::{MajStore, finish, grid_at, load_maj, rng_for, write};
 use super::medium::{GridStore, load};
 use super::{
-    CFn, CRng, CVec, bind, overlaps, sk_majorants, sk_majorants_f64, sk_rng, sk_status, slice_out,
+    CFn, CVec, bind, overlaps, sk_majorants, sk_majorants_f64, sk_rng, sk_status, slice_out,
 };
 use crate::math::geometry::Vec3;
 use crate::medium::Ray;
@@ -140,22 +140,16 @@ unsafe fn track_grid<G: GridStore, E: ExtStore>(
 where
     E::M: MajStore<T = G::T, V = G::V>,
 {
-    if g.is_null() || out.is_null() {
-        return sk_status::SK_ERR_NULL;
-    }
-    let Some(mut r) = (unsafe { CRng::from_ptr(rng) }) else {
-        return sk_status::SK_ERR_NULL;
+    let found = || {
+        if g.is_null() {
+            return Err(sk_status::SK_ERR_NULL);
+        }
+        let mut r = unsafe { rng_for(out, rng) }?;
+        let (ext, grid) = unsafe { (load_ext(e)?, grid_at(g)?) };
+        let ray = Ray::new(o.to_vec(), d.to_vec(), t_max);
+        Ok(ext.residual_ratio_track(&grid, ray, budget, &mut r))
     };
-    let ext = match unsafe { load_ext(e) } {
-        Ok(x) => x,
-        Err(e) => return e,
-    };
-    let Some(grid) = (unsafe { load(g) }) else {
-        return sk_status::SK_ERR_SIZE;
-    };
-    let ray = Ray::new(o.to_vec(), d.to_vec(), t_max);
-    let res = ext.residual_ratio_track(&grid, ray, budget, &mut r);
-    unsafe { write(out, res, E::M::tr) }
+    unsafe { finish(out, found(), E::M::tr) }
 }
 
 /// Residual ratio tracking of extrema `e` through a caller's medium, both
@@ -170,23 +164,15 @@ unsafe fn track_fn<E: ExtStore>(
     rng: *mut sk_rng,
     out: *mut <E::M as MajStore>::Tr,
 ) -> sk_status {
-    let Some(coefficients) = bind(f, ctx) else {
-        return sk_status::SK_ERR_NULL;
+    let found = || {
+        let coefficients = bind(f, ctx).ok_or(sk_status::SK_ERR_NULL)?;
+        let mut r = unsafe { rng_for(out, rng) }?;
+        let ext = unsafe { load_ext(e) }?;
+        let f = |p: Vec3<T<E>>| E::M::pair(coefficients(V::<E>::from_vec(p)));
+        let ray = Ray::new(o.to_vec(), d.to_vec(), t_max).segment(t_min, t_max);
+        Ok(ext.residual_ratio_track_fn(f, ray, budget, &mut r))
     };
-    if out.is_null() {
-        return sk_status::SK_ERR_NULL;
-    }
-    let Some(mut r) = (unsafe { CRng::from_ptr(rng) }) else {
-        return sk_status::SK_ERR_NULL;
-    };
-    let ext = match unsafe { load_ext(e) } {
-        Ok(x) => x,
-        Err(e) => return e,
-    };
-    let f = |p: Vec3<T<E>>| E::M::pair(coefficients(V::<E>::from_vec(p)));
-    let ray = Ray::new(o.to_vec(), d.to_vec(), t_max).segment(t_min, t_max);
-    let res = ext.residual_ratio_track_fn(f, ray, budget, &mut r);
-    unsafe { write(out, res, E::M::tr) }
+    unsafe { finish(out, found(), E::M::tr) }
 }
 
 /// Fills max_out[0 .. mx*my*mz] with the majorants of grid g (as

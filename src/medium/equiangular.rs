@@ -56,14 +56,15 @@ impl<T: Real> Equiangular<T> {
         })
     }
 
-    /// The distance for a uniform `u` (clamped to `[0, 1]`), within the
-    /// segment; monotone in `u`.
+    /// The distance for a uniform `u` (clamped to `[0, 1]`; NaN stays
+    /// NaN), within the segment; monotone in `u`.
     pub fn sample(&self, u: T) -> T {
         let (ta, tb) = self.theta;
         let theta = ta + u.clamp01() * (tb - ta);
         let (s, c) = theta.sin_cos();
         let t = self.t0 + self.delta * (s / c);
-        t.max_of(self.ends.0).min_of(self.ends.1)
+        // Written so that a NaN passes through both bounds.
+        self.ends.1.min_of(self.ends.0.max_of(t))
     }
 
     /// The density of distance `t` per unit length (0 outside the segment).

@@ -28,7 +28,7 @@ use crate::error::Error;
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
 use crate::medium::{
-    Event, Grid, ROULETTE_BELOW, Ray, clip_box, exponential_step, grid_len, to_local, valid_box,
+    Event, Grid, Ray, clip_box, exponential_step, grid_len, roulette, to_local, valid_box,
 };
 use rand_core::Rng;
 
@@ -292,22 +292,10 @@ impl<'a, T: Real> Majorants<'a, T> {
         budget: u32,
         rng: &mut R,
     ) -> Result<Transmittance<T>, Error> {
-        let (floor, quarter, four) = (
-            T::from_f64(ROULETTE_BELOW),
-            T::from_f64(0.25),
-            T::from_f64(4.0),
-        );
         let mut tr = T::ONE;
         let visit = |p: Vec3<T>, sigma_maj: T, r: &mut R| {
             let (sa, ss) = within(coefficients(p), sigma_maj)?;
-            tr *= T::ONE - (sa + ss) / sigma_maj;
-            if tr < floor {
-                tr = if T::uniform(r) < quarter {
-                    tr * four
-                } else {
-                    T::ZERO
-                };
-            }
+            tr = roulette(tr * (T::ONE - (sa + ss) / sigma_maj), r);
             Ok((tr == T::ZERO).then_some(()))
         };
         let walk = self.walk(ray, budget, rng, visit)?;

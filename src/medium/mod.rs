@@ -652,6 +652,28 @@ fn delta<T: Real, R: Rng + ?Sized>(
 /// and is then multiplied by 4, so its expectation is unchanged).
 pub(crate) const ROULETTE_BELOW: f64 = 0.05;
 
+/// The roulette's outcome for a weight under [`ROULETTE_BELOW`]: 4 with
+/// probability 1/4, else 0 (one uniform).
+#[inline(always)]
+pub(crate) fn roulette_factor<T: Real, R: Rng + ?Sized>(rng: &mut R) -> T {
+    if T::uniform(rng) < T::from_f64(0.25) {
+        T::from_f64(4.0)
+    } else {
+        T::ZERO
+    }
+}
+
+/// Ratio tracking's weight `tr` after the roulette: unchanged at or above
+/// [`ROULETTE_BELOW`], else times [`roulette_factor`].
+#[inline(always)]
+pub(crate) fn roulette<T: Real, R: Rng + ?Sized>(tr: T, rng: &mut R) -> T {
+    if tr < T::from_f64(ROULETTE_BELOW) {
+        tr * roulette_factor(rng)
+    } else {
+        tr
+    }
+}
+
 /// Ratio tracking over `[t0, t1]`: the product of `1 − σ_t/σ_maj` at the
 /// tentative collisions, with Russian roulette once it falls below
 /// [`ROULETTE_BELOW`]. Without it, wherever `σ_maj > 2σ_t` the product
@@ -671,21 +693,9 @@ fn ratio<T: Real, R: Rng + ?Sized>(
     if sigma_maj.is_nan() || sigma_maj <= T::ZERO {
         return Ok(T::ONE);
     }
-    let (floor, quarter, four) = (
-        T::from_f64(ROULETTE_BELOW),
-        T::from_f64(0.25),
-        T::from_f64(4.0),
-    );
     let mut tr = T::ONE;
     tentative(sigma_t, sigma_maj, o, d, t0, t1, rng, |_, st, r| {
-        tr *= T::ONE - st / sigma_maj;
-        if tr < floor {
-            if T::uniform(r) < quarter {
-                tr *= four;
-            } else {
-                tr = T::ZERO;
-            }
-        }
+        tr = roulette(tr * (T::ONE - st / sigma_maj), r);
         (tr == T::ZERO).then_some(())
     })?;
     Ok(tr)

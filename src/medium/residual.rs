@@ -17,7 +17,7 @@ use crate::error::Error;
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
 use crate::medium::majorant::{Majorants, Tentative, Transmittance, grid_coefficients};
-use crate::medium::{Grid, ROULETTE_BELOW, Ray};
+use crate::medium::{Grid, Ray, roulette};
 use rand_core::Rng;
 
 /// Majorants and minorants (per length unit) over the same cells of the
@@ -121,11 +121,6 @@ impl<'a, T: Real> Extrema<'a, T> {
         rng: &mut R,
     ) -> Result<Transmittance<T>, Error> {
         let control = self.control_depth(ray)?;
-        let (floor, quarter, four) = (
-            T::from_f64(ROULETTE_BELOW),
-            T::from_f64(0.25),
-            T::from_f64(4.0),
-        );
         let mut tr = T::ONE;
         let visit = |c: Tentative<T>, r: &mut R| {
             let (sa, ss) = coefficients(c.p);
@@ -134,14 +129,7 @@ impl<'a, T: Real> Extrema<'a, T> {
                 return Err(Error::Domain);
             }
             // c.value is the residual majorant σ_maj − σ_c of the cell.
-            tr *= T::ONE - (sa + ss - sigma_c) / c.value;
-            if tr < floor {
-                tr = if T::uniform(r) < quarter {
-                    tr * four
-                } else {
-                    T::ZERO
-                };
-            }
+            tr = roulette(tr * (T::ONE - (sa + ss - sigma_c) / c.value), r);
             Ok((tr == T::ZERO).then_some(()))
         };
         // A cell whose minorant exceeds its majorant (values a caller

@@ -32,7 +32,7 @@ use crate::error::Error;
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
 use crate::medium::majorant::{Majorants, Tentative, Track};
-use crate::medium::{Event, Grid, ROULETTE_BELOW, Ray};
+use crate::medium::{Event, Grid, ROULETTE_BELOW, Ray, roulette_factor};
 use rand_core::Rng;
 
 /// The most channels one spectral call takes.
@@ -274,11 +274,7 @@ impl<T: Real> Majorants<'_, T> {
             let mixed = Acc::mean(&acc.r_l, n) + Acc::mean(&acc.r_u, n);
             let top = acc.weights().fold(T::ZERO, |a, w| a.max_of(*w));
             if top / mixed < floor {
-                let keep = if T::uniform(r) < T::from_f64(0.25) {
-                    T::from_f64(4.0)
-                } else {
-                    T::ZERO
-                };
+                let keep = roulette_factor(r);
                 acc.weights().for_each(|w| *w *= keep);
             }
             Ok(acc.weights().all(|w| *w == T::ZERO).then_some(()))

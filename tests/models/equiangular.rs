@@ -148,7 +148,11 @@ fn an_infinite_segment_and_bad_input() {
         Equiangular::new(Ray::new(o, Vec3::new(0.0, 0.0, 0.0), 2.0), c).err(),
         Some(Error::Domain)
     );
-    assert!(e.sample(f64::NAN).is_nan() || e.sample(f64::NAN) >= 0.0);
+    assert!(e.sample(f64::NAN).is_nan(), "NaN in, NaN out");
+    assert_eq!(
+        (e.sample(-1.0), e.sample(2.0)),
+        (e.sample(0.0), e.sample(1.0))
+    );
 }
 
 /// Single scattering from a point light of unit intensity at `c` in a

@@ -74,6 +74,65 @@ pub(crate) fn rays() -> Vec<(Vec3<f64>, Vec3<f64>, f64)> {
     ]
 }
 
+/// The rays, written for the unit cube, mapped into `[lo, hi]` when
+/// `boxed`.
+pub(crate) fn placed(
+    boxed: bool,
+    lo: Vec3<f64>,
+    hi: Vec3<f64>,
+) -> Vec<(Vec3<f64>, Vec3<f64>, f64)> {
+    let e = hi - lo;
+    rays()
+        .into_iter()
+        .map(|(o, d, t)| {
+            if boxed {
+                (
+                    Vec3::new(lo.x + o.x * e.x, lo.y + o.y * e.y, lo.z + o.z * e.z),
+                    Vec3::new(d.x * e.x, d.y * e.y, d.z * e.z),
+                    t,
+                )
+            } else {
+                (o, d, t)
+            }
+        })
+        .collect()
+}
+
+/// For both samplings and four resolutions, the built majorants (or, with
+/// `minorants`, the minorants) of the cloud, and `holds(σ_t, bound)` checked
+/// at 2·10⁵ random points against the bound of the cell holding each.
+pub(crate) fn check_bounds(seed: u64, minorants: bool, holds: fn(f64, f64) -> bool) {
+    let values = cloud();
+    for sampling in [Sampling::Nodes, Sampling::Cells] {
+        for m in [[1, 1, 1], [3, 5, 7], [16, 16, 16], [40, 3, 20]] {
+            let g = Grid::new(&values, 12, 10, 9, 0.4, 1.1)
+                .unwrap()
+                .with_sampling(sampling);
+            let mut store = vec![0.0; majorant_len(m).unwrap()];
+            let bounds = if minorants {
+                Majorants::build_minorants(&g, m, &mut store)
+            } else {
+                Majorants::build(&g, m, &mut store)
+            }
+            .unwrap();
+            let mut r = rng(seed);
+            for _ in 0..200_000 {
+                let p = Vec3::new(
+                    f64::uniform(&mut r),
+                    f64::uniform(&mut r),
+                    f64::uniform(&mut r),
+                );
+                let c = [p.x, p.y, p.z];
+                let idx = [0, 1, 2].map(|a| ((c[a] * m[a] as f64) as usize).min(m[a] - 1));
+                assert!(
+                    holds(1.5 * g.density(p), bounds.get(idx[0], idx[1], idx[2])),
+                    "{sampling:?} {m:?} at {p:?}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn tracking_through_majorants_is_unbiased() {
     let values = cloud();
@@ -91,17 +150,7 @@ fn tracking_through_majorants_is_unbiased() {
             let mut store = [0.0; 16 * 16 * 16];
             let maj = Majorants::build(&g, [DEFAULT_RES; 3], &mut store).unwrap();
             let mut r = rng(7 + cases);
-            for (o, d, t_max) in rays() {
-                // The rays are written for the unit cube; map them into the box.
-                let (o, d) = if boxed {
-                    let e = hi - lo;
-                    (
-                        Vec3::new(lo.x + o.x * e.x, lo.y + o.y * e.y, lo.z + o.z * e.z),
-                        Vec3::new(d.x * e.x, d.y * e.y, d.z * e.z),
-                    )
-                } else {
-                    (o, d)
-                };
+            for (o, d, t_max) in placed(boxed, lo, hi) {
                 let p = (-optical_depth(&g, o, d, t_max)).exp();
                 let n = 40_000;
                 let mut hits = 0usize;
@@ -152,30 +201,7 @@ fn tracking_through_majorants_is_unbiased() {
 
 #[test]
 fn built_majorants_bound_the_density() {
-    let values = cloud();
-    for sampling in [Sampling::Nodes, Sampling::Cells] {
-        for m in [[1, 1, 1], [3, 5, 7], [16, 16, 16], [40, 3, 20]] {
-            let g = Grid::new(&values, 12, 10, 9, 0.4, 1.1)
-                .unwrap()
-                .with_sampling(sampling);
-            let mut store = vec![0.0; majorant_len(m).unwrap()];
-            let maj = Majorants::build(&g, m, &mut store).unwrap();
-            let mut r = rng(3);
-            for _ in 0..200_000 {
-                let p = Vec3::new(
-                    f64::uniform(&mut r),
-                    f64::uniform(&mut r),
-                    f64::uniform(&mut r),
-                );
-                let c = [p.x, p.y, p.z];
-                let idx = [0, 1, 2].map(|a| ((c[a] * m[a] as f64) as usize).min(m[a] - 1));
-                assert!(
-                    1.5 * g.density(p) <= maj.get(idx[0], idx[1], idx[2]),
-                    "{sampling:?} {m:?} at {p:?}"
-                );
-            }
-        }
-    }
+    check_bounds(3, false, |sigma_t, bound| sigma_t <= bound);
 }
 
 #[test]

@@ -6,7 +6,7 @@
 //! exact for a constant medium; through a callback; variance × density
 //! evaluations against ratio tracking.
 
-use super::majorant::{cloud, mean_se, optical_depth, rays};
+use super::majorant::{cloud, mean_se, optical_depth, placed, rays};
 use crate::common::rng;
 use scatterkit::majorant::Majorants;
 use scatterkit::medium::ray_march::{ray_march_transmittance, ray_march_transmittance_fn};
@@ -37,16 +37,7 @@ fn ray_marching_is_unbiased() {
             let mut store = [0.0; 16 * 16 * 16];
             let maj = Majorants::build(&g, [16; 3], &mut store).unwrap();
             let mut r = rng(90 + case);
-            for (k, (o, d, t_max)) in rays().into_iter().enumerate() {
-                let (o, d) = if boxed {
-                    let e = hi - lo;
-                    (
-                        Vec3::new(lo.x + o.x * e.x, lo.y + o.y * e.y, lo.z + o.z * e.z),
-                        Vec3::new(d.x * e.x, d.y * e.y, d.z * e.z),
-                    )
-                } else {
-                    (o, d)
-                };
+            for (k, (o, d, t_max)) in placed(boxed, lo, hi).into_iter().enumerate() {
                 let ray = Ray::new(o, d, t_max);
                 let n = strata(&maj, ray);
                 let p = (-optical_depth(&g, o, d, t_max)).exp();

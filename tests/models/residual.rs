@@ -6,30 +6,11 @@
 //! variance × density evaluations against ratio tracking with the same
 //! majorants on the cloud.
 
-use super::majorant::{cloud, mean_se, optical_depth, rays};
+use super::majorant::{check_bounds, cloud, mean_se, optical_depth, placed, rays};
 use crate::common::rng;
-use scatterkit::majorant::{DEFAULT_RES, Majorants, majorant_len};
+use scatterkit::majorant::{DEFAULT_RES, Majorants};
 use scatterkit::medium::residual::Extrema;
-use scatterkit::{Error, Grid, Ray, Real, Sampling, Vec3};
-
-/// The rays of `majorant.rs`, mapped into `[lo, hi]` when `boxed`.
-fn placed(boxed: bool, lo: Vec3<f64>, hi: Vec3<f64>) -> Vec<(Vec3<f64>, Vec3<f64>, f64)> {
-    let e = hi - lo;
-    rays()
-        .into_iter()
-        .map(|(o, d, t)| {
-            if boxed {
-                (
-                    Vec3::new(lo.x + o.x * e.x, lo.y + o.y * e.y, lo.z + o.z * e.z),
-                    Vec3::new(d.x * e.x, d.y * e.y, d.z * e.z),
-                    t,
-                )
-            } else {
-                (o, d, t)
-            }
-        })
-        .collect()
-}
+use scatterkit::{Error, Grid, Ray, Sampling, Vec3};
 
 /// Unbiased on every ray of every case; and the check has the power to
 /// see a wrong estimator: counting the control's optical depth twice
@@ -131,30 +112,7 @@ fn a_constant_medium_has_zero_variance() {
 
 #[test]
 fn built_minorants_bound_the_density_from_below() {
-    let values = cloud();
-    for sampling in [Sampling::Nodes, Sampling::Cells] {
-        for m in [[1, 1, 1], [3, 5, 7], [16, 16, 16], [40, 3, 20]] {
-            let g = Grid::new(&values, 12, 10, 9, 0.4, 1.1)
-                .unwrap()
-                .with_sampling(sampling);
-            let mut store = vec![0.0; majorant_len(m).unwrap()];
-            let min = Majorants::build_minorants(&g, m, &mut store).unwrap();
-            let mut r = rng(4);
-            for _ in 0..200_000 {
-                let p = Vec3::new(
-                    f64::uniform(&mut r),
-                    f64::uniform(&mut r),
-                    f64::uniform(&mut r),
-                );
-                let c = [p.x, p.y, p.z];
-                let idx = [0, 1, 2].map(|a| ((c[a] * m[a] as f64) as usize).min(m[a] - 1));
-                assert!(
-                    1.5 * g.density(p) >= min.get(idx[0], idx[1], idx[2]),
-                    "{sampling:?} {m:?} at {p:?}"
-                );
-            }
-        }
-    }
+    check_bounds(4, true, |sigma_t, bound| sigma_t >= bound);
 }
 
 #[test]

@@ -78,3 +78,21 @@ pub fn rays(count: usize) -> Vec<Ray<f32>> {
         })
         .collect()
 }
+
+/// A smooth fog bank: the `n³` densities of a layer whose density falls off
+/// with height, `peak · exp(−(z + 1)/0.35)`, gently modulated across the
+/// box (±20 %), with no edges and no empty region.
+pub fn fog_bank(n: usize, peak: f32) -> Vec<f32> {
+    let mut v = Vec::with_capacity(n * n * n);
+    let c = |i: usize| 2.0 * i as f32 / (n - 1) as f32 - 1.0;
+    for k in 0..n {
+        for j in 0..n {
+            for i in 0..n {
+                let (x, y, z) = (c(i), c(j), c(k));
+                let swell = 1.0 + 0.2 * (1.5 * x).sin() * (1.2 * y + 0.3).cos();
+                v.push(peak * (-(z + 1.0) / 0.35).exp() * swell);
+            }
+        }
+    }
+    v
+}

@@ -40,6 +40,7 @@ mod media;
 mod mie;
 mod polarization;
 mod report;
+mod transmittance;
 
 pub(crate) use c_view::*;
 pub(crate) use chart::*;
@@ -49,6 +50,7 @@ pub(crate) use media::*;
 pub(crate) use mie::*;
 pub(crate) use polarization::*;
 pub(crate) use report::*;
+pub(crate) use transmittance::*;
 
 pub(crate) use rand_xoshiro::Xoshiro256PlusPlus;
 pub(crate) use rand_xoshiro::rand_core::{SeedableRng, TryRng};
@@ -197,6 +199,8 @@ fn main() -> std::io::Result<()> {
     print!("{native_md}");
     let media_md = media_report();
     print!("{media_md}");
+    let transmittance_md = transmittance_report();
+    print!("{transmittance_md}");
     let (mie_md, _) = mie_report(&es);
     print!("{mie_md}");
     let pol_md = polarization_report();
@@ -206,6 +210,7 @@ fn main() -> std::io::Result<()> {
         + &native_md
         + &frontier_peers(&es)
         + &media_md
+        + &transmittance_md
         + &mie_md
         + &pol_md;
     std::fs::write(docs.join("PERFORMANCE.md"), &perf)?;

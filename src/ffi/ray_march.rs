@@ -92,9 +92,10 @@ pub unsafe extern "C" fn sk_majorants_optical_depth_f64(
 
 /// The unbiased ray-marching transmittance estimator (Kettunen et al.
 /// 2021, power-series form) through grid g (the ray clipped to its box)
-/// over [0, t_max], with n strata per march: exp(-X_0) times a series in
-/// independent jittered marches X_1, X_2, ..., cut at a random order and
-/// reweighted, so the estimate is unbiased; exact for a constant medium.
+/// over [0, t_max], with n strata per march: a power series in
+/// independent jittered marches (at least 3, on average 4.8), cut at a
+/// random order and reweighted, each march in turn the pivot, so the
+/// estimate is unbiased; exact for a constant medium.
 /// Not bounded: one estimate may exceed 1 or, rarely, fall below 0. Writes
 /// *out (tr and the density evaluations). SK_ERR_NULL for NULL pointers or
 /// callback; SK_ERR_DOMAIN for n = 0, a zero or non-finite vector, t_max

@@ -342,17 +342,18 @@ impl<'a, T: Real> Majorants<'a, T> {
         rng: &mut R,
         visit: impl FnMut(Tentative<T>, &mut R) -> Result<Option<X>, Error>,
     ) -> Result<Walk<T, X>, Error> {
-        self.walk_cells(ray, rate, |c| self.at(c), budget, rng, visit)
+        self.walk_cells(ray, rate, |c, _| self.at(c), budget, rng, visit)
     }
 
     /// [`walk_at_rate`](Self::walk_at_rate) over this grid's cells and box
-    /// with the cell values `value(cell)` in place of this grid's own (a
-    /// residual `σ_maj − σ_c`, say).
+    /// with the cell values `value_of(cell, length)` in place of this
+    /// grid's own (a residual `σ_maj − σ_c`, say), `length` the part of the
+    /// ray inside the cell; called once per cell crossed, in order.
     pub(crate) fn walk_cells<R: Rng + ?Sized, X>(
         &self,
         ray: Ray<T>,
         rate: T,
-        value_of: impl Fn([usize; 3]) -> T,
+        mut value_of: impl FnMut([usize; 3], T) -> T,
         budget: u32,
         rng: &mut R,
         mut visit: impl FnMut(Tentative<T>, &mut R) -> Result<Option<X>, Error>,
@@ -384,7 +385,7 @@ impl<'a, T: Real> Majorants<'a, T> {
         let mut since = T::ZERO;
         for _ in 0..=(self.m[0] + self.m[1] + self.m[2]) {
             let t_end = dda.next_face().min_of(tb).max_of(t_cell);
-            let value = value_of(dda.cell);
+            let value = value_of(dda.cell, t_end - t_cell);
             let sigma_maj = rate * value;
             let mut t = t_cell;
             // An empty cell (majorant 0) is crossed without a draw.

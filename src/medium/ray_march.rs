@@ -1,20 +1,28 @@
 //! An unbiased ray-marching transmittance estimator (Kettunen, d'Eon,
 //! Pantaleoni & Novák, "An Unbiased Ray-Marching Transmittance
-//! Estimator", ACM TOG 40(4), 2021), in its power-series form.
+//! Estimator", ACM TOG 40(4), 2021, §4–5), in its power-series form.
 //!
-//! For any control `τ_c`, `exp(−τ) = exp(−τ_c) Σ_k (τ_c − τ)^k / k!`. Let
-//! `X_0, X_1, …` be independent unbiased estimates of the optical depth
-//! `τ`, each a jittered ray march (the segment cut into `n` equal strata,
-//! one uniform offset for all: every point is uniform in its stratum). With
-//! `τ_c = X_0`, the product `Π_{i≤k} (τ_c − X_i)/i` is unbiased for the
-//! `k`-th term given `τ_c`; the series stops at a random order `K`, each
-//! term divided by `P(K ≥ k)`, so the sum is unbiased for the series. Here
-//! the first [`MIN_ORDER`] terms are always taken and each further one with
-//! probability ½. A density that is constant along the ray marches exactly:
-//! every `τ_c − X_i` is 0 and the estimate is `exp(−τ)` with no variance.
-//! The cost is `n (1 + K)` density evaluations; the caller picks `n`, e.g.
-//! the majorant optical depth along the ray
-//! ([`Majorants::optical_depth`](super::majorant::Majorants::optical_depth))
+//! For any pivot `p`, `exp(−τ) = exp(−p) Σ_k (p − τ)^k / k!`. Each march
+//! `X_i` is an unbiased estimate of the optical depth `τ`: the segment cut
+//! into `n` equal strata, one uniform offset for all, so every point is
+//! uniform in its stratum. The estimator takes `N + 1` marches, `N` random.
+//! With one march as pivot and the other `N` as `Y_j`, the elementary
+//! symmetric mean `e_k(p − Y) / C(N, k)` is unbiased for `(p − τ)^k` given
+//! `p` (a sum of products of distinct, independent factors), and term `k`
+//! divided by `P(N ≥ k)` makes the random cut unbiased:
+//!
+//! `T = exp(−p) Σ_{k ≤ N} e_k(p − Y) (N − k)! / (N! P(N ≥ k))`.
+//!
+//! Every march takes its turn as pivot and the `N + 1` estimates are
+//! averaged, which keeps it unbiased and lowers the variance. `N` is at
+//! least [`MIN_ORDER`]; after that, the `i`-th further march is taken with
+//! probability `2.5 / (MIN_ORDER + i)` (the paper's aggressive roulette).
+//! A density that is constant along the ray marches exactly: every
+//! `p − Y_j` is 0 and the estimate is `exp(−τ)` with no variance.
+//!
+//! The cost is `n (N + 1)` density evaluations, `N + 1` about 4.8 on
+//! average; the caller picks `n`, e.g. the majorant optical depth along the
+//! ray ([`Majorants::optical_depth`](super::majorant::Majorants::optical_depth))
 //! rounded up, so that each stratum holds about one mean free path.
 
 use crate::error::Error;
@@ -24,11 +32,17 @@ use crate::medium::majorant::{Transmittance, grid_coefficients};
 use crate::medium::{Grid, Ray, clip_box};
 use rand_core::Rng;
 
-/// Terms of the series always taken (beyond the first, `k = 0`).
+/// The fewest terms of the series beyond the first (`N ≥ MIN_ORDER`, so at
+/// least `MIN_ORDER + 1` marches).
 pub const MIN_ORDER: u32 = 2;
+
 /// The order at which the series is cut ([`Error::Budget`]): reached with
-/// probability `2^−(MAX_ORDER − MIN_ORDER)`, 2·10⁻¹⁸.
-pub const MAX_ORDER: u32 = 64;
+/// probability below 10⁻²³.
+pub const MAX_ORDER: u32 = 32;
+
+/// The roulette's constant: the `i`-th march beyond `MIN_ORDER + 1` is
+/// taken with probability `CONTINUE / (MIN_ORDER + i)`.
+const CONTINUE: f64 = 2.5;
 
 /// The estimate along `ray` through `grid` (clipped to its box) with `n`
 /// strata per march. Unbiased, but not bounded: a high-order term can make
@@ -120,25 +134,64 @@ fn estimate<T: Real, R: Rng + ?Sized>(
             Err(Error::Domain)
         }
     };
-    let control = march(rng)?;
-    let (mut term, mut total) = (T::ONE, T::ONE);
-    let mut weight = T::ONE;
-    for k in 1..=MAX_ORDER {
-        if k > MIN_ORDER {
-            if T::uniform(rng) >= T::HALF {
-                // Strata far too coarse for the medium can make the series'
-                // terms overflow: refused rather than returned as ∞ or NaN.
-                let tr = (-control).exp() * total;
-                return if tr.is_finite() {
-                    Ok(Transmittance { tr, steps })
-                } else {
-                    Err(Error::Domain)
-                };
-            }
-            weight *= T::TWO;
-        }
-        term *= (control - march(rng)?) / T::from_index(k as usize);
-        total += weight * term;
+    const LEN: usize = MAX_ORDER as usize + 1;
+    // x: the marches; q[k] = P(N ≥ k).
+    let (mut x, mut q) = ([T::ZERO; LEN], [T::ONE; LEN]);
+    for xi in &mut x[..=MIN_ORDER as usize] {
+        *xi = march(rng)?;
     }
-    Err(Error::Budget)
+    let mut order = MIN_ORDER as usize;
+    loop {
+        let keep = T::from_f64(CONTINUE) / T::from_index(order + 1);
+        if T::uniform(rng) >= keep {
+            break;
+        }
+        if order == MAX_ORDER as usize {
+            return Err(Error::Budget);
+        }
+        order += 1;
+        q[order] = q[order - 1] * keep.min_of(T::ONE);
+        x[order] = march(rng)?;
+    }
+    let marches = &x[..=order];
+    let mut total = T::ZERO;
+    for (i, &pivot) in marches.iter().enumerate() {
+        total += pivot_estimate(pivot, marches, i, &q);
+    }
+    // Strata far too coarse for the medium can make the series' terms
+    // overflow: refused rather than returned as ∞ or NaN.
+    let tr = total / T::from_index(marches.len());
+    if tr.is_finite() {
+        Ok(Transmittance { tr, steps })
+    } else {
+        Err(Error::Domain)
+    }
+}
+
+/// `exp(−p) Σ_k e_k(p − Y) (N − k)! / (N! q[k])` with `p = x[pivot]` and
+/// `Y` the other `N` marches.
+fn pivot_estimate<T: Real>(p: T, x: &[T], pivot: usize, q: &[T]) -> T {
+    // e[k]: the elementary symmetric polynomials of the p − Y_j, built one
+    // factor at a time (no power sums, whose Newton identities cancel).
+    let mut e = [T::ZERO; MAX_ORDER as usize + 1];
+    e[0] = T::ONE;
+    let mut count = 0;
+    for (j, &y) in x.iter().enumerate() {
+        if j == pivot {
+            continue;
+        }
+        count += 1;
+        for k in (1..=count).rev() {
+            e[k] += (p - y) * e[k - 1];
+        }
+    }
+    // c = (N − k)! / N!, from k = 0.
+    let (mut sum, mut c) = (T::ZERO, T::ONE);
+    for k in 0..=count {
+        if k > 0 {
+            c = c / T::from_index(count - k + 1);
+        }
+        sum += e[k] * c / q[k];
+    }
+    (-p).exp() * sum
 }

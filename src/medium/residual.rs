@@ -120,7 +120,6 @@ impl<'a, T: Real> Extrema<'a, T> {
         budget: u32,
         rng: &mut R,
     ) -> Result<Transmittance<T>, Error> {
-        let control = self.control_depth(ray)?;
         let mut tr = T::ONE;
         let visit = |c: Tentative<T>, r: &mut R| {
             let (sa, ss) = coefficients(c.p);
@@ -132,20 +131,20 @@ impl<'a, T: Real> Extrema<'a, T> {
             tr = roulette(tr * (T::ONE - (sa + ss - sigma_c) / c.value), r);
             Ok((tr == T::ZERO).then_some(()))
         };
-        // A cell whose minorant exceeds its majorant (values a caller
+        // The control's optical depth is summed in the same walk, cell by
+        // cell. A cell whose minorant exceeds its majorant (values a caller
         // stored) would be crossed without a draw: the walk notes it.
-        let inverted = core::cell::Cell::new(false);
-        let residual = |cell: [usize; 3]| {
-            let r = self.max.at(cell) - self.min.at(cell);
-            if r < T::ZERO {
-                inverted.set(true);
-            }
-            r
+        let (mut control, mut inverted) = (T::ZERO, false);
+        let residual = |cell: [usize; 3], length: T| {
+            let (lo, hi) = (self.min.at(cell), self.max.at(cell));
+            control += lo * length;
+            inverted |= hi < lo;
+            hi - lo
         };
         let walk = self
             .max
             .walk_cells(ray, T::ONE, residual, budget, rng, visit)?;
-        if inverted.get() {
+        if inverted {
             return Err(Error::Domain);
         }
         let tr = if walk.found.is_some() { T::ZERO } else { tr };

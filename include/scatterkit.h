@@ -467,6 +467,20 @@ typedef struct {
 } sk_vec3;
 
 /*
+ Equiangular sampling of one ray segment toward one point (a light):
+ distances with density proportional to 1/r^2, r the distance to the
+ point (Kulla & Fajardo 2012, section 3). Filled by sk_equiangular_new;
+ treat the fields as opaque (sample and pdf check them and answer NaN
+ for values sk_equiangular_new would not have written).
+ */
+typedef struct {
+    /*
+     t0, delta, theta_b - theta_a, t_min, t_max.
+     */
+    float state[5];
+} sk_equiangular;
+
+/*
  A 3-vector of doubles.
  */
 typedef struct {
@@ -483,6 +497,16 @@ typedef struct {
      */
     double z;
 } sk_vec3_f64;
+
+/*
+ Equiangular sampling (double); see `sk_equiangular`.
+ */
+typedef struct {
+    /*
+     t0, delta, theta_b - theta_a, t_min, t_max.
+     */
+    double state[5];
+} sk_equiangular_f64;
 
 /*
  A density grid over a world box (float; the unit cube unless
@@ -1425,6 +1449,55 @@ double sk_cbrt(double x);
  Cube root of a double with two Lancaster steps: relative error about 1e-14.
  */
 double sk_cbrt_fast(double x);
+
+/*
+ Equiangular sampling over [t_min, t_max] of the ray from o along d
+ (distances along d/|d|; t_max may be INFINITY) toward point, into *out.
+ SK_ERR_NULL for a NULL out; SK_ERR_DOMAIN for a zero or non-finite d, a
+ non-finite o or point, t_min negative or NaN, an empty segment, or a
+ point on the ray's line or so near it or far from it that the squared
+ distance underflows or overflows.
+ */
+sk_status sk_equiangular_new(sk_vec3 o,
+                             sk_vec3 d,
+                             float t_min,
+                             float t_max,
+                             sk_vec3 point,
+                             sk_equiangular *out);
+
+/*
+ Double twin of `sk_equiangular_new`.
+ */
+sk_status sk_equiangular_new_f64(sk_vec3_f64 o,
+                                 sk_vec3_f64 d,
+                                 double t_min,
+                                 double t_max,
+                                 sk_vec3_f64 point,
+                                 sk_equiangular_f64 *out);
+
+/*
+ The distance for a uniform u (clamped to [0, 1]), within the segment
+ and monotone in u. NaN for NULL, a NaN u, or a state sk_equiangular_new
+ would not have written.
+ */
+float sk_equiangular_sample(const sk_equiangular *e, float u);
+
+/*
+ Double twin of `sk_equiangular_sample`.
+ */
+double sk_equiangular_sample_f64(const sk_equiangular_f64 *e, double u);
+
+/*
+ The density of distance t per unit length: 0 outside the segment (and
+ for a NaN t), NaN for NULL or a state sk_equiangular_new would not have
+ written. For multiple importance sampling with free-flight sampling.
+ */
+float sk_equiangular_pdf(const sk_equiangular *e, float t);
+
+/*
+ Double twin of `sk_equiangular_pdf`.
+ */
+double sk_equiangular_pdf_f64(const sk_equiangular_f64 *e, double t);
 
 /*
  Completes the unit vector `n` to a right-handed orthonormal basis

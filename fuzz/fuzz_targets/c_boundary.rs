@@ -330,5 +330,26 @@ fuzz_target!(|data: &[u8]| {
                 }
             }
         }
+        // Equiangular sampling with a fuzzed ray, segment and point: OK or
+        // DOMAIN; once built, every distance lies in the segment (or is NaN
+        // for a NaN uniform) and every density is finite and >= 0.
+        let mut eq = core::mem::MaybeUninit::<sk_equiangular>::uninit();
+        let st = sk_equiangular_new(
+            v3(x(0), x(1), x(2)),
+            v3(x(3), x(4), 1.0),
+            x(5),
+            x(6),
+            v3(x(7), x(8), x(9)),
+            eq.as_mut_ptr(),
+        );
+        assert!(matches!(st, sk_status::SK_OK | sk_status::SK_ERR_DOMAIN));
+        if st == sk_status::SK_OK {
+            let eq = eq.assume_init();
+            let (a, b) = (x(5), x(6));
+            let t = sk_equiangular_sample(&eq, x(10));
+            assert!(x(10).is_nan() || (a..=b).contains(&t), "{t} in [{a}, {b}]");
+            let p = sk_equiangular_pdf(&eq, x(11));
+            assert!(p >= 0.0 && !p.is_nan(), "{p}");
+        }
     }
 });

@@ -28,6 +28,7 @@ macro_rules! same_values {
 }
 
 mod cbrt;
+mod equiangular;
 mod geometry;
 mod majorant;
 mod medium;
@@ -44,6 +45,7 @@ mod ray_march;
 mod residual;
 
 pub use cbrt::*;
+pub use equiangular::*;
 pub use geometry::*;
 pub use majorant::*;
 pub use medium::*;

@@ -4,10 +4,18 @@
 //! density `∝ 1/r²`, `r` the distance to the point (a light, say), which
 //! cancels the light's inverse-square falloff in single scattering. With
 //! `t₀` the foot of the perpendicular from the point to the ray and `Δ` its
-//! length, the angle `θ = atan((t − t₀)/Δ)` is uniform between
-//! `θ_a = atan((a − t₀)/Δ)` and `θ_b`; so `t = t₀ + Δ tan θ` and
+//! length, the angle `θ = atan((t − t₀)/Δ)` is uniform between `θ_a` and
+//! `θ_b`; so `t = t₀ + Δ tan θ` and
 //! `pdf(t) = Δ / ((θ_b − θ_a)(Δ² + (t − t₀)²))`. Combine it with free-flight
 //! sampling by multiple importance sampling (both pdfs are available).
+//!
+//! Both are written relative to the segment's start, so that a short
+//! segment seen from afar (where `θ_a` and `θ_b` round to the same angle)
+//! keeps its full precision: with `x_a = a − t₀`,
+//! `θ_b − θ_a = atan2(Δ(b − a), Δ² + x_a x_b)`, and for `φ = θ − θ_a`,
+//! `t = a + (Δ² + x_a²) sin φ / (Δ cos φ − x_a sin φ)` (the tangent's
+//! addition formula), neither of which subtracts two angles or two
+//! distances near each other.
 
 use crate::error::Error;
 use crate::math::geometry::Vec3;
@@ -21,8 +29,8 @@ pub struct Equiangular<T> {
     t0: T,
     /// The distance from the point to the ray's line (> 0).
     delta: T,
-    /// The angles of the segment's ends, `θ_a < θ_b`.
-    theta: (T, T),
+    /// The angle the segment subtends, `θ_b − θ_a`, in `(0, π]`.
+    span: T,
     /// The segment `[a, b]`.
     ends: (T, T),
 }
@@ -31,8 +39,10 @@ impl<T: Real> Equiangular<T> {
     /// Equiangular sampling over `[t_min, t_max]` of `ray` (distances along
     /// its unit direction; `t_max` may be +∞) toward `point`.
     /// [`Error::Domain`] for a ray [`Ray`] does not accept, a non-finite
-    /// point, an empty segment, or a point on the ray's line (the density
-    /// would be a spike).
+    /// point, an empty segment, a point on the ray's line (the density
+    /// would be a spike) or so near it or so far from it that `Δ²`
+    /// underflows or overflows, or a segment too short to subtend a
+    /// representable angle.
     pub fn new(ray: Ray<T>, point: Vec3<T>) -> Result<Self, Error> {
         let (o, d) = ray.checked()?;
         if !point.is_finite() || ray.t_max <= ray.t_min {
@@ -43,28 +53,39 @@ impl<T: Real> Equiangular<T> {
         // |v × d| rather than sqrt(|v|² − t0²), which cancels for a point
         // near the line far along it.
         let c = v.cross(d);
-        let delta = c.dot(c).sqrt();
-        if delta <= T::ZERO || !delta.is_finite() {
+        let delta2 = c.dot(c);
+        if delta2 <= T::ZERO || !delta2.is_finite() {
             return Err(Error::Domain);
         }
-        let angle = |t: T| (t - t0).atan2(delta);
-        Ok(Equiangular {
-            t0,
-            delta,
-            theta: (angle(ray.t_min), angle(ray.t_max)),
-            ends: (ray.t_min, ray.t_max),
-        })
+        let delta = delta2.sqrt();
+        let (a, b) = (ray.t_min, ray.t_max);
+        let (xa, xb) = (a - t0, b - t0);
+        let (y, x) = (delta * (b - a), delta2 + xa * xb);
+        let span = if y.is_finite() && x.is_finite() {
+            y.atan2(x)
+        } else {
+            // An infinite or enormous segment: no cancellation to avoid.
+            xb.atan2(delta) - xa.atan2(delta)
+        };
+        Self::from_parts([t0, delta, span, a, b])
     }
 
     /// The distance for a uniform `u` (clamped to `[0, 1]`; NaN stays
     /// NaN), within the segment; monotone in `u`.
     pub fn sample(&self, u: T) -> T {
-        let (ta, tb) = self.theta;
-        let theta = ta + u.clamp01() * (tb - ta);
-        let (s, c) = theta.sin_cos();
-        let t = self.t0 + self.delta * (s / c);
+        let (a, b) = self.ends;
+        let (s, c) = (u.clamp01() * self.span).sin_cos();
+        let xa = a - self.t0;
+        let den = self.delta * c - xa * s;
+        // den ≤ 0 only where θ rounds onto π/2: the end of an infinite
+        // segment.
+        let t = if den <= T::ZERO {
+            b
+        } else {
+            a + (self.delta * self.delta + xa * xa) * s / den
+        };
         // Written so that a NaN passes through both bounds.
-        self.ends.1.min_of(self.ends.0.max_of(t))
+        b.min_of(a.max_of(t))
     }
 
     /// The density of distance `t` per unit length (0 outside the segment).
@@ -73,6 +94,32 @@ impl<T: Real> Equiangular<T> {
             return T::ZERO;
         }
         let x = t - self.t0;
-        self.delta / ((self.theta.1 - self.theta.0) * (self.delta * self.delta + x * x))
+        self.delta / (self.span * (self.delta * self.delta + x * x))
+    }
+
+    /// The stored state, `[t₀, Δ, θ_b − θ_a, a, b]` (for the C layer's
+    /// plain struct).
+    pub(crate) fn parts(&self) -> [T; 5] {
+        [self.t0, self.delta, self.span, self.ends.0, self.ends.1]
+    }
+
+    /// The state back from [`parts`](Self::parts), checked so that values
+    /// a caller stored cannot make [`sample`](Self::sample) leave the
+    /// segment or [`pdf`](Self::pdf) answer NaN: [`Error::Domain`] unless
+    /// `t₀` and `a` are finite, `Δ > 0` with `Δ²` finite and non-zero,
+    /// `0 < θ_b − θ_a ≤ π` and `a < b`.
+    pub(crate) fn from_parts([t0, delta, span, a, b]: [T; 5]) -> Result<Self, Error> {
+        let d2 = delta * delta;
+        let ok = t0.is_finite() && a.is_finite() && a < b && delta > T::ZERO;
+        if ok && d2 > T::ZERO && d2.is_finite() && span > T::ZERO && span <= T::PI {
+            Ok(Equiangular {
+                t0,
+                delta,
+                span,
+                ends: (a, b),
+            })
+        } else {
+            Err(Error::Domain)
+        }
     }
 }

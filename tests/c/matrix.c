@@ -904,6 +904,51 @@ static void majorants(void) {
         CHECK(sk_ray_march_transmittance_fn_f64(coeff64, NULL, od, dd, 0, 3, 4, 1000, &rng, NULL) == SK_ERR_NULL);
     }
     {
+        /* Equiangular sampling toward a point 1 unit off the x axis, over
+         * [0, 2] (symmetric about the foot t0 = 1: the median is 1 and the
+         * density there 1/(theta_b - theta_a) = 2/pi) and over [0, inf). */
+        sk_vec3 x0 = {0, 0, 0}, xd = {1, 0, 0}, p = {1, 1, 0}, on_line = {5, 0, 0};
+        sk_vec3_f64 x0d = {0, 0, 0}, xdd = {2, 0, 0}, pd = {1, 1, 0};
+        sk_equiangular e, bad;
+        sk_equiangular_f64 ed;
+        float s;
+        CHECK(sk_equiangular_new(x0, xd, 0, 2, p, &e) == SK_OK);
+        CHECK(fabsf(sk_equiangular_sample(&e, 0.5f) - 1.0f) < 1e-6f);
+        CHECK(fabsf(sk_equiangular_pdf(&e, 1.0f) - 0.63661977f) < 1e-6f);
+        CHECK(sk_equiangular_pdf(&e, 2.5f) == 0.0f && sk_equiangular_pdf(&e, NAN) == 0.0f);
+        CHECK(sk_equiangular_new_f64(x0d, xdd, 0, INFINITY, pd, &ed) == SK_OK);
+        CHECK(fabs(sk_equiangular_pdf_f64(&ed, 1.0) - 4.0 / (3.0 * 3.14159265358979323846)) < 1e-15);
+        CHECK(sk_equiangular_sample_f64(&ed, 1.0) >= 1.0 && !isnan(sk_equiangular_sample_f64(&ed, 1.0)));
+        for (i = 0; i < NS; i++) {
+            s = sk_equiangular_sample(&e, FS[i]);
+            CHECK(isnan(FS[i]) ? isnan(s) : (s >= 0.0f && s <= 2.0f));
+            s = sk_equiangular_pdf(&e, FS[i]);
+            CHECK(s >= 0.0f && s < 1.0f);
+            CHECK(sk_equiangular_new(x0, xd, 0, FS[i], p, &bad) == (FS[i] > 0.0f ? SK_OK : SK_ERR_DOMAIN));
+            CHECK(sk_equiangular_new(x0, xd, FS[i], 2, p, &bad) ==
+                  (FS[i] >= 0.0f && FS[i] < 2.0f ? SK_OK : SK_ERR_DOMAIN));
+            CHECK(sk_equiangular_new_f64(x0d, xdd, 0, 2, (sk_vec3_f64){1, DS[i], 0}, &ed) ==
+                  (fabs(DS[i]) > 1e-150 && fabs(DS[i]) < 1e150 ? SK_OK : SK_ERR_DOMAIN));
+        }
+        i = 0;
+        CHECK(sk_equiangular_new(x0, xd, 0, 2, p, NULL) == SK_ERR_NULL);
+        CHECK(sk_equiangular_new(x0, zero, 0, 2, p, &bad) == SK_ERR_DOMAIN);
+        CHECK(sk_equiangular_new(x0, xd, 0, 2, on_line, &bad) == SK_ERR_DOMAIN);
+        CHECK(sk_equiangular_new(x0, xd, 1, 1, p, &bad) == SK_ERR_DOMAIN);
+        CHECK(sk_equiangular_new_f64(x0d, xdd, 0, 2, (sk_vec3_f64){1, 1e-200, 0}, &ed) == SK_ERR_DOMAIN);
+        CHECK(isnan(sk_equiangular_sample(NULL, 0.5f)) && isnan(sk_equiangular_pdf_f64(NULL, 1.0)));
+        /* A state sk_equiangular_new would not write answers NaN. */
+        bad = e;
+        bad.state[1] = -1.0f;
+        CHECK(isnan(sk_equiangular_sample(&bad, 0.5f)) && isnan(sk_equiangular_pdf(&bad, 1.0f)));
+        bad = e;
+        bad.state[2] = NAN;
+        CHECK(isnan(sk_equiangular_sample(&bad, 0.5f)));
+        bad = e;
+        bad.state[3] = 3.0f;
+        CHECK(isnan(sk_equiangular_pdf(&bad, 1.0f)));
+    }
+    {
         /* Spectral tracking: density majorants (the grid's coefficients sum
          * to 1), three channels, hero 1. */
         float sa[3] = {0.1f, 0.2f, 0.0f}, ss[3] = {0.3f, 0.0f, 0.5f}, w[3], u[3], l[3];

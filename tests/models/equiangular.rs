@@ -193,3 +193,30 @@ fn mis_single_scattering_matches_quadrature() {
     let (_, se_ff) = mean_se(&ff);
     assert!(se < se_ff, "MIS σ {se} not below free flight's {se_ff}");
 }
+
+/// A short segment seen from afar, in f32: the angles of its ends round to
+/// the same value (a sampler that subtracts them divides by 0), yet the
+/// density and the distances hold f32 precision against f64.
+#[test]
+fn a_short_far_segment_keeps_its_precision() {
+    let o = Vec3::new(0.0f32, 0.0, 0.0);
+    let d = Vec3::new(1.0f32, 0.0, 0.0);
+    let c = Vec3::new(1.0e4f32, 1.0e4, 0.0);
+    let (a, b) = (0.0f32, 1e-4f32);
+    let e = Equiangular::new(Ray::new(o, d, b).segment(a, b), c).unwrap();
+    assert_eq!(
+        (a - 1.0e4f32).atan2(1.0e4),
+        (b - 1.0e4f32).atan2(1.0e4),
+        "the ends' angles should round together"
+    );
+    let to64 = |v: Vec3<f32>| Vec3::new(v.x as f64, v.y as f64, v.z as f64);
+    let ray64 = Ray::new(to64(o), to64(d), b as f64).segment(a as f64, b as f64);
+    let e64 = Equiangular::new(ray64, to64(c)).unwrap();
+    for k in 0..=10 {
+        let u = k as f32 / 10.0;
+        let (t, t64) = (e.sample(u) as f64, e64.sample(u as f64));
+        assert!((t - t64).abs() <= 1e-6 * b as f64, "u {u}: {t} vs {t64}");
+        let (p, p64) = (e.pdf(t as f32) as f64, e64.pdf(t));
+        assert!((p / p64 - 1.0).abs() < 1e-5, "u {u}: pdf {p} vs {p64}");
+    }
+}

@@ -467,46 +467,38 @@ typedef struct {
 } sk_vec3;
 
 /*
- Equiangular sampling of one ray segment toward one point (a light):
- distances with density proportional to 1/r^2, r the distance to the
- point (Kulla & Fajardo 2012, section 3). Filled by sk_equiangular_new;
- treat the fields as opaque (sample and pdf check them and answer NaN
- for values sk_equiangular_new would not have written).
+ A grid of majorants (sigma_maj per length unit, >= 0) over a world box,
+ one per cell of an mx*my*mz division of it, borrowing the caller's array
+ (x fastest), which must outlive it. Build it with sk_majorants_build
+ (from a grid) or sk_majorants_new (your own bounds); the fields are what
+ that validated.
  */
 typedef struct {
     /*
-     t0, delta, theta_b - theta_a, t_min, t_max.
+     The caller's majorants.
      */
-    float state[5];
-} sk_equiangular;
-
-/*
- A 3-vector of doubles.
- */
-typedef struct {
+    const float *sigma;
     /*
-     x component.
+     Cells along x.
      */
-    double x;
+    uint32_t mx;
     /*
-     y component.
+     Cells along y.
      */
-    double y;
+    uint32_t my;
     /*
-     z component.
+     Cells along z.
      */
-    double z;
-} sk_vec3_f64;
-
-/*
- Equiangular sampling (double); see `sk_equiangular`.
- */
-typedef struct {
+    uint32_t mz;
     /*
-     t0, delta, theta_b - theta_a, t_min, t_max.
+     The world box's low corner.
      */
-    double state[5];
-} sk_equiangular_f64;
+    sk_vec3 lo;
+    /*
+     The world box's high corner.
+     */
+    sk_vec3 hi;
+} sk_majorants;
 
 /*
  A density grid over a world box (float; the unit cube unless
@@ -558,17 +550,52 @@ typedef struct {
 } sk_grid;
 
 /*
- A grid of majorants (sigma_maj per length unit, >= 0) over a world box,
- one per cell of an mx*my*mz division of it, borrowing the caller's array
- (x fastest), which must outlive it. Build it with sk_majorants_build
- (from a grid) or sk_majorants_new (your own bounds); the fields are what
- that validated.
+ The emitted radiance along a ray segment and the segment's
+ transmittance.
+ */
+typedef struct {
+    /*
+     The integral of T(a, t) sigma_a(t) L_e(t) dt along the segment (in
+     the units of L_e): an unbiased estimate, or exact from
+     sk_emission_cells.
+     */
+    float radiance;
+    /*
+     The transmittance of the whole segment (estimated, or exact).
+     */
+    float tr;
+    /*
+     Tentative collisions drawn (density evaluations); 0 when exact.
+     */
+    uint32_t steps;
+} sk_emission_result;
+
+/*
+ A 3-vector of doubles.
+ */
+typedef struct {
+    /*
+     x component.
+     */
+    double x;
+    /*
+     y component.
+     */
+    double y;
+    /*
+     z component.
+     */
+    double z;
+} sk_vec3_f64;
+
+/*
+ A grid of majorants (double); see `sk_majorants`.
  */
 typedef struct {
     /*
      The caller's majorants.
      */
-    const float *sigma;
+    const double *sigma;
     /*
      Cells along x.
      */
@@ -584,12 +611,12 @@ typedef struct {
     /*
      The world box's low corner.
      */
-    sk_vec3 lo;
+    sk_vec3_f64 lo;
     /*
      The world box's high corner.
      */
-    sk_vec3 hi;
-} sk_majorants;
+    sk_vec3_f64 hi;
+} sk_majorants_f64;
 
 /*
  A density grid (double); see `sk_grid`.
@@ -638,34 +665,98 @@ typedef struct {
 } sk_grid_f64;
 
 /*
- A grid of majorants (double); see `sk_majorants`.
+ The emitted radiance along a ray segment (double); see
+ `sk_emission_result`.
  */
 typedef struct {
     /*
-     The caller's majorants.
+     As in `sk_emission_result`.
      */
-    const double *sigma;
+    double radiance;
     /*
-     Cells along x.
+     As in `sk_emission_result`.
      */
-    uint32_t mx;
+    double tr;
     /*
-     Cells along y.
+     Tentative collisions drawn.
      */
-    uint32_t my;
+    uint32_t steps;
+} sk_emission_result_f64;
+
+/*
+ Absorption and scattering coefficients at a point (per length unit).
+ */
+typedef struct {
     /*
-     Cells along z.
+     sigma_a >= 0.
      */
-    uint32_t mz;
+    float sigma_a;
     /*
-     The world box's low corner.
+     sigma_s >= 0.
      */
-    sk_vec3_f64 lo;
+    float sigma_s;
+} sk_coefficients;
+
+/*
+ The caller's medium for tracking through majorants: sigma_a and sigma_s
+ at point p, both >= 0 with a sum within the majorant of the cell holding
+ p. Tracking decides absorption, scattering or a null collision itself.
+ */
+typedef sk_coefficients (*sk_medium_fn)(void *ctx, sk_vec3 p);
+
+/*
+ The caller's medium: sigma_t at point p (per length unit), which must stay
+ in [0, sigma_maj] along the ray.
+ */
+typedef float (*sk_density_fn)(void *ctx, sk_vec3 p);
+
+/*
+ Absorption and scattering coefficients (double).
+ */
+typedef struct {
     /*
-     The world box's high corner.
+     sigma_a >= 0.
      */
-    sk_vec3_f64 hi;
-} sk_majorants_f64;
+    double sigma_a;
+    /*
+     sigma_s >= 0.
+     */
+    double sigma_s;
+} sk_coefficients_f64;
+
+/*
+ The caller's medium (double); see `sk_medium_fn`.
+ */
+typedef sk_coefficients_f64 (*sk_medium_fn_f64)(void *ctx, sk_vec3_f64 p);
+
+/*
+ The caller's medium (double); see `sk_density_fn`.
+ */
+typedef double (*sk_density_fn_f64)(void *ctx, sk_vec3_f64 p);
+
+/*
+ Equiangular sampling of one ray segment toward one point (a light):
+ distances with density proportional to 1/r^2, r the distance to the
+ point (Kulla & Fajardo 2012, section 3). Filled by sk_equiangular_new;
+ treat the fields as opaque (sample and pdf check them and answer NaN
+ for values sk_equiangular_new would not have written).
+ */
+typedef struct {
+    /*
+     t0, delta, theta_b - theta_a, t_min, t_max.
+     */
+    float state[5];
+} sk_equiangular;
+
+/*
+ Equiangular sampling (double); see `sk_equiangular`.
+ */
+typedef struct {
+    /*
+     t0, delta, theta_b - theta_a, t_min, t_max.
+     */
+    double state[5];
+} sk_equiangular_f64;
 
 /*
  What delta tracking through majorants found.
@@ -734,57 +825,6 @@ typedef struct {
      */
     uint32_t steps;
 } sk_ratio_result_f64;
-
-/*
- Absorption and scattering coefficients at a point (per length unit).
- */
-typedef struct {
-    /*
-     sigma_a >= 0.
-     */
-    float sigma_a;
-    /*
-     sigma_s >= 0.
-     */
-    float sigma_s;
-} sk_coefficients;
-
-/*
- The caller's medium for tracking through majorants: sigma_a and sigma_s
- at point p, both >= 0 with a sum within the majorant of the cell holding
- p. Tracking decides absorption, scattering or a null collision itself.
- */
-typedef sk_coefficients (*sk_medium_fn)(void *ctx, sk_vec3 p);
-
-/*
- Absorption and scattering coefficients (double).
- */
-typedef struct {
-    /*
-     sigma_a >= 0.
-     */
-    double sigma_a;
-    /*
-     sigma_s >= 0.
-     */
-    double sigma_s;
-} sk_coefficients_f64;
-
-/*
- The caller's medium (double); see `sk_medium_fn`.
- */
-typedef sk_coefficients_f64 (*sk_medium_fn_f64)(void *ctx, sk_vec3_f64 p);
-
-/*
- The caller's medium: sigma_t at point p (per length unit), which must stay
- in [0, sigma_maj] along the ray.
- */
-typedef float (*sk_density_fn)(void *ctx, sk_vec3 p);
-
-/*
- The caller's medium (double); see `sk_density_fn`.
- */
-typedef double (*sk_density_fn_f64)(void *ctx, sk_vec3_f64 p);
 
 /*
  A complex number: the relative refractive index m = re + i im (im >= 0
@@ -1449,6 +1489,111 @@ double sk_cbrt(double x);
  Cube root of a double with two Lancaster steps: relative error about 1e-14.
  */
 double sk_cbrt_fast(double x);
+
+/*
+ The radiance grid g (with majorants m, as sk_ratio_track_majorants)
+ emits toward the ray's origin over [0, t_max] (the ray clipped to the
+ box): the integral of T(0, t) sigma_a(t) L_e(t) dt, L_e(p) the emitted
+ radiance read from grid le (its interpolated density; its own box and
+ sampling, its coefficients unused). Ratio tracking that scores
+ W sigma_a L_e / sigma_maj at each tentative collision, W the weight so
+ far: unbiased; its final weight estimates the transmittance. Writes
+ *out. SK_ERR_NULL for NULL pointers or callback; SK_ERR_DOMAIN for a
+ zero or non-finite vector, t_max negative or NaN, g over another box
+ than m, coefficients above the majorant or an L_e negative or not
+ finite where a collision reads it; SK_ERR_BUDGET when more than
+ `budget` tentative collisions would be needed; SK_ERR_SIZE for
+ malformed grids or majorants.
+ */
+sk_status sk_emission_track(const sk_majorants *m,
+                            const sk_grid *g,
+                            const sk_grid *le,
+                            sk_vec3 o,
+                            sk_vec3 d,
+                            float t_max,
+                            uint32_t budget,
+                            sk_rng *rng,
+                            sk_emission_result *out);
+
+/*
+ Double twin of `sk_emission_track`.
+ */
+sk_status sk_emission_track_f64(const sk_majorants_f64 *m,
+                                const sk_grid_f64 *g,
+                                const sk_grid_f64 *le,
+                                sk_vec3_f64 o,
+                                sk_vec3_f64 d,
+                                double t_max,
+                                uint32_t budget,
+                                sk_rng *rng,
+                                sk_emission_result_f64 *out);
+
+/*
+ sk_emission_track through a caller's medium f(ctx, p) (coefficients
+ within the majorants m) with the emitted radiance le(le_ctx, p) (finite
+ and >= 0, else SK_ERR_DOMAIN), over [t_min, t_max] (clipped to the
+ majorants' box; t_max may be INFINITY). Other errors as
+ sk_emission_track.
+ */
+sk_status sk_emission_track_fn(sk_medium_fn f,
+                               void *ctx,
+                               sk_density_fn le,
+                               void *le_ctx,
+                               const sk_majorants *m,
+                               sk_vec3 o,
+                               sk_vec3 d,
+                               float t_min,
+                               float t_max,
+                               uint32_t budget,
+                               sk_rng *rng,
+                               sk_emission_result *out);
+
+/*
+ Double twin of `sk_emission_track_fn`.
+ */
+sk_status sk_emission_track_fn_f64(sk_medium_fn_f64 f,
+                                   void *ctx,
+                                   sk_density_fn_f64 le,
+                                   void *le_ctx,
+                                   const sk_majorants_f64 *m,
+                                   sk_vec3_f64 o,
+                                   sk_vec3_f64 d,
+                                   double t_min,
+                                   double t_max,
+                                   uint32_t budget,
+                                   sk_rng *rng,
+                                   sk_emission_result_f64 *out);
+
+/*
+ The exact emitted radiance along the ray over [t_min, t_max] through a
+ medium constant in each cell: sigma_t holds each cell's extinction and
+ emitted its emission coefficient sigma_a L_e (per length unit; both
+ built or checked by sk_majorants_new, over the same cells and box). Per
+ cell crossed over a length l after optical depth tau:
+ exp(-tau) j l (1 - exp(-sigma_t l))/(sigma_t l). Writes *out (steps 0).
+ SK_ERR_NULL for NULL pointers; SK_ERR_SIZE for malformed grids;
+ SK_ERR_DOMAIN for grids over different cells or boxes, a zero or
+ non-finite vector, t_min, t_max out of order, or a radiance that
+ overflows.
+ */
+sk_status sk_emission_cells(const sk_majorants *sigma_t,
+                            const sk_majorants *emitted,
+                            sk_vec3 o,
+                            sk_vec3 d,
+                            float t_min,
+                            float t_max,
+                            sk_emission_result *out);
+
+/*
+ Double twin of `sk_emission_cells`.
+ */
+sk_status sk_emission_cells_f64(const sk_majorants_f64 *sigma_t,
+                                const sk_majorants_f64 *emitted,
+                                sk_vec3_f64 o,
+                                sk_vec3_f64 d,
+                                double t_min,
+                                double t_max,
+                                sk_emission_result_f64 *out);
 
 /*
  Equiangular sampling over [t_min, t_max] of the ray from o along d

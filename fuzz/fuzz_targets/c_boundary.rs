@@ -292,6 +292,23 @@ fuzz_target!(|data: &[u8]| {
                     let r = out.assume_init();
                     assert!(r.tr.is_finite() && r.steps <= budget, "{r:?}");
                 }
+                // Emission with the grid as its own emitted radiance, and
+                // the exact integral over the majorants' cells: a finite,
+                // non-negative radiance within the budget.
+                let mut em = core::mem::MaybeUninit::<sk_emission_result>::uninit();
+                if sk_emission_track(&maj, &g, &g, o, d, x(32), budget, &mut rng, em.as_mut_ptr())
+                    == sk_status::SK_OK
+                {
+                    let e = em.assume_init();
+                    assert!(e.radiance >= 0.0 && e.radiance.is_finite(), "{e:?}");
+                    assert!(e.tr >= 0.0 && e.steps <= budget, "{e:?}");
+                }
+                if sk_emission_cells(&maj, &maj, o, d, 0.0, x(32), em.as_mut_ptr())
+                    == sk_status::SK_OK
+                {
+                    let e = em.assume_init();
+                    assert!(e.radiance >= 0.0 && (0.0..=1.0).contains(&e.tr), "{e:?}");
+                }
                 // Residual ratio tracking with the grid's extrema at the
                 // same resolution: a transmittance (a weight may pass 1 by
                 // the minorants' rounding, never by more).

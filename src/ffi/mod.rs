@@ -28,6 +28,7 @@ macro_rules! same_values {
 }
 
 mod cbrt;
+mod emission;
 mod equiangular;
 mod geometry;
 mod majorant;
@@ -45,6 +46,7 @@ mod ray_march;
 mod residual;
 
 pub use cbrt::*;
+pub use emission::*;
 pub use equiangular::*;
 pub use geometry::*;
 pub use majorant::*;

@@ -97,9 +97,12 @@ impl<T: Real> Equiangular<T> {
         self.delta / (self.span * (self.delta * self.delta + x * x))
     }
 
-    /// The stored state, `[t₀, Δ, θ_b − θ_a, a, b]` (for the C layer's
-    /// plain struct).
-    pub(crate) fn parts(&self) -> [T; 5] {
+    /// The stored state, `[t₀, Δ, θ_b − θ_a, a, b]`: the foot of the
+    /// perpendicular and its length (world units along the ray), the angle
+    /// the segment subtends (radians), and the segment. For storing it as
+    /// plain data (the C layer does); [`from_parts`](Self::from_parts)
+    /// reads it back.
+    pub fn parts(&self) -> [T; 5] {
         [self.t0, self.delta, self.span, self.ends.0, self.ends.1]
     }
 
@@ -108,7 +111,7 @@ impl<T: Real> Equiangular<T> {
     /// segment or [`pdf`](Self::pdf) answer NaN: [`Error::Domain`] unless
     /// `t₀` and `a` are finite, `Δ > 0` with `Δ²` finite and non-zero,
     /// `0 < θ_b − θ_a ≤ π` and `a < b`.
-    pub(crate) fn from_parts([t0, delta, span, a, b]: [T; 5]) -> Result<Self, Error> {
+    pub fn from_parts([t0, delta, span, a, b]: [T; 5]) -> Result<Self, Error> {
         let d2 = delta * delta;
         let ok = t0.is_finite() && a.is_finite() && a < b && delta > T::ZERO;
         if ok && d2 > T::ZERO && d2.is_finite() && span > T::ZERO && span <= T::PI {

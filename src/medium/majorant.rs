@@ -306,7 +306,7 @@ impl<'a, T: Real> Majorants<'a, T> {
     }
 
     /// [`Error::Domain`] unless `grid` spans this grid's box.
-    fn same_box(&self, grid: &Grid<'_, T>) -> Result<(), Error> {
+    pub(super) fn same_box(&self, grid: &Grid<'_, T>) -> Result<(), Error> {
         if grid.bounds() == (self.lo, self.hi) {
             Ok(())
         } else {
@@ -318,7 +318,7 @@ impl<'a, T: Real> Majorants<'a, T> {
     /// over `[t_min, t_max]` ∩ box, drawing tentative collisions at each
     /// cell's majorant; `visit(p, σ_maj, rng)` decides at each whether the
     /// walk ends there.
-    fn walk<R: Rng + ?Sized, X>(
+    pub(super) fn walk<R: Rng + ?Sized, X>(
         &self,
         ray: Ray<T>,
         budget: u32,
@@ -551,7 +551,7 @@ pub(super) fn grid_coefficients<T: Real>(grid: &Grid<'_, T>, p: Vec3<T>) -> (T, 
 
 /// The coefficients if both are `≥ 0` with a sum within `sigma_maj`.
 #[inline(always)]
-pub(super) fn within<T: Real>((sa, ss): (T, T), sigma_maj: T) -> Result<(T, T), Error> {
+pub(crate) fn within<T: Real>((sa, ss): (T, T), sigma_maj: T) -> Result<(T, T), Error> {
     if sa >= T::ZERO && ss >= T::ZERO && sa + ss <= sigma_maj {
         Ok((sa, ss))
     } else {
@@ -560,7 +560,7 @@ pub(super) fn within<T: Real>((sa, ss): (T, T), sigma_maj: T) -> Result<(T, T), 
 }
 
 /// A generator for walks that draw nothing (rate 0): never called.
-pub(super) struct NoDraws;
+pub(crate) struct NoDraws;
 
 impl rand_core::TryRng for NoDraws {
     type Error = core::convert::Infallible;

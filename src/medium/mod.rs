@@ -12,6 +12,7 @@
 //! (ratio tracking) rather than a biased answer. A zero majorant, or a ray
 //! that misses the medium, returns at once: no interaction, transmittance 1.
 
+pub mod emission;
 pub mod equiangular;
 pub mod majorant;
 pub mod ray_march;

@@ -134,33 +134,33 @@ fn estimate<T: Real, R: Rng + ?Sized>(
             Err(Error::Domain)
         }
     };
-    const LEN: usize = MAX_ORDER as usize + 1;
-    // x: the marches; q[k] = P(N ≥ k).
+    // x: the marches; q[k] = P(N ≥ k). No indexing below can fail (and
+    // none can panic: the C layer's entry points must not).
     let (mut x, mut q) = ([T::ZERO; LEN], [T::ONE; LEN]);
-    for xi in &mut x[..=MIN_ORDER as usize] {
+    for xi in x.iter_mut().take(MIN_ORDER as usize + 1) {
         *xi = march(rng)?;
     }
-    let mut order = MIN_ORDER as usize;
+    let (mut order, mut reach) = (MIN_ORDER as usize, T::ONE);
     loop {
         let keep = T::from_f64(CONTINUE) / T::from_index(order + 1);
         if T::uniform(rng) >= keep {
             break;
         }
-        if order == MAX_ORDER as usize {
-            return Err(Error::Budget);
-        }
         order += 1;
-        q[order] = q[order - 1] * keep.min_of(T::ONE);
-        x[order] = march(rng)?;
+        reach *= keep;
+        let (Some(xi), Some(qi)) = (x.get_mut(order), q.get_mut(order)) else {
+            return Err(Error::Budget);
+        };
+        *xi = march(rng)?;
+        *qi = reach;
     }
-    let marches = &x[..=order];
     let mut total = T::ZERO;
-    for (i, &pivot) in marches.iter().enumerate() {
-        total += pivot_estimate(pivot, marches, i, &q);
+    for (i, &pivot) in x.iter().take(order + 1).enumerate() {
+        total += pivot_estimate(pivot, &x, order + 1, i, &q);
     }
     // Strata far too coarse for the medium can make the series' terms
     // overflow: refused rather than returned as ∞ or NaN.
-    let tr = total / T::from_index(marches.len());
+    let tr = total / T::from_index(order + 1);
     if tr.is_finite() {
         Ok(Transmittance { tr, steps })
     } else {
@@ -168,30 +168,33 @@ fn estimate<T: Real, R: Rng + ?Sized>(
     }
 }
 
+/// The number of marches [`estimate`] can hold.
+const LEN: usize = MAX_ORDER as usize + 1;
+
 /// `exp(−p) Σ_k e_k(p − Y) (N − k)! / (N! q[k])` with `p = x[pivot]` and
-/// `Y` the other `N` marches.
-fn pivot_estimate<T: Real>(p: T, x: &[T], pivot: usize, q: &[T]) -> T {
+/// `Y` the other `N = n − 1` of the first `n` marches.
+fn pivot_estimate<T: Real>(p: T, x: &[T; LEN], n: usize, pivot: usize, q: &[T; LEN]) -> T {
     // e[k]: the elementary symmetric polynomials of the p − Y_j, built one
     // factor at a time (no power sums, whose Newton identities cancel).
-    let mut e = [T::ZERO; MAX_ORDER as usize + 1];
+    let mut e = [T::ZERO; LEN];
     e[0] = T::ONE;
     let mut count = 0;
-    for (j, &y) in x.iter().enumerate() {
+    for (j, &y) in x.iter().take(n).enumerate() {
         if j == pivot {
             continue;
         }
-        count += 1;
+        count = (count + 1).min(LEN - 1);
         for k in (1..=count).rev() {
             e[k] += (p - y) * e[k - 1];
         }
     }
     // c = (N − k)! / N!, from k = 0.
     let (mut sum, mut c) = (T::ZERO, T::ONE);
-    for k in 0..=count {
+    for (k, (&ek, &qk)) in e.iter().zip(q).take(count + 1).enumerate() {
         if k > 0 {
-            c = c / T::from_index(count - k + 1);
+            c = c / T::from_index(count + 1 - k);
         }
-        sum += e[k] * c / q[k];
+        sum += ek * c / qk;
     }
     (-p).exp() * sum
 }

@@ -674,6 +674,16 @@ static sk_coefficients_f64 coeff64(void *ctx, sk_vec3_f64 p) {
     return c;
 }
 
+/* An emitted radiance: *ctx, or 1 without one. */
+static float le32(void *ctx, sk_vec3 p) {
+    (void)p;
+    return ctx ? *(float *)ctx : 1.0f;
+}
+static double le64(void *ctx, sk_vec3_f64 p) {
+    (void)p;
+    return ctx ? *(double *)ctx : 1.0;
+}
+
 /* Grid boxes and sampling, majorant grids and tracking through them. */
 static void majorants(void) {
     int i;
@@ -947,6 +957,68 @@ static void majorants(void) {
         bad = e;
         bad.state[3] = 3.0f;
         CHECK(isnan(sk_equiangular_pdf(&bad, 1.0f)));
+    }
+    {
+        /* Emission. The exact integral over the constant grid's cells
+         * (sigma_t 1, emission coefficient 1, a unit path): 1 - e^-1. */
+        sk_emission_result er;
+        sk_emission_result_f64 erd;
+        sk_majorants single;
+        const float ones[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+        const double onesd[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+        sk_majorants j;
+        sk_majorants_f64 jd;
+        sk_status st;
+        sk_grid g3;
+        CHECK(sk_majorants_new(ones, 2, 2, 2, zero, one, &j) == SK_OK);
+        CHECK(sk_majorants_new_f64(onesd, 2, 2, 2, zerod, oned, &jd) == SK_OK);
+        CHECK(sk_majorants_new(ones, 1, 1, 1, zero, one, &single) == SK_OK);
+        CHECK(sk_emission_cells(&m, &j, o, d, 0, 3, &er) == SK_OK && er.steps == 0 &&
+              fabsf(er.radiance - (1.0f - expf(-1.0f))) < 1e-6f && fabsf(er.tr - expf(-1.0f)) < 1e-6f);
+        CHECK(sk_emission_cells_f64(&md, &jd, od, dd, 0, 3, &erd) == SK_OK && fabs(erd.radiance - (1.0 - exp(-1.0))) < 1e-15);
+        CHECK(sk_emission_cells(&m, &single, o, d, 0, 3, &er) == SK_ERR_DOMAIN);
+        CHECK(sk_emission_cells(&m, &j, o, d, 3, 1, &er) == SK_ERR_DOMAIN);
+        CHECK(sk_emission_cells(&m, &j, o, zero, 0, 3, &er) == SK_ERR_DOMAIN);
+        CHECK(sk_emission_cells(NULL, &j, o, d, 0, 3, &er) == SK_ERR_NULL);
+        CHECK(sk_emission_cells_f64(&md, NULL, od, dd, 0, 3, &erd) == SK_ERR_NULL);
+        CHECK(sk_emission_cells(&m, &j, o, d, 0, 3, NULL) == SK_ERR_NULL);
+        /* Tracking through the grid with L_e read from the same grid (1):
+         * the majorant is exact, so one collision ends the walk with
+         * radiance sigma_a L_e / sigma_maj = 0.5, or none leaves 0. */
+        CHECK(sk_emission_track(&m, &g, &g, o, d, 3, 1000, &rng, &er) == SK_OK &&
+              (er.radiance == 0.0f || fabsf(er.radiance - 0.5f) < 1e-6f));
+        CHECK(sk_emission_track_f64(&md, &gd, &gd, od, dd, 3, 1000, &rng, &erd) == SK_OK);
+        CHECK(sk_emission_track(NULL, &g, &g, o, d, 3, 1000, &rng, &er) == SK_ERR_NULL);
+        CHECK(sk_emission_track(&m, NULL, &g, o, d, 3, 1000, &rng, &er) == SK_ERR_NULL);
+        CHECK(sk_emission_track(&m, &g, NULL, o, d, 3, 1000, &rng, &er) == SK_ERR_NULL);
+        CHECK(sk_emission_track(&m, &g, &g, o, d, 3, 1000, &no_fn, &er) == SK_ERR_NULL);
+        CHECK(sk_emission_track_f64(&md, &gd, &gd, od, dd, 3, 1000, &rng, NULL) == SK_ERR_NULL);
+        CHECK(sk_emission_track(&m, &g, &g, o, zero, 3, 1000, &rng, &er) == SK_ERR_DOMAIN);
+        CHECK(sk_emission_track_f64(&md, &gd, &gd, od, dd, NAN, 1000, &rng, &erd) == SK_ERR_DOMAIN);
+        CHECK(sk_emission_track(&big, &g, &g, o, d, 3, 0, &rng, &er) == SK_ERR_BUDGET);
+        g3 = g;
+        g3.nx = 0;
+        CHECK(sk_emission_track(&m, &g, &g3, o, d, 3, 1000, &rng, &er) == SK_ERR_SIZE);
+        /* The caller's medium under majorants of 50 (a collision is all
+         * but certain, so L_e is read): L_e must be finite and >= 0; an
+         * enormous one may overflow the sum, which is DOMAIN. */
+        for (i = 0; i < NS; i++) {
+            ctxf = FS[i];
+            st = sk_emission_track_fn(coeff32, NULL, le32, &ctxf, &big, o, d, 0, 3, 1000, &rng, &er);
+            CHECK(FS[i] >= 0.0f && isfinite(FS[i]) ? st == SK_OK || (FS[i] > 1e30f && st == SK_ERR_DOMAIN)
+                                                   : st == SK_ERR_DOMAIN);
+            CHECK(st != SK_OK || (er.radiance >= 0.0f && isfinite(er.radiance)));
+            ctxd = DS[i];
+            st = sk_emission_track_fn_f64(coeff64, NULL, le64, &ctxd, &bigd, od, dd, 0, 3, 1000, &rng, &erd);
+            CHECK(DS[i] >= 0.0 && isfinite(DS[i]) ? st == SK_OK || (DS[i] > 1e300 && st == SK_ERR_DOMAIN)
+                                                  : st == SK_ERR_DOMAIN);
+        }
+        i = 0;
+        CHECK(sk_emission_track_fn(coeff32, NULL, NULL, NULL, &big, o, d, 0, 3, 1000, &rng, &er) == SK_ERR_NULL);
+        CHECK(sk_emission_track_fn(NULL, NULL, le32, NULL, &big, o, d, 0, 3, 1000, &rng, &er) == SK_ERR_NULL);
+        CHECK(sk_emission_track_fn_f64(coeff64, NULL, le64, NULL, NULL, od, dd, 0, 3, 1000, &rng, &erd) == SK_ERR_NULL);
+        CHECK(sk_emission_track_fn(coeff32, NULL, le32, NULL, &big, o, d, 0, INFINITY, 1000, &rng, &er) == SK_OK);
+        CHECK(sk_emission_track_fn(coeff32, NULL, le32, NULL, &big, o, d, 2, 1, 1000, &rng, &er) == SK_ERR_DOMAIN);
     }
     {
         /* Spectral tracking: density majorants (the grid's coefficients sum

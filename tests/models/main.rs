@@ -12,6 +12,7 @@ mod choose_fog;
 mod choose_measured;
 mod choose_mie;
 mod draine;
+mod emission;
 mod equiangular;
 mod fournier_forand;
 mod gegenbauer;

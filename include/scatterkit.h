@@ -889,6 +889,116 @@ typedef struct {
 } sk_mie;
 
 /*
+ What ratio tracking with signed weights found.
+ */
+typedef struct {
+    /*
+     The unbiased transmittance estimate; negative or above 1 only where
+     a majorant did not bound.
+     */
+    float tr;
+    /*
+     Tentative collisions drawn (density evaluations).
+     */
+    uint32_t steps;
+    /*
+     The largest sigma_t / sigma_maj above 1 met on the walk, or 0 when
+     every majorant met bounded the medium.
+     */
+    float exceeded;
+    /*
+     The majorant cell (i, j, k) where `exceeded` was met (0s when none):
+     raise its majorant for later rays.
+     */
+    uint32_t cell[3];
+} sk_signed_result;
+
+/*
+ What ratio tracking with signed weights found (double); see
+ `sk_signed_result`.
+ */
+typedef struct {
+    /*
+     As in `sk_signed_result`.
+     */
+    double tr;
+    /*
+     Tentative collisions drawn.
+     */
+    uint32_t steps;
+    /*
+     As in `sk_signed_result`.
+     */
+    double exceeded;
+    /*
+     As in `sk_signed_result`.
+     */
+    uint32_t cell[3];
+} sk_signed_result_f64;
+
+/*
+ What weighted delta tracking found.
+ */
+typedef struct {
+    /*
+     Distance along d/|d| of the real collision, or where the ray leaves
+     the box (as in `sk_track_result`).
+     */
+    float t;
+    /*
+     An sk_track_event: ESCAPED, SCATTERED or ABSORBED.
+     */
+    uint32_t event;
+    /*
+     The path's weight: 1 where every majorant met bounded the medium,
+     else signed; the outcome counts with this weight.
+     */
+    float weight;
+    /*
+     Tentative collisions drawn, the real one included.
+     */
+    uint32_t steps;
+    /*
+     As in `sk_signed_result`.
+     */
+    float exceeded;
+    /*
+     As in `sk_signed_result`.
+     */
+    uint32_t cell[3];
+} sk_weighted_track;
+
+/*
+ What weighted delta tracking found (double); see `sk_weighted_track`.
+ */
+typedef struct {
+    /*
+     As in `sk_weighted_track`.
+     */
+    double t;
+    /*
+     An sk_track_event.
+     */
+    uint32_t event;
+    /*
+     As in `sk_weighted_track`.
+     */
+    double weight;
+    /*
+     Tentative collisions drawn.
+     */
+    uint32_t steps;
+    /*
+     As in `sk_signed_result`.
+     */
+    double exceeded;
+    /*
+     As in `sk_signed_result`.
+     */
+    uint32_t cell[3];
+} sk_weighted_track_f64;
+
+/*
  A phase function (float). A plain value with no pointers inside: build it
  with an `sk_phase_*` constructor, then copy it and share it freely across
  threads. Its contents are private, and some of its bytes are padding a
@@ -2124,6 +2234,81 @@ sk_status sk_mie_table_sizes(double x, size_t *angles, size_t *intervals);
  2, a malformed sphere, or too many angles to give distinct cosines.
  */
 sk_status sk_mie_tabulate(const sk_mie *m, double *cos_theta, double *pdf, size_t count);
+
+/*
+ Ratio tracking through the caller's medium f(ctx, p) along the ray
+ from o along d over [t_min, t_max] (clipped to the majorants' box;
+ t_max may be INFINITY) when the majorants m may not bound it: where
+ sigma_t exceeds sigma_maj a factor 1 - sigma_t/sigma_maj turns
+ negative and the estimate stays unbiased (Misso et al. 2023). Reports
+ the largest sigma_t/sigma_maj above 1 and its cell, to raise that
+ majorant for later rays (never during a walk). A cell whose majorant is
+ 0 is crossed unseen: give every cell that may hold density a positive
+ majorant. Writes *out. SK_ERR_NULL for NULL pointers or callback;
+ SK_ERR_DOMAIN for a zero or non-finite vector, t_min, t_max out of
+ order, a coefficient negative or not finite, or a weight that
+ overflows; SK_ERR_BUDGET after `budget` tentative collisions;
+ SK_ERR_SIZE for malformed majorants.
+ */
+sk_status sk_ratio_track_signed_fn(sk_medium_fn f,
+                                   void *ctx,
+                                   const sk_majorants *m,
+                                   sk_vec3 o,
+                                   sk_vec3 d,
+                                   float t_min,
+                                   float t_max,
+                                   uint32_t budget,
+                                   sk_rng *rng,
+                                   sk_signed_result *out);
+
+/*
+ Double twin of `sk_ratio_track_signed_fn`.
+ */
+sk_status sk_ratio_track_signed_fn_f64(sk_medium_fn_f64 f,
+                                       void *ctx,
+                                       const sk_majorants_f64 *m,
+                                       sk_vec3_f64 o,
+                                       sk_vec3_f64 d,
+                                       double t_min,
+                                       double t_max,
+                                       uint32_t budget,
+                                       sk_rng *rng,
+                                       sk_signed_result_f64 *out);
+
+/*
+ Delta tracking through the caller's medium f(ctx, p) when the
+ majorants m may not bound it (arguments, excess report and errors as
+ sk_ratio_track_signed_fn): at a tentative collision with
+ sigma_n = sigma_maj - sigma_t, the collision is real with probability
+ sigma_t/(sigma_t + |sigma_n|) and the weight is multiplied by
+ (sigma_t + |sigma_n|)/sigma_maj, negated for a null collision where
+ sigma_n < 0; where the majorant bounds this is delta tracking with
+ weight 1. The outcome (event, t) counts with out->weight: unbiased.
+ */
+sk_status sk_delta_track_weighted_fn(sk_medium_fn f,
+                                     void *ctx,
+                                     const sk_majorants *m,
+                                     sk_vec3 o,
+                                     sk_vec3 d,
+                                     float t_min,
+                                     float t_max,
+                                     uint32_t budget,
+                                     sk_rng *rng,
+                                     sk_weighted_track *out);
+
+/*
+ Double twin of `sk_delta_track_weighted_fn`.
+ */
+sk_status sk_delta_track_weighted_fn_f64(sk_medium_fn_f64 f,
+                                         void *ctx,
+                                         const sk_majorants_f64 *m,
+                                         sk_vec3_f64 o,
+                                         sk_vec3_f64 d,
+                                         double t_min,
+                                         double t_max,
+                                         uint32_t budget,
+                                         sk_rng *rng,
+                                         sk_weighted_track_f64 *out);
 
 /*
  Isotropic scattering, p = 1/(4 pi).

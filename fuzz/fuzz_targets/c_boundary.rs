@@ -5,6 +5,20 @@
 use libfuzzer_sys::fuzz_target;
 use scatterkit::ffi::*;
 
+/// The fuzzed grid as a caller's medium (its density times its
+/// coefficients), for the trackers that take a callback.
+unsafe extern "C" fn grid_medium(ctx: *mut core::ffi::c_void, p: sk_vec3) -> sk_coefficients {
+    let g = ctx as *const sk_grid;
+    // SAFETY: ctx is the fuzz target's own grid, alive for the call.
+    unsafe {
+        let rho = sk_grid_density(g, p);
+        sk_coefficients {
+            sigma_a: (*g).sigma_a * rho,
+            sigma_s: (*g).sigma_s * rho,
+        }
+    }
+}
+
 unsafe extern "C" fn next(state: *mut core::ffi::c_void) -> u64 {
     // SAFETY: the state is the u64 below.
     let s = unsafe { &mut *(state as *mut u64) };
@@ -308,6 +322,52 @@ fuzz_target!(|data: &[u8]| {
                 {
                     let e = em.assume_init();
                     assert!(e.radiance >= 0.0 && (0.0..=1.0).contains(&e.tr), "{e:?}");
+                }
+                // The trackers for majorants that may not bound, with the
+                // majorants cut to a fuzzed fraction: signed weights, finite.
+                let cut = store.map(|s| s * x(33).abs().min(1.0));
+                let mut low = core::mem::MaybeUninit::<sk_majorants>::uninit();
+                if sk_majorants_new(cut.as_ptr(), mx, my, mz, maj.lo, maj.hi, low.as_mut_ptr())
+                    == sk_status::SK_OK
+                {
+                    let low = low.assume_init();
+                    let ctx = &g as *const sk_grid as *mut core::ffi::c_void;
+                    let (t0, t1) = (0.0, x(32));
+                    let mut sr = core::mem::MaybeUninit::<sk_signed_result>::uninit();
+                    let st = sk_ratio_track_signed_fn(
+                        Some(grid_medium),
+                        ctx,
+                        &low,
+                        o,
+                        d,
+                        t0,
+                        t1,
+                        budget,
+                        &mut rng,
+                        sr.as_mut_ptr(),
+                    );
+                    if st == sk_status::SK_OK {
+                        let r = sr.assume_init();
+                        assert!(r.tr.is_finite() && r.steps <= budget, "{r:?}");
+                        assert!(r.exceeded == 0.0 || r.exceeded > 1.0, "{r:?}");
+                    }
+                    let mut wt = core::mem::MaybeUninit::<sk_weighted_track>::uninit();
+                    let st = sk_delta_track_weighted_fn(
+                        Some(grid_medium),
+                        ctx,
+                        &low,
+                        o,
+                        d,
+                        t0,
+                        t1,
+                        budget,
+                        &mut rng,
+                        wt.as_mut_ptr(),
+                    );
+                    if st == sk_status::SK_OK {
+                        let w = wt.assume_init();
+                        assert!(w.weight.is_finite() && w.event <= 2, "{w:?}");
+                    }
                 }
                 // Residual ratio tracking with the grid's extrema at the
                 // same resolution: a transmittance (a weight may pass 1 by

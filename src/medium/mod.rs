@@ -15,6 +15,7 @@
 pub mod emission;
 pub mod equiangular;
 pub mod majorant;
+pub mod nonbounding;
 pub mod ray_march;
 pub mod residual;
 pub mod spectral;

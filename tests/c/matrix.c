@@ -1021,6 +1021,57 @@ static void majorants(void) {
         CHECK(sk_emission_track_fn(coeff32, NULL, le32, NULL, &big, o, d, 2, 1, 1000, &rng, &er) == SK_ERR_DOMAIN);
     }
     {
+        /* Majorants that may not bound: under majorants of 50 a tentative
+         * collision is all but certain. sigma_a = 60 exceeds them (ratio
+         * 60.25/50); the default 0.25 + 0.25 does not. */
+        sk_signed_result sr;
+        sk_signed_result_f64 srd;
+        sk_weighted_track wt;
+        sk_weighted_track_f64 wtd;
+        sk_status st;
+        ctxf = 60.0f;
+        CHECK(sk_ratio_track_signed_fn(coeff32, &ctxf, &big, o, d, 0, 3, 100000, &rng, &sr) == SK_OK &&
+              fabsf(sr.exceeded - 60.25f / 50.0f) < 1e-5f && sr.cell[0] < 2 && sr.cell[1] < 2 && sr.cell[2] < 2);
+        CHECK(sk_delta_track_weighted_fn(coeff32, &ctxf, &big, o, d, 0, 3, 100000, &rng, &wt) == SK_OK &&
+              fabsf(wt.exceeded - 60.25f / 50.0f) < 1e-5f && wt.event <= 2);
+        CHECK(sk_ratio_track_signed_fn(coeff32, NULL, &big, o, d, 0, 3, 100000, &rng, &sr) == SK_OK && sr.exceeded == 0.0f &&
+              sr.tr >= 0.0f && sr.tr <= 1.0f);
+        CHECK(sk_delta_track_weighted_fn_f64(coeff64, NULL, &bigd, od, dd, 0, 3, 100000, &rng, &wtd) == SK_OK &&
+              wtd.weight == 1.0 && wtd.exceeded == 0.0);
+        for (i = 0; i < NS; i++) {
+            ctxf = FS[i];
+            st = sk_ratio_track_signed_fn(coeff32, &ctxf, &big, o, d, 0, 3, 100000, &rng, &sr);
+            CHECK(FS[i] >= 0.0f && isfinite(FS[i]) ? st == SK_OK || (FS[i] > 1e30f && st == SK_ERR_DOMAIN)
+                                                   : st == SK_ERR_DOMAIN);
+            st = sk_delta_track_weighted_fn(coeff32, &ctxf, &big, o, d, 0, 3, 100000, &rng, &wt);
+            CHECK(FS[i] >= 0.0f && isfinite(FS[i]) ? st == SK_OK || (FS[i] > 1e30f && st == SK_ERR_DOMAIN)
+                                                   : st == SK_ERR_DOMAIN);
+            CHECK(st != SK_OK || isfinite(wt.weight));
+            ctxd = DS[i];
+            st = sk_ratio_track_signed_fn_f64(coeff64, &ctxd, &bigd, od, dd, 0, 3, 100000, &rng, &srd);
+            CHECK(DS[i] >= 0.0 && isfinite(DS[i]) ? st == SK_OK || (DS[i] > 1e300 && st == SK_ERR_DOMAIN)
+                                                  : st == SK_ERR_DOMAIN);
+            st = sk_delta_track_weighted_fn_f64(coeff64, &ctxd, &bigd, od, dd, 0, 3, 100000, &rng, &wtd);
+            CHECK(DS[i] >= 0.0 && isfinite(DS[i]) ? st == SK_OK || (DS[i] > 1e300 && st == SK_ERR_DOMAIN)
+                                                  : st == SK_ERR_DOMAIN);
+            /* A bad t_min is DOMAIN; out untouched then. */
+            sr.tr = 7.0f;
+            CHECK(sk_ratio_track_signed_fn(coeff32, NULL, &big, o, d, FS[i], 3, 1000, &rng, &sr) ==
+                  (FS[i] >= 0.0f && FS[i] <= 3.0f ? SK_OK : SK_ERR_DOMAIN));
+            CHECK(FS[i] >= 0.0f && FS[i] <= 3.0f ? 1 : sr.tr == 7.0f);
+        }
+        i = 0;
+        CHECK(sk_ratio_track_signed_fn(NULL, NULL, &big, o, d, 0, 3, 10, &rng, &sr) == SK_ERR_NULL);
+        CHECK(sk_ratio_track_signed_fn(coeff32, NULL, NULL, o, d, 0, 3, 10, &rng, &sr) == SK_ERR_NULL);
+        CHECK(sk_ratio_track_signed_fn(coeff32, NULL, &big, o, d, 0, 3, 10, &no_fn, &sr) == SK_ERR_NULL);
+        CHECK(sk_ratio_track_signed_fn_f64(coeff64, NULL, &bigd, od, dd, 0, 3, 10, &rng, NULL) == SK_ERR_NULL);
+        CHECK(sk_delta_track_weighted_fn(NULL, NULL, &big, o, d, 0, 3, 10, &rng, &wt) == SK_ERR_NULL);
+        CHECK(sk_delta_track_weighted_fn_f64(coeff64, NULL, &bigd, od, dd, 0, 3, 10, &rng, NULL) == SK_ERR_NULL);
+        CHECK(sk_delta_track_weighted_fn(coeff32, NULL, &big, o, zero, 0, 3, 10, &rng, &wt) == SK_ERR_DOMAIN);
+        CHECK(sk_ratio_track_signed_fn_f64(coeff64, NULL, &bigd, od, dd, 0, 3, 0, &rng, &srd) == SK_ERR_BUDGET);
+        CHECK(sk_delta_track_weighted_fn(coeff32, NULL, &big, o, d, 0, 3, 0, &rng, &wt) == SK_ERR_BUDGET);
+    }
+    {
         /* Spectral tracking: density majorants (the grid's coefficients sum
          * to 1), three channels, hero 1. */
         float sa[3] = {0.1f, 0.2f, 0.0f}, ss[3] = {0.3f, 0.0f, 0.5f}, w[3], u[3], l[3];

@@ -3407,6 +3407,67 @@ sk_status sk_ray_march_transmittance_fn_f64(sk_medium_fn_f64 f,
                                             sk_ratio_result_f64 *out);
 
 /*
+ The telescoping ray-marching estimator (Rhee & Glynn 2015 as Misso et
+ al. 2022 apply it) through grid g over [0, t_max]: exp(-X_0) of a
+ stratified march of n strata, plus corrections exp(-X_k) - exp(-X'_k-1)
+ between marches of n 2^k and n 2^(k-1) strata that share their points,
+ each further level taken with probability 1/3 and reweighted, so the
+ estimate is unbiased; exact for a constant medium; 3n evaluations on
+ average. Needs finer strata than sk_ray_march_transmittance for the same
+ variance (about 4x). Arguments, bounds and errors as
+ sk_ray_march_transmittance.
+ */
+sk_status sk_telescoping_transmittance(const sk_grid *g,
+                                       sk_vec3 o,
+                                       sk_vec3 d,
+                                       float t_max,
+                                       uint32_t n,
+                                       uint32_t budget,
+                                       sk_rng *rng,
+                                       sk_ratio_result *out);
+
+/*
+ Double twin of `sk_telescoping_transmittance`.
+ */
+sk_status sk_telescoping_transmittance_f64(const sk_grid_f64 *g,
+                                           sk_vec3_f64 o,
+                                           sk_vec3_f64 d,
+                                           double t_max,
+                                           uint32_t n,
+                                           uint32_t budget,
+                                           sk_rng *rng,
+                                           sk_ratio_result_f64 *out);
+
+/*
+ sk_telescoping_transmittance through the caller's medium f(ctx, p),
+ as sk_ray_march_transmittance_fn.
+ */
+sk_status sk_telescoping_transmittance_fn(sk_medium_fn f,
+                                          void *ctx,
+                                          sk_vec3 o,
+                                          sk_vec3 d,
+                                          float t_min,
+                                          float t_max,
+                                          uint32_t n,
+                                          uint32_t budget,
+                                          sk_rng *rng,
+                                          sk_ratio_result *out);
+
+/*
+ Double twin of `sk_telescoping_transmittance_fn`.
+ */
+sk_status sk_telescoping_transmittance_fn_f64(sk_medium_fn_f64 f,
+                                              void *ctx,
+                                              sk_vec3_f64 o,
+                                              sk_vec3_f64 d,
+                                              double t_min,
+                                              double t_max,
+                                              uint32_t n,
+                                              uint32_t budget,
+                                              sk_rng *rng,
+                                              sk_ratio_result_f64 *out);
+
+/*
  Fills max_out[0 .. mx*my*mz] with the majorants of grid g (as
  sk_majorants_build) and min_out with its minorants: each cell gets
  (sigma_a + sigma_s) times the smallest grid value whose interpolation

@@ -369,6 +369,22 @@ fuzz_target!(|data: &[u8]| {
                         assert!(w.weight.is_finite() && w.event <= 2, "{w:?}");
                     }
                 }
+                // The telescoping member, likewise.
+                let mut out = core::mem::MaybeUninit::<sk_ratio_result>::uninit();
+                if sk_telescoping_transmittance(
+                    &g,
+                    o,
+                    d,
+                    x(32),
+                    1 + word(13) % 16,
+                    budget,
+                    &mut rng,
+                    out.as_mut_ptr(),
+                ) == sk_status::SK_OK
+                {
+                    let r = out.assume_init();
+                    assert!(r.tr.is_finite() && r.steps <= budget, "{r:?}");
+                }
                 // Residual ratio tracking with the grid's extrema at the
                 // same resolution: a transmittance (a weight may pass 1 by
                 // the minorants' rounding, never by more).

@@ -1,5 +1,6 @@
-//! The unbiased ray-marching transmittance estimator, and the majorant
-//! optical depth that sets its step count.
+//! The unbiased ray-marching transmittance estimators (the power series
+//! and the telescoping sum), and the majorant optical depth that sets
+//! their step count.
 
 use super::majorant::{MajStore, finish, grid_at, load_maj, rng_for};
 use super::medium::GridStore;
@@ -7,7 +8,10 @@ use super::{CFn, CVec, bind, sk_rng, sk_status};
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
 use crate::medium::Ray;
-use crate::medium::ray_march::{ray_march_transmittance, ray_march_transmittance_fn};
+use crate::medium::ray_march::{
+    ray_march_transmittance, ray_march_transmittance_fn, telescoping_transmittance,
+    telescoping_transmittance_fn,
+};
 use core::ffi::c_void;
 
 /// `∫ σ_maj` along the ray, NaN for NULL or malformed majorants or a ray
@@ -20,9 +24,15 @@ unsafe fn depth<S: MajStore>(m: *const S, [o, d]: [S::V; 2], t: (S::T, S::T)) ->
     }
 }
 
-/// The estimate through grid `g`, both precisions.
+/// The `telescoping` flag of the bodies below.
+const POWER: bool = false;
+const TELESCOPING: bool = true;
+
+/// The estimate through grid `g`, both precisions and both members
+/// (`telescoping` picks the telescoping sum).
 #[allow(clippy::too_many_arguments)]
 unsafe fn march_grid<G: GridStore, S: MajStore<T = G::T, V = G::V>>(
+    telescoping: bool,
     g: *const G,
     [o, d]: [G::V; 2],
     t_max: G::T,
@@ -37,14 +47,20 @@ unsafe fn march_grid<G: GridStore, S: MajStore<T = G::T, V = G::V>>(
         let mut r = unsafe { rng_for(out, rng) }?;
         let grid = unsafe { grid_at(g) }?;
         let ray = Ray::new(o.to_vec(), d.to_vec(), t_max);
-        Ok(ray_march_transmittance(&grid, ray, n, budget, &mut r))
+        Ok(if telescoping {
+            telescoping_transmittance(&grid, ray, n, budget, &mut r)
+        } else {
+            ray_march_transmittance(&grid, ray, n, budget, &mut r)
+        })
     };
     unsafe { finish(out, found(), S::tr) }
 }
 
-/// The estimate through a caller's medium, both precisions.
+/// The estimate through a caller's medium, both precisions and both
+/// members.
 #[allow(clippy::too_many_arguments)]
 unsafe fn march_fn<S: MajStore>(
+    telescoping: bool,
     (f, ctx): (CFn<S::V, S::Coef>, *mut c_void),
     [o, d]: [S::V; 2],
     (t_min, t_max): (S::T, S::T),
@@ -57,7 +73,11 @@ unsafe fn march_fn<S: MajStore>(
         let mut r = unsafe { rng_for(out, rng) }?;
         let f = |p: Vec3<S::T>| S::pair(coefficients(S::V::from_vec(p)));
         let ray = Ray::new(o.to_vec(), d.to_vec(), t_max).segment(t_min, t_max);
-        Ok(ray_march_transmittance_fn(f, ray, n, budget, &mut r))
+        Ok(if telescoping {
+            telescoping_transmittance_fn(f, ray, n, budget, &mut r)
+        } else {
+            ray_march_transmittance_fn(f, ray, n, budget, &mut r)
+        })
     };
     unsafe { finish(out, found(), S::tr) }
 }
@@ -114,7 +134,8 @@ pub unsafe extern "C" fn sk_ray_march_transmittance(
     rng: *mut sk_rng,
     out: *mut super::sk_ratio_result,
 ) -> sk_status {
-    unsafe { march_grid::<_, super::sk_majorants>(g, [o, d], t_max, (n, budget), rng, out) }
+    let c = (n, budget);
+    unsafe { march_grid::<_, super::sk_majorants>(POWER, g, [o, d], t_max, c, rng, out) }
 }
 
 /// Double twin of `sk_ray_march_transmittance`.
@@ -130,7 +151,8 @@ pub unsafe extern "C" fn sk_ray_march_transmittance_f64(
     rng: *mut sk_rng,
     out: *mut super::sk_ratio_result_f64,
 ) -> sk_status {
-    unsafe { march_grid::<_, super::sk_majorants_f64>(g, [o, d], t_max, (n, budget), rng, out) }
+    let c = (n, budget);
+    unsafe { march_grid::<_, super::sk_majorants_f64>(POWER, g, [o, d], t_max, c, rng, out) }
 }
 
 /// The estimator through the caller's medium f(ctx, p) = (sigma_a, sigma_s)
@@ -151,8 +173,8 @@ pub unsafe extern "C" fn sk_ray_march_transmittance_fn(
     rng: *mut sk_rng,
     out: *mut super::sk_ratio_result,
 ) -> sk_status {
-    let t = (t_min, t_max);
-    unsafe { march_fn::<super::sk_majorants>((f, ctx), [o, d], t, (n, budget), rng, out) }
+    let (t, c) = ((t_min, t_max), (n, budget));
+    unsafe { march_fn::<super::sk_majorants>(POWER, (f, ctx), [o, d], t, c, rng, out) }
 }
 
 /// Double twin of `sk_ray_march_transmittance_fn`.
@@ -170,6 +192,87 @@ pub unsafe extern "C" fn sk_ray_march_transmittance_fn_f64(
     rng: *mut sk_rng,
     out: *mut super::sk_ratio_result_f64,
 ) -> sk_status {
-    let t = (t_min, t_max);
-    unsafe { march_fn::<super::sk_majorants_f64>((f, ctx), [o, d], t, (n, budget), rng, out) }
+    let (t, c) = ((t_min, t_max), (n, budget));
+    unsafe { march_fn::<super::sk_majorants_f64>(POWER, (f, ctx), [o, d], t, c, rng, out) }
+}
+
+/// The telescoping ray-marching estimator (Rhee & Glynn 2015 as Misso et
+/// al. 2022 apply it) through grid g over [0, t_max]: exp(-X_0) of a
+/// stratified march of n strata, plus corrections exp(-X_k) - exp(-X'_k-1)
+/// between marches of n 2^k and n 2^(k-1) strata that share their points,
+/// each further level taken with probability 1/3 and reweighted, so the
+/// estimate is unbiased; exact for a constant medium; 3n evaluations on
+/// average. Needs finer strata than sk_ray_march_transmittance for the same
+/// variance (about 4x). Arguments, bounds and errors as
+/// sk_ray_march_transmittance.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_telescoping_transmittance(
+    g: *const super::sk_grid,
+    o: super::sk_vec3,
+    d: super::sk_vec3,
+    t_max: f32,
+    n: u32,
+    budget: u32,
+    rng: *mut sk_rng,
+    out: *mut super::sk_ratio_result,
+) -> sk_status {
+    let c = (n, budget);
+    unsafe { march_grid::<_, super::sk_majorants>(TELESCOPING, g, [o, d], t_max, c, rng, out) }
+}
+
+/// Double twin of `sk_telescoping_transmittance`.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_telescoping_transmittance_f64(
+    g: *const super::sk_grid_f64,
+    o: super::sk_vec3_f64,
+    d: super::sk_vec3_f64,
+    t_max: f64,
+    n: u32,
+    budget: u32,
+    rng: *mut sk_rng,
+    out: *mut super::sk_ratio_result_f64,
+) -> sk_status {
+    let c = (n, budget);
+    unsafe { march_grid::<_, super::sk_majorants_f64>(TELESCOPING, g, [o, d], t_max, c, rng, out) }
+}
+
+/// sk_telescoping_transmittance through the caller's medium f(ctx, p),
+/// as sk_ray_march_transmittance_fn.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_telescoping_transmittance_fn(
+    f: super::sk_medium_fn,
+    ctx: *mut c_void,
+    o: super::sk_vec3,
+    d: super::sk_vec3,
+    t_min: f32,
+    t_max: f32,
+    n: u32,
+    budget: u32,
+    rng: *mut sk_rng,
+    out: *mut super::sk_ratio_result,
+) -> sk_status {
+    let (t, c) = ((t_min, t_max), (n, budget));
+    unsafe { march_fn::<super::sk_majorants>(TELESCOPING, (f, ctx), [o, d], t, c, rng, out) }
+}
+
+/// Double twin of `sk_telescoping_transmittance_fn`.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_telescoping_transmittance_fn_f64(
+    f: super::sk_medium_fn_f64,
+    ctx: *mut c_void,
+    o: super::sk_vec3_f64,
+    d: super::sk_vec3_f64,
+    t_min: f64,
+    t_max: f64,
+    n: u32,
+    budget: u32,
+    rng: *mut sk_rng,
+    out: *mut super::sk_ratio_result_f64,
+) -> sk_status {
+    let (t, c) = ((t_min, t_max), (n, budget));
+    unsafe { march_fn::<super::sk_majorants_f64>(TELESCOPING, (f, ctx), [o, d], t, c, rng, out) }
 }

@@ -877,6 +877,7 @@ static void majorants(void) {
          * is constant (sigma_t 1) and the ray crosses 1 unit of it, so the
          * march is exact. */
         sk_grid g3;
+        sk_status st;
         float depth = sk_majorants_optical_depth(&m, o, d, 0, 3);
         CHECK(fabsf(depth - 1.0f) < 1e-5f);
         CHECK(fabs(sk_majorants_optical_depth_f64(&md, od, dd, 0, 3) - 1.0) < 1e-12);
@@ -912,6 +913,28 @@ static void majorants(void) {
         CHECK(sk_ray_march_transmittance_fn(NULL, NULL, o, d, 0, 3, 4, 1000, &rng, &rr) == SK_ERR_NULL);
         CHECK(sk_ray_march_transmittance_fn_f64(coeff64, NULL, od, dd, 0, 3, 4, 1000, &no_fn, &rrd) == SK_ERR_NULL);
         CHECK(sk_ray_march_transmittance_fn_f64(coeff64, NULL, od, dd, 0, 3, 4, 1000, &rng, NULL) == SK_ERR_NULL);
+        /* The telescoping member: exact on the constant grid too. */
+        CHECK(sk_telescoping_transmittance(&g, o, d, 3, 4, 1 << 20, &rng, &rr) == SK_OK && fabsf(rr.tr - expf(-1.0f)) < 1e-6f);
+        CHECK(sk_telescoping_transmittance_f64(&gd, od, dd, 3, 4, 1 << 20, &rng, &rrd) == SK_OK && fabs(rrd.tr - exp(-1.0)) < 1e-14);
+        CHECK(sk_telescoping_transmittance(&g, o, d, 3, 0, 1000, &rng, &rr) == SK_ERR_DOMAIN);
+        CHECK(sk_telescoping_transmittance(&g, o, zero, 3, 4, 1000, &rng, &rr) == SK_ERR_DOMAIN);
+        CHECK(sk_telescoping_transmittance_f64(&gd, od, dd, NAN, 4, 1000, &rng, &rrd) == SK_ERR_DOMAIN);
+        CHECK(sk_telescoping_transmittance(&g, o, d, 3, 4, 3, &rng, &rr) == SK_ERR_BUDGET);
+        CHECK(sk_telescoping_transmittance(NULL, o, d, 3, 4, 1000, &rng, &rr) == SK_ERR_NULL);
+        CHECK(sk_telescoping_transmittance(&g, o, d, 3, 4, 1000, &no_fn, &rr) == SK_ERR_NULL);
+        CHECK(sk_telescoping_transmittance(&g3, o, d, 3, 4, 1000, &rng, &rr) == SK_ERR_SIZE);
+        for (i = 0; i < NS; i++) {
+            ctxf = FS[i];
+            st = sk_telescoping_transmittance_fn(coeff32, &ctxf, o, d, 0, 3, 4, 1 << 20, &rng, &rr);
+            CHECK(FS[i] >= 0.0f && FS[i] < 1e30f ? st == SK_OK : st == SK_ERR_DOMAIN || st == SK_ERR_BUDGET);
+            ctxd = DS[i];
+            st = sk_telescoping_transmittance_fn_f64(coeff64, &ctxd, od, dd, 0, 3, 4, 1 << 20, &rng, &rrd);
+            CHECK(DS[i] >= 0.0 && DS[i] < 1e300 ? st == SK_OK : st == SK_ERR_DOMAIN || st == SK_ERR_BUDGET);
+        }
+        i = 0;
+        CHECK(sk_telescoping_transmittance_fn(coeff32, NULL, o, d, 0, INFINITY, 4, 1000, &rng, &rr) == SK_ERR_DOMAIN);
+        CHECK(sk_telescoping_transmittance_fn(NULL, NULL, o, d, 0, 3, 4, 1000, &rng, &rr) == SK_ERR_NULL);
+        CHECK(sk_telescoping_transmittance_fn_f64(coeff64, NULL, od, dd, 0, 3, 4, 1000, &rng, NULL) == SK_ERR_NULL);
     }
     {
         /* Equiangular sampling toward a point 1 unit off the x axis, over

@@ -202,8 +202,8 @@ pub unsafe extern "C" fn sk_ray_march_transmittance_fn_f64(
 /// between marches of n 2^k and n 2^(k-1) strata that share their points,
 /// each further level taken with probability 1/3 and reweighted, so the
 /// estimate is unbiased; exact for a constant medium; 3n evaluations on
-/// average. Needs finer strata than sk_ray_march_transmittance for the same
-/// variance (about 4x). Arguments, bounds and errors as
+/// average. Give it finer strata than sk_ray_march_transmittance (about
+/// 4x). Arguments, bounds and errors as
 /// sk_ray_march_transmittance.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]

@@ -14,26 +14,31 @@ use scatterkit::{Grid, Ray, Real, Vec3};
 /// Coefficients per unit density: σ_a, σ_s.
 pub const SIGMA: (f32, f32) = (0.2, 0.8);
 
-/// The `n³` densities (x fastest).
-pub fn cloud(n: usize, peak: f32) -> Vec<f32> {
-    let mut v = Vec::with_capacity(n * n * n);
+/// The `n³` values of `f(x, y, z)` at the nodes of `[−1, 1]³` (x fastest).
+fn sample(n: usize, f: impl Fn(f32, f32, f32) -> f32) -> Vec<f32> {
     let c = |i: usize| 2.0 * i as f32 / (n - 1) as f32 - 1.0;
+    let mut v = Vec::with_capacity(n * n * n);
     for k in 0..n {
         for j in 0..n {
             for i in 0..n {
-                let (x, y, z) = (c(i), c(j), c(k));
-                let r2 = (x - 0.1) * (x - 0.1) + (y + 0.2) * (y + 0.2) + 2.0 * z * z;
-                let haze = 0.5 * (1.0 + (5.0 * x).sin() * (4.0 * y).cos() * (3.0 * z).sin());
-                let rho = if x + y + z > 1.5 {
-                    0.0
-                } else {
-                    peak * (-r2 / 0.04).exp() + haze
-                };
-                v.push(rho);
+                v.push(f(c(i), c(j), c(k)));
             }
         }
     }
     v
+}
+
+/// The `n³` densities (x fastest).
+pub fn cloud(n: usize, peak: f32) -> Vec<f32> {
+    sample(n, |x, y, z| {
+        let r2 = (x - 0.1) * (x - 0.1) + (y + 0.2) * (y + 0.2) + 2.0 * z * z;
+        let haze = 0.5 * (1.0 + (5.0 * x).sin() * (4.0 * y).cos() * (3.0 * z).sin());
+        if x + y + z > 1.5 {
+            0.0
+        } else {
+            peak * (-r2 / 0.04).exp() + haze
+        }
+    })
 }
 
 /// The grid of `n³` cloud `values` over `[−1, 1]³` with [`SIGMA`].
@@ -83,16 +88,8 @@ pub fn rays(count: usize) -> Vec<Ray<f32>> {
 /// with height, `peak · exp(−(z + 1)/0.35)`, gently modulated across the
 /// box (±20 %), with no edges and no empty region.
 pub fn fog_bank(n: usize, peak: f32) -> Vec<f32> {
-    let mut v = Vec::with_capacity(n * n * n);
-    let c = |i: usize| 2.0 * i as f32 / (n - 1) as f32 - 1.0;
-    for k in 0..n {
-        for j in 0..n {
-            for i in 0..n {
-                let (x, y, z) = (c(i), c(j), c(k));
-                let swell = 1.0 + 0.2 * (1.5 * x).sin() * (1.2 * y + 0.3).cos();
-                v.push(peak * (-(z + 1.0) / 0.35).exp() * swell);
-            }
-        }
-    }
-    v
+    sample(n, |x, y, z| {
+        let swell = 1.0 + 0.2 * (1.5 * x).sin() * (1.2 * y + 0.3).cos();
+        peak * (-(z + 1.0) / 0.35).exp() * swell
+    })
 }

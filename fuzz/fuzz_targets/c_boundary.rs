@@ -289,22 +289,18 @@ fuzz_target!(|data: &[u8]| {
                     let t = tk.assume_init();
                     assert!(t.t >= 0.0 && t.event <= 2 && t.steps <= budget, "{t:?}");
                 }
-                // The unbiased ray marcher with a fuzzed step count: a
-                // finite estimate within the budget.
-                let mut out = core::mem::MaybeUninit::<sk_ratio_result>::uninit();
-                if sk_ray_march_transmittance(
-                    &g,
-                    o,
-                    d,
-                    x(32),
-                    1 + word(13) % 16,
-                    budget,
-                    &mut rng,
-                    out.as_mut_ptr(),
-                ) == sk_status::SK_OK
-                {
-                    let r = out.assume_init();
-                    assert!(r.tr.is_finite() && r.steps <= budget, "{r:?}");
+                // The unbiased ray marchers (power series, telescoping)
+                // with a fuzzed step count: a finite estimate within the
+                // budget.
+                for march in [sk_ray_march_transmittance, sk_telescoping_transmittance] {
+                    let mut out = core::mem::MaybeUninit::<sk_ratio_result>::uninit();
+                    let n = 1 + word(13) % 16;
+                    if march(&g, o, d, x(32), n, budget, &mut rng, out.as_mut_ptr())
+                        == sk_status::SK_OK
+                    {
+                        let r = out.assume_init();
+                        assert!(r.tr.is_finite() && r.steps <= budget, "{r:?}");
+                    }
                 }
                 // Emission with the grid as its own emitted radiance, and
                 // the exact integral over the majorants' cells: a finite,
@@ -368,22 +364,6 @@ fuzz_target!(|data: &[u8]| {
                         let w = wt.assume_init();
                         assert!(w.weight.is_finite() && w.event <= 2, "{w:?}");
                     }
-                }
-                // The telescoping member, likewise.
-                let mut out = core::mem::MaybeUninit::<sk_ratio_result>::uninit();
-                if sk_telescoping_transmittance(
-                    &g,
-                    o,
-                    d,
-                    x(32),
-                    1 + word(13) % 16,
-                    budget,
-                    &mut rng,
-                    out.as_mut_ptr(),
-                ) == sk_status::SK_OK
-                {
-                    let r = out.assume_init();
-                    assert!(r.tr.is_finite() && r.steps <= budget, "{r:?}");
                 }
                 // Residual ratio tracking with the grid's extrema at the
                 // same resolution: a transmittance (a weight may pass 1 by

@@ -74,6 +74,29 @@ pub(crate) fn rays() -> Vec<(Vec3<f64>, Vec3<f64>, f64)> {
     ]
 }
 
+/// The four grids the unbiasedness tests run over (node- and
+/// cell-centred, in the unit cube and in a world box), each with its rays
+/// (`placed`): `f(grid, rays, case)`, `case` counting from 0.
+pub(crate) fn for_each_grid(
+    mut f: impl FnMut(&Grid<'_, f64>, &[(Vec3<f64>, Vec3<f64>, f64)], u64),
+) {
+    let values = cloud();
+    let (lo, hi) = (Vec3::new(-0.5, -1.0, 0.25), Vec3::new(1.5, 0.5, 1.0));
+    let mut case = 0;
+    for sampling in [Sampling::Nodes, Sampling::Cells] {
+        for boxed in [false, true] {
+            let mut g = Grid::new(&values, 12, 10, 9, 0.4, 1.1)
+                .unwrap()
+                .with_sampling(sampling);
+            if boxed {
+                g = g.with_box(lo, hi).unwrap();
+            }
+            f(&g, &placed(boxed, lo, hi), case);
+            case += 1;
+        }
+    }
+}
+
 /// The rays, written for the unit cube, mapped into `[lo, hi]` when
 /// `boxed`.
 pub(crate) fn placed(
@@ -135,68 +158,55 @@ pub(crate) fn check_bounds(seed: u64, minorants: bool, holds: fn(f64, f64) -> bo
 
 #[test]
 fn tracking_through_majorants_is_unbiased() {
-    let values = cloud();
-    let lo = Vec3::new(-0.5, -1.0, 0.25);
-    let hi = Vec3::new(1.5, 0.5, 1.0);
-    let mut cases = 0;
-    for sampling in [Sampling::Nodes, Sampling::Cells] {
-        for boxed in [false, true] {
-            let mut g = Grid::new(&values, 12, 10, 9, 0.4, 1.1)
-                .unwrap()
-                .with_sampling(sampling);
-            if boxed {
-                g = g.with_box(lo, hi).unwrap();
-            }
-            let mut store = [0.0; 16 * 16 * 16];
-            let maj = Majorants::build(&g, [DEFAULT_RES; 3], &mut store).unwrap();
-            let mut r = rng(7 + cases);
-            for (o, d, t_max) in placed(boxed, lo, hi) {
-                let p = (-optical_depth(&g, o, d, t_max)).exp();
-                let n = 40_000;
-                let mut hits = 0usize;
-                let mut absorbed = 0usize;
-                let mut tr = Vec::with_capacity(n);
-                for _ in 0..n {
-                    let tk = maj
-                        .delta_track(&g, Ray::new(o, d, t_max), 1 << 20, &mut r)
-                        .unwrap();
-                    match tk.event {
-                        Event::Escaped => {}
-                        Event::Absorbed => {
-                            hits += 1;
-                            absorbed += 1;
-                        }
-                        _ => hits += 1,
+    for_each_grid(|g, rays, case| {
+        let mut store = [0.0; 16 * 16 * 16];
+        let maj = Majorants::build(g, [DEFAULT_RES; 3], &mut store).unwrap();
+        let mut r = rng(7 + case);
+        for &(o, d, t_max) in rays {
+            let p = (-optical_depth(g, o, d, t_max)).exp();
+            let n = 40_000;
+            let mut hits = 0usize;
+            let mut absorbed = 0usize;
+            let mut tr = Vec::with_capacity(n);
+            for _ in 0..n {
+                let tk = maj
+                    .delta_track(g, Ray::new(o, d, t_max), 1 << 20, &mut r)
+                    .unwrap();
+                match tk.event {
+                    Event::Escaped => {}
+                    Event::Absorbed => {
+                        hits += 1;
+                        absorbed += 1;
                     }
-                    tr.push(
-                        maj.ratio_track(&g, Ray::new(o, d, t_max), 1 << 20, &mut r)
-                            .unwrap()
-                            .tr,
-                    );
+                    _ => hits += 1,
                 }
-                let q = 1.0 - hits as f64 / n as f64;
-                let se = (p * (1.0 - p) / n as f64).sqrt().max(1e-12);
-                assert!(
-                    (q - p).abs() <= 4.0 * se,
-                    "{sampling:?} box {boxed}: P(escape) {q} vs {p} ± {se}, ray {o:?}"
+                tr.push(
+                    maj.ratio_track(g, Ray::new(o, d, t_max), 1 << 20, &mut r)
+                        .unwrap()
+                        .tr,
                 );
-                let (m, se_r) = mean_se(&tr);
-                assert!(
-                    (m - p).abs() <= 4.0 * se_r + 1e-12,
-                    "{sampling:?} box {boxed}: ratio {m} ± {se_r} vs {p}, ray {o:?}"
-                );
-                if hits > 1000 {
-                    let share = absorbed as f64 / hits as f64;
-                    let a = 0.4 / 1.5;
-                    assert!(
-                        (share - a).abs() <= 4.0 * (a * (1.0 - a) / hits as f64).sqrt(),
-                        "absorbed share {share}"
-                    );
-                }
             }
-            cases += 1;
+            let q = 1.0 - hits as f64 / n as f64;
+            let se = (p * (1.0 - p) / n as f64).sqrt().max(1e-12);
+            assert!(
+                (q - p).abs() <= 4.0 * se,
+                "case {case}: P(escape) {q} vs {p} ± {se}, ray {o:?}"
+            );
+            let (m, se_r) = mean_se(&tr);
+            assert!(
+                (m - p).abs() <= 4.0 * se_r + 1e-12,
+                "case {case}: ratio {m} ± {se_r} vs {p}, ray {o:?}"
+            );
+            if hits > 1000 {
+                let share = absorbed as f64 / hits as f64;
+                let a = 0.4 / 1.5;
+                assert!(
+                    (share - a).abs() <= 4.0 * (a * (1.0 - a) / hits as f64).sqrt(),
+                    "absorbed share {share}"
+                );
+            }
         }
-    }
+    });
 }
 
 #[test]

@@ -8,14 +8,14 @@
 //! through a callback; variance × density evaluations against ratio
 //! tracking.
 
-use super::majorant::{cloud, mean_se, optical_depth, placed, rays};
+use super::majorant::{cloud, for_each_grid, mean_se, optical_depth, rays};
 use crate::common::rng;
 use scatterkit::majorant::Majorants;
 use scatterkit::medium::ray_march::{
     ray_march_transmittance, ray_march_transmittance_fn, telescoping_transmittance,
     telescoping_transmittance_fn,
 };
-use scatterkit::{Error, Grid, Ray, Real, Sampling, Vec3};
+use scatterkit::{Error, Grid, Ray, Real, Vec3};
 
 /// Strata for a ray: the majorant optical depth rounded up, at least 1.
 fn strata(maj: &Majorants<'_, f64>, ray: Ray<f64>) -> u32 {
@@ -46,46 +46,34 @@ type Estimator = fn(
 ) -> Result<scatterkit::majorant::Transmittance<f64>, Error>;
 
 fn unbiased(estimator: Estimator, seed: u64) {
-    let values = cloud();
-    let (lo, hi) = (Vec3::new(-0.5, -1.0, 0.25), Vec3::new(1.5, 0.5, 1.0));
-    let mut case = 0;
-    for sampling in [Sampling::Nodes, Sampling::Cells] {
-        for boxed in [false, true] {
-            let mut g = Grid::new(&values, 12, 10, 9, 0.4, 1.1)
-                .unwrap()
-                .with_sampling(sampling);
-            if boxed {
-                g = g.with_box(lo, hi).unwrap();
-            }
-            let mut store = [0.0; 16 * 16 * 16];
-            let maj = Majorants::build(&g, [16; 3], &mut store).unwrap();
-            let mut r = rng(seed + case);
-            for (k, (o, d, t_max)) in placed(boxed, lo, hi).into_iter().enumerate() {
-                let ray = Ray::new(o, d, t_max);
-                let n = strata(&maj, ray);
-                let p = (-optical_depth(&g, o, d, t_max)).exp();
-                let tr: Vec<f64> = (0..40_000)
-                    .map(|_| estimator(&g, ray, n, 1 << 24, &mut r).unwrap().tr)
+    for_each_grid(|g, rays, case| {
+        let mut store = [0.0; 16 * 16 * 16];
+        let maj = Majorants::build(g, [16; 3], &mut store).unwrap();
+        let mut r = rng(seed + case);
+        for (k, &(o, d, t_max)) in rays.iter().enumerate() {
+            let ray = Ray::new(o, d, t_max);
+            let n = strata(&maj, ray);
+            let p = (-optical_depth(g, o, d, t_max)).exp();
+            let tr: Vec<f64> = (0..40_000)
+                .map(|_| estimator(g, ray, n, 1 << 24, &mut r).unwrap().tr)
+                .collect();
+            let (m, se) = mean_se(&tr);
+            assert!(
+                (m - p).abs() <= 4.0 * se + 1e-12,
+                "case {case} ray {k}: {m} ± {se} vs {p} ({n} strata)"
+            );
+            if k == 0 {
+                let biased: Vec<f64> = (0..40_000)
+                    .map(|_| (-march(g, o, d, t_max, n, f64::uniform(&mut r))).exp())
                     .collect();
-                let (m, se) = mean_se(&tr);
+                let (mb, sb) = mean_se(&biased);
                 assert!(
-                    (m - p).abs() <= 4.0 * se + 1e-12,
-                    "{sampling:?} box {boxed} ray {k}: {m} ± {se} vs {p} ({n} strata)"
+                    (mb - p).abs() > 4.0 * sb,
+                    "case {case}: the biased marcher passes ({mb} ± {sb} vs {p})"
                 );
-                if k == 0 {
-                    let biased: Vec<f64> = (0..40_000)
-                        .map(|_| (-march(&g, o, d, t_max, n, f64::uniform(&mut r))).exp())
-                        .collect();
-                    let (mb, sb) = mean_se(&biased);
-                    assert!(
-                        (mb - p).abs() > 4.0 * sb,
-                        "{sampling:?} box {boxed}: the biased marcher passes ({mb} ± {sb} vs {p})"
-                    );
-                }
             }
-            case += 1;
         }
-    }
+    });
 }
 
 /// One jittered march of `∫ σ_t` over `[0, t_max]` with `n` strata and

@@ -6,11 +6,11 @@
 //! variance × density evaluations against ratio tracking with the same
 //! majorants on the cloud.
 
-use super::majorant::{check_bounds, cloud, mean_se, optical_depth, placed, rays};
+use super::majorant::{check_bounds, cloud, for_each_grid, mean_se, optical_depth, rays};
 use crate::common::rng;
 use scatterkit::majorant::{DEFAULT_RES, Majorants};
 use scatterkit::medium::residual::Extrema;
-use scatterkit::{Error, Grid, Ray, Sampling, Vec3};
+use scatterkit::{Error, Grid, Ray, Vec3};
 
 /// Unbiased on every ray of every case; and the check has the power to
 /// see a wrong estimator: counting the control's optical depth twice
@@ -19,48 +19,36 @@ use scatterkit::{Error, Grid, Ray, Sampling, Vec3};
 /// core in every case.
 #[test]
 fn residual_ratio_tracking_is_unbiased() {
-    let values = cloud();
-    let (lo, hi) = (Vec3::new(-0.5, -1.0, 0.25), Vec3::new(1.5, 0.5, 1.0));
-    let mut case = 0;
-    for sampling in [Sampling::Nodes, Sampling::Cells] {
-        for boxed in [false, true] {
-            let mut g = Grid::new(&values, 12, 10, 9, 0.4, 1.1)
-                .unwrap()
-                .with_sampling(sampling);
-            if boxed {
-                g = g.with_box(lo, hi).unwrap();
-            }
-            let (mut max, mut min) = ([0.0; 16 * 16 * 16], [0.0; 16 * 16 * 16]);
-            let ext = Extrema::build(&g, [DEFAULT_RES; 3], &mut max, &mut min).unwrap();
-            let mut r = rng(70 + case);
-            for (k, (o, d, t_max)) in placed(boxed, lo, hi).into_iter().enumerate() {
-                let ray = Ray::new(o, d, t_max);
-                let p = (-optical_depth(&g, o, d, t_max)).exp();
-                let tr: Vec<f64> = (0..40_000)
-                    .map(|_| {
-                        ext.residual_ratio_track(&g, ray, 1 << 20, &mut r)
-                            .unwrap()
-                            .tr
-                    })
-                    .collect();
-                let (m, se) = mean_se(&tr);
+    for_each_grid(|g, rays, case| {
+        let (mut max, mut min) = ([0.0; 16 * 16 * 16], [0.0; 16 * 16 * 16]);
+        let ext = Extrema::build(g, [DEFAULT_RES; 3], &mut max, &mut min).unwrap();
+        let mut r = rng(70 + case);
+        for (k, &(o, d, t_max)) in rays.iter().enumerate() {
+            let ray = Ray::new(o, d, t_max);
+            let p = (-optical_depth(g, o, d, t_max)).exp();
+            let tr: Vec<f64> = (0..40_000)
+                .map(|_| {
+                    ext.residual_ratio_track(g, ray, 1 << 20, &mut r)
+                        .unwrap()
+                        .tr
+                })
+                .collect();
+            let (m, se) = mean_se(&tr);
+            assert!(
+                (m - p).abs() <= 4.0 * se + 1e-12,
+                "case {case} ray {k}: {m} ± {se} vs {p}"
+            );
+            if k == 0 {
+                let tau_c = ext.control_depth(ray).unwrap();
+                let wrong = (-tau_c).exp();
+                let (mw, sw) = (m * wrong, se * wrong);
                 assert!(
-                    (m - p).abs() <= 4.0 * se + 1e-12,
-                    "{sampling:?} box {boxed} ray {k}: {m} ± {se} vs {p}"
+                    (mw - p).abs() > 4.0 * sw,
+                    "case {case}: the control counted twice passes (τ_c {tau_c})"
                 );
-                if k == 0 {
-                    let tau_c = ext.control_depth(ray).unwrap();
-                    let wrong = (-tau_c).exp();
-                    let (mw, sw) = (m * wrong, se * wrong);
-                    assert!(
-                        (mw - p).abs() > 4.0 * sw,
-                        "{sampling:?} box {boxed}: the control counted twice passes (τ_c {tau_c})"
-                    );
-                }
             }
-            case += 1;
         }
-    }
+    });
 }
 
 /// The length of the ray `o + t d/|d|`, `t ∈ [0, t_max]`, inside the unit

@@ -296,6 +296,7 @@ static void fill_batch(void) {
     } while (0)
 
 static sk_phase iso, hg, ray, fog, two, ff, draine[4];
+static sk_mixture mix;
 static sk_phase_cos_inline hgi;
 static sk_phase_f64 hg64, ray64, fog64, two64, ff64, draine64[4];
 static ff_coeffs ffc;
@@ -395,6 +396,8 @@ static void time_round(void) {
                sk_rayleigh_sample_dir_n(SK_RAYLEIGH_TABLE, bwx, bwy, bwz, &crng, box, boy, boz,
                                         BATCH));
     TIME("fog_cos.sk", acc += sk_phase_sample_cos(&fog, xo_float(&rng)));
+    TIME("rayleigh_cos.sk", acc += sk_phase_sample_cos(&ray, xo_float(&rng)));
+    TIME("mix_lobe.sk", acc += sk_mixture_sample_cos_by_lobe(&mix, xo_float(&rng)));
     TIME("fog_cos.lobe", acc += sk_phase_sample_cos_lobe(&fog, xo_float(&rng)));
     TIME("two_lobe_cos.sk", acc += sk_phase_sample_cos(&two, xo_float(&rng)));
     TIME("two_lobe_cos.sk_lobe", acc += sk_phase_sample_cos_lobe(&two, xo_float(&rng)));
@@ -501,6 +504,14 @@ int main(void) {
     for (k = 0; k < 4; k++) {
         if (sk_phase_draine(DRAINE_G[k], DRAINE_A[k], &draine[k]) ||
             sk_phase_draine_f64((double)DRAINE_G[k], (double)DRAINE_A[k], &draine64[k])) {
+            fprintf(stderr, "constructor failed\n");
+            return 1;
+        }
+    }
+    {
+        /* Rayleigh, HG g = 0.7 and the 2 um fog, 50 : 30 : 20. */
+        sk_mixture_part parts[3] = {{&ray, NULL, 0.5f}, {&hg, NULL, 0.3f}, {&fog, NULL, 0.2f}};
+        if (sk_mixture_new(parts, 3, &mix)) {
             fprintf(stderr, "constructor failed\n");
             return 1;
         }

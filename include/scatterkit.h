@@ -889,6 +889,166 @@ typedef struct {
 } sk_mie;
 
 /*
+ A phase function (float). A plain value with no pointers inside: build it
+ with an `sk_phase_*` constructor, then copy it and share it freely across
+ threads. Its contents are private, and some of its bytes are padding a
+ constructor need not define: compare phases with sk_phase_get_params,
+ not memcmp.
+ */
+typedef struct {
+    /*
+     Private storage; do not read or write.
+     */
+    uint32_t opaque[32];
+} sk_phase;
+
+/*
+ A table sampler (float) over the caller's memory, which must outlive it.
+ */
+typedef struct {
+    /*
+     The caller's buffer, filled by the constructor.
+     */
+    const float *data;
+    /*
+     Resolution the table was built with.
+     */
+    size_t n;
+    /*
+     An sk_table_kind.
+     */
+    uint32_t kind;
+} sk_table;
+
+/*
+ One component for sk_mixture_new: exactly one of phase and table
+ non-NULL, and its weight (finite, >= 0; the weights are normalised).
+ */
+typedef struct {
+    /*
+     A phase function, or NULL.
+     */
+    const sk_phase *phase;
+    /*
+     A table, or NULL.
+     */
+    const sk_table *table;
+    /*
+     The component's weight: its share of the scattering coefficient.
+     */
+    float weight;
+} sk_mixture_part;
+
+/*
+ A mixture of up to 8 phase functions and tables (Σ w_i p_i). A plain
+ value holding copies of the components: build it with sk_mixture_new,
+ then copy it freely; a table component's data stays borrowed and must
+ outlive it. Its fields are private.
+ */
+typedef struct {
+    /*
+     Private: the number of components.
+     */
+    uint32_t n;
+    /*
+     Private: 1 where component i is a table.
+     */
+    uint32_t is_table[8];
+    /*
+     Private: the weights as given.
+     */
+    float weight[8];
+    /*
+     Private: the running sums of the normalised weights.
+     */
+    float end[8];
+    /*
+     Private: the phase components.
+     */
+    sk_phase phase[8];
+    /*
+     Private: the table components.
+     */
+    sk_table table[8];
+} sk_mixture;
+
+/*
+ A phase function (double); see `sk_phase`.
+ */
+typedef struct {
+    /*
+     Private storage; do not read or write.
+     */
+    uint64_t opaque[32];
+} sk_phase_f64;
+
+/*
+ A table sampler (double); see `sk_table`.
+ */
+typedef struct {
+    /*
+     The caller's buffer, filled by the constructor.
+     */
+    const double *data;
+    /*
+     Resolution the table was built with.
+     */
+    size_t n;
+    /*
+     An sk_table_kind.
+     */
+    uint32_t kind;
+} sk_table_f64;
+
+/*
+ One component for sk_mixture_new_f64; see `sk_mixture_part`.
+ */
+typedef struct {
+    /*
+     A phase function, or NULL.
+     */
+    const sk_phase_f64 *phase;
+    /*
+     A table, or NULL.
+     */
+    const sk_table_f64 *table;
+    /*
+     The component's weight.
+     */
+    double weight;
+} sk_mixture_part_f64;
+
+/*
+ A mixture (double); see `sk_mixture`.
+ */
+typedef struct {
+    /*
+     Private: the number of components.
+     */
+    uint32_t n;
+    /*
+     Private: 1 where component i is a table.
+     */
+    uint32_t is_table[8];
+    /*
+     Private: the weights as given.
+     */
+    double weight[8];
+    /*
+     Private: the running sums of the normalised weights.
+     */
+    double end[8];
+    /*
+     Private: the phase components.
+     */
+    sk_phase_f64 phase[8];
+    /*
+     Private: the table components.
+     */
+    sk_table_f64 table[8];
+} sk_mixture_f64;
+
+/*
  What ratio tracking with signed weights found.
  */
 typedef struct {
@@ -997,30 +1157,6 @@ typedef struct {
      */
     uint32_t cell[3];
 } sk_weighted_track_f64;
-
-/*
- A phase function (float). A plain value with no pointers inside: build it
- with an `sk_phase_*` constructor, then copy it and share it freely across
- threads. Its contents are private, and some of its bytes are padding a
- constructor need not define: compare phases with sk_phase_get_params,
- not memcmp.
- */
-typedef struct {
-    /*
-     Private storage; do not read or write.
-     */
-    uint32_t opaque[32];
-} sk_phase;
-
-/*
- A phase function (double); see `sk_phase`.
- */
-typedef struct {
-    /*
-     Private storage; do not read or write.
-     */
-    uint64_t opaque[32];
-} sk_phase_f64;
 
 /*
  What sk_phase_particle_mie found.
@@ -1487,42 +1623,6 @@ typedef struct {
      */
     double fraction;
 } sk_surface_f64;
-
-/*
- A table sampler (float) over the caller's memory, which must outlive it.
- */
-typedef struct {
-    /*
-     The caller's buffer, filled by the constructor.
-     */
-    const float *data;
-    /*
-     Resolution the table was built with.
-     */
-    size_t n;
-    /*
-     An sk_table_kind.
-     */
-    uint32_t kind;
-} sk_table;
-
-/*
- A table sampler (double); see `sk_table`.
- */
-typedef struct {
-    /*
-     The caller's buffer, filled by the constructor.
-     */
-    const double *data;
-    /*
-     Resolution the table was built with.
-     */
-    size_t n;
-    /*
-     An sk_table_kind.
-     */
-    uint32_t kind;
-} sk_table_f64;
 
 /*
  Majorants and minorants over the same cells of one box: the control
@@ -2234,6 +2334,97 @@ sk_status sk_mie_table_sizes(double x, size_t *angles, size_t *intervals);
  2, a malformed sphere, or too many angles to give distinct cosines.
  */
 sk_status sk_mie_tabulate(const sk_mie *m, double *cos_theta, double *pdf, size_t count);
+
+/*
+ Builds the mixture of parts[0 .. n] into *out (weights normalised;
+ phases copied, tables borrowed). SK_ERR_NULL for NULL parts or out, or
+ a part with neither phase nor table; SK_ERR_SIZE for n = 0, n > 8 or a
+ malformed table; SK_ERR_DOMAIN for a part with both, an unconstructed
+ phase, or a weight negative or not finite, or all weights 0.
+ */
+sk_status sk_mixture_new(const sk_mixture_part *parts, size_t n, sk_mixture *out);
+
+/*
+ Double twin of `sk_mixture_new`.
+ */
+sk_status sk_mixture_new_f64(const sk_mixture_part_f64 *parts, size_t n, sk_mixture_f64 *out);
+
+/*
+ The mixture's density per steradian at cos_theta: sum of w_i p_i. NaN
+ for NULL or a mixture sk_mixture_new did not build.
+ */
+float sk_mixture_pdf(const sk_mixture *m, float cos_theta);
+
+/*
+ Double twin of `sk_mixture_pdf`.
+ */
+double sk_mixture_pdf_f64(const sk_mixture_f64 *m, double cos_theta);
+
+/*
+ The mixture's CDF at cos_theta, sum of w_i F_i (NaN as sk_mixture_pdf).
+ */
+float sk_mixture_cdf(const sk_mixture *m, float cos_theta);
+
+/*
+ Double twin of `sk_mixture_cdf`.
+ */
+double sk_mixture_cdf_f64(const sk_mixture_f64 *m, double cos_theta);
+
+/*
+ The mixture's mean cosine, sum of w_i g_i (NaN as sk_mixture_pdf).
+ */
+float sk_mixture_mean_cosine(const sk_mixture *m);
+
+/*
+ Double twin of `sk_mixture_mean_cosine`.
+ */
+double sk_mixture_mean_cosine_f64(const sk_mixture_f64 *m);
+
+/*
+ cos theta by lobe choice: u (clamped to [0, 1]) picks the component by
+ weight and, rescaled into its share, samples it. Exact in distribution,
+ fast, not monotone in u. NaN for NaN u, NULL or a bad mixture.
+ */
+float sk_mixture_sample_cos_by_lobe(const sk_mixture *m, float u);
+
+/*
+ Double twin of `sk_mixture_sample_cos_by_lobe`.
+ */
+double sk_mixture_sample_cos_by_lobe_f64(const sk_mixture_f64 *m, double u);
+
+/*
+ cos theta by the exact inverse of the mixture's CDF: monotone in u (for
+ stratified or quasi-random uniforms), a safeguarded Newton solve in
+ double on the components' CDFs (about 1 us). NaN as
+ sk_mixture_sample_cos_by_lobe.
+ */
+float sk_mixture_sample_cos(const sk_mixture *m, float u);
+
+/*
+ Double twin of `sk_mixture_sample_cos`.
+ */
+double sk_mixture_sample_cos_f64(const sk_mixture_f64 *m, double u);
+
+/*
+ A scattered direction about the unit vector w_in: cos theta by lobe
+ choice from u1, azimuth 2 pi u2; writes the mixture's density per
+ steradian there to pdf_out unless it is NULL. NaN (direction and pdf)
+ for NULL or a bad mixture.
+ */
+sk_vec3 sk_mixture_sample_dir(const sk_mixture *m,
+                              sk_vec3 w_in,
+                              float u1,
+                              float u2,
+                              float *pdf_out);
+
+/*
+ Double twin of `sk_mixture_sample_dir`.
+ */
+sk_vec3_f64 sk_mixture_sample_dir_f64(const sk_mixture_f64 *m,
+                                      sk_vec3_f64 w_in,
+                                      double u1,
+                                      double u2,
+                                      double *pdf_out);
 
 /*
  Ratio tracking through the caller's medium f(ctx, p) along the ray

@@ -67,6 +67,7 @@ mod error;
 mod math;
 pub mod medium;
 pub mod mie;
+pub mod mixture;
 pub mod phase;
 pub mod stokes;
 pub mod surface;

@@ -196,7 +196,7 @@ fn numerics_sit_below_the_models_and_tables_above_the_phases() {
 /// The folders of `src/` (and its two top-level model files) from the
 /// bottom up: a module may import from its own folder (without a circle) and
 /// from folders of a lower rank, never from a higher or an equal one.
-const LAYERS: [(&str, u32); 10] = [
+const LAYERS: [(&str, u32); 11] = [
     ("error", 0),
     ("math", 1),
     ("stokes", 2),
@@ -205,8 +205,9 @@ const LAYERS: [(&str, u32); 10] = [
     ("medium", 2),
     ("phase", 3),
     ("table", 4),
-    ("choose", 5),
-    ("ffi", 6),
+    ("mixture", 5),
+    ("choose", 6),
+    ("ffi", 7),
 ];
 
 fn rank(module: &str) -> u32 {

@@ -61,6 +61,35 @@ fuzz_target!(|data: &[u8]| {
         }
         let mu = sk_phase_sample_cos(&p, x(4));
         assert!(mu.is_nan() || mu.abs() <= 1.0);
+        // A mixture of the fuzzed phase (which may be unconstructed) and
+        // Rayleigh with fuzzed weights: OK or an error; once built, every
+        // sample in [-1, 1] (NaN only for a NaN u) and the density >= 0.
+        let mut ray = sk_phase { opaque: [0; 32] };
+        let _ = sk_phase_rayleigh(&mut ray);
+        let parts = [
+            sk_mixture_part {
+                phase: &p,
+                table: core::ptr::null(),
+                weight: x(5),
+            },
+            sk_mixture_part {
+                phase: &ray,
+                table: core::ptr::null(),
+                weight: x(6),
+            },
+        ];
+        let mut mix = core::mem::MaybeUninit::<sk_mixture>::uninit();
+        if sk_mixture_new(parts.as_ptr(), 2, mix.as_mut_ptr()) == sk_status::SK_OK {
+            let mix = mix.assume_init();
+            for mu in [
+                sk_mixture_sample_cos(&mix, x(7)),
+                sk_mixture_sample_cos_by_lobe(&mix, x(7)),
+            ] {
+                assert!((x(7).is_nan() && mu.is_nan()) || mu.abs() <= 1.0, "{mu}");
+            }
+            let d = sk_mixture_pdf(&mix, x(8).clamp(-1.0, 1.0));
+            assert!(x(8).is_nan() || d >= 0.0, "{d}");
+        }
         // Polarised Rayleigh with fuzzed depolarisation, directions, Stokes
         // vector and uniforms (the first floats again: inputs are short):
         // OK with a physical result, or DOMAIN.

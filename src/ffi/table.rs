@@ -139,7 +139,7 @@ unsafe fn measured<S: TableStore>(
 }
 
 /// The Rust table behind a C table, or None for NULL or malformed fields.
-unsafe fn load_table<'a, S: TableStore>(t: *const S) -> Option<Table<'a, S::T>> {
+pub(crate) unsafe fn load_table<'a, S: TableStore>(t: *const S) -> Option<Table<'a, S::T>> {
     // SAFETY: a non-NULL t points to a table built by this library.
     let (data, n, kind) = unsafe { t.as_ref() }?.parts();
     let kind = TableKind::try_from(kind).ok()?;

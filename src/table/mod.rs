@@ -242,13 +242,23 @@ impl<'a, T: Real> Table<'a, T> {
         (f(i + 1) - f(i)) / dx / core::f64::consts::TAU
     }
 
-    /// The Hermite tables: find the interval whose node values bracket `μ`,
-    /// solve its cubic for `t`, and invert the slope.
+    /// The Hermite tables: the slope at `μ` inverted.
     fn pdf_hermite(&self, mu: f64) -> f64 {
+        match self.hermite_at(mu) {
+            None => 0.0,
+            Some((_, _, s)) if s > 0.0 => 1.0 / (core::f64::consts::TAU * self.n as f64 * s),
+            Some(_) => f64::INFINITY,
+        }
+    }
+
+    /// For a Hermite table: the interval `i` whose node values bracket `μ`,
+    /// the `t ∈ [0, 1]` where its cubic reaches `μ` and the cubic's slope
+    /// there; `None` outside the range the table covers.
+    fn hermite_at(&self, mu: f64) -> Option<(usize, f64, f64)> {
         let n = self.n;
         let y = |i: usize| self.data.get(2 * i).map_or(f64::NAN, |v| v.to_f64());
         if !(mu >= y(0) && mu <= y(n)) {
-            return 0.0;
+            return None;
         }
         // The last node at or below μ (nodes are non-decreasing).
         let (mut lo, mut hi) = (0usize, n);
@@ -268,12 +278,75 @@ impl<'a, T: Real> Table<'a, T> {
         let cubic = |t: f64| y0 + t * (d0 + t * (c2 + t * c3));
         let slope = |t: f64| d0 + t * (2.0 * c2 + 3.0 * c3 * t);
         let t = solve_unit(|t| cubic(t) - mu, slope);
-        let s = slope(t);
-        if s > 0.0 {
-            1.0 / (core::f64::consts::TAU * n as f64 * s)
-        } else {
-            f64::INFINITY
+        Some((lo, t, slope(t)))
+    }
+
+    /// `P(cos θ ≤ cos_theta)` of the distribution
+    /// [`sample_cos`](Self::sample_cos) draws from (the table's own, as
+    /// [`pdf`](Self::pdf)): in `[0, 1]`, NaN for NaN.
+    pub fn cdf(&self, cos_theta: T) -> T {
+        if cos_theta.is_nan() {
+            return T::NAN;
         }
+        T::from_f64(self.cdf_f64(cos_theta.to_f64()))
+    }
+
+    /// [`cdf`](Self::cdf) in f64, before rounding to `T`.
+    pub(crate) fn cdf_f64(&self, mu: f64) -> f64 {
+        let mu = mu.clamp(-1.0, 1.0);
+        let c = match self.kind {
+            TableKind::RayleighCdf => {
+                let f = |i: usize| self.data.get(i).map_or(f64::NAN, |v| v.to_f64());
+                let x = (mu + 1.0) * 0.5 * self.n as f64;
+                let i = Real::to_index(x).min(self.n - 1);
+                f(i) + (f(i + 1) - f(i)) * (x - i as f64)
+            }
+            TableKind::Inverse | TableKind::Measured => {
+                let first = self.data.first().map_or(f64::NAN, |v| v.to_f64());
+                match self.hermite_at(mu) {
+                    Some((i, t, _)) => (i as f64 + t) / self.n as f64,
+                    None if mu < first => 0.0,
+                    None => 1.0,
+                }
+            }
+        };
+        c.clamp(0.0, 1.0)
+    }
+
+    /// [`pdf`](Self::pdf) in f64, before rounding to `T`.
+    pub(crate) fn pdf_f64(&self, mu: f64) -> f64 {
+        match self.kind {
+            TableKind::RayleighCdf => self.pdf_cdf_table(mu),
+            TableKind::Inverse | TableKind::Measured => self.pdf_hermite(mu),
+        }
+    }
+
+    /// The mean cosine of the distribution the table samples, exactly:
+    /// for Frisvad's CDF table `Σ ΔF_i (x_i + x_{i+1})/2`; for the Hermite
+    /// tables `∫₀¹ μ(u) du`, per interval `(μ_i + μ_{i+1})/2 + (d_i −
+    /// d_{i+1})/12` (the integral of the cubic Hermite piece, `d` the
+    /// node slopes per interval).
+    pub fn mean_cosine(&self) -> T {
+        let v = |i: usize| self.data.get(i).map_or(f64::NAN, |v| v.to_f64());
+        let n = self.n;
+        let mut sum = 0.0;
+        match self.kind {
+            TableKind::RayleighCdf => {
+                let dx = 2.0 / n as f64;
+                for i in 0..n {
+                    let x0 = -1.0 + dx * i as f64;
+                    sum += (v(i + 1) - v(i)) * (x0 + 0.5 * dx);
+                }
+            }
+            TableKind::Inverse | TableKind::Measured => {
+                for i in 0..n {
+                    let (y0, d0, y1, d1) = (v(2 * i), v(2 * i + 1), v(2 * i + 2), v(2 * i + 3));
+                    sum += 0.5 * (y0 + y1) + (d0 - d1) / 12.0;
+                }
+                sum /= n as f64;
+            }
+        }
+        T::from_f64(sum)
     }
 
     /// Cubic Hermite interpolation of the tabulated inverse: interval

@@ -1163,6 +1163,7 @@ static void polydisperse(void);
 static void particle_mie(void);
 static void particle_measured(void);
 static void polarization(void);
+static void mixtures(void);
 
 /* Mie: bad input from C, and the BHMIE example through the header. */
 static void mie(void) {
@@ -1411,6 +1412,7 @@ int main(void) {
     majorants();
     mie();
     polarization();
+    mixtures();
     printf("matrix: %d checks passed, %d failed\n", passed, failed);
     return failed;
 }
@@ -1526,4 +1528,111 @@ static void polarization(void) {
         sk_onb(w, &b1, &b2);
         CHECK(ir.x == b1.x && ir.y == b1.y && ir.z == b1.z && fabs(ird.x * wd.x + ird.y * wd.y + ird.z * wd.z) < 1e-15);
     }
+}
+
+/* Mixtures: Rayleigh, HG and a fog table; every query with valid and bad
+ * input, both precisions. */
+static void mixtures(void) {
+    int i;
+    sk_phase ray, hg, zero_p;
+    sk_phase_f64 rayd, hgd;
+    float buf[2 * 65];
+    double bufd[2 * 65];
+    sk_table tab, bad_tab;
+    sk_table_f64 tabd;
+    sk_mixture m, kept;
+    sk_mixture_f64 md;
+    sk_mixture_part parts[9];
+    sk_mixture_part_f64 partsd[2];
+    const sk_vec3 w = {0, 0, 1};
+    const sk_vec3_f64 wd = {0, 0, 1};
+    float pdf, mu, prev;
+    double pdfd;
+    sk_vec3 dir;
+    i = 0;
+    memset(&zero_p, 0, sizeof zero_p);
+    sk_phase_rayleigh(&ray);
+    sk_phase_hg(0.8f, &hg);
+    sk_phase_rayleigh_f64(&rayd);
+    sk_phase_hg_f64(0.8, &hgd);
+    CHECK(sk_table_inverse(&hg, buf, 2 * 65, 64, &tab) == SK_OK);
+    CHECK(sk_table_inverse_f64(&hgd, bufd, 2 * 65, 64, &tabd) == SK_OK);
+    parts[0].phase = &ray, parts[0].table = NULL, parts[0].weight = 0.5f;
+    parts[1].phase = &hg, parts[1].table = NULL, parts[1].weight = 0.3f;
+    parts[2].phase = NULL, parts[2].table = &tab, parts[2].weight = 0.2f;
+    partsd[0].phase = &rayd, partsd[0].table = NULL, partsd[0].weight = 0.7;
+    partsd[1].phase = NULL, partsd[1].table = &tabd, partsd[1].weight = 0.3;
+    i = 0;
+    CHECK(sk_mixture_new(parts, 3, &m) == SK_OK);
+    CHECK(sk_mixture_new_f64(partsd, 2, &md) == SK_OK);
+    /* g = 0.3 * 0.8 + 0.2 * (the table's own g, near 0.8). */
+    CHECK(fabsf(sk_mixture_mean_cosine(&m) - 0.4f) < 2e-3f);
+    CHECK(fabs(sk_mixture_mean_cosine_f64(&md) - 0.3 * 0.8) < 2e-3);
+    CHECK(fabsf(sk_mixture_cdf(&m, 1.0f) - 1.0f) < 1e-6f && fabsf(sk_mixture_cdf(&m, -1.0f)) < 1e-6f);
+    CHECK(sk_mixture_pdf(&m, 0.5f) > 0.0f && sk_mixture_pdf_f64(&md, 0.5) > 0.0);
+    mu = sk_mixture_sample_cos(&m, 0.3f);
+    CHECK(fabsf(sk_mixture_cdf(&m, mu) - 0.3f) < 1e-5f);
+    CHECK(fabs(sk_mixture_cdf_f64(&md, sk_mixture_sample_cos_f64(&md, 0.6)) - 0.6) < 1e-12);
+    prev = -2.0f;
+    for (i = 0; i <= 1000; i++) {
+        mu = sk_mixture_sample_cos(&m, (float)i / 1000.0f);
+        CHECK(mu >= prev && mu <= 1.0f);
+        prev = mu;
+        CHECK(fabsf(sk_mixture_sample_cos_by_lobe(&m, (float)i / 1000.0f)) <= 1.0f);
+    }
+    i = 0;
+    CHECK(fabs(sk_mixture_sample_cos_by_lobe_f64(&md, 0.5)) <= 1.0);
+    dir = sk_mixture_sample_dir(&m, w, 0.3f, 0.7f, &pdf);
+    CHECK(fabsf(dir.x * dir.x + dir.y * dir.y + dir.z * dir.z - 1.0f) < 1e-5f && fabsf(pdf - sk_mixture_pdf(&m, dir.z)) < 1e-3f * pdf);
+    CHECK(!isnan(sk_mixture_sample_dir_f64(&md, wd, 0.3, 0.7, &pdfd).z) && pdfd > 0.0);
+    CHECK(!isnan(sk_mixture_sample_dir(&m, w, 0.3f, 0.7f, NULL).x));
+    /* Bad uniforms and angles. */
+    for (i = 0; i < NS; i++) {
+        float f = FS[i];
+        mu = sk_mixture_sample_cos(&m, f);
+        CHECK(isnan(f) ? isnan(mu) : fabsf(mu) <= 1.0f);
+        mu = sk_mixture_sample_cos_by_lobe(&m, f);
+        CHECK(isnan(f) ? isnan(mu) : fabsf(mu) <= 1.0f);
+        CHECK(isnan(f) == isnan(sk_mixture_cdf(&m, f)));
+        CHECK(isnan(DS[i]) == isnan(sk_mixture_cdf_f64(&md, DS[i])));
+        /* A bad weight. */
+        parts[1].weight = f;
+        CHECK(sk_mixture_new(parts, 3, &kept) == (isfinite(f) && f >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
+    }
+    i = 0;
+    parts[1].weight = 0.3f;
+    /* NULLs, counts, parts with neither or both, unconstructed phases,
+     * malformed tables, all weights zero. */
+    CHECK(sk_mixture_new(NULL, 3, &kept) == SK_ERR_NULL && sk_mixture_new(parts, 3, NULL) == SK_ERR_NULL);
+    CHECK(sk_mixture_new(parts, 0, &kept) == SK_ERR_SIZE);
+    for (i = 3; i < 9; i++) parts[i] = parts[0];
+    CHECK(sk_mixture_new(parts, 8, &kept) == SK_OK && sk_mixture_new(parts, 9, &kept) == SK_ERR_SIZE);
+    i = 0;
+    parts[3].phase = NULL;
+    CHECK(sk_mixture_new(parts, 4, &kept) == SK_ERR_NULL);
+    parts[3].phase = &ray, parts[3].table = &tab;
+    CHECK(sk_mixture_new(parts, 4, &kept) == SK_ERR_DOMAIN);
+    parts[3].table = NULL, parts[3].phase = &zero_p;
+    CHECK(sk_mixture_new(parts, 4, &kept) == SK_ERR_DOMAIN);
+    bad_tab = tab;
+    bad_tab.kind = 9;
+    parts[3].phase = NULL, parts[3].table = &bad_tab;
+    CHECK(sk_mixture_new(parts, 4, &kept) == SK_ERR_SIZE);
+    parts[0].weight = parts[1].weight = parts[2].weight = 0.0f;
+    CHECK(sk_mixture_new(parts, 3, &kept) == SK_ERR_DOMAIN);
+    /* NULL and values sk_mixture_new did not build. */
+    CHECK(isnan(sk_mixture_pdf(NULL, 0.0f)) && isnan(sk_mixture_cdf_f64(NULL, 0.0)));
+    CHECK(isnan(sk_mixture_sample_cos(NULL, 0.5f)) && isnan(sk_mixture_sample_cos_by_lobe(NULL, 0.5f)));
+    CHECK(isnan(sk_mixture_mean_cosine_f64(NULL)) && isnan(sk_mixture_sample_dir(NULL, w, 0.1f, 0.1f, &pdf).x) && isnan(pdf));
+    kept = m;
+    kept.n = 0;
+    CHECK(isnan(sk_mixture_pdf(&kept, 0.0f)) && isnan(sk_mixture_sample_cos_by_lobe(&kept, 0.5f)));
+    kept.n = 99;
+    CHECK(isnan(sk_mixture_sample_cos(&kept, 0.5f)) && isnan(sk_mixture_mean_cosine(&kept)));
+    kept = m;
+    memset(&kept.phase[0], 0, sizeof kept.phase[0]);
+    CHECK(isnan(sk_mixture_pdf(&kept, 0.0f)) && isnan(sk_mixture_sample_cos(&kept, 0.5f)));
+    kept = m;
+    kept.table[2].kind = 7;
+    CHECK(isnan(sk_mixture_cdf(&kept, 0.0f)) && isnan(sk_mixture_sample_cos_by_lobe(&kept, 0.99f)));
 }

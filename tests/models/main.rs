@@ -21,6 +21,7 @@ mod majorant;
 mod medium;
 mod mie;
 mod mie_table;
+mod mixture;
 mod nonbounding;
 mod polydisperse;
 mod ray_march;

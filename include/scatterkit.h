@@ -1571,6 +1571,34 @@ typedef struct {
 } sk_spectrum_f64;
 
 /*
+ One channel's phase function: exactly one of phase and table non-NULL.
+ */
+typedef struct {
+    /*
+     A phase function, or NULL.
+     */
+    const sk_phase *phase;
+    /*
+     A table, or NULL.
+     */
+    const sk_table *table;
+} sk_channel_phase;
+
+/*
+ One channel's phase function (double); see `sk_channel_phase`.
+ */
+typedef struct {
+    /*
+     A phase function, or NULL.
+     */
+    const sk_phase_f64 *phase;
+    /*
+     A table, or NULL.
+     */
+    const sk_table_f64 *table;
+} sk_channel_phase_f64;
+
+/*
  A surface's scattering behaviour (float). Build it with sk_surface_new;
  every call checks its fields again, so a value not built that way gives
  an error rather than undefined behaviour.
@@ -3227,6 +3255,51 @@ sk_status sk_ratio_track_spectral_f64(const sk_majorants_f64 *m,
                                       double *weight,
                                       double *r_u,
                                       double *r_l);
+
+/*
+ cos theta drawn from channel hero's phase function at u (its own
+ sampler), and every channel's ratio p_c(cos theta) / p_hero(cos theta)
+ into ratio_out[0 .. k] (1 for the hero): the channel's throughput
+ factor. With the hero drawn uniformly, ratio_c / mean(ratio) is the
+ one-sample balance heuristic over the hero: unbiased and at most k.
+ SK_ERR_NULL for NULL pointers or a channel with neither phase nor
+ table; SK_ERR_SIZE for k = 0, k > 16, hero >= k or a malformed table;
+ SK_ERR_DOMAIN for a channel with both, an unconstructed phase, a NaN u
+ or a cos theta where the hero's density is 0. Nothing written on error.
+ */
+sk_status sk_spectral_phase_sample(const sk_channel_phase *ch,
+                                   size_t k,
+                                   size_t hero,
+                                   float u,
+                                   float *cos_out,
+                                   float *ratio_out);
+
+/*
+ Double twin of `sk_spectral_phase_sample`.
+ */
+sk_status sk_spectral_phase_sample_f64(const sk_channel_phase_f64 *ch,
+                                       size_t k,
+                                       size_t hero,
+                                       double u,
+                                       double *cos_out,
+                                       double *ratio_out);
+
+/*
+ Every channel's density per steradian at cos_theta into pdf_out[0 ..
+ k], for light-sampled directions. Errors as sk_spectral_phase_sample.
+ */
+sk_status sk_spectral_phase_pdf(const sk_channel_phase *ch,
+                                size_t k,
+                                float cos_theta,
+                                float *pdf_out);
+
+/*
+ Double twin of `sk_spectral_phase_pdf`.
+ */
+sk_status sk_spectral_phase_pdf_f64(const sk_channel_phase_f64 *ch,
+                                    size_t k,
+                                    double cos_theta,
+                                    double *pdf_out);
 
 /*
  Mirror reflection of direction d at a surface of normal n (either side,

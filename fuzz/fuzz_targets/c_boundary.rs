@@ -90,6 +90,33 @@ fuzz_target!(|data: &[u8]| {
             let d = sk_mixture_pdf(&mix, x(8).clamp(-1.0, 1.0));
             assert!(x(8).is_nan() || d >= 0.0, "{d}");
         }
+        // The same two as channels of a spectral phase function, the hero
+        // fuzzed: a cosine in [-1, 1] and finite ratios, or an error.
+        let ch = [
+            sk_channel_phase {
+                phase: &p,
+                table: core::ptr::null(),
+            },
+            sk_channel_phase {
+                phase: &ray,
+                table: core::ptr::null(),
+            },
+        ];
+        let (mut c, mut ratio) = (0.0f32, [0.0f32; 2]);
+        if sk_spectral_phase_sample(
+            ch.as_ptr(),
+            2,
+            word(3) as usize % 3,
+            x(9),
+            &mut c,
+            ratio.as_mut_ptr(),
+        ) == sk_status::SK_OK
+        {
+            assert!(
+                c.abs() <= 1.0 && ratio.iter().all(|r| *r >= 0.0),
+                "{c} {ratio:?}"
+            );
+        }
         // Polarised Rayleigh with fuzzed depolarisation, directions, Stokes
         // vector and uniforms (the first floats again: inputs are short):
         // OK with a physical result, or DOMAIN.

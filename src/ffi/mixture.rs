@@ -218,17 +218,10 @@ unsafe fn new_mixture<S: MixStore>(parts: *const S::Part, n: usize, out: *mut S)
     let given = unsafe { core::slice::from_raw_parts(parts, n) };
     for (i, part) in given.iter().enumerate() {
         let (p, t, w) = S::part(part);
-        match (p.is_null(), t.is_null()) {
-            (true, true) => return sk_status::SK_ERR_NULL,
-            (false, false) => return sk_status::SK_ERR_DOMAIN,
-            (false, true) => match unsafe { load(p) } {
-                Some(_) => m.set(i, Some(unsafe { *p }), None, w),
-                None => return sk_status::SK_ERR_DOMAIN,
-            },
-            (true, false) => match unsafe { load_table(t) } {
-                Some(_) => m.set(i, None, Some(unsafe { *t }), w),
-                None => return sk_status::SK_ERR_SIZE,
-            },
+        match unsafe { part_at(p, t) } {
+            Ok(Part::Phase(_)) => m.set(i, Some(unsafe { *p }), None, w),
+            Ok(Part::Table(_)) => m.set(i, None, Some(unsafe { *t }), w),
+            Err(e) => return e,
         }
     }
     // The weights are checked by building the mixture, which also gives
@@ -246,6 +239,25 @@ unsafe fn new_mixture<S: MixStore>(parts: *const S::Part, n: usize, out: *mut S)
             sk_status::SK_OK
         }
         Err(e) => e.into(),
+    }
+}
+
+/// The component behind a (phase, table) pair of pointers, exactly one
+/// non-NULL: `SK_ERR_NULL` for neither, `SK_ERR_DOMAIN` for both or an
+/// unconstructed phase, `SK_ERR_SIZE` for a malformed table.
+pub(super) unsafe fn part_at<'a, P: PhaseStore, Tb: TableStore<T = P::T>>(
+    p: *const P,
+    t: *const Tb,
+) -> Result<Part<'a, P::T>, sk_status> {
+    match (p.is_null(), t.is_null()) {
+        (true, true) => Err(sk_status::SK_ERR_NULL),
+        (false, false) => Err(sk_status::SK_ERR_DOMAIN),
+        (false, true) => unsafe { load(p) }
+            .map(|p| Part::Phase(*p))
+            .ok_or(sk_status::SK_ERR_DOMAIN),
+        (true, false) => unsafe { load_table(t) }
+            .map(Part::Table)
+            .ok_or(sk_status::SK_ERR_SIZE),
     }
 }
 

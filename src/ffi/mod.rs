@@ -41,6 +41,7 @@ mod polarization;
 mod polydisperse;
 mod rayleigh;
 mod spectral;
+mod spectral_phase;
 mod surface;
 mod table;
 // Declared last: their entry points follow the others in the header.
@@ -63,6 +64,7 @@ pub use ray_march::*;
 pub use rayleigh::*;
 pub use residual::*;
 pub use spectral::*;
+pub use spectral_phase::*;
 pub use surface::*;
 pub use table::*;
 

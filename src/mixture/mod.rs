@@ -19,6 +19,8 @@
 //!   the smaller tail (`F = u` for `u ≤ ½`, `1 − F = 1 − u` above), from
 //!   the weighted mean of the components' own samples at `u`.
 
+pub mod spectral;
+
 use crate::error::Error;
 use crate::math::geometry::{Vec3, direction_about_turns, sin_from_cos};
 use crate::math::numeric::{Eval, solve_bracketed};

@@ -1635,4 +1635,46 @@ static void mixtures(void) {
     kept = m;
     kept.table[2].kind = 7;
     CHECK(isnan(sk_mixture_cdf(&kept, 0.0f)) && isnan(sk_mixture_sample_cos_by_lobe(&kept, 0.99f)));
+    {
+        /* Spectral phase: Rayleigh, HG 0.8 and the HG table per channel. */
+        sk_channel_phase ch[17];
+        sk_channel_phase_f64 chd[2];
+        float ratio[17], pdfs[3], c = 7.0f;
+        double ratiod[2], cd;
+        ch[0].phase = &ray, ch[0].table = NULL;
+        ch[1].phase = &hg, ch[1].table = NULL;
+        ch[2].phase = NULL, ch[2].table = &tab;
+        chd[0].phase = &rayd, chd[0].table = NULL;
+        chd[1].phase = NULL, chd[1].table = &tabd;
+        CHECK(sk_spectral_phase_sample(ch, 3, 1, 0.3f, &c, ratio) == SK_OK && ratio[1] == 1.0f);
+        CHECK(fabsf(ratio[0] - sk_phase_pdf(&ray, c) / sk_phase_pdf(&hg, c)) < 1e-5f * ratio[0]);
+        CHECK(sk_spectral_phase_pdf(ch, 3, c, pdfs) == SK_OK && fabsf(pdfs[1] - sk_phase_pdf(&hg, c)) < 1e-6f);
+        CHECK(sk_spectral_phase_sample_f64(chd, 2, 0, 0.6, &cd, ratiod) == SK_OK && ratiod[0] == 1.0);
+        CHECK(sk_spectral_phase_pdf_f64(chd, 2, 0.1, ratiod) == SK_OK && ratiod[0] > 0.0);
+        for (i = 0; i < NS; i++) {
+            c = 7.0f;
+            CHECK(sk_spectral_phase_sample(ch, 3, 0, FS[i], &c, ratio) == (isnan(FS[i]) ? SK_ERR_DOMAIN : SK_OK));
+            CHECK(isnan(FS[i]) ? c == 7.0f : fabsf(c) <= 1.0f);
+            CHECK(sk_spectral_phase_pdf(ch, 3, FS[i], pdfs) == SK_OK);
+        }
+        i = 0;
+        CHECK(sk_spectral_phase_sample(ch, 3, 3, 0.5f, &c, ratio) == SK_ERR_SIZE);
+        CHECK(sk_spectral_phase_sample(ch, 0, 0, 0.5f, &c, ratio) == SK_ERR_SIZE);
+        for (i = 3; i < 17; i++) ch[i] = ch[0];
+        CHECK(sk_spectral_phase_sample(ch, 16, 15, 0.5f, &c, ratio) == SK_OK);
+        CHECK(sk_spectral_phase_sample(ch, 17, 0, 0.5f, &c, ratio) == SK_ERR_SIZE);
+        i = 0;
+        CHECK(sk_spectral_phase_sample(NULL, 3, 0, 0.5f, &c, ratio) == SK_ERR_NULL);
+        CHECK(sk_spectral_phase_sample(ch, 3, 0, 0.5f, NULL, ratio) == SK_ERR_NULL);
+        CHECK(sk_spectral_phase_sample(ch, 3, 0, 0.5f, &c, NULL) == SK_ERR_NULL);
+        CHECK(sk_spectral_phase_pdf_f64(NULL, 2, 0.1, ratiod) == SK_ERR_NULL && sk_spectral_phase_pdf(ch, 3, 0.1f, NULL) == SK_ERR_NULL);
+        ch[0].phase = NULL;
+        CHECK(sk_spectral_phase_sample(ch, 3, 1, 0.5f, &c, ratio) == SK_ERR_NULL);
+        ch[0].phase = &ray, ch[0].table = &tab;
+        CHECK(sk_spectral_phase_pdf(ch, 3, 0.1f, pdfs) == SK_ERR_DOMAIN);
+        ch[0].table = NULL, ch[0].phase = &zero_p;
+        CHECK(sk_spectral_phase_sample(ch, 3, 1, 0.5f, &c, ratio) == SK_ERR_DOMAIN);
+        ch[0].phase = NULL, ch[0].table = &bad_tab;
+        CHECK(sk_spectral_phase_sample(ch, 3, 1, 0.5f, &c, ratio) == SK_ERR_SIZE);
+    }
 }

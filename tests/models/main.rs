@@ -29,6 +29,7 @@ mod rayleigh;
 mod rayleigh_polarized;
 mod residual;
 mod spectral;
+mod spectral_phase;
 mod surface;
 mod two_lobe_hg;
 mod vector_mc;

@@ -51,13 +51,16 @@ impl ChannelStore for sk_channel_phase_f64 {
 
 type T<C> = <<C as ChannelStore>::P as PhaseStore>::T;
 
+/// The channels and the caller's output slice.
+type Loaded<'a, C> = (SpectralPhase<'a, T<C>>, &'a mut [T<C>]);
+
 /// The Rust channels behind `ch[0 .. k]` and the output slice of `k`
 /// values at `out`.
 unsafe fn channels<'a, C: ChannelStore>(
     ch: *const C,
     k: usize,
     out: *mut T<C>,
-) -> Result<(SpectralPhase<'a, T<C>>, &'a mut [T<C>]), sk_status> {
+) -> Result<Loaded<'a, C>, sk_status> {
     if ch.is_null() || out.is_null() {
         return Err(sk_status::SK_ERR_NULL);
     }

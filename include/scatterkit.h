@@ -2455,6 +2455,36 @@ sk_vec3_f64 sk_mixture_sample_dir_f64(const sk_mixture_f64 *m,
                                       double *pdf_out);
 
 /*
+ The Legendre moments chi_0 .. chi_{n-1} of p into out: chi_l = <P_l(cos
+ theta)>, chi_0 = 1, chi_1 = g (the form DISORT and libRadtran take,
+ p = sum (2l + 1) chi_l P_l / 4 pi). Closed forms for isotropic,
+ Rayleigh, depolarised Rayleigh, HG, Draine, the fog and two-lobe HG;
+ quadrature over the inverse CDF for Gegenbauer and Fournier-Forand
+ (within 1e-10; its cost grows as n^2/32 passes of 20 992 samples).
+ SK_ERR_NULL for NULL pointers; SK_ERR_DOMAIN for an unconstructed
+ phase; SK_ERR_SIZE if out cannot hold n values.
+ */
+sk_status sk_phase_legendre_moments(const sk_phase *p, float *out, size_t n);
+
+/*
+ Double twin of `sk_phase_legendre_moments`.
+ */
+sk_status sk_phase_legendre_moments_f64(const sk_phase_f64 *p, double *out, size_t n);
+
+/*
+ The Legendre moments of a mixture, sum of w_i chi_{l,i} (each
+ component's as sk_phase_legendre_moments; tables by quadrature), into
+ out[0 .. n]. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE or
+ SK_ERR_DOMAIN for a mixture sk_mixture_new did not build.
+ */
+sk_status sk_mixture_legendre_moments(const sk_mixture *m, float *out, size_t n);
+
+/*
+ Double twin of `sk_mixture_legendre_moments`.
+ */
+sk_status sk_mixture_legendre_moments_f64(const sk_mixture_f64 *m, double *out, size_t n);
+
+/*
  Ratio tracking through the caller's medium f(ctx, p) along the ray
  from o along d over [t_min, t_max] (clipped to the majorants' box;
  t_max may be INFINITY) when the majorants m may not bound it: where

@@ -89,6 +89,10 @@ fuzz_target!(|data: &[u8]| {
             }
             let d = sk_mixture_pdf(&mix, x(8).clamp(-1.0, 1.0));
             assert!(x(8).is_nan() || d >= 0.0, "{d}");
+            let mut chi = [0.0f32; 4];
+            if sk_mixture_legendre_moments(&mix, chi.as_mut_ptr(), 4) == sk_status::SK_OK {
+                assert!(chi.iter().all(|c| c.abs() <= 1.0 + 1e-3), "{chi:?}");
+            }
         }
         // The same two as channels of a spectral phase function, the hero
         // fuzzed: a cosine in [-1, 1] and finite ratios, or an error.

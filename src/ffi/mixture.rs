@@ -76,7 +76,7 @@ pub struct sk_mixture_f64 {
 const _: () = assert!(MAX_PARTS == 8);
 
 /// A C mixture type with its part, phase and table types.
-trait MixStore: Copy {
+pub(super) trait MixStore: Copy {
     type T: Real;
     type P: PhaseStore<T = Self::T>;
     type Tb: TableStore<T = Self::T>;
@@ -200,10 +200,18 @@ unsafe fn view<'a, S: MixStore>(m: *const S) -> Result<(Parts<'a, S::T>, usize),
     Ok((parts, n))
 }
 
+/// The narrow Rust mixture behind `m` (no f64 copies), or the status of
+/// what stopped it.
+pub(super) unsafe fn mixture_at<'a, S: MixStore>(
+    m: *const S,
+) -> Result<Mixture<'a, S::T>, sk_status> {
+    let (parts, n) = unsafe { view(m) }?;
+    Mixture::new_narrow(parts.get(..n).unwrap_or(&[])).map_err(sk_status::from)
+}
+
 /// The light Rust mixture behind `m` (no f64 copies), or `None`.
 unsafe fn light<'a, S: MixStore>(m: *const S) -> Option<Mixture<'a, S::T>> {
-    let (parts, n) = unsafe { view(m) }.ok()?;
-    Mixture::new_narrow(parts.get(..n)?).ok()
+    unsafe { mixture_at(m) }.ok()
 }
 
 unsafe fn new_mixture<S: MixStore>(parts: *const S::Part, n: usize, out: *mut S) -> sk_status {

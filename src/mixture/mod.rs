@@ -25,7 +25,7 @@ use crate::error::Error;
 use crate::math::geometry::{Vec3, direction_about_turns, sin_from_cos};
 use crate::math::numeric::{Eval, solve_bracketed};
 use crate::math::real::Real;
-use crate::phase::{Phase, PhaseFunction};
+use crate::phase::{Phase, PhaseFunction, moments};
 use crate::table::Table;
 
 /// The most components one mixture holds.
@@ -251,6 +251,35 @@ impl<'a, T: Real> Mixture<'a, T> {
         let mu = self.sample_cos_by_lobe(u1);
         let dir = direction_about_turns(w_in, mu, sin_from_cos(mu), u2.clamp01());
         (dir, self.pdf(mu))
+    }
+
+    /// The Legendre moments `χ_0 … χ_{n−1}` into `out` (`n = out.len()`):
+    /// `Σ w_i χ_{l,i}`, each model's by its closed form where it has one,
+    /// the others and tables by quadrature over their inverse CDF
+    /// ([`crate::phase::moments`]).
+    pub fn legendre_moments(&self, out: &mut [T]) {
+        for o in out.iter_mut() {
+            *o = T::ZERO;
+        }
+        for (h, w) in self.held() {
+            if let Part::Phase(p) = h.part {
+                if let Some(chi) = moments::closed_form(&p) {
+                    for (l, o) in out.iter_mut().enumerate() {
+                        *o += w * T::from_f64(chi(l));
+                    }
+                    continue;
+                }
+            }
+            let mu = |u: f64| h.part.sample_cos(T::from_f64(u)).to_f64();
+            let mut block = [T::ZERO; 32];
+            for (k, chunk) in out.chunks_mut(32).enumerate() {
+                let part = block.get_mut(..chunk.len()).unwrap_or(&mut []);
+                moments::legendre_moments_of(mu, 32 * k, part);
+                for (o, &b) in chunk.iter_mut().zip(part.iter()) {
+                    *o += w * b;
+                }
+            }
+        }
     }
 
     /// `(F, 2π p)` of the mixture at `μ`, in f64.

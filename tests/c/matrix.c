@@ -1636,6 +1636,25 @@ static void mixtures(void) {
     kept.table[2].kind = 7;
     CHECK(isnan(sk_mixture_cdf(&kept, 0.0f)) && isnan(sk_mixture_sample_cos_by_lobe(&kept, 0.99f)));
     {
+        /* Legendre moments: Rayleigh's (1, 0, 1/10, 0), HG's g^l, the
+         * mixture's weighted sum; bad input. */
+        float chi[4], chim[4];
+        double chid[3];
+        CHECK(sk_phase_legendre_moments(&ray, chi, 4) == SK_OK && chi[0] == 1.0f && chi[1] == 0.0f &&
+              fabsf(chi[2] - 0.1f) < 1e-7f && chi[3] == 0.0f);
+        CHECK(sk_phase_legendre_moments_f64(&hgd, chid, 3) == SK_OK && fabs(chid[2] - 0.64) < 1e-15);
+        CHECK(sk_mixture_legendre_moments(&m, chim, 4) == SK_OK && fabsf(chim[0] - 1.0f) < 1e-6f &&
+              fabsf(chim[1] - sk_mixture_mean_cosine(&m)) < 1e-5f);
+        CHECK(sk_mixture_legendre_moments_f64(&md, chid, 3) == SK_OK && fabs(chid[0] - 1.0) < 1e-12);
+        CHECK(sk_phase_legendre_moments(&ray, chi, 0) == SK_OK);
+        CHECK(sk_phase_legendre_moments(NULL, chi, 4) == SK_ERR_NULL && sk_phase_legendre_moments(&ray, NULL, 4) == SK_ERR_NULL);
+        CHECK(sk_phase_legendre_moments(&zero_p, chi, 4) == SK_ERR_DOMAIN);
+        CHECK(sk_mixture_legendre_moments(NULL, chi, 4) == SK_ERR_NULL && sk_mixture_legendre_moments_f64(&md, NULL, 3) == SK_ERR_NULL);
+        kept = m;
+        kept.n = 0;
+        CHECK(sk_mixture_legendre_moments(&kept, chi, 4) == SK_ERR_SIZE);
+    }
+    {
         /* Spectral phase: Rayleigh, HG 0.8 and the HG table per channel. */
         sk_channel_phase ch[17];
         sk_channel_phase_f64 chd[2];

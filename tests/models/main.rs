@@ -22,6 +22,7 @@ mod medium;
 mod mie;
 mod mie_table;
 mod mixture;
+mod moments;
 mod nonbounding;
 mod polydisperse;
 mod ray_march;

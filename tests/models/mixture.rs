@@ -285,3 +285,28 @@ fn bad_input_is_refused() {
     assert_eq!(m.sample_cos_by_lobe(0.25), -0.5);
     assert_eq!((m.sample_cos(-1.0), m.sample_cos(2.0)), (-1.0, 1.0));
 }
+
+/// Legendre moments of a mixture (each model's closed form or quadrature,
+/// weighted) against quadrature over the mixture's own exact inverse.
+#[test]
+fn legendre_moments_of_a_mixture() {
+    let fog = Phase::<f64>::fog_diameter(5.0).unwrap();
+    let mut buf = vec![0.0; TableKind::Inverse.len(256).unwrap()];
+    let table = Table::inverse(&fog, &mut buf, 256).unwrap();
+    let parts = [
+        (Part::Phase(Phase::rayleigh()), 0.5),
+        (Part::Phase(Phase::gegenbauer(0.5, 0.7).unwrap()), 0.2),
+        (Part::Table(table), 0.3),
+    ];
+    let m = Mixture::new(&parts).unwrap();
+    let (mut a, mut b) = ([0.0f64; 40], [0.0f64; 40]);
+    m.legendre_moments(&mut a);
+    scatterkit::phase::moments::legendre_moments_by_quadrature(&m, &mut b);
+    let worst = a
+        .iter()
+        .zip(&b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(worst <= 1e-10, "{worst:.2e}");
+    assert!((a[0] - 1.0).abs() < 1e-12 && (a[1] - m.mean_cosine()).abs() < 1e-9);
+}

@@ -759,6 +759,37 @@ typedef struct {
 } sk_equiangular_f64;
 
 /*
+ A phase function given by its Legendre moments chi_0 .. chi_{n-1}
+ (p = sum (2l + 1) chi_l P_l / 4 pi; DISORT's and libRadtran's form),
+ borrowing the caller's array, which must not change after
+ sk_legendre_new. Build it with sk_legendre_new.
+ */
+typedef struct {
+    /*
+     The moments (chi_0 = 1).
+     */
+    const float *chi;
+    /*
+     How many.
+     */
+    size_t n;
+} sk_legendre;
+
+/*
+ Legendre moments (double); see `sk_legendre`.
+ */
+typedef struct {
+    /*
+     The moments (chi_0 = 1).
+     */
+    const double *chi;
+    /*
+     How many.
+     */
+    size_t n;
+} sk_legendre_f64;
+
+/*
  What delta tracking through majorants found.
  */
 typedef struct {
@@ -1893,6 +1924,63 @@ void sk_onb(sk_vec3 n, sk_vec3 *b1, sk_vec3 *b2);
  Double twin of `sk_onb`.
  */
 void sk_onb_f64(sk_vec3_f64 n, sk_vec3_f64 *b1, sk_vec3_f64 *b2);
+
+/*
+ Builds *out over chi[0 .. n]. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE
+ for n = 0 or n > 1024; SK_ERR_DOMAIN unless chi_0 = 1 (to 1e-6), every
+ chi_l is finite in [-1, 1], and the density is non-negative at
+ 64 n + 1 evenly spaced cosines (sk_legendre_check says where not).
+ */
+sk_status sk_legendre_new(const float *chi, size_t n, sk_legendre *out);
+
+/*
+ Double twin of `sk_legendre_new`.
+ */
+sk_status sk_legendre_new_f64(const double *chi, size_t n, sk_legendre_f64 *out);
+
+/*
+ Where the expansion chi[0 .. n] goes negative: SK_OK if nowhere among
+ the 64 n + 1 cosines checked, SK_ERR_DOMAIN with the first such cosine
+ in *cos_out; other errors as sk_legendre_new.
+ */
+sk_status sk_legendre_check(const float *chi, size_t n, float *cos_out);
+
+/*
+ Double twin of `sk_legendre_check`.
+ */
+sk_status sk_legendre_check_f64(const double *chi, size_t n, double *cos_out);
+
+/*
+ The density per steradian at cos_theta. NaN for NULL or a malformed
+ series.
+ */
+float sk_legendre_pdf(const sk_legendre *s, float cos_theta);
+
+/*
+ Double twin of `sk_legendre_pdf`.
+ */
+double sk_legendre_pdf_f64(const sk_legendre_f64 *s, double cos_theta);
+
+/*
+ The CDF at cos_theta, exact term by term (NaN as sk_legendre_pdf).
+ */
+float sk_legendre_cdf(const sk_legendre *s, float cos_theta);
+
+/*
+ Double twin of `sk_legendre_cdf`.
+ */
+double sk_legendre_cdf_f64(const sk_legendre_f64 *s, double cos_theta);
+
+/*
+ cos theta by the exact inverse of the CDF (safeguarded Newton in
+ double; monotone in u). NaN for a NaN u and as sk_legendre_pdf.
+ */
+float sk_legendre_sample_cos(const sk_legendre *s, float u);
+
+/*
+ Double twin of `sk_legendre_sample_cos`.
+ */
+double sk_legendre_sample_cos_f64(const sk_legendre_f64 *s, double u);
 
 /*
  The number of majorants of an mx*my*mz grid (pbrt-v4 uses 16*16*16);

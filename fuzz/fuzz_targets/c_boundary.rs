@@ -94,6 +94,15 @@ fuzz_target!(|data: &[u8]| {
                 assert!(chi.iter().all(|c| c.abs() <= 1.0 + 1e-3), "{chi:?}");
             }
         }
+        // A Legendre series with fuzzed moments: refused, or every sample
+        // in [-1, 1] (NaN only for a NaN u) with a density >= 0 there.
+        let chi = [1.0f32, x(10), x(11), x(12)];
+        let mut lg = core::mem::MaybeUninit::<sk_legendre>::uninit();
+        if sk_legendre_new(chi.as_ptr(), 4, lg.as_mut_ptr()) == sk_status::SK_OK {
+            let lg = lg.assume_init();
+            let mu = sk_legendre_sample_cos(&lg, x(13));
+            assert!((x(13).is_nan() && mu.is_nan()) || mu.abs() <= 1.0, "{mu}");
+        }
         // The same two as channels of a spectral phase function, the hero
         // fuzzed: a cosine in [-1, 1] and finite ratios, or an error.
         let ch = [

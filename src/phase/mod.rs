@@ -18,6 +18,7 @@ mod function;
 pub mod gegenbauer;
 mod hg;
 mod isotropic;
+pub mod legendre;
 pub mod moments;
 pub mod rayleigh;
 mod rayleigh_depolarized;

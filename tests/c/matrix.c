@@ -1655,6 +1655,43 @@ static void mixtures(void) {
         CHECK(sk_mixture_legendre_moments(&kept, chi, 4) == SK_ERR_SIZE);
     }
     {
+        /* Legendre series: Rayleigh's three moments sample as Rayleigh;
+         * HG 0.9 cut at five moments goes negative. */
+        const float chir[3] = {1.0f, 0.0f, 0.1f}, neg[5] = {1.0f, 0.9f, 0.81f, 0.729f, 0.6561f};
+        const double chird[3] = {1.0, 0.0, 0.1};
+        float bad_chi[2] = {1.0f, 0.0f}, where = 7.0f;
+        double whered;
+        sk_legendre lg, lg_bad;
+        sk_legendre_f64 lgd;
+        CHECK(sk_legendre_new(chir, 3, &lg) == SK_OK && sk_legendre_new_f64(chird, 3, &lgd) == SK_OK);
+        CHECK(fabsf(sk_legendre_sample_cos(&lg, 0.3f) - sk_phase_sample_cos(&ray, 0.3f)) < 1e-6f);
+        CHECK(fabs(sk_legendre_sample_cos_f64(&lgd, 0.7) - sk_phase_sample_cos_f64(&rayd, 0.7)) < 1e-13);
+        CHECK(fabsf(sk_legendre_pdf(&lg, 0.5f) - sk_phase_pdf(&ray, 0.5f)) < 1e-7f);
+        CHECK(fabs(sk_legendre_cdf_f64(&lgd, 0.0) - 0.5) < 1e-15 && sk_legendre_pdf_f64(&lgd, 1.0) > 0.0);
+        CHECK(fabsf(sk_legendre_cdf(&lg, 1.0f) - 1.0f) < 1e-6f);
+        CHECK(sk_legendre_check(chir, 3, &where) == SK_OK && where == 7.0f);
+        CHECK(sk_legendre_new(neg, 5, &lg_bad) == SK_ERR_DOMAIN);
+        CHECK(sk_legendre_check(neg, 5, &where) == SK_ERR_DOMAIN && fabsf(where) <= 1.0f);
+        CHECK(sk_legendre_check_f64(chird, 3, &whered) == SK_OK);
+        for (i = 0; i < NS; i++) {
+            bad_chi[1] = FS[i];
+            CHECK(sk_legendre_new(bad_chi, 2, &lg_bad) == (fabsf(FS[i]) <= 1.0f / 3.0f ? SK_OK : SK_ERR_DOMAIN));
+            mu = sk_legendre_sample_cos(&lg, FS[i]);
+            CHECK(isnan(FS[i]) ? isnan(mu) : fabsf(mu) <= 1.0f);
+            CHECK(isnan(FS[i]) == isnan(sk_legendre_cdf(&lg, FS[i])));
+        }
+        i = 0;
+        CHECK(sk_legendre_new(NULL, 3, &lg_bad) == SK_ERR_NULL && sk_legendre_new(chir, 3, NULL) == SK_ERR_NULL);
+        CHECK(sk_legendre_new(chir, 0, &lg_bad) == SK_ERR_SIZE && sk_legendre_new(chir, 1025, &lg_bad) == SK_ERR_SIZE);
+        CHECK(sk_legendre_check(NULL, 3, &where) == SK_ERR_NULL && sk_legendre_check(chir, 3, NULL) == SK_ERR_NULL);
+        CHECK(isnan(sk_legendre_pdf(NULL, 0.0f)) && isnan(sk_legendre_sample_cos_f64(NULL, 0.5)) && isnan(sk_legendre_cdf_f64(NULL, 0.0)));
+        lg_bad = lg;
+        lg_bad.n = 0;
+        CHECK(isnan(sk_legendre_sample_cos(&lg_bad, 0.5f)));
+        lg_bad.chi = NULL, lg_bad.n = 3;
+        CHECK(isnan(sk_legendre_pdf(&lg_bad, 0.5f)));
+    }
+    {
         /* Spectral phase: Rayleigh, HG 0.8 and the HG table per channel. */
         sk_channel_phase ch[17];
         sk_channel_phase_f64 chd[2];

@@ -17,6 +17,7 @@ mod equiangular;
 mod fournier_forand;
 mod gegenbauer;
 mod hg_and_depolarised;
+mod legendre;
 mod majorant;
 mod medium;
 mod mie;

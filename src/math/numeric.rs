@@ -130,6 +130,35 @@ pub(crate) fn solve_bracketed<T: Real>(
     x
 }
 
+/// The inverse of a CDF given in `μ ∈ [−1, 1]`: `μ` with `F(μ) = u`, from
+/// `eval(μ) = (F(μ), F'(μ))` and a `seed`, by [`solve_bracketed`] in f64
+/// (Newton: no second derivative) in the smaller tail: `F = u` in
+/// `y = 1 + μ` for `u ≤ ½`, else `1 − F = 1 − u` in `y = 1 − μ`, so that
+/// the residual is taken where it is small and keeps its digits.
+pub(crate) fn inverse_cdf(eval: impl Fn(f64) -> (f64, f64), u: f64, seed: f64) -> f64 {
+    if u <= 0.5 {
+        let f = |y: f64| {
+            let (cdf, density) = eval(y - 1.0);
+            Eval {
+                cdf,
+                density,
+                slope: 0.0,
+            }
+        };
+        solve_bracketed::<f64>(f, u, 1.0 + seed, 0.0, 2.0) - 1.0
+    } else {
+        let f = |y: f64| {
+            let (cdf, density) = eval(1.0 - y);
+            Eval {
+                cdf: 1.0 - cdf,
+                density,
+                slope: 0.0,
+            }
+        };
+        1.0 - solve_bracketed::<f64>(f, 1.0 - u, 1.0 - seed, 0.0, 2.0)
+    }
+}
+
 /// Cubic Hermite interpolation of a tabulated inverse CDF (`μ_i, d_i`
 /// interleaved, `n` intervals, `n_t = n` as a float) at `u ∈ [0, 1]`: the
 /// interval `i = ⌊u n⌋` found by arithmetic, no search.

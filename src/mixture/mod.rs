@@ -23,7 +23,7 @@ pub mod spectral;
 
 use crate::error::Error;
 use crate::math::geometry::{Vec3, direction_about_turns, sin_from_cos};
-use crate::math::numeric::{Eval, solve_bracketed};
+use crate::math::numeric::inverse_cdf;
 use crate::math::real::Real;
 use crate::phase::{Phase, PhaseFunction, moments};
 use crate::table::Table;
@@ -300,30 +300,7 @@ impl<'a, T: Real> Mixture<'a, T> {
         let seed = self.held().fold(0.0, |s, (p, w)| {
             s + w.to_f64() * p.part.sample_cos(u).to_f64()
         });
-        let u = u.to_f64();
-        if u <= 0.5 {
-            // y = 1 + μ, F(y) = u.
-            let f = |y: f64| {
-                let (c, d) = self.wide(y - 1.0);
-                Eval {
-                    cdf: c,
-                    density: d,
-                    slope: 0.0,
-                }
-            };
-            solve_bracketed::<f64>(f, u, 1.0 + seed, 0.0, 2.0) - 1.0
-        } else {
-            // y = 1 − μ, 1 − F(μ) = 1 − u: the smaller tail.
-            let f = |y: f64| {
-                let (c, d) = self.wide(1.0 - y);
-                Eval {
-                    cdf: 1.0 - c,
-                    density: d,
-                    slope: 0.0,
-                }
-            };
-            1.0 - solve_bracketed::<f64>(f, 1.0 - u, 1.0 - seed, 0.0, 2.0)
-        }
+        inverse_cdf(|mu| self.wide(mu), u.to_f64(), seed)
     }
 }
 

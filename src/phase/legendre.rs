@@ -14,7 +14,7 @@
 
 use super::PhaseFunction;
 use crate::error::Error;
-use crate::math::numeric::{Eval, solve_bracketed};
+use crate::math::numeric::inverse_cdf;
 use crate::math::real::Real;
 
 /// The most moments a series takes (`L ≤ 1023`).
@@ -117,27 +117,7 @@ impl<T: Real> PhaseFunction<T> for LegendreSeries<'_, T> {
         if u.is_nan() {
             return T::NAN;
         }
-        let mu = if u <= 0.5 {
-            let f = |y: f64| {
-                let (c, d) = self.eval(y - 1.0);
-                Eval {
-                    cdf: c,
-                    density: d,
-                    slope: 0.0,
-                }
-            };
-            solve_bracketed::<f64>(f, u, 2.0 * u, 0.0, 2.0) - 1.0
-        } else {
-            let f = |y: f64| {
-                let (c, d) = self.eval(1.0 - y);
-                Eval {
-                    cdf: 1.0 - c,
-                    density: d,
-                    slope: 0.0,
-                }
-            };
-            1.0 - solve_bracketed::<f64>(f, 1.0 - u, 2.0 * (1.0 - u), 0.0, 2.0)
-        };
+        let mu = inverse_cdf(|mu| self.eval(mu), u, 2.0 * u - 1.0);
         T::from_f64(mu.clamp(-1.0, 1.0))
     }
     /// `χ_1`.

@@ -2784,6 +2784,21 @@ sk_status sk_phase_two_lobe_hg(float g1, float g2, float w, sk_phase *out);
 sk_status sk_phase_two_lobe_hg_f64(double g1, double g2, double w, sk_phase_f64 *out);
 
 /*
+ The modified Henyey-Greenstein function of Bevilacqua & Depeursinge
+ (1999), beta/(4 pi) + (1 - beta) HG(g_HG), set by its mean cosine g
+ and similarity parameter gamma = (1 - chi_2)/(1 - chi_1):
+ g_HG = (1 - gamma (1 - g))/g, beta = 1 - g/g_HG. Built as
+ sk_phase_two_lobe_hg(g_HG, 0, 1 - beta). SK_ERR_DOMAIN unless
+ 0 < g < 1 and 1 < gamma <= 1 + g (gamma = 1 + g is HG itself).
+ */
+sk_status sk_phase_modified_hg(float g, float gamma, sk_phase *out);
+
+/*
+ Double twin of `sk_phase_modified_hg`.
+ */
+sk_status sk_phase_modified_hg_f64(double g, double gamma, sk_phase_f64 *out);
+
+/*
  The fog phase function fitted to Mie scattering by water droplets of
  diameter 0 < d <= 50 micrometres (Jendersie & d'Eon 2023; four ranges
  split at 0.1, 1.5 and 5 um). SK_ERR_DOMAIN outside (0, 50] or NaN.

@@ -1647,6 +1647,20 @@ static void mixtures(void) {
               fabsf(chim[1] - sk_mixture_mean_cosine(&m)) < 1e-5f);
         CHECK(sk_mixture_legendre_moments_f64(&md, chid, 3) == SK_OK && fabs(chid[0] - 1.0) < 1e-12);
         CHECK(sk_phase_legendre_moments(&ray, chi, 0) == SK_OK);
+        {
+            /* The modified HG by (g, gamma): its moments give them back. */
+            sk_phase mhg;
+            sk_phase_f64 mhgd;
+            CHECK(sk_phase_modified_hg(0.8f, 1.5f, &mhg) == SK_OK && sk_phase_legendre_moments(&mhg, chi, 3) == SK_OK);
+            CHECK(fabsf(chi[1] - 0.8f) < 1e-6f && fabsf((1.0f - chi[2]) / (1.0f - chi[1]) - 1.5f) < 1e-4f);
+            CHECK(sk_phase_modified_hg_f64(0.8, 1.8, &mhgd) == SK_OK && sk_phase_modified_hg_f64(0.8, 1.81, &mhgd) == SK_ERR_DOMAIN);
+            for (i = 0; i < NS; i++) {
+                CHECK(sk_phase_modified_hg(FS[i], 1.2f, &mhg) == SK_ERR_DOMAIN || (FS[i] > 0.2f && FS[i] < 1.0f));
+                CHECK(sk_phase_modified_hg(0.5f, FS[i], &mhg) == SK_ERR_DOMAIN);
+            }
+            i = 0;
+            CHECK(sk_phase_modified_hg(0.5f, 1.2f, NULL) == SK_ERR_NULL);
+        }
         CHECK(sk_phase_legendre_moments(NULL, chi, 4) == SK_ERR_NULL && sk_phase_legendre_moments(&ray, NULL, 4) == SK_ERR_NULL);
         CHECK(sk_phase_legendre_moments(&zero_p, chi, 4) == SK_ERR_DOMAIN);
         CHECK(sk_mixture_legendre_moments(NULL, chi, 4) == SK_ERR_NULL && sk_mixture_legendre_moments_f64(&md, NULL, 3) == SK_ERR_NULL);

@@ -156,3 +156,36 @@ fn quadrature_for_models_without_a_closed_form() {
         assert_eq!(moments(&p, 9), got, "{p:?}: the dispatch takes quadrature");
     }
 }
+
+/// The modified HG set by `(g, γ)`: its moments give `(g, γ)` back
+/// (`γ = (1 − χ_2)/(1 − χ_1)`) to 10⁻¹⁰ over a grid of the reachable
+/// region; outside it, `Error::Domain`.
+#[test]
+fn modified_hg_round_trips_g_and_gamma() {
+    let mut worst: f64 = 0.0;
+    for i in 1..20 {
+        let g = i as f64 / 20.0;
+        for j in 1..=20 {
+            let gamma = 1.0 + g * j as f64 / 20.0;
+            let p = Phase::modified_hg(g, gamma).unwrap();
+            let chi = moments(&p, 3);
+            let back = (1.0 - chi[2]) / (1.0 - chi[1]);
+            worst = worst.max((chi[1] - g).abs()).max((back - gamma).abs());
+        }
+    }
+    assert!(worst <= 1e-10, "{worst:.2e}");
+    for (g, gamma) in [
+        (0.5, 1.0),
+        (0.5, 1.6),
+        (0.0, 1.2),
+        (-0.5, 1.2),
+        (1.0, 1.5),
+        (0.5, f64::NAN),
+    ] {
+        assert_eq!(
+            Phase::modified_hg(g, gamma).err(),
+            Some(scatterkit::Error::Domain),
+            "{g} {gamma}"
+        );
+    }
+}

@@ -212,6 +212,27 @@ pub unsafe extern "C" fn sk_phase_two_lobe_hg_f64(
     unsafe { construct(out, Phase::two_lobe_hg(g1, g2, w)) }
 }
 
+/// The modified Henyey-Greenstein function of Bevilacqua & Depeursinge
+/// (1999), beta/(4 pi) + (1 - beta) HG(g_HG), set by its mean cosine g
+/// and similarity parameter gamma = (1 - chi_2)/(1 - chi_1):
+/// g_HG = (1 - gamma (1 - g))/g, beta = 1 - g/g_HG. Built as
+/// sk_phase_two_lobe_hg(g_HG, 0, 1 - beta). SK_ERR_DOMAIN unless
+/// 0 < g < 1 and 1 < gamma <= 1 + g (gamma = 1 + g is HG itself).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_modified_hg(g: f32, gamma: f32, out: *mut sk_phase) -> sk_status {
+    unsafe { construct(out, Phase::modified_hg(g, gamma)) }
+}
+
+/// Double twin of `sk_phase_modified_hg`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_modified_hg_f64(
+    g: f64,
+    gamma: f64,
+    out: *mut sk_phase_f64,
+) -> sk_status {
+    unsafe { construct(out, Phase::modified_hg(g, gamma)) }
+}
+
 /// The fog phase function fitted to Mie scattering by water droplets of
 /// diameter 0 < d <= 50 micrometres (Jendersie & d'Eon 2023; four ranges
 /// split at 0.1, 1.5 and 5 um). SK_ERR_DOMAIN outside (0, 50] or NaN.

@@ -6,7 +6,7 @@ use super::{
     CVec, sk_phase, sk_phase_f64, sk_status, sk_table, sk_table_f64, sk_vec3, sk_vec3_f64,
 };
 use crate::math::real::Real;
-use crate::mixture::{MAX_PARTS, Mixture, Part};
+use crate::mixture::{MAX_PARTS, Mixture, Part, lobe};
 use crate::phase::PhaseFunction;
 
 /// One component for sk_mixture_new: exactly one of phase and table
@@ -279,30 +279,14 @@ unsafe fn by_lobe<S: MixStore>(m: *const S, u: S::T) -> S::T {
     };
     let (n, is_table, _, phase, table) = mix.fields();
     let n = (n as usize).min(MAX_PARTS);
-    let u = u.clamp01();
-    if n == 0 || u.is_nan() {
+    let Some((i, v)) = lobe(mix.end().get(..n).unwrap_or(&[]), u) else {
         return S::T::NAN;
+    };
+    match (is_table.get(i), phase.get(i), table.get(i)) {
+        (Some(1), _, Some(t)) => unsafe { load_table(t) }.map_or(S::T::NAN, |t| t.sample_cos(v)),
+        (Some(_), Some(p), _) => unsafe { load(p) }.map_or(S::T::NAN, |p| p.sample_cos(v)),
+        _ => S::T::NAN,
     }
-    let mut start = S::T::ZERO;
-    for (i, &end) in mix.end().iter().take(n).enumerate() {
-        if u < end || i + 1 == n {
-            let w = end - start;
-            let v = if w > S::T::ZERO {
-                ((u - start) / w).clamp01()
-            } else {
-                S::T::ZERO
-            };
-            return match (is_table.get(i), phase.get(i), table.get(i)) {
-                (Some(1), _, Some(t)) => {
-                    unsafe { load_table(t) }.map_or(S::T::NAN, |t| t.sample_cos(v))
-                }
-                (Some(_), Some(p), _) => unsafe { load(p) }.map_or(S::T::NAN, |p| p.sample_cos(v)),
-                _ => S::T::NAN,
-            };
-        }
-        start = end;
-    }
-    S::T::NAN
 }
 
 /// `f` of the light mixture, NaN when it does not load.

@@ -212,30 +212,10 @@ impl<'a, T: Real> Mixture<'a, T> {
     /// (clamped; NaN gives NaN), sampled at `u` rescaled into that share.
     /// Exact in distribution; not monotone in `u`.
     pub fn sample_cos_by_lobe(&self, u: T) -> T {
-        let u = u.clamp01();
-        if u.is_nan() {
-            return T::NAN;
+        match lobe(self.ends.get(..self.n).unwrap_or(&[]), u) {
+            Some((i, v)) => self.part(i).map_or(T::NAN, |p| p.sample_cos(v)),
+            None => T::NAN,
         }
-        let mut start = T::ZERO;
-        for (i, (&end, part)) in self
-            .ends
-            .iter()
-            .zip(self.parts.iter())
-            .take(self.n)
-            .enumerate()
-        {
-            if u < end || i + 1 == self.n {
-                let w = end - start;
-                let v = if w > T::ZERO {
-                    ((u - start) / w).clamp01()
-                } else {
-                    T::ZERO
-                };
-                return part.as_ref().map_or(T::NAN, |p| p.part.sample_cos(v));
-            }
-            start = end;
-        }
-        T::NAN
     }
 
     /// Component `i` (`None` past the last).
@@ -302,6 +282,30 @@ impl<'a, T: Real> Mixture<'a, T> {
         });
         inverse_cdf(|mu| self.wide(mu), u.to_f64(), seed)
     }
+}
+
+/// The lobe choice on the running sums `ends` of normalised weights (the
+/// last 1): the first component whose share of `[0, 1]` holds `u`
+/// (clamped) and `u` rescaled into that share; at `u = 1` the last
+/// component with a positive share, at 1. `None` for a NaN `u` or no
+/// share.
+pub(crate) fn lobe<T: Real>(ends: &[T], u: T) -> Option<(usize, T)> {
+    let u = u.clamp01();
+    if u.is_nan() {
+        return None;
+    }
+    let (mut start, mut last) = (T::ZERO, None);
+    for (i, &end) in ends.iter().enumerate() {
+        let w = end - start;
+        if w > T::ZERO {
+            if u < end {
+                return Some((i, ((u - start) / w).clamp01()));
+            }
+            last = Some((i, T::ONE));
+        }
+        start = end;
+    }
+    last
 }
 
 impl<T: Real> PhaseFunction<T> for Mixture<'_, T> {

@@ -284,6 +284,11 @@ fn bad_input_is_refused() {
     assert!(m.sample_cos(f64::NAN).is_nan() && m.sample_cos_by_lobe(f64::NAN).is_nan());
     assert_eq!(m.sample_cos_by_lobe(0.25), -0.5);
     assert_eq!((m.sample_cos(-1.0), m.sample_cos(2.0)), (-1.0, 1.0));
+    // A zero weight last: u = 1 still lands on the component with weight
+    // (isotropic at 1 gives μ = 1; the HG lobe at its rescaled 0 would
+    // give −1).
+    let m = Mixture::new(&[(Part::Phase(Phase::isotropic()), 1.0), (hg, 0.0)]).unwrap();
+    assert_eq!(m.sample_cos_by_lobe(1.0), 1.0);
 }
 
 /// Legendre moments of a mixture (each model's closed form or quadrature,

@@ -971,7 +971,7 @@ typedef struct {
 } sk_mixture_part;
 
 /*
- A mixture of up to 8 phase functions and tables (Σ w_i p_i). A plain
+ A mixture of up to 8 phase functions and tables (sum of w_i p_i). A plain
  value holding copies of the components: build it with sk_mixture_new,
  then copy it freely; a table component's data stays borrowed and must
  outlive it. Its fields are private.

@@ -2799,6 +2799,19 @@ sk_status sk_phase_modified_hg(float g, float gamma, sk_phase *out);
 sk_status sk_phase_modified_hg_f64(double g, double gamma, sk_phase_f64 *out);
 
 /*
+ The modified Henyey-Greenstein function set by its mean cosine g and
+ delta = (1 - chi_3)/(1 - chi_1): g_HG = sqrt((1 - delta (1 - g))/g),
+ beta = 1 - g/g_HG (as sk_phase_modified_hg). SK_ERR_DOMAIN unless
+ 0 < g < 1 and 1 < delta <= 1 + g + g^2 (the top is HG itself).
+ */
+sk_status sk_phase_modified_hg_delta(float g, float delta, sk_phase *out);
+
+/*
+ Double twin of `sk_phase_modified_hg_delta`.
+ */
+sk_status sk_phase_modified_hg_delta_f64(double g, double delta, sk_phase_f64 *out);
+
+/*
  The fog phase function fitted to Mie scattering by water droplets of
  diameter 0 < d <= 50 micrometres (Jendersie & d'Eon 2023; four ranges
  split at 0.1, 1.5 and 5 um). SK_ERR_DOMAIN outside (0, 50] or NaN.

@@ -207,6 +207,29 @@ impl<T: Real> Phase<T> {
         }
         Self::two_lobe_hg(T::from_f64(g_hg), T::ZERO, T::from_f64(w))
     }
+
+    /// The modified HG of [`modified_hg`](Self::modified_hg) set by its
+    /// mean cosine `g` and `δ = (1 − χ_3)/(1 − χ_1)` (the third-moment
+    /// parameter of tissue optics): `χ_3 = g g_HG²`, so
+    /// `g_HG = √((1 − δ(1 − g))/g)` and `β = 1 − g/g_HG`. It reaches
+    /// `1 < δ ≤ 1 + g + g²` for `0 < g < 1` (`δ = 1 + g + g²` is HG
+    /// itself); other `(g, δ)` are [`Error::Domain`].
+    pub fn modified_hg_delta(g: T, delta: T) -> Result<Self, Error> {
+        let (g, delta) = (g.to_f64(), delta.to_f64());
+        // The top, 1 + g + g², with a few ULP for the caller's rounding.
+        let top = (1.0 + g + g * g) * (1.0 + 4.0 * f64::EPSILON);
+        if !(g > 0.0 && g < 1.0 && delta > 1.0 && delta <= top) {
+            return Err(Error::Domain);
+        }
+        let g_hg = ((1.0 - delta * (1.0 - g)) / g).sqrt();
+        // As in modified_hg: rounding at δ = 1 + g + g² can leave w a few
+        // ULP above 1.
+        let w = (g / g_hg).min(1.0);
+        if !(g_hg < 1.0 && w > 0.0) {
+            return Err(Error::Domain);
+        }
+        Self::two_lobe_hg(T::from_f64(g_hg), T::ZERO, T::from_f64(w))
+    }
 }
 
 /// `dispatch!(phase, m => expr)`: `expr` with `m` bound to the model inside.

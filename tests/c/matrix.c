@@ -1660,6 +1660,10 @@ static void mixtures(void) {
             }
             i = 0;
             CHECK(sk_phase_modified_hg(0.5f, 1.2f, NULL) == SK_ERR_NULL);
+            CHECK(sk_phase_modified_hg_delta(0.8f, 2.0f, &mhg) == SK_OK && sk_phase_legendre_moments(&mhg, chi, 4) == SK_OK);
+            CHECK(fabsf((1.0f - chi[3]) / (1.0f - chi[1]) - 2.0f) < 1e-4f);
+            CHECK(sk_phase_modified_hg_delta_f64(0.8, 2.45, &mhgd) == SK_ERR_DOMAIN && sk_phase_modified_hg_delta(0.5f, NAN, &mhg) == SK_ERR_DOMAIN);
+            CHECK(sk_phase_modified_hg_delta(0.5f, 1.5f, NULL) == SK_ERR_NULL);
         }
         CHECK(sk_phase_legendre_moments(NULL, chi, 4) == SK_ERR_NULL && sk_phase_legendre_moments(&ray, NULL, 4) == SK_ERR_NULL);
         CHECK(sk_phase_legendre_moments(&zero_p, chi, 4) == SK_ERR_DOMAIN);

@@ -189,3 +189,34 @@ fn modified_hg_round_trips_g_and_gamma() {
         );
     }
 }
+
+/// The modified HG set by `(g, δ)`, `δ = (1 − χ_3)/(1 − χ_1)`: the round
+/// trip within 10⁻¹⁰ over the reachable region; outside, `Error::Domain`.
+#[test]
+fn modified_hg_round_trips_g_and_delta() {
+    let mut worst: f64 = 0.0;
+    for i in 1..20 {
+        let g = i as f64 / 20.0;
+        for j in 1..=20 {
+            let delta = 1.0 + (g + g * g) * j as f64 / 20.0;
+            let p = Phase::modified_hg_delta(g, delta).unwrap();
+            let chi = moments(&p, 4);
+            let back = (1.0 - chi[3]) / (1.0 - chi[1]);
+            worst = worst.max((chi[1] - g).abs()).max((back - delta).abs());
+        }
+    }
+    assert!(worst <= 1e-10, "{worst:.2e}");
+    for (g, delta) in [
+        (0.5, 1.0),
+        (0.5, 1.76),
+        (0.0, 1.2),
+        (-0.5, 1.2),
+        (0.5, f64::NAN),
+    ] {
+        assert_eq!(
+            Phase::modified_hg_delta(g, delta).err(),
+            Some(scatterkit::Error::Domain),
+            "{g} {delta}"
+        );
+    }
+}

@@ -233,6 +233,29 @@ pub unsafe extern "C" fn sk_phase_modified_hg_f64(
     unsafe { construct(out, Phase::modified_hg(g, gamma)) }
 }
 
+/// The modified Henyey-Greenstein function set by its mean cosine g and
+/// delta = (1 - chi_3)/(1 - chi_1): g_HG = sqrt((1 - delta (1 - g))/g),
+/// beta = 1 - g/g_HG (as sk_phase_modified_hg). SK_ERR_DOMAIN unless
+/// 0 < g < 1 and 1 < delta <= 1 + g + g^2 (the top is HG itself).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_modified_hg_delta(
+    g: f32,
+    delta: f32,
+    out: *mut sk_phase,
+) -> sk_status {
+    unsafe { construct(out, Phase::modified_hg_delta(g, delta)) }
+}
+
+/// Double twin of `sk_phase_modified_hg_delta`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_modified_hg_delta_f64(
+    g: f64,
+    delta: f64,
+    out: *mut sk_phase_f64,
+) -> sk_status {
+    unsafe { construct(out, Phase::modified_hg_delta(g, delta)) }
+}
+
 /// The fog phase function fitted to Mie scattering by water droplets of
 /// diameter 0 < d <= 50 micrometres (Jendersie & d'Eon 2023; four ranges
 /// split at 0.1, 1.5 and 5 um). SK_ERR_DOMAIN outside (0, 50] or NaN.

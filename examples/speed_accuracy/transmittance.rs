@@ -50,18 +50,16 @@ impl Medium<'_> {
     /// One estimate along `ray`: (transmittance, density evaluations).
     fn estimate(&self, e: Estimator, ray: Ray<f32>, r: &mut Xoshiro256PlusPlus) -> (f32, u32) {
         let maj: Majorants<'_, f32> = self.extrema.majorants();
+        // The ray marchers' strata: the majorant optical depth, rounded up.
+        let strata = || maj.optical_depth(ray).unwrap().ceil().max(1.0) as u32;
         let t = match e {
             Estimator::Ratio => maj.ratio_track(&self.grid, ray, BUDGET, r),
             Estimator::Residual => self
                 .extrema
                 .residual_ratio_track(&self.grid, ray, BUDGET, r),
-            Estimator::RayMarch => {
-                let n = maj.optical_depth(ray).unwrap().ceil().max(1.0) as u32;
-                ray_march_transmittance(&self.grid, ray, n, BUDGET, r)
-            }
+            Estimator::RayMarch => ray_march_transmittance(&self.grid, ray, strata(), BUDGET, r),
             Estimator::Telescoping => {
-                let n = maj.optical_depth(ray).unwrap().ceil().max(1.0) as u32;
-                telescoping_transmittance(&self.grid, ray, n * 4, BUDGET, r)
+                telescoping_transmittance(&self.grid, ray, 4 * strata(), BUDGET, r)
             }
         }
         .expect("the estimators accept these rays");

@@ -213,7 +213,12 @@ impl<'a, T: Real> Mixture<'a, T> {
     /// Exact in distribution; not monotone in `u`.
     pub fn sample_cos_by_lobe(&self, u: T) -> T {
         match lobe(self.ends.get(..self.n).unwrap_or(&[]), u) {
-            Some((i, v)) => self.part(i).map_or(T::NAN, |p| p.sample_cos(v)),
+            // Borrowed, not copied: a held component carries its f64 twin.
+            Some((i, v)) => self
+                .parts
+                .get(i)
+                .and_then(Option::as_ref)
+                .map_or(T::NAN, |h| h.part.sample_cos(v)),
             None => T::NAN,
         }
     }

@@ -285,14 +285,14 @@ impl<'a, T: Real> Table<'a, T> {
     /// [`sample_cos`](Self::sample_cos) draws from (the table's own, as
     /// [`pdf`](Self::pdf)): in `[0, 1]`, NaN for NaN.
     pub fn cdf(&self, cos_theta: T) -> T {
-        if cos_theta.is_nan() {
-            return T::NAN;
-        }
         T::from_f64(self.cdf_f64(cos_theta.to_f64()))
     }
 
-    /// [`cdf`](Self::cdf) in f64, before rounding to `T`.
+    /// [`cdf`](Self::cdf) in f64, before rounding to `T` (NaN for NaN).
     pub(crate) fn cdf_f64(&self, mu: f64) -> f64 {
+        if mu.is_nan() {
+            return f64::NAN;
+        }
         let mu = mu.clamp(-1.0, 1.0);
         let c = match self.kind {
             TableKind::RayleighCdf => {

@@ -2785,11 +2785,14 @@ sk_status sk_phase_two_lobe_hg_f64(double g1, double g2, double w, sk_phase_f64 
 
 /*
  The modified Henyey-Greenstein function of Bevilacqua & Depeursinge
- (1999), beta/(4 pi) + (1 - beta) HG(g_HG), set by its mean cosine g
- and similarity parameter gamma = (1 - chi_2)/(1 - chi_1):
- g_HG = (1 - gamma (1 - g))/g, beta = 1 - g/g_HG. Built as
- sk_phase_two_lobe_hg(g_HG, 0, 1 - beta). SK_ERR_DOMAIN unless
- 0 < g < 1 and 1 < gamma <= 1 + g (gamma = 1 + g is HG itself).
+ (JOSA A 16(12), 1999), beta HG(g_HG) + (1 - beta) (3/(4 pi)) cos^2,
+ set by its mean cosine g and gamma = (1 - chi_2)/(1 - chi_1): g_HG is
+ the positive root of g x^2 + (gamma (1 - g) - 3/5) x - 2g/5 = 0 and
+ beta = g/g_HG. The cos^2 lobe is the Draine function with g = 0 and
+ alpha = 2^70 (within 1e-21 of it), so the value is a fog mixture
+ (sk_phase_get_params: g_hg = g_HG, g_d = 0, alpha = 2^70,
+ w_d = 1 - beta). SK_ERR_DOMAIN unless 0 < g < 1 and
+ 0.6 < gamma <= 1 + g (gamma = 1 + g is HG itself).
  */
 sk_status sk_phase_modified_hg(float g, float gamma, sk_phase *out);
 
@@ -2799,10 +2802,10 @@ sk_status sk_phase_modified_hg(float g, float gamma, sk_phase *out);
 sk_status sk_phase_modified_hg_f64(double g, double gamma, sk_phase_f64 *out);
 
 /*
- The modified Henyey-Greenstein function set by its mean cosine g and
- delta = (1 - chi_3)/(1 - chi_1): g_HG = sqrt((1 - delta (1 - g))/g),
- beta = 1 - g/g_HG (as sk_phase_modified_hg). SK_ERR_DOMAIN unless
- 0 < g < 1 and 1 < delta <= 1 + g + g^2 (the top is HG itself).
+ The modified Henyey-Greenstein function of sk_phase_modified_hg set by
+ g and delta = (1 - chi_3)/(1 - chi_1): g_HG = sqrt((1 - delta (1 - g))/g),
+ beta = g/g_HG. SK_ERR_DOMAIN unless 0 < g < 1 and
+ 1 < delta <= 1 + g + g^2 (the top is HG itself).
  */
 sk_status sk_phase_modified_hg_delta(float g, float delta, sk_phase *out);
 
@@ -2810,6 +2813,58 @@ sk_status sk_phase_modified_hg_delta(float g, float delta, sk_phase *out);
  Double twin of `sk_phase_modified_hg_delta`.
  */
 sk_status sk_phase_modified_hg_delta_f64(double g, double delta, sk_phase_f64 *out);
+
+/*
+ The two-lobe HG whose second lobe is isotropic,
+ (1 - beta) HG(g_HG) + beta/(4 pi) (Prahl's "modified HG", 1988), set by
+ g and gamma = (1 - chi_2)/(1 - chi_1): g_HG = (1 - gamma (1 - g))/g,
+ beta = 1 - g/g_HG; built as sk_phase_two_lobe_hg(g_HG, 0, 1 - beta).
+ SK_ERR_DOMAIN unless 0 < g < 1 and 1 < gamma <= 1 + g.
+ */
+sk_status sk_phase_two_lobe_hg_gamma(float g, float gamma, sk_phase *out);
+
+/*
+ Double twin of `sk_phase_two_lobe_hg_gamma`.
+ */
+sk_status sk_phase_two_lobe_hg_gamma_f64(double g, double gamma, sk_phase_f64 *out);
+
+/*
+ The two-lobe HG of sk_phase_two_lobe_hg_gamma set by g and
+ delta = (1 - chi_3)/(1 - chi_1): g_HG = sqrt((1 - delta (1 - g))/g).
+ SK_ERR_DOMAIN unless 0 < g < 1 and 1 < delta <= 1 + g + g^2.
+ */
+sk_status sk_phase_two_lobe_hg_delta(float g, float delta, sk_phase *out);
+
+/*
+ Double twin of `sk_phase_two_lobe_hg_delta`.
+ */
+sk_status sk_phase_two_lobe_hg_delta_f64(double g, double delta, sk_phase_f64 *out);
+
+/*
+ The Gegenbauer kernel (sk_phase_gegenbauer) with mean cosine
+ 0 < g < 1 and gamma = (1 - chi_2)/(1 - chi_1), found by bisection on
+ the kernel's moments in closed form (about 1 ms: build once). It
+ reaches gamma in a band around HG's 1 + g, above it too (flatter than
+ HG), e.g. 1.334 < gamma < 1.874 at g = 0.6; elsewhere SK_ERR_DOMAIN.
+ */
+sk_status sk_phase_gegenbauer_gamma(float g, float gamma, sk_phase *out);
+
+/*
+ Double twin of `sk_phase_gegenbauer_gamma`.
+ */
+sk_status sk_phase_gegenbauer_gamma_f64(double g, double gamma, sk_phase_f64 *out);
+
+/*
+ The Gegenbauer kernel with mean cosine 0 < g < 1 and
+ delta = (1 - chi_3)/(1 - chi_1), as sk_phase_gegenbauer_gamma (e.g.
+ 1.51 < delta < 2.302 at g = 0.6); elsewhere SK_ERR_DOMAIN.
+ */
+sk_status sk_phase_gegenbauer_delta(float g, float delta, sk_phase *out);
+
+/*
+ Double twin of `sk_phase_gegenbauer_delta`.
+ */
+sk_status sk_phase_gegenbauer_delta_f64(double g, double delta, sk_phase_f64 *out);
 
 /*
  The fog phase function fitted to Mie scattering by water droplets of

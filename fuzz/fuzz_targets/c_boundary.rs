@@ -52,6 +52,10 @@ fuzz_target!(|data: &[u8]| {
             sk_phase_rayleigh_depolarized(x(3), &mut p),
             sk_phase_modified_hg(x(1), x(2), &mut p),
             sk_phase_modified_hg_delta(x(2), x(3), &mut p),
+            sk_phase_two_lobe_hg_gamma(x(1), x(2), &mut p),
+            sk_phase_two_lobe_hg_delta(x(2), x(3), &mut p),
+            sk_phase_gegenbauer_gamma(x(1), x(2), &mut p),
+            sk_phase_gegenbauer_delta(x(2), x(3), &mut p),
         ];
         for s in statuses {
             assert!(matches!(s, sk_status::SK_OK | sk_status::SK_ERR_DOMAIN));

@@ -182,54 +182,6 @@ impl<T: Real> Phase<T> {
     pub fn two_lobe_hg(g1: T, g2: T, w: T) -> Result<Self, Error> {
         Fog::new(g2, g1, T::ZERO, w).map(Phase::Fog)
     }
-
-    /// The modified Henyey–Greenstein function of Bevilacqua &
-    /// Depeursinge (JOSA A 16(12), 1999, eq. 4), `β/4π + (1 − β) p_HG(g_HG)`,
-    /// set by its mean cosine `g` and similarity parameter
-    /// `γ = (1 − χ_2)/(1 − χ_1)` (tissue optics' second moment). Its
-    /// moments are `χ_l = (1 − β) g_HG^l` for `l ≥ 1`, so
-    /// `g_HG = (1 − γ(1 − g))/g` and `β = 1 − g/g_HG`. It reaches
-    /// `1 < γ ≤ 1 + g` for forward scattering, `0 < g < 1` (`γ = 1 + g` is
-    /// HG itself, `β = 0`); other `(g, γ)` are [`Error::Domain`]. A
-    /// two-lobe HG whose second lobe is isotropic
-    /// (`two_lobe_hg(g_HG, 0, 1 − β)`).
-    pub fn modified_hg(g: T, gamma: T) -> Result<Self, Error> {
-        let (g, gamma) = (g.to_f64(), gamma.to_f64());
-        if !(g > 0.0 && g < 1.0 && gamma > 1.0 && gamma <= 1.0 + g) {
-            return Err(Error::Domain);
-        }
-        let g_hg = (1.0 - gamma * (1.0 - g)) / g;
-        // At γ = 1 + g the rounding of γ(1 − g) can leave w a few ULP
-        // above 1: that is HG itself.
-        let w = (g / g_hg).min(1.0);
-        if !(g_hg.abs() < 1.0 && w > 0.0) {
-            return Err(Error::Domain);
-        }
-        Self::two_lobe_hg(T::from_f64(g_hg), T::ZERO, T::from_f64(w))
-    }
-
-    /// The modified HG of [`modified_hg`](Self::modified_hg) set by its
-    /// mean cosine `g` and `δ = (1 − χ_3)/(1 − χ_1)` (the third-moment
-    /// parameter of tissue optics): `χ_3 = g g_HG²`, so
-    /// `g_HG = √((1 − δ(1 − g))/g)` and `β = 1 − g/g_HG`. It reaches
-    /// `1 < δ ≤ 1 + g + g²` for `0 < g < 1` (`δ = 1 + g + g²` is HG
-    /// itself); other `(g, δ)` are [`Error::Domain`].
-    pub fn modified_hg_delta(g: T, delta: T) -> Result<Self, Error> {
-        let (g, delta) = (g.to_f64(), delta.to_f64());
-        // The top, 1 + g + g², with a few ULP for the caller's rounding.
-        let top = (1.0 + g + g * g) * (1.0 + 4.0 * f64::EPSILON);
-        if !(g > 0.0 && g < 1.0 && delta > 1.0 && delta <= top) {
-            return Err(Error::Domain);
-        }
-        let g_hg = ((1.0 - delta * (1.0 - g)) / g).sqrt();
-        // As in modified_hg: rounding at δ = 1 + g + g² can leave w a few
-        // ULP above 1.
-        let w = (g / g_hg).min(1.0);
-        if !(g_hg < 1.0 && w > 0.0) {
-            return Err(Error::Domain);
-        }
-        Self::two_lobe_hg(T::from_f64(g_hg), T::ZERO, T::from_f64(w))
-    }
 }
 
 /// `dispatch!(phase, m => expr)`: `expr` with `m` bound to the model inside.

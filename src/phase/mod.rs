@@ -11,6 +11,7 @@
 //! model is also usable on its own.
 
 mod any;
+mod by_moments;
 pub mod draine;
 pub mod fog;
 pub mod fournier_forand;

@@ -1648,22 +1648,49 @@ static void mixtures(void) {
         CHECK(sk_mixture_legendre_moments_f64(&md, chid, 3) == SK_OK && fabs(chid[0] - 1.0) < 1e-12);
         CHECK(sk_phase_legendre_moments(&ray, chi, 0) == SK_OK);
         {
-            /* The modified HG by (g, gamma): its moments give them back. */
+            /* Each family set by (g, gamma) or (g, delta): its moments give
+             * them back; outside its reach, bad floats and NULL: errors. */
+            typedef sk_status (*by_moments)(float, float, sk_phase *);
+            typedef sk_status (*by_moments_f64)(double, double, sk_phase_f64 *);
+            static const struct {
+                by_moments f;
+                by_moments_f64 d;
+                int j;
+                float g, r, beyond;
+            } fam[] = {
+                {sk_phase_modified_hg, sk_phase_modified_hg_f64, 2, 0.8f, 1.5f, 1.81f},
+                {sk_phase_modified_hg_delta, sk_phase_modified_hg_delta_f64, 3, 0.8f, 2.0f, 2.45f},
+                {sk_phase_two_lobe_hg_gamma, sk_phase_two_lobe_hg_gamma_f64, 2, 0.8f, 1.5f, 1.81f},
+                {sk_phase_two_lobe_hg_delta, sk_phase_two_lobe_hg_delta_f64, 3, 0.8f, 2.0f, 2.45f},
+                {sk_phase_gegenbauer_gamma, sk_phase_gegenbauer_gamma_f64, 2, 0.8f, 2.2f, 2.5f},
+                {sk_phase_gegenbauer_delta, sk_phase_gegenbauer_delta_f64, 3, 0.8f, 3.0f, 4.0f},
+            };
+            size_t f;
             sk_phase mhg;
             sk_phase_f64 mhgd;
-            CHECK(sk_phase_modified_hg(0.8f, 1.5f, &mhg) == SK_OK && sk_phase_legendre_moments(&mhg, chi, 3) == SK_OK);
-            CHECK(fabsf(chi[1] - 0.8f) < 1e-6f && fabsf((1.0f - chi[2]) / (1.0f - chi[1]) - 1.5f) < 1e-4f);
-            CHECK(sk_phase_modified_hg_f64(0.8, 1.8, &mhgd) == SK_OK && sk_phase_modified_hg_f64(0.8, 1.81, &mhgd) == SK_ERR_DOMAIN);
-            for (i = 0; i < NS; i++) {
-                CHECK(sk_phase_modified_hg(FS[i], 1.2f, &mhg) == SK_ERR_DOMAIN || (FS[i] > 0.2f && FS[i] < 1.0f));
-                CHECK(sk_phase_modified_hg(0.5f, FS[i], &mhg) == SK_ERR_DOMAIN);
+            double chd[4];
+            int k;
+            for (f = 0; f < sizeof fam / sizeof fam[0]; f++) {
+                int j = fam[f].j;
+                i = (int)f;
+                CHECK(fam[f].f(fam[f].g, fam[f].r, &mhg) == SK_OK && sk_phase_legendre_moments(&mhg, chi, 4) == SK_OK);
+                CHECK(fabsf(chi[1] - fam[f].g) < 1e-5f && fabsf((1.0f - chi[j]) / (1.0f - chi[1]) - fam[f].r) < 1e-3f);
+                CHECK(fam[f].d(fam[f].g, fam[f].r, &mhgd) == SK_OK && sk_phase_legendre_moments_f64(&mhgd, chd, 4) == SK_OK);
+                CHECK(fabs((1.0 - chd[j]) / (1.0 - chd[1]) - fam[f].r) < 1e-9);
+                CHECK(fam[f].d(fam[f].g, fam[f].beyond, &mhgd) == SK_ERR_DOMAIN);
+                for (k = 0; k < NS; k++) {
+                    CHECK(fam[f].f(FS[k], 1.2f, &mhg) == SK_ERR_DOMAIN);
+                    CHECK(fam[f].f(0.5f, FS[k], &mhg) == SK_ERR_DOMAIN);
+                }
             }
             i = 0;
-            CHECK(sk_phase_modified_hg(0.5f, 1.2f, NULL) == SK_ERR_NULL);
-            CHECK(sk_phase_modified_hg_delta(0.8f, 2.0f, &mhg) == SK_OK && sk_phase_legendre_moments(&mhg, chi, 4) == SK_OK);
-            CHECK(fabsf((1.0f - chi[3]) / (1.0f - chi[1]) - 2.0f) < 1e-4f);
-            CHECK(sk_phase_modified_hg_delta_f64(0.8, 2.45, &mhgd) == SK_ERR_DOMAIN && sk_phase_modified_hg_delta(0.5f, NAN, &mhg) == SK_ERR_DOMAIN);
-            CHECK(sk_phase_modified_hg_delta(0.5f, 1.5f, NULL) == SK_ERR_NULL);
+            /* The same entry points called by name, with NULL out. */
+            CHECK(sk_phase_modified_hg(0.8f, 1.5f, NULL) == SK_ERR_NULL && sk_phase_modified_hg_f64(0.8, 1.5, NULL) == SK_ERR_NULL);
+            CHECK(sk_phase_modified_hg_delta(0.8f, 2.0f, NULL) == SK_ERR_NULL && sk_phase_modified_hg_delta_f64(0.8, 2.0, NULL) == SK_ERR_NULL);
+            CHECK(sk_phase_two_lobe_hg_gamma(0.8f, 1.5f, NULL) == SK_ERR_NULL && sk_phase_two_lobe_hg_gamma_f64(0.8, 1.5, NULL) == SK_ERR_NULL);
+            CHECK(sk_phase_two_lobe_hg_delta(0.8f, 2.0f, NULL) == SK_ERR_NULL && sk_phase_two_lobe_hg_delta_f64(0.8, 2.0, NULL) == SK_ERR_NULL);
+            CHECK(sk_phase_gegenbauer_gamma(0.8f, 2.2f, NULL) == SK_ERR_NULL && sk_phase_gegenbauer_gamma_f64(0.8, 2.2, NULL) == SK_ERR_NULL);
+            CHECK(sk_phase_gegenbauer_delta(0.8f, 3.0f, NULL) == SK_ERR_NULL && sk_phase_gegenbauer_delta_f64(0.8, 3.0, NULL) == SK_ERR_NULL);
         }
         CHECK(sk_phase_legendre_moments(NULL, chi, 4) == SK_ERR_NULL && sk_phase_legendre_moments(&ray, NULL, 4) == SK_ERR_NULL);
         CHECK(sk_phase_legendre_moments(&zero_p, chi, 4) == SK_ERR_DOMAIN);

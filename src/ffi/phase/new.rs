@@ -213,11 +213,14 @@ pub unsafe extern "C" fn sk_phase_two_lobe_hg_f64(
 }
 
 /// The modified Henyey-Greenstein function of Bevilacqua & Depeursinge
-/// (1999), beta/(4 pi) + (1 - beta) HG(g_HG), set by its mean cosine g
-/// and similarity parameter gamma = (1 - chi_2)/(1 - chi_1):
-/// g_HG = (1 - gamma (1 - g))/g, beta = 1 - g/g_HG. Built as
-/// sk_phase_two_lobe_hg(g_HG, 0, 1 - beta). SK_ERR_DOMAIN unless
-/// 0 < g < 1 and 1 < gamma <= 1 + g (gamma = 1 + g is HG itself).
+/// (JOSA A 16(12), 1999), beta HG(g_HG) + (1 - beta) (3/(4 pi)) cos^2,
+/// set by its mean cosine g and gamma = (1 - chi_2)/(1 - chi_1): g_HG is
+/// the positive root of g x^2 + (gamma (1 - g) - 3/5) x - 2g/5 = 0 and
+/// beta = g/g_HG. The cos^2 lobe is the Draine function with g = 0 and
+/// alpha = 2^70 (within 1e-21 of it), so the value is a fog mixture
+/// (sk_phase_get_params: g_hg = g_HG, g_d = 0, alpha = 2^70,
+/// w_d = 1 - beta). SK_ERR_DOMAIN unless 0 < g < 1 and
+/// 0.6 < gamma <= 1 + g (gamma = 1 + g is HG itself).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_phase_modified_hg(g: f32, gamma: f32, out: *mut sk_phase) -> sk_status {
     unsafe { construct(out, Phase::modified_hg(g, gamma)) }
@@ -233,10 +236,10 @@ pub unsafe extern "C" fn sk_phase_modified_hg_f64(
     unsafe { construct(out, Phase::modified_hg(g, gamma)) }
 }
 
-/// The modified Henyey-Greenstein function set by its mean cosine g and
-/// delta = (1 - chi_3)/(1 - chi_1): g_HG = sqrt((1 - delta (1 - g))/g),
-/// beta = 1 - g/g_HG (as sk_phase_modified_hg). SK_ERR_DOMAIN unless
-/// 0 < g < 1 and 1 < delta <= 1 + g + g^2 (the top is HG itself).
+/// The modified Henyey-Greenstein function of sk_phase_modified_hg set by
+/// g and delta = (1 - chi_3)/(1 - chi_1): g_HG = sqrt((1 - delta (1 - g))/g),
+/// beta = g/g_HG. SK_ERR_DOMAIN unless 0 < g < 1 and
+/// 1 < delta <= 1 + g + g^2 (the top is HG itself).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_phase_modified_hg_delta(
     g: f32,
@@ -254,6 +257,98 @@ pub unsafe extern "C" fn sk_phase_modified_hg_delta_f64(
     out: *mut sk_phase_f64,
 ) -> sk_status {
     unsafe { construct(out, Phase::modified_hg_delta(g, delta)) }
+}
+
+/// The two-lobe HG whose second lobe is isotropic,
+/// (1 - beta) HG(g_HG) + beta/(4 pi) (Prahl's "modified HG", 1988), set by
+/// g and gamma = (1 - chi_2)/(1 - chi_1): g_HG = (1 - gamma (1 - g))/g,
+/// beta = 1 - g/g_HG; built as sk_phase_two_lobe_hg(g_HG, 0, 1 - beta).
+/// SK_ERR_DOMAIN unless 0 < g < 1 and 1 < gamma <= 1 + g.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_two_lobe_hg_gamma(
+    g: f32,
+    gamma: f32,
+    out: *mut sk_phase,
+) -> sk_status {
+    unsafe { construct(out, Phase::two_lobe_hg_gamma(g, gamma)) }
+}
+
+/// Double twin of `sk_phase_two_lobe_hg_gamma`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_two_lobe_hg_gamma_f64(
+    g: f64,
+    gamma: f64,
+    out: *mut sk_phase_f64,
+) -> sk_status {
+    unsafe { construct(out, Phase::two_lobe_hg_gamma(g, gamma)) }
+}
+
+/// The two-lobe HG of sk_phase_two_lobe_hg_gamma set by g and
+/// delta = (1 - chi_3)/(1 - chi_1): g_HG = sqrt((1 - delta (1 - g))/g).
+/// SK_ERR_DOMAIN unless 0 < g < 1 and 1 < delta <= 1 + g + g^2.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_two_lobe_hg_delta(
+    g: f32,
+    delta: f32,
+    out: *mut sk_phase,
+) -> sk_status {
+    unsafe { construct(out, Phase::two_lobe_hg_delta(g, delta)) }
+}
+
+/// Double twin of `sk_phase_two_lobe_hg_delta`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_two_lobe_hg_delta_f64(
+    g: f64,
+    delta: f64,
+    out: *mut sk_phase_f64,
+) -> sk_status {
+    unsafe { construct(out, Phase::two_lobe_hg_delta(g, delta)) }
+}
+
+/// The Gegenbauer kernel (sk_phase_gegenbauer) with mean cosine
+/// 0 < g < 1 and gamma = (1 - chi_2)/(1 - chi_1), found by bisection on
+/// the kernel's moments in closed form (about 1 ms: build once). It
+/// reaches gamma in a band around HG's 1 + g, above it too (flatter than
+/// HG), e.g. 1.334 < gamma < 1.874 at g = 0.6; elsewhere SK_ERR_DOMAIN.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_gegenbauer_gamma(
+    g: f32,
+    gamma: f32,
+    out: *mut sk_phase,
+) -> sk_status {
+    unsafe { construct(out, Phase::gegenbauer_gamma(g, gamma)) }
+}
+
+/// Double twin of `sk_phase_gegenbauer_gamma`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_gegenbauer_gamma_f64(
+    g: f64,
+    gamma: f64,
+    out: *mut sk_phase_f64,
+) -> sk_status {
+    unsafe { construct(out, Phase::gegenbauer_gamma(g, gamma)) }
+}
+
+/// The Gegenbauer kernel with mean cosine 0 < g < 1 and
+/// delta = (1 - chi_3)/(1 - chi_1), as sk_phase_gegenbauer_gamma (e.g.
+/// 1.51 < delta < 2.302 at g = 0.6); elsewhere SK_ERR_DOMAIN.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_gegenbauer_delta(
+    g: f32,
+    delta: f32,
+    out: *mut sk_phase,
+) -> sk_status {
+    unsafe { construct(out, Phase::gegenbauer_delta(g, delta)) }
+}
+
+/// Double twin of `sk_phase_gegenbauer_delta`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_gegenbauer_delta_f64(
+    g: f64,
+    delta: f64,
+    out: *mut sk_phase_f64,
+) -> sk_status {
+    unsafe { construct(out, Phase::gegenbauer_delta(g, delta)) }
 }
 
 /// The fog phase function fitted to Mie scattering by water droplets of

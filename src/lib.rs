@@ -95,4 +95,4 @@ pub use phase::{
 pub use real::Real;
 pub use stokes::Stokes;
 pub use surface::{CrossingPolicy, Fraction, Surface, SurfaceModel};
-pub use table::{Table, TableKind};
+pub use table::{Table, Table2d, TableKind};

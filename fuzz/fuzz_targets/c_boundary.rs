@@ -109,6 +109,22 @@ fuzz_target!(|data: &[u8]| {
             let mu = sk_legendre_sample_cos(&lg, x(13));
             assert!((x(13).is_nan() && mu.is_nan()) || mu.abs() <= 1.0, "{mu}");
         }
+        // The fuzzed floats as a 2-D table's data: refused, or a cosine in
+        // [-1, 1] (NaN only for NaN x or u) and a density >= 0 (or NaN).
+        let mut t2 = core::mem::MaybeUninit::<sk_table2d>::uninit();
+        let (n2, k2) = (word(1) as usize % 8 + 1, word(2) as usize % 4 + 1);
+        if sk_table2d_new(f.as_ptr(), f.len(), n2, k2, x(0), x(1), t2.as_mut_ptr())
+            == sk_status::SK_OK
+        {
+            let t2 = t2.assume_init();
+            let mu = sk_table2d_sample_cos(&t2, x(2), x(3));
+            assert!(
+                ((x(2).is_nan() || x(3).is_nan()) && mu.is_nan()) || mu.abs() <= 1.0,
+                "{mu}"
+            );
+            let d = sk_table2d_pdf(&t2, x(2), x(4));
+            assert!(d.is_nan() || d >= 0.0, "{d}");
+        }
         // The same two as channels of a spectral phase function, the hero
         // fuzzed: a cosine in [-1, 1] and finite ratios, or an error.
         let ch = [

@@ -46,6 +46,7 @@ mod spectral;
 mod spectral_phase;
 mod surface;
 mod table;
+mod table2d;
 // Declared last: their entry points follow the others in the header.
 mod ray_march;
 mod residual;
@@ -71,6 +72,7 @@ pub use spectral::*;
 pub use spectral_phase::*;
 pub use surface::*;
 pub use table::*;
+pub use table2d::*;
 
 use crate::error::Error;
 use crate::math::geometry::Vec3;

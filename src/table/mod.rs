@@ -17,6 +17,9 @@
 //! `d_i = (dμ/du)(u_i) / n` (the slope per interval).
 
 pub(crate) mod measured;
+mod two_d;
+
+pub use two_d::Table2d;
 
 use crate::error::{Error, try_from_u32};
 use crate::math::geometry::{Vec3, direction_about_turns, sin_from_cos};
@@ -251,34 +254,10 @@ impl<'a, T: Real> Table<'a, T> {
         }
     }
 
-    /// For a Hermite table: the interval `i` whose node values bracket `μ`,
-    /// the `t ∈ [0, 1]` where its cubic reaches `μ` and the cubic's slope
-    /// there; `None` outside the range the table covers.
+    /// For a Hermite table: [`hermite_at`] over its nodes.
     fn hermite_at(&self, mu: f64) -> Option<(usize, f64, f64)> {
-        let n = self.n;
-        let y = |i: usize| self.data.get(2 * i).map_or(f64::NAN, |v| v.to_f64());
-        if !(mu >= y(0) && mu <= y(n)) {
-            return None;
-        }
-        // The last node at or below μ (nodes are non-decreasing).
-        let (mut lo, mut hi) = (0usize, n);
-        while hi - lo > 1 {
-            let mid = (lo + hi) / 2;
-            if y(mid) <= mu {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        let d = |i: usize| self.data.get(2 * i + 1).map_or(f64::NAN, |v| v.to_f64());
-        let (y0, d0, y1, d1) = (y(lo), d(lo), y(lo + 1), d(lo + 1));
-        let dy = y1 - y0;
-        let c2 = 3.0 * dy - 2.0 * d0 - d1;
-        let c3 = d0 + d1 - 2.0 * dy;
-        let cubic = |t: f64| y0 + t * (d0 + t * (c2 + t * c3));
-        let slope = |t: f64| d0 + t * (2.0 * c2 + 3.0 * c3 * t);
-        let t = solve_unit(|t| cubic(t) - mu, slope);
-        Some((lo, t, slope(t)))
+        let v = |i: usize| self.data.get(i).map_or(f64::NAN, |v| v.to_f64());
+        hermite_at(|i| (v(2 * i), v(2 * i + 1)), self.n, mu)
     }
 
     /// `P(cos θ ≤ cos_theta)` of the distribution
@@ -377,6 +356,39 @@ impl<'a, T: Real> Table<'a, T> {
         let dx = T::TWO / T::from_f64(self.n as f64);
         ((T::from_f64(lo as f64) + t) * dx - T::ONE).clamp_unit()
     }
+}
+
+/// For a cubic Hermite inverse CDF with `n` intervals and nodes
+/// `node(i) = (μ_i, d_i)` (non-decreasing `μ_i`): the interval `i` whose
+/// node values bracket `μ`, the `t ∈ [0, 1]` where its cubic reaches `μ`
+/// and the cubic's slope there; `None` outside the range the nodes cover.
+pub(crate) fn hermite_at(
+    node: impl Fn(usize) -> (f64, f64),
+    n: usize,
+    mu: f64,
+) -> Option<(usize, f64, f64)> {
+    let y = |i: usize| node(i).0;
+    if !(mu >= y(0) && mu <= y(n)) {
+        return None;
+    }
+    // The last node at or below μ (nodes are non-decreasing).
+    let (mut lo, mut hi) = (0usize, n);
+    while hi - lo > 1 {
+        let mid = (lo + hi) / 2;
+        if y(mid) <= mu {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let ((y0, d0), (y1, d1)) = (node(lo), node(lo + 1));
+    let dy = y1 - y0;
+    let c2 = 3.0 * dy - 2.0 * d0 - d1;
+    let c3 = d0 + d1 - 2.0 * dy;
+    let cubic = |t: f64| y0 + t * (d0 + t * (c2 + t * c3));
+    let slope = |t: f64| d0 + t * (2.0 * c2 + 3.0 * c3 * t);
+    let t = solve_unit(|t| cubic(t) - mu, slope);
+    Some((lo, t, slope(t)))
 }
 
 /// Fritsch–Carlson: each node's slope is clamped to `[0, 3Δ]` for the secants

@@ -504,6 +504,79 @@ static void tables(void) {
     }
 }
 
+/* 2-D tables: sizes, NULLs, bad axes and slices, special x and u. */
+static void tables2d(void) {
+    int i;
+    float buf[3 * 2 * 17];
+    double bufd[3 * 2 * 17];
+    sk_phase ph[3];
+    sk_phase_f64 phd[3];
+    sk_table2d t, bogus;
+    sk_table2d_f64 td;
+    sk_vec3 w = {0, 0, 1}, dir;
+    sk_vec3_f64 wd = {0, 0, 1}, dird;
+    float pf;
+    double pd;
+    i = 0;
+    CHECK(sk_phase_hg(0.2f, &ph[0]) == SK_OK && sk_phase_hg(0.5f, &ph[1]) == SK_OK && sk_phase_rayleigh(&ph[2]) == SK_OK);
+    CHECK(sk_phase_hg_f64(0.2, &phd[0]) == SK_OK && sk_phase_hg_f64(0.5, &phd[1]) == SK_OK && sk_phase_rayleigh_f64(&phd[2]) == SK_OK);
+    CHECK(sk_table2d_len(16, 3) == 102 && sk_table2d_len(0, 3) == 0 && sk_table2d_len(16, 0) == 0 && sk_table2d_len(SIZE_MAX / 2, 3) == 0);
+    CHECK(sk_table2d_inverse(ph, 3, buf, 102, 16, 0.0f, 1.0f, &t) == SK_OK && t.k == 3 && t.n == 16);
+    CHECK(sk_table2d_inverse_f64(phd, 3, bufd, 102, 16, 0.0, 1.0, &td) == SK_OK);
+    CHECK(sk_table2d_inverse(NULL, 3, buf, 102, 16, 0.0f, 1.0f, &t) == SK_ERR_NULL && sk_table2d_inverse(ph, 3, NULL, 102, 16, 0.0f, 1.0f, &t) == SK_ERR_NULL);
+    CHECK(sk_table2d_inverse(ph, 3, buf, 102, 16, 0.0f, 1.0f, NULL) == SK_ERR_NULL && sk_table2d_inverse_f64(phd, 3, bufd, 101, 16, 0.0, 1.0, &td) == SK_ERR_SIZE);
+    CHECK(sk_table2d_inverse(ph, 0, buf, 102, 16, 0.0f, 1.0f, &t) == SK_ERR_SIZE && sk_table2d_inverse(ph, 3, buf, 102, 0, 0.0f, 1.0f, &t) == SK_ERR_SIZE);
+    CHECK(sk_table2d_new(buf, 102, 16, 3, 0.0f, 1.0f, &t) == SK_OK && sk_table2d_new_f64(bufd, 102, 16, 3, 0.0, 1.0, &td) == SK_OK);
+    CHECK(sk_table2d_new(NULL, 102, 16, 3, 0.0f, 1.0f, &t) == SK_ERR_NULL && sk_table2d_new_f64(bufd, 102, 16, 3, 0.0, 1.0, NULL) == SK_ERR_NULL);
+    CHECK(sk_table2d_new(buf, 101, 16, 3, 0.0f, 1.0f, &t) == SK_ERR_SIZE && sk_table2d_new(buf, SIZE_MAX, 16, 3, 0.0f, 1.0f, &t) == SK_ERR_SIZE);
+    for (i = 0; i < NS; i++) {
+        float f = FS[i];
+        double d = DS[i];
+        sk_table2d_new(buf, 102, 16, 3, 0.0f, 1.0f, &t);
+        sk_table2d_new_f64(bufd, 102, 16, 3, 0.0, 1.0, &td);
+        /* Axis: x0 finite, dx finite and positive. */
+        CHECK(sk_table2d_new(buf, 102, 16, 3, f, 1.0f, &bogus) == (isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_table2d_inverse(ph, 3, buf, 102, 16, 0.0f, f, &bogus) == (isfinite(f) && f > 0.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_table2d_new_f64(bufd, 102, 16, 3, 0.0, d, &td) == (isfinite(d) && d > 0.0 ? SK_OK : SK_ERR_DOMAIN));
+        sk_table2d_new_f64(bufd, 102, 16, 3, 0.0, 1.0, &td);
+        /* Lookups: NaN x or u gives NaN; otherwise a cosine. */
+        CHECK(isnan(f) ? isnan(sk_table2d_sample_cos(&t, f, 0.5f)) : in_unit(sk_table2d_sample_cos(&t, f, 0.5f)));
+        CHECK(isnan(f) ? isnan(sk_table2d_sample_cos(&t, 0.5f, f)) : in_unit(sk_table2d_sample_cos(&t, 0.5f, f)));
+        CHECK(isnan(d) ? isnan(sk_table2d_sample_cos_f64(&td, d, 0.5)) : in_unit(sk_table2d_sample_cos_f64(&td, d, 0.5)));
+        pf = sk_table2d_pdf(&t, 0.5f, f);
+        CHECK(isnan(f) ? isnan(pf) : (fabsf(f) > 1.0f ? pf == 0.0f : pf >= 0.0f));
+        pd = sk_table2d_pdf_f64(&td, d, 0.3);
+        CHECK(isnan(d) ? isnan(pd) : pd > 0.0 && isfinite(pd));
+        dir = sk_table2d_sample_dir(&t, 0.7f, w, f, 0.25f, &pf);
+        CHECK(isnan(f) ? isnan(pf) : vec_unit(dir) && pf == sk_table2d_pdf(&t, 0.7f, sk_table2d_sample_cos(&t, 0.7f, f)));
+        dird = sk_table2d_sample_dir_f64(&td, d, wd, 0.5, 0.5, &pd);
+        CHECK(isnan(d) ? vec_nan3d(dird) && isnan(pd) : vec_unitd(dird) && pd > 0.0);
+    }
+    i = 0;
+    /* A slice that is not a monotone table in [-1, 1]. */
+    buf[40] = 2.0f;
+    CHECK(sk_table2d_new(buf, 102, 16, 3, 0.0f, 1.0f, &bogus) == SK_ERR_DOMAIN);
+    bufd[41] = -1.0;
+    CHECK(sk_table2d_new_f64(bufd, 102, 16, 3, 0.0, 1.0, &td) == SK_ERR_DOMAIN);
+    /* NULL and malformed tables: NaN; pdf_out may be NULL. */
+    CHECK(sk_table2d_inverse(ph, 3, buf, 102, 16, 0.0f, 1.0f, &t) == SK_OK);
+    bogus = t;
+    bogus.k = 0;
+    CHECK(isnan(sk_table2d_sample_cos(&bogus, 0.5f, 0.5f)) && isnan(sk_table2d_pdf(&bogus, 0.5f, 0.5f)));
+    bogus = t;
+    bogus.dx = 0.0f;
+    CHECK(isnan(sk_table2d_sample_cos(&bogus, 0.5f, 0.5f)) && vec_nan3(sk_table2d_sample_dir(&bogus, 0.5f, w, 0.5f, 0.5f, NULL)));
+    bogus = t;
+    bogus.data = NULL;
+    CHECK(isnan(sk_table2d_sample_cos(&bogus, 0.5f, 0.5f)));
+    CHECK(isnan(sk_table2d_sample_cos(NULL, 0.5f, 0.5f)) && isnan(sk_table2d_sample_cos_f64(NULL, 0.5, 0.5)));
+    CHECK(isnan(sk_table2d_pdf(NULL, 0.5f, 0.5f)) && isnan(sk_table2d_pdf_f64(NULL, 0.5, 0.5)));
+    CHECK(vec_nan3d(sk_table2d_sample_dir_f64(NULL, 0.5, wd, 0.5, 0.5, &pd)) && isnan(pd));
+    /* Unconstructed phase among the slices. */
+    memset(&ph[1], 0, sizeof ph[1]);
+    CHECK(sk_table2d_inverse(ph, 3, buf, 102, 16, 0.0f, 1.0f, &t) == SK_ERR_DOMAIN);
+}
+
 static void surfaces(void) {
     int i;
     uint64_t st = 2;
@@ -1407,6 +1480,7 @@ int main(void) {
     direction_batches();
     rayleigh_functions();
     tables();
+    tables2d();
     surfaces();
     media();
     majorants();

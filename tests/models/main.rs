@@ -33,5 +33,6 @@ mod residual;
 mod spectral;
 mod spectral_phase;
 mod surface;
+mod table2d;
 mod two_lobe_hg;
 mod vector_mc;

@@ -24,6 +24,11 @@
 
 
 /*
+ Nodes of an sk_albedo_curve: omega_k = 1 - (k/64)^2, k = 0..64.
+ */
+#define SK_ALBEDO_NODES 65
+
+/*
  Bit of `event_out`: the ray was transmitted (else reflected).
  */
 #define SK_EVENT_TRANSMITTED 1
@@ -447,6 +452,38 @@ typedef struct {
      */
     uint64_t (*next_u64)(void *state);
 } sk_rng;
+
+/*
+ A phase function (double); see `sk_phase`.
+ */
+typedef struct {
+    /*
+     Private storage; do not read or write.
+     */
+    uint64_t opaque[32];
+} sk_phase_f64;
+
+/*
+ The multiple-scattering albedo of a layer as a function of the
+ single-scattering albedo omega, from sk_albedo_curve_simulate: at
+ omega_k = 1 - (k/64)^2, k = 0..64, the albedo rho[k] and its standard
+ error se[k] (the functions below interpolate between them). A plain
+ value: copy it, store it, read the nodes.
+ */
+typedef struct {
+    /*
+     The albedo at omega_k.
+     */
+    double rho[SK_ALBEDO_NODES];
+    /*
+     Its standard error.
+     */
+    double se[SK_ALBEDO_NODES];
+    /*
+     Paths traced.
+     */
+    uint64_t paths;
+} sk_albedo_curve;
 
 /*
  A 3-vector of floats (a unit propagation direction where one is expected).
@@ -1002,16 +1039,6 @@ typedef struct {
      */
     sk_table table[8];
 } sk_mixture;
-
-/*
- A phase function (double); see `sk_phase`.
- */
-typedef struct {
-    /*
-     Private storage; do not read or write.
-     */
-    uint64_t opaque[32];
-} sk_phase_f64;
 
 /*
  A table sampler (double); see `sk_table`.
@@ -1790,6 +1817,46 @@ double sk_uniform_f64(sk_rng *rng);
  string; it agrees with the `SK_VERSION_*` macros of the header.
  */
 const char *sk_version(void);
+
+/*
+ Traces `paths` paths through a plane-parallel layer with index-matched
+ faces, scattering by `phase` (double): semi-infinite for tau = +INFINITY,
+ else a slab of optical thickness tau (finite, > 0); lit diffusely
+ (uniform radiance: the spherical albedo the material standards fit) for
+ mu0 = 0, else by a beam at cos theta_0 = mu0 in (0, 1]. One set of
+ paths with omega = 1 gives the albedo at every omega (a path leaving the
+ lit face after N scatterings counts omega^N). SK_ERR_NULL for NULL
+ pointers or callback; SK_ERR_DOMAIN for an unconstructed phase,
+ paths = 0, or a bad tau or mu0.
+ */
+sk_status sk_albedo_curve_simulate(const sk_phase_f64 *phase,
+                                   double tau,
+                                   double mu0,
+                                   uint64_t paths,
+                                   sk_rng *rng,
+                                   sk_albedo_curve *out);
+
+/*
+ The multiple-scattering albedo at single-scattering albedo omega in
+ [0, 1] (monotone cubic between the nodes); NaN outside, for NaN, or a
+ NULL curve.
+ */
+double sk_albedo_curve_albedo(const sk_albedo_curve *c, double omega);
+
+/*
+ The standard error of sk_albedo_curve_albedo at omega; NaN as there.
+ */
+double sk_albedo_curve_std_error(const sk_albedo_curve *c, double omega);
+
+/*
+ The single-scattering albedo whose multiple-scattering albedo is
+ `albedo`, written to omega_out. SK_ERR_NULL for NULL pointers;
+ SK_ERR_DOMAIN for NaN or an albedo outside [0, rho[0]] (rho[0] = 1 for a
+ semi-infinite layer; less for a slab).
+ */
+sk_status sk_albedo_curve_single_scattering_albedo(const sk_albedo_curve *c,
+                                                   double albedo,
+                                                   double *omega_out);
 
 /*
  Cube root: Kahan seed + two Lancaster steps; within 1 ULP of the correctly

@@ -72,6 +72,7 @@ pub mod phase;
 pub mod stokes;
 pub mod surface;
 pub mod table;
+pub mod transport;
 
 // The numerics, the particle size distributions and the media's grids keep
 // their paths at the crate root.

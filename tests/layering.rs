@@ -196,7 +196,7 @@ fn numerics_sit_below_the_models_and_tables_above_the_phases() {
 /// The folders of `src/` (and its two top-level model files) from the
 /// bottom up: a module may import from its own folder (without a circle) and
 /// from folders of a lower rank, never from a higher or an equal one.
-const LAYERS: [(&str, u32); 11] = [
+const LAYERS: [(&str, u32); 12] = [
     ("error", 0),
     ("math", 1),
     ("stokes", 2),
@@ -205,6 +205,7 @@ const LAYERS: [(&str, u32); 11] = [
     ("medium", 2),
     ("phase", 3),
     ("table", 4),
+    ("transport", 4),
     ("mixture", 5),
     ("choose", 6),
     ("ffi", 7),

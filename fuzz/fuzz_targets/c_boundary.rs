@@ -125,6 +125,28 @@ fuzz_target!(|data: &[u8]| {
             let d = sk_table2d_pdf(&t2, x(2), x(4));
             assert!(d.is_nan() || d >= 0.0, "{d}");
         }
+        // An albedo curve of a fuzzed HG layer, a few paths: OK or DOMAIN;
+        // then albedos in [0, 1] (NaN only outside) and the inverse.
+        let mut hgd = core::mem::MaybeUninit::<sk_phase_f64>::uninit();
+        if sk_phase_hg_f64(x(0) as f64, hgd.as_mut_ptr()) == sk_status::SK_OK {
+            let hgd = hgd.assume_init();
+            let mut rng2 = sk_rng {
+                state: &mut state as *mut u64 as *mut _,
+                next_u64: Some(next),
+            };
+            let mut curve = core::mem::MaybeUninit::<sk_albedo_curve>::uninit();
+            let s = sk_albedo_curve_simulate(&hgd, x(1) as f64, x(2) as f64, (word(5) % 8) as u64, &mut rng2, curve.as_mut_ptr());
+            assert!(matches!(s, sk_status::SK_OK | sk_status::SK_ERR_DOMAIN), "{s:?}");
+            if s == sk_status::SK_OK {
+                let curve = curve.assume_init();
+                let a = sk_albedo_curve_albedo(&curve, x(3) as f64);
+                assert!(a.is_nan() || (0.0..=1.0).contains(&a), "{a}");
+                let mut w = 0.0f64;
+                if sk_albedo_curve_single_scattering_albedo(&curve, x(4) as f64, &mut w) == sk_status::SK_OK {
+                    assert!((0.0..=1.0).contains(&w), "{w}");
+                }
+            }
+        }
         // The same two as channels of a spectral phase function, the hero
         // fuzzed: a cosine in [-1, 1] and finite ratios, or an error.
         let ch = [

@@ -27,6 +27,7 @@ macro_rules! same_values {
     };
 }
 
+mod albedo;
 mod cbrt;
 mod emission;
 mod equiangular;
@@ -51,6 +52,7 @@ mod table2d;
 mod ray_march;
 mod residual;
 
+pub use albedo::*;
 pub use cbrt::*;
 pub use emission::*;
 pub use equiangular::*;

@@ -25,6 +25,14 @@ static uint64_t counter(void *state) {
     uint64_t *s = (uint64_t *)state;
     return *s += 0x9e3779b97f4a7c15ULL;
 }
+/* SplitMix64: the counter mixed, for Monte Carlo that needs independent
+ * draws. */
+static uint64_t splitmix(void *state) {
+    uint64_t z = counter(state);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
 static float dens32(void *ctx, sk_vec3 p) {
     (void)ctx;
     (void)p;
@@ -575,6 +583,37 @@ static void tables2d(void) {
     /* Unconstructed phase among the slices. */
     memset(&ph[1], 0, sizeof ph[1]);
     CHECK(sk_table2d_inverse(ph, 3, buf, 102, 16, 0.0f, 1.0f, &t) == SK_ERR_DOMAIN);
+}
+
+/* The albedo curve: a small run, the inverse, NULLs and bad layers. */
+static void albedo_curves(void) {
+    int i = 0;
+    uint64_t st = 1;
+    sk_rng rng = {&st, splitmix}, no_fn = {&st, NULL};
+    sk_phase_f64 hg, zero_p;
+    sk_albedo_curve c, slab;
+    double omega = -1.0;
+    memset(&zero_p, 0, sizeof zero_p);
+    CHECK(sk_phase_hg_f64(0.5, &hg) == SK_OK);
+    CHECK(sk_albedo_curve_simulate(&hg, INFINITY, 0.0, 2000, &rng, &c) == SK_OK && c.paths == 2000 && c.rho[0] == 1.0);
+    CHECK(sk_albedo_curve_single_scattering_albedo(&c, 0.4, &omega) == SK_OK && omega > 0.8 && omega < 1.0);
+    CHECK(fabs(sk_albedo_curve_albedo(&c, omega) - 0.4) < 1e-9 && sk_albedo_curve_std_error(&c, omega) > 0.0);
+    CHECK(sk_albedo_curve_simulate(&hg, 2.0, 0.5, 500, &rng, &slab) == SK_OK && slab.rho[0] < 1.0);
+    CHECK(sk_albedo_curve_single_scattering_albedo(&slab, 0.99, &omega) == SK_ERR_DOMAIN);
+    CHECK(sk_albedo_curve_simulate(NULL, INFINITY, 0.0, 10, &rng, &c) == SK_ERR_NULL && sk_albedo_curve_simulate(&hg, INFINITY, 0.0, 10, NULL, &c) == SK_ERR_NULL);
+    CHECK(sk_albedo_curve_simulate(&hg, INFINITY, 0.0, 10, &no_fn, &c) == SK_ERR_NULL && sk_albedo_curve_simulate(&hg, INFINITY, 0.0, 10, &rng, NULL) == SK_ERR_NULL);
+    CHECK(sk_albedo_curve_simulate(&zero_p, INFINITY, 0.0, 10, &rng, &slab) == SK_ERR_DOMAIN && sk_albedo_curve_simulate(&hg, INFINITY, 0.0, 0, &rng, &slab) == SK_ERR_DOMAIN);
+    for (i = 0; i < NS; i++) {
+        double d = DS[i];
+        /* tau: +inf (semi-infinite) or finite positive; mu0: 0 or (0, 1]. */
+        CHECK(sk_albedo_curve_simulate(&hg, d, 0.0, 10, &rng, &slab) == (d > 0.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_albedo_curve_simulate(&hg, INFINITY, d, 10, &rng, &slab) == (d == 0.0 || (d > 0.0 && d <= 1.0) ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(isnan(d) || fabs(d) > 1.0 ? isnan(sk_albedo_curve_albedo(&c, d)) : d == 0.0 || !isnan(sk_albedo_curve_albedo(&c, d)));
+        CHECK(sk_albedo_curve_single_scattering_albedo(&c, d, &omega) == (d >= 0.0 && d <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
+    }
+    i = 0;
+    CHECK(isnan(sk_albedo_curve_albedo(NULL, 0.5)) && isnan(sk_albedo_curve_std_error(NULL, 0.5)));
+    CHECK(sk_albedo_curve_single_scattering_albedo(NULL, 0.5, &omega) == SK_ERR_NULL && sk_albedo_curve_single_scattering_albedo(&c, 0.5, NULL) == SK_ERR_NULL);
 }
 
 static void surfaces(void) {
@@ -1481,6 +1520,7 @@ int main(void) {
     rayleigh_functions();
     tables();
     tables2d();
+    albedo_curves();
     surfaces();
     media();
     majorants();

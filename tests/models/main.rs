@@ -6,6 +6,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod albedo;
 mod azimuth;
 mod cbrt;
 mod choose_fog;

@@ -1,0 +1,323 @@
+//! The multiple-scattering albedo of a layer (the share of light a
+//! medium reflects after any number of scatterings) as a function of its
+//! single-scattering albedo `ω = σ_s/σ_t`, for any phase function, and its
+//! inverse: the `ω` that makes a layer look a given colour. Material
+//! standards specify subsurface and volume colour this way and convert it
+//! with fitted formulas (van de Hulst's similarity fit, Kulla & Conty
+//! 2017); `docs/guides/media.md` measures those against this transport.
+//!
+//! **Transport.** A plane-parallel layer, semi-infinite or a slab of
+//! optical thickness `τ`, with index-matched boundaries (no Fresnel
+//! reflection: the standards' fits assume the same), lit diffusely
+//! (uniform incident radiance: the "spherical" or bihemispherical albedo)
+//! or by a parallel beam at `μ_0 = cos θ_0` (the plane albedo). Paths are
+//! traced once with `ω = 1`: free paths `−ln(1 − u)` in optical depth,
+//! directions from the phase function's own sampler. A path that leaves
+//! through the lit face after `N` scatterings contributes `ω^N` to the
+//! albedo at every `ω` at once, so one set of paths gives the whole curve
+//! and the curve is strictly monotone in `ω` for any sample (each
+//! contribution is). The curve is kept at [`NODES`] values
+//! `ω_k = 1 − (k/64)²` (even in `s = √(1 − ω)`, the variable in which the
+//! albedo is smooth near `ω = 1`) and interpolated between them by a
+//! monotone cubic (Fritsch–Carlson), which the inverse solves by
+//! bisection. Paths are cut after [`MAX_EVENTS`] scatterings, where the
+//! largest `ω` below 1 weighs them by `e^{−16}`; for the semi-infinite
+//! layer the value at `ω = 1` is 1 (every path returns), not estimated.
+
+use crate::error::Error;
+use crate::math::real::Real;
+use crate::phase::PhaseFunction;
+use rand_core::Rng;
+
+/// Nodes of the albedo curve: `ω_k = 1 − (k/64)²`, `k = 0 … 64`.
+pub const NODES: usize = 65;
+
+/// The most scatterings a path takes before it is dropped (2¹⁶): the
+/// largest `ω` below 1 among the nodes, `1 − 64⁻²`, weighs such a path by
+/// `(1 − 64⁻²)^{2¹⁶} = e^{−16}` ≈ 1.1·10⁻⁷, so dropping it biases that
+/// node by less than 1.1·10⁻⁷ times the share of paths dropped.
+pub const MAX_EVENTS: u32 = 1 << 16;
+
+/// The layer: semi-infinite, or a slab of optical thickness `τ` (finite,
+/// positive) with nothing beneath (light leaving the bottom is lost).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Layer {
+    /// Infinitely deep.
+    SemiInfinite,
+    /// Of optical thickness `τ = σ_t · thickness`.
+    Slab(f64),
+}
+
+/// How the layer is lit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Illumination {
+    /// Uniform incident radiance from the whole hemisphere (incident
+    /// cosines with density `2μ`): the spherical (bihemispherical)
+    /// albedo, which the material standards' fits describe.
+    Diffuse,
+    /// A parallel beam at `μ_0 = cos θ_0 ∈ (0, 1]` from the normal.
+    Directional(f64),
+}
+
+/// The multiple-scattering albedo of one layer, phase function and
+/// illumination as a function of `ω` (module docs): a Monte Carlo
+/// estimate at [`NODES`] values of `ω` with its standard errors,
+/// interpolated monotonically, and inverted.
+///
+/// # Example
+///
+/// The single-scattering albedo that makes a deep HG (g = 0.8) medium
+/// reflect half the light falling on it diffusely:
+///
+/// ```
+/// use rand_xoshiro::rand_core::SeedableRng;
+/// use scatterkit::transport::albedo::{AlbedoCurve, Illumination, Layer};
+/// use scatterkit::HenyeyGreenstein;
+///
+/// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(7);
+/// let hg = HenyeyGreenstein::new(0.8).unwrap();
+/// let curve = AlbedoCurve::simulate(&hg, Layer::SemiInfinite, Illumination::Diffuse, 4000, &mut rng)
+///     .unwrap();
+/// let omega = curve.single_scattering_albedo(0.5).unwrap();
+/// assert!(omega > 0.97 && omega < 0.995);
+/// assert!((curve.albedo(omega) - 0.5).abs() < 1e-9);
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct AlbedoCurve {
+    /// The albedo at each node.
+    rho: [f64; NODES],
+    /// Its standard error.
+    se: [f64; NODES],
+    /// Fritsch–Carlson slopes of `ρ` in `s` at each node (per node step).
+    slope: [f64; NODES],
+    paths: u64,
+}
+
+/// `s = √(1 − ω)` at node `k`.
+fn node_s(k: usize) -> f64 {
+    k as f64 / (NODES - 1) as f64
+}
+
+impl AlbedoCurve {
+    /// Traces `paths ≥ 1` paths through `layer` lit by `light`, scattering
+    /// by `phase` (f64), with uniforms from `rng`. [`Error::Domain`] for
+    /// `paths = 0`, a slab thickness not finite and positive, or `μ_0`
+    /// outside `(0, 1]`. Cost: the paths' scatterings (a deep medium with
+    /// a forward phase function takes many: about 10³ per path at
+    /// `g = 0.9`), plus 65 exponentials per reflected path.
+    pub fn simulate<P: PhaseFunction<f64> + ?Sized, R: Rng + ?Sized>(
+        phase: &P,
+        layer: Layer,
+        light: Illumination,
+        paths: u64,
+        rng: &mut R,
+    ) -> Result<Self, Error> {
+        let slab_ok = match layer {
+            Layer::SemiInfinite => true,
+            Layer::Slab(tau) => tau.is_finite() && tau > 0.0,
+        };
+        let light_ok = match light {
+            Illumination::Diffuse => true,
+            Illumination::Directional(mu0) => mu0 > 0.0 && mu0 <= 1.0,
+        };
+        if paths == 0 || !slab_ok || !light_ok {
+            return Err(Error::Domain);
+        }
+        let mut ln_omega = [0.0; NODES];
+        for (k, l) in ln_omega.iter_mut().enumerate() {
+            let s = node_s(k);
+            // ln(1 − s²) without cancellation for small s.
+            *l = libm::log1p(-s * s);
+        }
+        let (mut sum, mut sum2) = ([0.0; NODES], [0.0; NODES]);
+        for _ in 0..paths {
+            if let Some(n) = walk(phase, layer, light, rng) {
+                for k in 0..NODES {
+                    let w = libm::exp(n as f64 * ln_omega[k]);
+                    sum[k] += w;
+                    sum2[k] += w * w;
+                }
+            }
+        }
+        let m = paths as f64;
+        let (mut rho, mut se) = ([0.0; NODES], [0.0; NODES]);
+        for k in 0..NODES {
+            rho[k] = sum[k] / m;
+            let var = (sum2[k] / m - rho[k] * rho[k]).max(0.0);
+            se[k] = (var / m).sqrt();
+        }
+        if layer == Layer::SemiInfinite {
+            // ω = 1: nothing is absorbed and nothing leaves below.
+            rho[0] = 1.0;
+            se[0] = 0.0;
+        }
+        Ok(AlbedoCurve {
+            rho,
+            se,
+            slope: fritsch_carlson(&rho),
+            paths,
+        })
+    }
+
+    /// A curve from node values stored earlier ([`nodes`](Self::nodes)):
+    /// the albedos and standard errors at the [`NODES`] values of `ω`, and
+    /// the number of paths; the interpolant is rebuilt from them.
+    pub fn from_nodes(rho: [f64; NODES], se: [f64; NODES], paths: u64) -> Self {
+        AlbedoCurve {
+            rho,
+            se,
+            slope: fritsch_carlson(&rho),
+            paths,
+        }
+    }
+
+    /// The albedos and their standard errors at the nodes
+    /// `ω_k = 1 − (k/64)²` (for storing the curve).
+    pub fn nodes(&self) -> ([f64; NODES], [f64; NODES]) {
+        (self.rho, self.se)
+    }
+
+    /// The number of paths traced.
+    pub fn paths(&self) -> u64 {
+        self.paths
+    }
+
+    /// Node `k < NODES`: `(ω_k, albedo, standard error)`.
+    pub fn node(&self, k: usize) -> Option<(f64, f64, f64)> {
+        let s = node_s(k);
+        Some((1.0 - s * s, *self.rho.get(k)?, *self.se.get(k)?))
+    }
+
+    /// The multiple-scattering albedo at single-scattering albedo
+    /// `ω ∈ [0, 1]` (NaN outside or for NaN): the monotone cubic through
+    /// the nodes, in `s = √(1 − ω)`.
+    pub fn albedo(&self, omega: f64) -> f64 {
+        if !(0.0..=1.0).contains(&omega) {
+            return f64::NAN;
+        }
+        self.at_s(libm::sqrt(1.0 - omega))
+    }
+
+    /// The standard error of [`albedo`](Self::albedo) at `ω` (linear
+    /// between the nodes' errors; NaN outside `[0, 1]`).
+    pub fn std_error(&self, omega: f64) -> f64 {
+        if !(0.0..=1.0).contains(&omega) {
+            return f64::NAN;
+        }
+        let x = libm::sqrt(1.0 - omega) * (NODES - 1) as f64;
+        let i = (x as usize).min(NODES - 2);
+        let t = x - i as f64;
+        let e = |k: usize| self.se.get(k).copied().unwrap_or(f64::NAN);
+        e(i) + t * (e(i + 1) - e(i))
+    }
+
+    /// The single-scattering albedo `ω` whose multiple-scattering albedo
+    /// is `albedo`, by bisection on the monotone interpolant (within
+    /// 10⁻¹⁵ in `s`). [`Error::Domain`] for NaN or an `albedo` outside
+    /// what the layer reaches, `[0, albedo(1)]` (1 for a semi-infinite
+    /// layer; less for a slab, which lets light through).
+    pub fn single_scattering_albedo(&self, albedo: f64) -> Result<f64, Error> {
+        let top = self.rho[0];
+        if !(albedo >= 0.0 && albedo <= top) {
+            return Err(Error::Domain);
+        }
+        // ρ falls as s rises: find s with ρ(s) = albedo.
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if self.at_s(mid) > albedo {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let s = 0.5 * (lo + hi);
+        Ok(1.0 - s * s)
+    }
+
+    /// The cubic Hermite interpolant of the nodes at `s ∈ [0, 1]`.
+    fn at_s(&self, s: f64) -> f64 {
+        let x = s * (NODES - 1) as f64;
+        let i = (x as usize).min(NODES - 2);
+        let t = x - i as f64;
+        let v = |a: &[f64; NODES], k: usize| a.get(k).copied().unwrap_or(f64::NAN);
+        let (y0, y1) = (v(&self.rho, i), v(&self.rho, i + 1));
+        let (d0, d1) = (v(&self.slope, i), v(&self.slope, i + 1));
+        let dy = y1 - y0;
+        let c2 = 3.0 * dy - 2.0 * d0 - d1;
+        let c3 = d0 + d1 - 2.0 * dy;
+        // The monotone cubic stays between its ends; the clamp only keeps
+        // rounding from leaving them (an albedo of −10⁻¹⁸ at ω = 0).
+        let v = y0 + t * (d0 + t * (c2 + t * c3));
+        if v > y0 {
+            y0
+        } else if v < y1 {
+            y1
+        } else {
+            v
+        }
+    }
+}
+
+/// One path with `ω = 1`: `Some(N)` if it leaves through the lit face
+/// after `N` scatterings, `None` if it leaves through a slab's bottom or
+/// exceeds [`MAX_EVENTS`]. Only the depth `z` (optical) and the direction
+/// cosine `μ` to the inward normal matter in a plane-parallel layer.
+fn walk<P: PhaseFunction<f64> + ?Sized, R: Rng + ?Sized>(
+    phase: &P,
+    layer: Layer,
+    light: Illumination,
+    rng: &mut R,
+) -> Option<u32> {
+    let mut mu = match light {
+        // Incident cosines with density 2μ: μ = √u.
+        Illumination::Diffuse => libm::sqrt(f64::uniform(rng)),
+        Illumination::Directional(mu0) => mu0,
+    };
+    let mut z = 0.0;
+    for n in 0..=MAX_EVENTS {
+        z += mu * -libm::log1p(-f64::uniform(rng));
+        if z < 0.0 {
+            return Some(n);
+        }
+        if let Layer::Slab(tau) = layer {
+            if z > tau {
+                return None;
+            }
+        }
+        // Scatter: the new direction cosine from cos θ and the azimuth.
+        let c = phase.sample_cos(f64::uniform(rng));
+        let phi = core::f64::consts::TAU * f64::uniform(rng);
+        let (s, sm) = (
+            (1.0 - c * c).max(0.0).sqrt(),
+            (1.0 - mu * mu).max(0.0).sqrt(),
+        );
+        mu = (mu * c + sm * s * libm::cos(phi)).clamp(-1.0, 1.0);
+    }
+    None
+}
+
+/// Fritsch–Carlson slopes (per node step) for values `y` that fall with
+/// the node index: the three-point estimate clamped to `[3Δ, 0]` of both
+/// neighbouring secants `Δ` (≤ 0), so the cubic Hermite interpolant is
+/// monotone.
+fn fritsch_carlson(y: &[f64; NODES]) -> [f64; NODES] {
+    let mut d = [0.0; NODES];
+    let v = |k: usize| y.get(k).copied().unwrap_or(f64::NAN);
+    for (k, dk) in d.iter_mut().enumerate() {
+        let left = if k > 0 { v(k) - v(k - 1) } else { v(1) - v(0) };
+        let right = if k + 1 < NODES { v(k + 1) - v(k) } else { left };
+        let mut s = 0.5 * (left + right);
+        for secant in [left, right] {
+            s = s.max(3.0 * secant).min(0.0);
+        }
+        if left * right <= 0.0 {
+            s = 0.0;
+        }
+        *dk = s;
+    }
+    d
+}

@@ -1,0 +1,287 @@
+//! The multiple-scattering albedo of a layer (`transport::albedo`):
+//! against Chandrasekhar's exact albedos of a semi-infinite isotropic
+//! medium (the H-function solved here by iteration on graded
+//! Gauss–Legendre panels) within 4σ; the inverse against the curve; a deep
+//! slab against the semi-infinite layer; the standards' fitted conversions
+//! (van de Hulst's spherical-albedo fit as OpenPBR and Kulla & Conty write
+//! it, with the similarity remap for `g`, and without it as the first
+//! glTF and Enterprise PBR drafts do) against the transport for HG with
+//! `g = 0 … 0.9`; bad input.
+
+use crate::common;
+
+use common::rng;
+use scatterkit::transport::albedo::{AlbedoCurve, Illumination, Layer, NODES};
+use scatterkit::{Error, HenyeyGreenstein, Isotropic};
+
+/// Gauss–Legendre nodes and weights of order `n` on `[a, b]`.
+fn gauss_legendre(n: usize, a: f64, b: f64) -> Vec<(f64, f64)> {
+    (0..n)
+        .map(|i| {
+            let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+            let mut dp = 0.0;
+            for _ in 0..100 {
+                let (mut p0, mut p1) = (1.0, x);
+                for k in 2..=n {
+                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
+                    p0 = p1;
+                    p1 = p2;
+                }
+                dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
+                let step = p1 / dp;
+                x -= step;
+                if step.abs() < 1e-16 {
+                    break;
+                }
+            }
+            let w = 2.0 / ((1.0 - x * x) * dp * dp);
+            (0.5 * (b - a) * x + 0.5 * (a + b), 0.5 * (b - a) * w)
+        })
+        .collect()
+}
+
+/// Chandrasekhar's H-function of isotropic scattering with albedo `ω`,
+/// from `1/H(μ) = √(1 − ω) + (ω/2) ∫₀¹ μ' H(μ')/(μ + μ') dμ'` iterated to
+/// 10⁻¹⁴ on 32-point panels graded toward 0; returns `μ ↦ H(μ)`.
+fn h_function(omega: f64) -> impl Fn(f64) -> f64 {
+    let edges = [0.0, 1e-5, 1e-4, 1e-3, 1e-2, 0.05, 0.2, 0.5, 1.0];
+    let q: Vec<(f64, f64)> = edges
+        .windows(2)
+        .flat_map(|e| gauss_legendre(32, e[0], e[1]))
+        .collect();
+    let root = (1.0 - omega).sqrt();
+    let mut h = vec![1.0; q.len()];
+    for _ in 0..100_000 {
+        let next: Vec<f64> = q
+            .iter()
+            .map(|&(mu, _)| {
+                let s: f64 = q
+                    .iter()
+                    .zip(&h)
+                    .map(|(&(m, w), &hv)| w * m * hv / (mu + m))
+                    .sum();
+                1.0 / (root + 0.5 * omega * s)
+            })
+            .collect();
+        let change = next
+            .iter()
+            .zip(&h)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        h = next;
+        if change < 1e-14 {
+            break;
+        }
+    }
+    move |mu: f64| {
+        let s: f64 = q
+            .iter()
+            .zip(&h)
+            .map(|(&(m, w), &hv)| w * m * hv / (mu + m))
+            .sum();
+        1.0 / (root + 0.5 * omega * s)
+    }
+}
+
+/// The exact plane albedo `1 − H(μ_0)√(1 − ω)` and spherical albedo
+/// `1 − 2√(1 − ω) ∫₀¹ H(μ) μ dμ` of a semi-infinite isotropic medium.
+fn exact_albedos(omega: f64, mu0: f64) -> (f64, f64) {
+    let h = h_function(omega);
+    let root = (1.0 - omega).sqrt();
+    let edges = [0.0, 1e-3, 0.05, 0.3, 1.0];
+    let moment: f64 = edges
+        .windows(2)
+        .flat_map(|e| gauss_legendre(32, e[0], e[1]))
+        .map(|(mu, w)| w * h(mu) * mu)
+        .sum();
+    (1.0 - h(mu0) * root, 1.0 - 2.0 * root * moment)
+}
+
+const OMEGAS: [f64; 6] = [0.3, 0.6, 0.9, 0.97, 0.99, 0.999];
+
+/// Isotropic scattering, semi-infinite: the estimated albedos (diffuse
+/// light, and beams at μ_0 = 1 and 0.5; 10⁵ paths each) within
+/// 4σ + 10⁻⁴ (the interpolation between nodes) of Chandrasekhar's exact
+/// values at six ω, on and between the nodes.
+#[test]
+fn isotropic_semi_infinite_matches_chandrasekhar() {
+    let iso = Isotropic;
+    for (k, light) in [
+        Illumination::Diffuse,
+        Illumination::Directional(1.0),
+        Illumination::Directional(0.5),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let mut r = rng(900 + k as u64);
+        let c = AlbedoCurve::simulate(&iso, Layer::SemiInfinite, light, 100_000, &mut r).unwrap();
+        for omega in OMEGAS {
+            let (plane, spherical) = exact_albedos(
+                omega,
+                match light {
+                    Illumination::Directional(m) => m,
+                    Illumination::Diffuse => 1.0,
+                },
+            );
+            let want = if light == Illumination::Diffuse {
+                spherical
+            } else {
+                plane
+            };
+            let (got, se) = (c.albedo(omega), c.std_error(omega));
+            assert!(
+                (got - want).abs() <= 4.0 * se + 1e-4,
+                "{light:?} ω {omega}: {got} vs {want} (σ {se:.1e})"
+            );
+        }
+    }
+}
+
+/// The inverse returns ω within 10⁻¹² from the curve's own albedo; the
+/// curve falls strictly with the node index (rises with ω) and is rebuilt
+/// bit for bit from its stored nodes; a deep slab
+/// (τ = 64) matches the semi-infinite layer within 4σ for ω ≤ 0.99.
+#[test]
+fn the_inverse_and_the_slab() {
+    let hg = HenyeyGreenstein::new(0.6).unwrap();
+    let mut r = rng(77);
+    let c = AlbedoCurve::simulate(
+        &hg,
+        Layer::SemiInfinite,
+        Illumination::Diffuse,
+        40_000,
+        &mut r,
+    )
+    .unwrap();
+    for i in 0..=1000 {
+        let omega = i as f64 / 1000.0;
+        let back = c.single_scattering_albedo(c.albedo(omega)).unwrap();
+        assert!((back - omega).abs() <= 1e-12, "{omega}: {back}");
+    }
+    for k in 1..NODES {
+        assert!(c.node(k).unwrap().1 < c.node(k - 1).unwrap().1, "node {k}");
+    }
+    // Stored and restored: the same curve.
+    let (rho, se) = c.nodes();
+    let back = AlbedoCurve::from_nodes(rho, se, c.paths());
+    for omega in [0.0, 0.37, 0.9, 0.999, 1.0] {
+        assert_eq!(back.albedo(omega).to_bits(), c.albedo(omega).to_bits());
+    }
+    let mut r = rng(78);
+    let slab = AlbedoCurve::simulate(
+        &hg,
+        Layer::Slab(64.0),
+        Illumination::Diffuse,
+        40_000,
+        &mut r,
+    )
+    .unwrap();
+    for omega in [0.3, 0.6, 0.9, 0.97, 0.99] {
+        let (a, b) = (c.albedo(omega), slab.albedo(omega));
+        let se = c.std_error(omega).hypot(slab.std_error(omega));
+        assert!(
+            (a - b).abs() <= 4.0 * se,
+            "ω {omega}: {a} vs {b} (σ {se:.1e})"
+        );
+    }
+    // A thin slab lets light through: it cannot reach albedo 1.
+    let mut r = rng(79);
+    let thin = AlbedoCurve::simulate(&hg, Layer::Slab(1.0), Illumination::Diffuse, 20_000, &mut r)
+        .unwrap();
+    let top = thin.albedo(1.0);
+    assert!(top < 0.5, "{top}");
+    assert_eq!(
+        thin.single_scattering_albedo(top + 0.01),
+        Err(Error::Domain)
+    );
+}
+
+/// Van de Hulst's fit of the spherical albedo of a semi-infinite medium,
+/// `A = (1 − s)(1 − 0.139 s)/(1 + 1.17 s)` with the similarity parameter
+/// `s = √((1 − ω)/(1 − ω g))` (OpenPBR), inverted: `s` from the quadratic
+/// `0.139 s² − (1.139 + 1.17 A) s + 1 − A = 0` (Kulla & Conty's
+/// `4.09712 + 4.20863 A − √(9.59217 + 41.6808 A + 17.7126 A²)` is the
+/// same root divided through by 0.278), then `ω = (1 − s²)/(1 − g s²)`.
+fn fit_omega(a: f64, g: f64) -> f64 {
+    let s = 4.09712 + 4.20863 * a - (9.59217 + 41.6808 * a + 17.7126 * a * a).sqrt();
+    (1.0 - s * s) / (1.0 - g * s * s)
+}
+
+/// The standards' conversions against the transport, HG with
+/// g = 0, 0.5, 0.8, 0.9, diffuse light on a semi-infinite layer (10⁵
+/// paths each): for each target albedo, the transport's ω, the fit's ω,
+/// and the albedo the fit's ω really gives. Claims (thresholds fixed
+/// before the run, from van de Hulst's stated accuracy of about 1 %):
+/// with the similarity remap the fit's albedo is within 0.02 of the
+/// target for every g; ignoring g (the fit's `ω = 1 − s²`) misses by
+/// more than 0.1 at g = 0.9. Prints the table the media guide quotes.
+#[test]
+fn the_standards_fits_against_the_transport() {
+    let targets = [0.1, 0.3, 0.5, 0.7, 0.9];
+    println!(
+        "| g | target A | ω (transport) | ω (fit, similarity) | its A | ω (fit, g ignored) | its A |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|");
+    let mut worst_sim: f64 = 0.0;
+    let mut worst_plain_09: f64 = 0.0;
+    for (k, g) in [0.0, 0.5, 0.8, 0.9].into_iter().enumerate() {
+        let hg = HenyeyGreenstein::new(g).unwrap();
+        let mut r = rng(1000 + k as u64);
+        let c = AlbedoCurve::simulate(
+            &hg,
+            Layer::SemiInfinite,
+            Illumination::Diffuse,
+            100_000,
+            &mut r,
+        )
+        .unwrap();
+        for a in targets {
+            let omega = c.single_scattering_albedo(a).unwrap();
+            let (sim, plain) = (fit_omega(a, g), fit_omega(a, 0.0));
+            let (a_sim, a_plain) = (c.albedo(sim), c.albedo(plain));
+            println!(
+                "| {g} | {a} | {omega:.5} | {sim:.5} | {a_sim:.4} | {plain:.5} | {a_plain:.4} |"
+            );
+            worst_sim = worst_sim.max((a_sim - a).abs());
+            if g == 0.9 {
+                worst_plain_09 = worst_plain_09.max((a_plain - a).abs());
+            }
+        }
+    }
+    println!(
+        "worst |A − target| with similarity {worst_sim:.4}, g ignored at 0.9 {worst_plain_09:.4}"
+    );
+    assert!(worst_sim <= 0.02, "{worst_sim}");
+    assert!(worst_plain_09 > 0.1, "{worst_plain_09}");
+}
+
+#[test]
+fn bad_input_is_an_error() {
+    let iso = Isotropic;
+    let mut r = rng(5);
+    let run =
+        |layer, light, paths, r: &mut _| AlbedoCurve::simulate(&iso, layer, light, paths, r).err();
+    let d = Illumination::Diffuse;
+    assert_eq!(run(Layer::SemiInfinite, d, 0, &mut r), Some(Error::Domain));
+    for tau in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        assert_eq!(run(Layer::Slab(tau), d, 10, &mut r), Some(Error::Domain));
+    }
+    for mu0 in [0.0, -0.5, 1.5, f64::NAN] {
+        assert_eq!(
+            run(
+                Layer::SemiInfinite,
+                Illumination::Directional(mu0),
+                10,
+                &mut r
+            ),
+            Some(Error::Domain)
+        );
+    }
+    let c = AlbedoCurve::simulate(&iso, Layer::SemiInfinite, d, 100, &mut r).unwrap();
+    for bad in [-0.1, 1.1, f64::NAN] {
+        assert!(c.albedo(bad).is_nan() && c.std_error(bad).is_nan());
+        assert_eq!(c.single_scattering_albedo(bad), Err(Error::Domain));
+    }
+    assert!(c.node(NODES).is_none() && c.paths() == 100);
+}

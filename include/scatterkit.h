@@ -427,7 +427,12 @@ enum sk_particle_model
      Fournier-Forand with the best-fit n and nu (considered only without
      a table).
      */
-    SK_PARTICLE_FOURNIER_FORAND = 7
+    SK_PARTICLE_FOURNIER_FORAND = 7,
+    /*
+     w HG(g) + (1 - w) Rayleigh with the best-fit g and w (considered only
+     without a table), sampled as a fog mixture with a Rayleigh lobe.
+     */
+    SK_PARTICLE_RAYLEIGH_HG = 8
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -1237,11 +1242,11 @@ typedef struct {
     double distance;
     /*
      Each candidate's best distance: isotropic, HG, Rayleigh, Draine, fog
-     fit, two-lobe HG, Fournier-Forand (NaN for the fog fit beyond 50 um,
-     and for the last two when a table is allowed: they are fitted only
-     without one).
+     fit, two-lobe HG, Fournier-Forand, Rayleigh + HG (NaN for the fog
+     fit beyond 50 um, and for the last three when a table is allowed:
+     they are fitted only without one).
      */
-    double distances[7];
+    double distances[8];
     /*
      The droplets' size parameter.
      */

@@ -56,6 +56,11 @@ pub enum Model {
     /// Fournier–Forand with fitted `n` and `ν` (`particle_mie`, without a
     /// table).
     FournierForand,
+    /// The mixture of Rayleigh and one Henyey–Greenstein lobe with fitted
+    /// `g` and weight (molecules and aerosol in one cell; `particle_mie`
+    /// and `choose_measured`, without a table). Sampled as a fog mixture
+    /// with a Rayleigh lobe (Draine with `g = 0`, `α = 1`).
+    RayleighHg,
 }
 
 /// Candidates in order of measured `sample_cos` cost, cheapest first.
@@ -286,6 +291,19 @@ pub(crate) fn fit_two_lobe_hg(r: &Quantiles, hg: (f64, f64)) -> (f64, f64, f64, 
         h *= 0.5;
     }
     best
+}
+
+/// Best-fit mixture `w HG(g) + (1 − w) Rayleigh`: `(g, w, distance)`, a
+/// golden-section search in `w ∈ [0, 1]` around one in `g` (both
+/// unimodal for the references tried; `w = 1` is HG, `w = 0` Rayleigh).
+pub(crate) fn fit_rayleigh_hg(r: &Quantiles) -> (f64, f64, f64) {
+    let dist = |g: f64, w: f64| {
+        let p = Params::new(g, 0.0);
+        r.distance(|mu| w * p.density(mu) + (1.0 - w) * 0.375 * (1.0 + mu * mu))
+    };
+    let best_g = |w: f64| golden(|g| dist(g, w), -0.999, 0.999, 30);
+    let (w, d) = golden(|w| best_g(w).1, 0.0, 1.0, 30);
+    (best_g(w).0, w, d)
 }
 
 /// Best-fit Fournier–Forand: `(n, ν, distance)`, golden-section search in

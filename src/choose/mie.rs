@@ -14,7 +14,9 @@
 //! faster than Draine, 38–164 ns, or the fog fit, 270 ns, but it holds
 //! `2(intervals + 1)` doubles), or, without a table, Draine (best g and α),
 //! two-lobe HG (best `g1`, `g2`, weight; its exact inverse costs about
-//! what the fog's does, 115 ns), the fog fit (for `d ≤ 50 µm`) and
+//! what the fog's does, 115 ns), the mixture of Rayleigh and one HG lobe
+//! (best `g`, weight: molecules and aerosol in one cell, sampled by the
+//! same exact mixture inverse), the fog fit (for `d ≤ 50 µm`) and
 //! Fournier–Forand (best `n`, `ν`; 350 ns). A model is accepted at `(1 −
 //! MARGIN)` of the tolerance, like the fog chooser.
 //!
@@ -32,7 +34,8 @@
 //! and one or two HG lobes 0.02–0.11 (`docs/measured/ocean_particles.md`).
 
 use super::fog::{
-    MARGIN, Model, Quantiles, fit_draine, fit_fournier_forand, fit_hg, fit_two_lobe_hg,
+    MARGIN, Model, Quantiles, fit_draine, fit_fournier_forand, fit_hg, fit_rayleigh_hg,
+    fit_two_lobe_hg,
 };
 use crate::error::Error;
 use crate::mie::{self, Complex, Mie};
@@ -63,10 +66,11 @@ pub struct MieChoice {
     /// may be: the closest is returned).
     pub within_tolerance: bool,
     /// The distance of each candidate's best fit: isotropic, HG, Rayleigh,
-    /// Draine, fog fit, two-lobe HG, Fournier–Forand (NaN for the fog fit
-    /// beyond 50 µm and always from [`choose_measured`], and for the last
-    /// two when a table is allowed: they are fitted only without one).
-    pub distances: [f64; 7],
+    /// Draine, fog fit, two-lobe HG, Fournier–Forand, Rayleigh + HG (NaN
+    /// for the fog fit beyond 50 µm and always from [`choose_measured`],
+    /// and for the last three when a table is allowed: they are fitted only
+    /// without one).
+    pub distances: [f64; 8],
     /// The droplets' size parameter (NaN from [`choose_measured`]).
     pub x: f64,
     /// The refractive index used (NaN from [`choose_measured`]).
@@ -181,6 +185,7 @@ fn choose_among(
     });
     let two = (!allow_table).then(|| fit_two_lobe_hg(r, hg));
     let ff = (!allow_table).then(|| fit_fournier_forand(r));
+    let ray_hg = (!allow_table).then(|| fit_rayleigh_hg(r));
     // In the order of `MieChoice::distances`.
     let distances = [
         r.distance(|_| 0.5),
@@ -190,6 +195,7 @@ fn choose_among(
         fog_d,
         two.map_or(f64::NAN, |t| t.3),
         ff.map_or(f64::NAN, |f| f.2),
+        ray_hg.map_or(f64::NAN, |m| m.2),
     ];
     let phases = [
         Some(Phase::isotropic()),
@@ -199,6 +205,8 @@ fn choose_among(
         fog.map(Phase::Fog),
         two.and_then(|t| Phase::two_lobe_hg(t.0, t.1, t.2).ok()),
         ff.map(|f| Phase::FournierForand(FournierForand::from_parts(f.0, f.1))),
+        // w HG(g) + (1 − w) Rayleigh: a fog with a Rayleigh lobe.
+        ray_hg.and_then(|m| Phase::fog(m.0, 0.0, 1.0, 1.0 - m.1).ok()),
     ];
     let models = [
         Model::Isotropic,
@@ -208,14 +216,17 @@ fn choose_among(
         Model::Fog,
         Model::TwoLobeHg,
         Model::FournierForand,
+        Model::RayleighHg,
     ];
     let accept = (1.0 - MARGIN) * tolerance;
     // Cost order (indices into the arrays above): isotropic, HG, Rayleigh,
-    // then the table, or Draine, two-lobe HG, the fog fit, Fournier–Forand.
+    // then the table, or Draine, two-lobe HG, Rayleigh + HG (the same exact
+    // mixture inverse, a Draine lobe for the second HG), the fog fit,
+    // Fournier–Forand.
     let order: &[usize] = if allow_table {
         &[0, 1, 2]
     } else {
-        &[0, 1, 2, 3, 5, 4, 6]
+        &[0, 1, 2, 3, 5, 7, 4, 6]
     };
     let base = MieChoice {
         model: Model::MieTable,

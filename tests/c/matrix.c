@@ -1456,8 +1456,9 @@ static void particle_mie(void) {
     CHECK(fabs(sk_phase_pdf_f64(&c.phase, 1.0) - 3.0 / (8.0 * 3.14159265358979)) < 1e-12);
     CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, buf, 1024, work, 4096, &c) == SK_OK);
     CHECK(c.model == SK_PARTICLE_MIE_TABLE && c.distance == 0.0 && isnan(sk_phase_pdf_f64(&c.phase, 0.5)));
-    /* With a table, two-lobe HG and Fournier-Forand are not fitted. */
-    CHECK(isnan(c.distances[5]) && isnan(c.distances[6]));
+    /* With a table, two-lobe HG, Fournier-Forand and Rayleigh + HG are not
+     * fitted. */
+    CHECK(isnan(c.distances[5]) && isnan(c.distances[6]) && isnan(c.distances[7]));
     /* 4 um without a table: two-lobe HG is the closest (none within 0.1),
      * never farther than one HG, and samples like a phase. */
     CHECK(sk_phase_particle_mie(4.0, 0.55, water, 0.1, 0, buf, 1024, work, 4096, &c) == SK_OK);

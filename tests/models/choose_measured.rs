@@ -97,6 +97,40 @@ fn a_tabulated_hg_is_recognised() {
     assert!(t.model == Model::MieTable && t.distance == 0.0 && t.phase.is_none());
 }
 
+/// Molecules and aerosol in one cell: a tabulated `0.3 Rayleigh +
+/// 0.7 HG(0.75)` is recognised as the Rayleigh + HG mixture within 0.01
+/// (thresholds fixed before the run), with g within 0.01 and the weight
+/// within 0.02; no single model (HG, Rayleigh, Draine) is that close.
+#[test]
+fn molecules_and_aerosol_are_recognised_as_the_mixture() {
+    let hg = Phase::<f64>::henyey_greenstein(0.75).unwrap();
+    let ray = Phase::<f64>::rayleigh();
+    let n = 4001;
+    let cos: Vec<f64> = (0..n)
+        .map(|j| (PI * j as f64 / (n - 1) as f64).cos())
+        .collect();
+    let pdf: Vec<f64> = cos
+        .iter()
+        .map(|&c| 0.3 * ray.pdf(c) + 0.7 * hg.pdf(c))
+        .collect();
+    let c = choose(&cos, &pdf, 0.01, false);
+    println!("{:?} {} {:?}", c.model, c.distance, c.distances);
+    assert_eq!(c.model, Model::RayleighHg);
+    assert!(c.within_tolerance && c.distance <= 0.01, "{}", c.distance);
+    assert!(c.distances[1] > 0.01 && c.distances[2] > 0.01 && c.distances[3] > 0.01);
+    match c.phase.unwrap() {
+        Phase::Fog(f) => {
+            let (g_hg, g_d, alpha, w_d) = f.params();
+            assert!(
+                (g_hg - 0.75).abs() <= 0.01 && (w_d - 0.3).abs() <= 0.02,
+                "{g_hg} {w_d}"
+            );
+            assert!(g_d == 0.0 && alpha == 1.0, "{g_d} {alpha}");
+        }
+        p => panic!("{p:?}"),
+    }
+}
+
 #[test]
 fn a_tabulated_droplet_gives_the_distances_choose_mie_gives() {
     let (d, lambda) = (2.0, 0.55);
@@ -169,8 +203,8 @@ const SCENES: [(f64, f64); 6] = [
 fn ocean_particles() {
     let (lambda, n_water, r_min, r_max) = (0.55, 1.339, 0.02, 50.0);
     let mut doc = String::from(
-        "| slope μ_J | n | g (Mie) | chosen, TV ≤ 0.1 | isotropic | HG | Rayleigh | Draine | two-lobe HG | Fournier–Forand (fit) | Fournier–Forand (n, μ_J of the scene) | within 1°: Mie, FF |\n\
-         |---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|\n",
+        "| slope μ_J | n | g (Mie) | chosen, TV ≤ 0.1 | isotropic | HG | Rayleigh | Draine | two-lobe HG | Rayleigh + HG | Fournier–Forand (fit) | Fournier–Forand (n, μ_J of the scene) | within 1°: Mie, FF |\n\
+         |---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
     );
     for (slope, n) in SCENES {
         let poly = Polydisperse {
@@ -236,6 +270,7 @@ fn ocean_particles() {
             Model::Draine => "Draine",
             Model::TwoLobeHg => "two-lobe HG",
             Model::FournierForand => "Fournier–Forand",
+            Model::RayleighHg => "Rayleigh + HG",
             _ => "other",
         };
         let flag = if c.within_tolerance {
@@ -243,7 +278,7 @@ fn ocean_particles() {
         } else {
             ", none within"
         };
-        let ds: Vec<String> = [0, 1, 2, 3, 5, 6]
+        let ds: Vec<String> = [0, 1, 2, 3, 5, 7, 6]
             .iter()
             .map(|&i| format!("{:.3}", c.distances[i]))
             .collect();

@@ -49,6 +49,7 @@ fn name(m: Model) -> &'static str {
         Model::MieTable => "Mie table",
         Model::TwoLobeHg => "two-lobe HG",
         Model::FournierForand => "Fournier–Forand",
+        Model::RayleighHg => "Rayleigh + HG",
         _ => unreachable!("a model this test does not know"),
     }
 }
@@ -144,8 +145,8 @@ const DIAMETERS: [f64; 12] = [
 #[test]
 fn documents() {
     let mut choice = String::from(
-        "| diameter (µm) | x | TV ≤ 0.1 | TV ≤ 0.01 | without a table, TV ≤ 0.1 | isotropic | HG | Rayleigh | Draine | fog fit | two-lobe HG | Fournier–Forand |\n\
-         |---|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n",
+        "| diameter (µm) | x | TV ≤ 0.1 | TV ≤ 0.01 | without a table, TV ≤ 0.1 | isotropic | HG | Rayleigh | Draine | fog fit | two-lobe HG | Fournier–Forand | Rayleigh + HG |\n\
+         |---|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     for d in DIAMETERS {
         let (a, b, c) = (
@@ -163,8 +164,8 @@ fn documents() {
             c.distance <= (1.0 - MARGIN) * 0.1,
             "d {d}: {c:?}"
         );
-        // Every distance is a TV distance; with a table the last two are
-        // not fitted (NaN), without one all seven are (d ≤ 50 µm).
+        // Every distance is a TV distance; with a table the last three
+        // are not fitted (NaN), without one all eight are (d ≤ 50 µm).
         let tv = |v: &f64| (0.0..=1.0).contains(v);
         assert!(
             a.distances[..5].iter().all(tv) && a.distances[5..].iter().all(|v| v.is_nan()),
@@ -271,10 +272,10 @@ fn documents() {
              exact Mie phase function of droplets of that diameter. A cell: the model chosen and \
              its distance. Candidates in order of sampling cost: isotropic, HG, Rayleigh, then \
              the Mie table (which samples in about 9 ns, faster than Draine or the fog fit, but \
-             holds up to a few hundred kB), or without a table Draine, two-lobe HG, the fog fit \
-             and Fournier–Forand, the closest returned when none is within. The last seven \
-             columns: each candidate's best distance, without a table (two-lobe HG and \
-             Fournier–Forand are fitted only then). Fournier–Forand is built for a Junge \
+             holds up to a few hundred kB), or without a table Draine, two-lobe HG, Rayleigh + HG, \
+             the fog fit and Fournier–Forand, the closest returned when none is within. The \
+             last eight columns: each candidate's best distance, without a table (two-lobe HG, \
+             Fournier–Forand and Rayleigh + HG are fitted only then). Fournier–Forand is built for a Junge \
              (power-law) distribution of ocean particles, not one droplet size; its column \
              says how far it is from one. Droplets of one size scatter with deep interference oscillations that no \
              smooth model follows: from 1 µm up no analytic model is within 0.1. \

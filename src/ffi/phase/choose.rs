@@ -28,6 +28,9 @@ pub enum sk_particle_model {
     /// Fournier-Forand with the best-fit n and nu (considered only without
     /// a table).
     SK_PARTICLE_FOURNIER_FORAND = 7,
+    /// w HG(g) + (1 - w) Rayleigh with the best-fit g and w (considered only
+    /// without a table), sampled as a fog mixture with a Rayleigh lobe.
+    SK_PARTICLE_RAYLEIGH_HG = 8,
 }
 
 /// What sk_phase_particle_mie found.
@@ -44,10 +47,10 @@ pub struct sk_particle_choice {
     /// sk_mie_table_sizes adds at most 1.2e-3 for x <= 1000).
     pub distance: f64,
     /// Each candidate's best distance: isotropic, HG, Rayleigh, Draine, fog
-    /// fit, two-lobe HG, Fournier-Forand (NaN for the fog fit beyond 50 um,
-    /// and for the last two when a table is allowed: they are fitted only
-    /// without one).
-    pub distances: [f64; 7],
+    /// fit, two-lobe HG, Fournier-Forand, Rayleigh + HG (NaN for the fog
+    /// fit beyond 50 um, and for the last three when a table is allowed:
+    /// they are fitted only without one).
+    pub distances: [f64; 8],
     /// The droplets' size parameter.
     pub x: f64,
     /// The refractive index used.
@@ -149,6 +152,7 @@ fn choice_to_c(c: crate::choose::mie::MieChoice) -> sk_particle_choice {
         Model::Fog => sk_particle_model::SK_PARTICLE_FOG,
         Model::TwoLobeHg => sk_particle_model::SK_PARTICLE_TWO_LOBE_HG,
         Model::FournierForand => sk_particle_model::SK_PARTICLE_FOURNIER_FORAND,
+        Model::RayleighHg => sk_particle_model::SK_PARTICLE_RAYLEIGH_HG,
         _ => sk_particle_model::SK_PARTICLE_MIE_TABLE,
     };
     sk_particle_choice {

@@ -66,7 +66,22 @@ pub extern "C" fn nostd_sample(g: f32, u: f32) -> f32 {
     let mut work = [0.0f64; scatterkit::choose::mie::WORK_LEN];
     let choice = scatterkit::choose::mie::choose_mie(0.01, 0.55, None, 0.1, true, &mut buf, &mut work)
         .map_or(f64::NAN, |c| c.distance);
-    hg + d.z + scatterkit::cbrt::cbrt_f32(u) + q as f32 + (c + choice) as f32
+    // A 2-D table in stack memory, and a layer's albedo curve.
+    let mut t2 = [0.0f32; 2 * 2 * 9];
+    let tab = scatterkit::Table2d::inverse(&mut t2, 8, 2, 0.0, 1.0, |x| {
+        scatterkit::HenyeyGreenstein::new(0.2 + 0.5 * x)
+    })
+    .map_or(f32::NAN, |t| t.sample_cos(0.5, u));
+    let curve = scatterkit::transport::albedo::AlbedoCurve::simulate(
+        &scatterkit::Isotropic,
+        scatterkit::transport::albedo::Layer::SemiInfinite,
+        scatterkit::transport::albedo::Illumination::Diffuse,
+        4,
+        &mut Counter(3),
+    )
+    .map_or(f64::NAN, |c| c.albedo(0.9));
+    let gk = Phase::<f64>::gegenbauer_gamma(0.8, 2.0).map_or(f64::NAN, |p| p.mean_cosine());
+    hg + d.z + scatterkit::cbrt::cbrt_f32(u) + q as f32 + (c + choice + curve + gk) as f32 + tab
 }
 "#;
 

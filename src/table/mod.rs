@@ -343,19 +343,27 @@ impl<'a, T: Real> Table<'a, T> {
         // Indices stay below n + 1 = data.len(); `get` makes that a fact the
         // compiler can see (no bounds-check panic in the C library).
         let f = |i: usize| self.data.get(i).copied().unwrap_or(T::NAN);
-        let (mut lo, mut hi) = (0usize, self.n);
-        while hi - lo > 1 {
-            let mid = (lo + hi) / 2;
-            if f(mid) <= u {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
+        let lo = last_at_or_below(f, self.n, u);
+        let hi = lo + 1;
         let t = (u - f(lo)) / (f(hi) - f(lo));
         let dx = T::TWO / T::from_f64(self.n as f64);
         ((T::from_f64(lo as f64) + t) * dx - T::ONE).clamp_unit()
     }
+}
+
+/// The largest `i < n` with `f(i) ≤ x`, by bisection over non-decreasing
+/// values `f(0) … f(n)` (0 when none is).
+fn last_at_or_below<V: PartialOrd>(f: impl Fn(usize) -> V, n: usize, x: V) -> usize {
+    let (mut lo, mut hi) = (0usize, n);
+    while hi - lo > 1 {
+        let mid = (lo + hi) / 2;
+        if f(mid) <= x {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
 }
 
 /// For a cubic Hermite inverse CDF with `n` intervals and nodes
@@ -372,15 +380,7 @@ pub(crate) fn hermite_at(
         return None;
     }
     // The last node at or below μ (nodes are non-decreasing).
-    let (mut lo, mut hi) = (0usize, n);
-    while hi - lo > 1 {
-        let mid = (lo + hi) / 2;
-        if y(mid) <= mu {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
+    let lo = last_at_or_below(y, n, mu);
     let ((y0, d0), (y1, d1)) = (node(lo), node(lo + 1));
     let dy = y1 - y0;
     let c2 = 3.0 * dy - 2.0 * d0 - d1;

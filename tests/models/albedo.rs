@@ -50,19 +50,18 @@ fn h_function(omega: f64) -> impl Fn(f64) -> f64 {
         .flat_map(|e| gauss_legendre(32, e[0], e[1]))
         .collect();
     let root = (1.0 - omega).sqrt();
+    // The right-hand side at μ from the values h at the nodes.
+    let rhs = move |q: &[(f64, f64)], h: &[f64], mu: f64| {
+        let s: f64 = q
+            .iter()
+            .zip(h)
+            .map(|(&(m, w), &hv)| w * m * hv / (mu + m))
+            .sum();
+        1.0 / (root + 0.5 * omega * s)
+    };
     let mut h = vec![1.0; q.len()];
     for _ in 0..100_000 {
-        let next: Vec<f64> = q
-            .iter()
-            .map(|&(mu, _)| {
-                let s: f64 = q
-                    .iter()
-                    .zip(&h)
-                    .map(|(&(m, w), &hv)| w * m * hv / (mu + m))
-                    .sum();
-                1.0 / (root + 0.5 * omega * s)
-            })
-            .collect();
+        let next: Vec<f64> = q.iter().map(|&(mu, _)| rhs(&q, &h, mu)).collect();
         let change = next
             .iter()
             .zip(&h)
@@ -73,14 +72,7 @@ fn h_function(omega: f64) -> impl Fn(f64) -> f64 {
             break;
         }
     }
-    move |mu: f64| {
-        let s: f64 = q
-            .iter()
-            .zip(&h)
-            .map(|(&(m, w), &hv)| w * m * hv / (mu + m))
-            .sum();
-        1.0 / (root + 0.5 * omega * s)
-    }
+    move |mu: f64| rhs(&q, &h, mu)
 }
 
 /// The exact plane albedo `1 − H(μ_0)√(1 − ω)` and spherical albedo

@@ -353,6 +353,7 @@ impl<'a, T: Real> Table<'a, T> {
 
 /// The largest `i < n` with `f(i) ≤ x`, by bisection over non-decreasing
 /// values `f(0) … f(n)` (0 when none is).
+#[inline(always)]
 fn last_at_or_below<V: PartialOrd>(f: impl Fn(usize) -> V, n: usize, x: V) -> usize {
     let (mut lo, mut hi) = (0usize, n);
     while hi - lo > 1 {

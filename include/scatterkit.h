@@ -471,8 +471,8 @@ typedef struct {
 /*
  The multiple-scattering albedo of a layer as a function of the
  single-scattering albedo omega, from sk_albedo_curve_simulate: at
- omega_k = 1 - (k/64)^2, k = 0..64, the albedo rho[k] and its standard
- error se[k] (the functions below interpolate between them). A plain
+ omega_k = 1 - (k/64)^2, k = 0..64, the albedo `rho[k]` and its standard
+ error `se[k]` (the functions below interpolate between them). A plain
  value: copy it, store it, read the nodes.
  */
 typedef struct {
@@ -1856,7 +1856,7 @@ double sk_albedo_curve_std_error(const sk_albedo_curve *c, double omega);
 /*
  The single-scattering albedo whose multiple-scattering albedo is
  `albedo`, written to omega_out. SK_ERR_NULL for NULL pointers;
- SK_ERR_DOMAIN for NaN or an albedo outside [0, rho[0]] (rho[0] = 1 for a
+ SK_ERR_DOMAIN for NaN or an albedo outside `[0, rho[0]]` (`rho[0]` = 1 for a
  semi-infinite layer; less for a slab).
  */
 sk_status sk_albedo_curve_single_scattering_albedo(const sk_albedo_curve *c,
@@ -3948,7 +3948,7 @@ sk_status sk_table2d_new_f64(const double *data,
                              sk_table2d_f64 *out);
 
 /*
- A 2-D table from k phase functions, phases[j] at x0 + j dx: each
+ A 2-D table from k phase functions, `phases[j]` at x0 + j dx: each
  slice the inverse CDF of its phase at n intervals (as
  sk_table_inverse), written to buf (len floats, at least
  sk_table2d_len(n, k)). SK_ERR_NULL for NULL pointers; SK_ERR_SIZE for

@@ -11,8 +11,8 @@ const _: () = assert!(SK_ALBEDO_NODES == NODES);
 
 /// The multiple-scattering albedo of a layer as a function of the
 /// single-scattering albedo omega, from sk_albedo_curve_simulate: at
-/// omega_k = 1 - (k/64)^2, k = 0..64, the albedo rho[k] and its standard
-/// error se[k] (the functions below interpolate between them). A plain
+/// omega_k = 1 - (k/64)^2, k = 0..64, the albedo `rho[k]` and its standard
+/// error `se[k]` (the functions below interpolate between them). A plain
 /// value: copy it, store it, read the nodes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
@@ -95,7 +95,7 @@ pub unsafe extern "C" fn sk_albedo_curve_std_error(c: *const sk_albedo_curve, om
 
 /// The single-scattering albedo whose multiple-scattering albedo is
 /// `albedo`, written to omega_out. SK_ERR_NULL for NULL pointers;
-/// SK_ERR_DOMAIN for NaN or an albedo outside [0, rho[0]] (rho[0] = 1 for a
+/// SK_ERR_DOMAIN for NaN or an albedo outside `[0, rho[0]]` (`rho[0]` = 1 for a
 /// semi-infinite layer; less for a slab).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_albedo_curve_single_scattering_albedo(

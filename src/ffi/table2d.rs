@@ -200,7 +200,7 @@ pub unsafe extern "C" fn sk_table2d_new_f64(
     unsafe { from_data(data, len, n, k, x0, dx, out) }
 }
 
-/// A 2-D table from k phase functions, phases[j] at x0 + j dx: each
+/// A 2-D table from k phase functions, `phases[j]` at x0 + j dx: each
 /// slice the inverse CDF of its phase at n intervals (as
 /// sk_table_inverse), written to buf (len floats, at least
 /// sk_table2d_len(n, k)). SK_ERR_NULL for NULL pointers; SK_ERR_SIZE for

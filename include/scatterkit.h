@@ -2648,6 +2648,42 @@ float sk_mixture_sample_cos(const sk_mixture *m, float u);
 double sk_mixture_sample_cos_f64(const sk_mixture_f64 *m, double u);
 
 /*
+ `cos_out[i] = sk_mixture_sample_cos(m, u[i])` for `i < n`, the mixture
+ built once for the batch (the single call rebuilds it each time). `u`
+ and `cos_out` may be the same array; other overlaps give
+ SK_ERR_DOMAIN. SK_ERR_DOMAIN if any `u[i]` is NaN or outside `[0, 1]`,
+ or the mixture is malformed; SK_ERR_NULL for NULL m, or NULL arrays
+ with n > 0; SK_ERR_SIZE if n floats cannot exist. On error nothing is
+ written; n = 0 is SK_OK.
+ */
+sk_status sk_mixture_sample_cos_n(const sk_mixture *m, const float *u, float *cos_out, size_t n);
+
+/*
+ Double twin of `sk_mixture_sample_cos_n`.
+ */
+sk_status sk_mixture_sample_cos_n_f64(const sk_mixture_f64 *m,
+                                      const double *u,
+                                      double *cos_out,
+                                      size_t n);
+
+/*
+ `cos_out[i] = sk_mixture_sample_cos_by_lobe(m, u[i])` for `i < n`;
+ statuses and overlaps as sk_mixture_sample_cos_n.
+ */
+sk_status sk_mixture_sample_cos_by_lobe_n(const sk_mixture *m,
+                                          const float *u,
+                                          float *cos_out,
+                                          size_t n);
+
+/*
+ Double twin of `sk_mixture_sample_cos_by_lobe_n`.
+ */
+sk_status sk_mixture_sample_cos_by_lobe_n_f64(const sk_mixture_f64 *m,
+                                              const double *u,
+                                              double *cos_out,
+                                              size_t n);
+
+/*
  A scattered direction about the unit vector w_in: cos theta by lobe
  choice from u1, azimuth 2 pi u2; writes the mixture's density per
  steradian there to pdf_out unless it is NULL. NaN (direction and pdf)

@@ -93,6 +93,18 @@ fuzz_target!(|data: &[u8]| {
             ] {
                 assert!((x(7).is_nan() && mu.is_nan()) || mu.abs() <= 1.0, "{mu}");
             }
+            // The batches take the fuzzed floats as uniforms: OK with
+            // every cosine in range, or DOMAIN for one outside [0, 1].
+            let mut outs = vec![0.0f32; n];
+            for s in [
+                sk_mixture_sample_cos_n(&mix, f.as_ptr(), outs.as_mut_ptr(), n),
+                sk_mixture_sample_cos_by_lobe_n(&mix, f.as_ptr(), outs.as_mut_ptr(), n),
+            ] {
+                match s {
+                    sk_status::SK_OK => assert!(outs.iter().all(|c| c.abs() <= 1.0)),
+                    s => assert_eq!(s, sk_status::SK_ERR_DOMAIN),
+                }
+            }
             let d = sk_mixture_pdf(&mix, x(8).clamp(-1.0, 1.0));
             assert!(x(8).is_nan() || d >= 0.0, "{d}");
             let mut chi = [0.0f32; 4];

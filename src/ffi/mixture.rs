@@ -3,11 +3,12 @@
 use super::phase::{PhaseStore, load};
 use super::table::{TableStore, load_table};
 use super::{
-    CVec, sk_phase, sk_phase_f64, sk_status, sk_table, sk_table_f64, sk_vec3, sk_vec3_f64,
+    CVec, map_arrays, sk_phase, sk_phase_f64, sk_status, sk_table, sk_table_f64, sk_vec3,
+    sk_vec3_f64,
 };
 use crate::math::real::Real;
 use crate::mixture::{MAX_PARTS, Mixture, Part, lobe};
-use crate::phase::PhaseFunction;
+use crate::phase::{PhaseFunction, check_uniforms};
 
 /// One component for sk_mixture_new: exactly one of phase and table
 /// non-NULL, and its weight (finite, >= 0; the weights are normalised).
@@ -325,6 +326,44 @@ unsafe fn sample_dir<S: MixStore>(
     S::V::from_vec(d)
 }
 
+/// The batch of `u` through the exact inverse (`exact = true`, the full
+/// mixture built once for the batch) or the lobe choice.
+unsafe fn sample_cos_n<S: MixStore>(
+    m: *const S,
+    u: *const S::T,
+    cos_out: *mut S::T,
+    n: usize,
+    exact: bool,
+) -> sk_status {
+    if m.is_null() {
+        return sk_status::SK_ERR_NULL;
+    }
+    let Ok((parts, k)) = (unsafe { view::<S>(m) }) else {
+        return sk_status::SK_ERR_DOMAIN;
+    };
+    let parts = parts.get(..k).unwrap_or(&[]);
+    let built = if exact {
+        Mixture::new(parts)
+    } else {
+        Mixture::new_narrow(parts)
+    };
+    let Ok(mix) = built else {
+        return sk_status::SK_ERR_DOMAIN;
+    };
+    unsafe {
+        map_arrays(u, cos_out, n, check_uniforms, |u, out| {
+            for (o, &v) in out.iter_mut().zip(u) {
+                *o = if exact {
+                    mix.sample_cos(v)
+                } else {
+                    mix.sample_cos_by_lobe(v)
+                };
+            }
+            Ok(())
+        })
+    }
+}
+
 /// Builds the mixture of parts[0 .. n] into *out (weights normalised;
 /// phases copied, tables borrowed). SK_ERR_NULL for NULL parts or out, or
 /// a part with neither phase nor table; SK_ERR_SIZE for n = 0, n > 8 or a
@@ -416,6 +455,57 @@ pub unsafe extern "C" fn sk_mixture_sample_cos(m: *const sk_mixture, u: f32) -> 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_mixture_sample_cos_f64(m: *const sk_mixture_f64, u: f64) -> f64 {
     unsafe { exact(m, u) }
+}
+
+/// `cos_out[i] = sk_mixture_sample_cos(m, u[i])` for `i < n`, the mixture
+/// built once for the batch (the single call rebuilds it each time). `u`
+/// and `cos_out` may be the same array; other overlaps give
+/// SK_ERR_DOMAIN. SK_ERR_DOMAIN if any `u[i]` is NaN or outside `[0, 1]`,
+/// or the mixture is malformed; SK_ERR_NULL for NULL m, or NULL arrays
+/// with n > 0; SK_ERR_SIZE if n floats cannot exist. On error nothing is
+/// written; n = 0 is SK_OK.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_mixture_sample_cos_n(
+    m: *const sk_mixture,
+    u: *const f32,
+    cos_out: *mut f32,
+    n: usize,
+) -> sk_status {
+    unsafe { sample_cos_n(m, u, cos_out, n, true) }
+}
+
+/// Double twin of `sk_mixture_sample_cos_n`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_mixture_sample_cos_n_f64(
+    m: *const sk_mixture_f64,
+    u: *const f64,
+    cos_out: *mut f64,
+    n: usize,
+) -> sk_status {
+    unsafe { sample_cos_n(m, u, cos_out, n, true) }
+}
+
+/// `cos_out[i] = sk_mixture_sample_cos_by_lobe(m, u[i])` for `i < n`;
+/// statuses and overlaps as sk_mixture_sample_cos_n.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_mixture_sample_cos_by_lobe_n(
+    m: *const sk_mixture,
+    u: *const f32,
+    cos_out: *mut f32,
+    n: usize,
+) -> sk_status {
+    unsafe { sample_cos_n(m, u, cos_out, n, false) }
+}
+
+/// Double twin of `sk_mixture_sample_cos_by_lobe_n`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_mixture_sample_cos_by_lobe_n_f64(
+    m: *const sk_mixture_f64,
+    u: *const f64,
+    cos_out: *mut f64,
+    n: usize,
+) -> sk_status {
+    unsafe { sample_cos_n(m, u, cos_out, n, false) }
 }
 
 /// A scattered direction about the unit vector w_in: cos theta by lobe

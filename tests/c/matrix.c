@@ -1687,6 +1687,31 @@ static void mixtures(void) {
     CHECK(sk_mixture_pdf(&m, 0.5f) > 0.0f && sk_mixture_pdf_f64(&md, 0.5) > 0.0);
     mu = sk_mixture_sample_cos(&m, 0.3f);
     CHECK(fabsf(sk_mixture_cdf(&m, mu) - 0.3f) < 1e-5f);
+    {
+        /* Batches: bit for bit the single calls, in place too; bad u,
+         * NULLs and overlaps refused with nothing written. */
+        float us[33], out[33], bad[2] = {0.5f, NAN};
+        double usd[33], outd[33];
+        int k, same = 1;
+        for (k = 0; k < 33; k++) us[k] = (float)k / 32.0f, usd[k] = (double)k / 32.0;
+        CHECK(sk_mixture_sample_cos_n(&m, us, out, 33) == SK_OK);
+        for (k = 0; k < 33; k++) same &= out[k] == sk_mixture_sample_cos(&m, us[k]);
+        CHECK(sk_mixture_sample_cos_by_lobe_n(&m, us, out, 33) == SK_OK);
+        for (k = 0; k < 33; k++) same &= out[k] == sk_mixture_sample_cos_by_lobe(&m, us[k]);
+        CHECK(sk_mixture_sample_cos_n_f64(&md, usd, outd, 33) == SK_OK);
+        for (k = 0; k < 33; k++) same &= outd[k] == sk_mixture_sample_cos_f64(&md, usd[k]);
+        CHECK(sk_mixture_sample_cos_by_lobe_n_f64(&md, usd, outd, 33) == SK_OK);
+        for (k = 0; k < 33; k++) same &= outd[k] == sk_mixture_sample_cos_by_lobe_f64(&md, usd[k]);
+        CHECK(same);
+        CHECK(sk_mixture_sample_cos_n(&m, us, us, 33) == SK_OK && us[16] == sk_mixture_sample_cos(&m, 0.5f));
+        out[0] = 7.0f;
+        CHECK(sk_mixture_sample_cos_n(&m, bad, out, 2) == SK_ERR_DOMAIN && out[0] == 7.0f);
+        CHECK(sk_mixture_sample_cos_by_lobe_n(&m, out, out + 1, 2) == SK_ERR_DOMAIN);
+        CHECK(sk_mixture_sample_cos_n(NULL, bad, out, 1) == SK_ERR_NULL);
+        CHECK(sk_mixture_sample_cos_by_lobe_n(&m, NULL, out, 1) == SK_ERR_NULL && sk_mixture_sample_cos_n(&m, bad, NULL, 1) == SK_ERR_NULL);
+        CHECK(sk_mixture_sample_cos_n(&m, NULL, NULL, 0) == SK_OK && sk_mixture_sample_cos_by_lobe_n_f64(NULL, usd, outd, 1) == SK_ERR_NULL);
+        CHECK(sk_mixture_sample_cos_n_f64(&md, usd, outd, SIZE_MAX) == SK_ERR_SIZE);
+    }
     CHECK(fabs(sk_mixture_cdf_f64(&md, sk_mixture_sample_cos_f64(&md, 0.6)) - 0.6) < 1e-12);
     prev = -2.0f;
     for (i = 0; i <= 1000; i++) {

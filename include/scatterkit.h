@@ -3019,7 +3019,7 @@ sk_status sk_phase_gegenbauer_gamma_f64(double g, double gamma, sk_phase_f64 *ou
 /*
  The Gegenbauer kernel with mean cosine 0 < g < 1 and
  delta = (1 - chi_3)/(1 - chi_1), as sk_phase_gegenbauer_gamma (e.g.
- 1.51 < delta < 2.302 at g = 0.6); elsewhere SK_ERR_DOMAIN.
+ 1.513 < delta < 2.302 at g = 0.6); elsewhere SK_ERR_DOMAIN.
  */
 sk_status sk_phase_gegenbauer_delta(float g, float delta, sk_phase *out);
 

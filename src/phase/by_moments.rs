@@ -131,7 +131,7 @@ impl<T: Real> Phase<T> {
     /// `δ = (1 − χ_3)/(1 − χ_1)`, `0 < g < 1`, found as in
     /// [`gegenbauer_gamma`](Self::gegenbauer_gamma) (`δ` also rises with
     /// `α` at fixed `g`); for example `1.1074 < δ < 1.1108` at `g = 0.1`,
-    /// `1.51 < δ < 2.302` at `g = 0.6`. Outside the reach:
+    /// `1.513 < δ < 2.302` at `g = 0.6`. Outside the reach:
     /// [`Error::Domain`].
     pub fn gegenbauer_delta(g: T, delta: T) -> Result<Self, Error> {
         Self::gegenbauer_by(g, delta, 2)

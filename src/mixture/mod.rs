@@ -120,6 +120,10 @@ pub struct Mixture<'a, T> {
     /// The weights normalised in f64, for the exact inverse (normalising
     /// in `T` would perturb an f32 mixture's CDF by its rounding).
     wide_weights: [f64; MAX_PARTS],
+    /// `F(−1 + ε/4)` in f64 (`ε` the machine epsilon of `T`, so `ε/4`
+    /// is half the spacing of `T` just above −1): below it the exact
+    /// inverse rounds to −1 in `T`.
+    floor: f64,
     n: usize,
 }
 
@@ -146,6 +150,7 @@ impl<'a, T: Real> Mixture<'a, T> {
             weights: [T::ZERO; MAX_PARTS],
             ends: [T::ONE; MAX_PARTS],
             wide_weights: [0.0; MAX_PARTS],
+            floor: 0.0,
             n: parts.len(),
         };
         let wide_total = parts.iter().fold(0.0, |s, &(_, w)| s + w.to_f64());
@@ -166,6 +171,7 @@ impl<'a, T: Real> Mixture<'a, T> {
                 sum / total
             };
         }
+        m.floor = m.wide(-1.0 + 0.25 * T::EPSILON.to_f64()).0;
         Ok(m)
     }
 
@@ -325,6 +331,13 @@ impl<T: Real> PhaseFunction<T> for Mixture<'_, T> {
         if c.is_nan() { c } else { c.clamp01() }
     }
     fn sample_cos(&self, u: T) -> T {
+        // Where the exact answer lies within half a spacing of T above −1
+        // it rounds to −1: no solve. (In that far tail, u down to the
+        // subnormals, the solve costs several times a usual one, and it is
+        // where most f32 values of u lie.)
+        if u.to_f64() < self.floor {
+            return -T::ONE;
+        }
         T::from_f64(self.inverse(u).clamp(-1.0, 1.0))
     }
     fn mean_cosine(&self) -> T {

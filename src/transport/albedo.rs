@@ -204,9 +204,7 @@ impl AlbedoCurve {
         if !(0.0..=1.0).contains(&omega) {
             return f64::NAN;
         }
-        let x = libm::sqrt(1.0 - omega) * (NODES - 1) as f64;
-        let i = (x as usize).min(NODES - 2);
-        let t = x - i as f64;
+        let (i, t) = interval(libm::sqrt(1.0 - omega));
         let e = |k: usize| self.se.get(k).copied().unwrap_or(f64::NAN);
         e(i) + t * (e(i + 1) - e(i))
     }
@@ -240,9 +238,7 @@ impl AlbedoCurve {
 
     /// The cubic Hermite interpolant of the nodes at `s ∈ [0, 1]`.
     fn at_s(&self, s: f64) -> f64 {
-        let x = s * (NODES - 1) as f64;
-        let i = (x as usize).min(NODES - 2);
-        let t = x - i as f64;
+        let (i, t) = interval(s);
         let v = |a: &[f64; NODES], k: usize| a.get(k).copied().unwrap_or(f64::NAN);
         let (y0, y1) = (v(&self.rho, i), v(&self.rho, i + 1));
         let (d0, d1) = (v(&self.slope, i), v(&self.slope, i + 1));
@@ -260,6 +256,14 @@ impl AlbedoCurve {
             v
         }
     }
+}
+
+/// The node interval `i` holding `s ∈ [0, 1]` and the position `t ∈ [0, 1]`
+/// in it.
+fn interval(s: f64) -> (usize, f64) {
+    let x = s * (NODES - 1) as f64;
+    let i = (x as usize).min(NODES - 2);
+    (i, x - i as f64)
 }
 
 /// One path with `ω = 1`: `Some(N)` if it leaves through the lit face

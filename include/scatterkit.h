@@ -65,7 +65,12 @@ typedef enum {
     /*
      Volume tracking used up its step budget before it could answer.
      */
-    SK_ERR_BUDGET = 5
+    SK_ERR_BUDGET = 5,
+    /*
+     Arrays that must not share memory do (an output overlapping an
+     input or another output; in place is allowed where documented).
+     */
+    SK_ERR_OVERLAP = 6
 } sk_status;
 
 /*
@@ -513,7 +518,10 @@ typedef struct {
  one per cell of an mx*my*mz division of it, borrowing the caller's array
  (x fastest), which must outlive it. Build it with sk_majorants_build
  (from a grid) or sk_majorants_new (your own bounds); the fields are what
- that validated.
+ that validated. Every value is checked there, once: a call checks only
+ the fields (constant time, whatever the size of the grid), and a walk
+ reports a value changed since (negative, NaN or infinite) as
+ SK_ERR_DOMAIN when it reaches its cell.
  */
 typedef struct {
     /*
@@ -1013,36 +1021,20 @@ typedef struct {
 } sk_mixture_part;
 
 /*
- A mixture of up to 8 phase functions and tables (sum of w_i p_i). A plain
- value holding copies of the components: build it with sk_mixture_new,
- then copy it freely; a table component's data stays borrowed and must
- outlive it. Its fields are private.
+ A mixture of up to 8 phase functions and tables (sum of w_i p_i), as
+ sk_mixture_new built it: the components, their weights and what the
+ exact inverse needs, checked and prepared once, so that every call
+ loads it in constant time. A plain value: copy it freely; a table
+ component's data stays borrowed and must outlive it. Its contents are
+ private (a zeroed or never-built mixture gives NaN or SK_ERR_DOMAIN).
+ 4 KiB; the value it holds takes 2.4 KiB (f32) or 2.6 KiB (double), and
+ the rest is room for later releases.
  */
 typedef struct {
     /*
-     Private: the number of components.
+     Private storage; do not read or write.
      */
-    uint32_t n;
-    /*
-     Private: 1 where component i is a table.
-     */
-    uint32_t is_table[8];
-    /*
-     Private: the weights as given.
-     */
-    float weight[8];
-    /*
-     Private: the running sums of the normalised weights.
-     */
-    float end[8];
-    /*
-     Private: the phase components.
-     */
-    sk_phase phase[8];
-    /*
-     Private: the table components.
-     */
-    sk_table table[8];
+    uint64_t opaque[512];
 } sk_mixture;
 
 /*
@@ -1086,29 +1078,9 @@ typedef struct {
  */
 typedef struct {
     /*
-     Private: the number of components.
+     Private storage; do not read or write.
      */
-    uint32_t n;
-    /*
-     Private: 1 where component i is a table.
-     */
-    uint32_t is_table[8];
-    /*
-     Private: the weights as given.
-     */
-    double weight[8];
-    /*
-     Private: the running sums of the normalised weights.
-     */
-    double end[8];
-    /*
-     Private: the phase components.
-     */
-    sk_phase_f64 phase[8];
-    /*
-     Private: the table components.
-     */
-    sk_table_f64 table[8];
+    uint64_t opaque[512];
 } sk_mixture_f64;
 
 /*
@@ -1804,6 +1776,13 @@ extern "C" {
 #endif /* __cplusplus */
 
 /*
+ A short English description of `status` (an sk_status value), as a
+ static NUL-terminated string: "ok", "NULL pointer", ...; "unknown
+ status" for a value that is no sk_status. Never NULL.
+ */
+const char *sk_status_string(uint32_t status);
+
+/*
  A uniform float in [0, 1) from one draw of `rng`, taken exactly as the
  library's samplers take theirs: the top 24 bits of the 64-bit word times
  2^-24. For a caller's own decisions (Russian roulette, a lobe or light
@@ -2318,7 +2297,7 @@ double sk_transmittance_f64(double sigma_t, double distance);
  event), *scattered_out 1 for a medium event and 0 for the surface, and
  `weight_out[c]` the weight per channel (sigma_s Tr / mean(sigma_t Tr) or
  Tr / mean(Tr)). sigma_t, sigma_s and weight_out hold `channels` values;
- weight_out must not overlap the inputs (SK_ERR_DOMAIN).
+ weight_out must not overlap the inputs (SK_ERR_OVERLAP).
  SK_ERR_SIZE for channels = 0; SK_ERR_NULL for NULL pointers;
  SK_ERR_DOMAIN for negative or non-finite coefficients, sigma_s > sigma_t
  or t_max negative or NaN. Nothing is written on error.
@@ -2572,7 +2551,7 @@ sk_status sk_mie_table_sizes(double x, size_t *angles, size_t *intervals);
  `cos_theta[j]` (decreasing from 1 to -1, the angles crowded into the
  forward peak, which is about 1/x radians wide) and `pdf[j]`, the phase
  function per steradian there, for j < count. SK_ERR_NULL for NULL
- pointers; SK_ERR_DOMAIN for overlapping arrays; SK_ERR_SIZE for count <
+ pointers; SK_ERR_OVERLAP for overlapping arrays; SK_ERR_SIZE for count <
  2, a malformed sphere, or too many angles to give distinct cosines.
  */
 sk_status sk_mie_tabulate(const sk_mie *m, double *cos_theta, double *pdf, size_t count);
@@ -2648,10 +2627,9 @@ float sk_mixture_sample_cos(const sk_mixture *m, float u);
 double sk_mixture_sample_cos_f64(const sk_mixture_f64 *m, double u);
 
 /*
- `cos_out[i] = sk_mixture_sample_cos(m, u[i])` for `i < n`, the mixture
- built once for the batch (the single call rebuilds it each time). `u`
+ `cos_out[i] = sk_mixture_sample_cos(m, u[i])` for `i < n`. `u`
  and `cos_out` may be the same array; other overlaps give
- SK_ERR_DOMAIN. SK_ERR_DOMAIN if any `u[i]` is NaN or outside `[0, 1]`,
+ SK_ERR_OVERLAP. SK_ERR_DOMAIN if any `u[i]` is NaN or outside `[0, 1]`,
  or the mixture is malformed; SK_ERR_NULL for NULL m, or NULL arrays
  with n > 0; SK_ERR_SIZE if n floats cannot exist. On error nothing is
  written; n = 0 is SK_OK.
@@ -3074,8 +3052,8 @@ size_t sk_particle_mie_buffer_len(double diameter_um, double wavelength_um, sk_c
  holds len >= sk_particle_mie_buffer_len values, work work_len >= 4096
  doubles. Takes about 0.15 s at x = 300 with a table, 0.25 to 0.4 s
  without: build once per medium.
- SK_ERR_NULL for NULL buf, work or out; SK_ERR_DOMAIN for invalid input
- or overlapping buffers; SK_ERR_SIZE for short buffers. *out is written
+ SK_ERR_NULL for NULL buf, work or out; SK_ERR_DOMAIN for invalid input;
+ SK_ERR_OVERLAP for overlapping buffers; SK_ERR_SIZE for short buffers. *out is written
  only on success.
  */
 sk_status sk_phase_particle_mie(double diameter_um,
@@ -3102,7 +3080,7 @@ sk_status sk_phase_particle_mie(double diameter_um,
  NaN. work holds work_len >= 4096 doubles and must not overlap the data.
  Takes about 0.25 s without a table: build once per medium. SK_ERR_NULL
  for NULL pointers; SK_ERR_DOMAIN for a tolerance outside (0, 1), invalid
- data or overlapping arrays; SK_ERR_SIZE for m < 2 or a short work. *out
+ data; SK_ERR_OVERLAP for overlapping arrays; SK_ERR_SIZE for m < 2 or a short work. *out
  is written only on success.
  */
 sk_status sk_phase_particle_measured(const double *cos_theta,
@@ -3196,7 +3174,7 @@ sk_vec3_f64 sk_phase_sample_dir_f64(const sk_phase_f64 *p,
 
 /*
  `cos_out[i] = sk_phase_sample_cos(p, u[i])` for `i < n`. `u` and `cos_out`
- may be the same array; other overlaps give SK_ERR_DOMAIN. SK_ERR_DOMAIN if
+ may be the same array; other overlaps give SK_ERR_OVERLAP. SK_ERR_DOMAIN if
  any `u[i]` is NaN or outside `[0, 1]`, or p is unconstructed; SK_ERR_NULL for NULL
  p, or NULL arrays with n > 0; SK_ERR_SIZE if n floats cannot exist. On
  error nothing is written; n = 0 is SK_OK.
@@ -3218,7 +3196,7 @@ sk_status sk_phase_sample_cos_n_f64(const sk_phase_f64 *p,
  goes to `(out_x[i], out_y[i], out_z[i])` and its density to `pdf_out[i]`,
  bit for bit the scalar call's. pdf_out may be NULL. An output array may
  be the same array as an input (in place); any other overlap, or outputs
- overlapping each other, is SK_ERR_DOMAIN, as is any `u1[i]` or `u2[i]` NaN
+ overlapping each other, is SK_ERR_OVERLAP; SK_ERR_DOMAIN for any `u1[i]` or `u2[i]` NaN
  or outside [0, 1], or an unconstructed p. SK_ERR_NULL for a NULL p or a
  NULL array (other than pdf_out) with n > 0; SK_ERR_SIZE if n floats
  cannot exist. On error nothing is written; n = 0 is SK_OK. The loop runs
@@ -3510,7 +3488,7 @@ double sk_rayleigh_scattering_coeff(double number_density,
  order, `(out_x[i], out_y[i], out_z[i])` is what sk_rayleigh_sample_dir
  would give for `(w_x[i], w_y[i], w_z[i])` with the same rng, bit for bit
  (the generator is advanced exactly as by n scalar calls). An output may be
- the same array as an input (in place); other overlaps are SK_ERR_DOMAIN.
+ the same array as an input (in place); other overlaps are SK_ERR_OVERLAP.
  SK_ERR_METHOD for an unknown method; SK_ERR_NULL for a NULL rng, NULL
  rng->next_u64 or a NULL array with n > 0; SK_ERR_SIZE if n floats cannot
  exist. On error nothing is written; n = 0 is SK_OK.
@@ -3551,7 +3529,8 @@ sk_status sk_rayleigh_sample_dir_n_f64(uint32_t method,
  event is an unbiased estimate for channel c. Errors as
  sk_delta_track_majorants, and SK_ERR_SIZE for 0 or more than 16
  channels; SK_ERR_DOMAIN for a negative or non-finite coefficient, a hero
- out of range, or output arrays that overlap an input or each other.
+ out of range; SK_ERR_OVERLAP for output arrays that overlap an input or
+ each other.
  Nothing is written on failure.
  */
 sk_status sk_delta_track_spectral(const sk_majorants *m,
@@ -3879,7 +3858,7 @@ sk_status sk_table_inverse_f64(const sk_phase_f64 *p,
  density is linear in cos theta between the points and zero outside their
  range. buf holds len floats, at least 2(n + 1). SK_ERR_NULL for NULL
  pointers; SK_ERR_SIZE for m < 2, n = 0 or len too small; SK_ERR_DOMAIN for
- invalid data.
+ invalid data; SK_ERR_OVERLAP for a buf that shares memory with the data.
  */
 sk_status sk_table_measured(const float *cos_theta,
                             const float *pdf,
@@ -4217,7 +4196,7 @@ sk_status sk_telescoping_transmittance_fn_f64(sk_medium_fn_f64 f,
  reaches into it, so the minorants bound the density from below
  everywhere. Writes *ext_out borrowing both arrays. SK_ERR_NULL for NULL
  pointers; SK_ERR_SIZE for a zero dimension, out_len <
- sk_majorant_len(mx, my, mz) or a malformed grid; SK_ERR_DOMAIN if the
+ sk_majorant_len(mx, my, mz) or a malformed grid; SK_ERR_OVERLAP if the
  two arrays overlap.
  */
 sk_status sk_extrema_build(const sk_grid *g,

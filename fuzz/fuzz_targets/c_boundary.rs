@@ -43,6 +43,9 @@ fuzz_target!(|data: &[u8]| {
     let mut p = sk_phase { opaque: [0; 32] };
     let n = f.len();
     let mut out = vec![0.0f32; n];
+    // Any value has a status string, never NULL.
+    let text = sk_status_string(word(0) | (word(1) << 8) | (word(2) << 24));
+    assert!(!text.is_null());
     unsafe {
         let statuses = [
             sk_phase_hg(x(0), &mut p),

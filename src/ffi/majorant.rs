@@ -13,7 +13,10 @@ use core::ffi::c_void;
 /// one per cell of an mx*my*mz division of it, borrowing the caller's array
 /// (x fastest), which must outlive it. Build it with sk_majorants_build
 /// (from a grid) or sk_majorants_new (your own bounds); the fields are what
-/// that validated.
+/// that validated. Every value is checked there, once: a call checks only
+/// the fields (constant time, whatever the size of the grid), and a walk
+/// reports a value changed since (negative, NaN or infinite) as
+/// SK_ERR_DOMAIN when it reaches its cell.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct sk_majorants {
@@ -202,7 +205,11 @@ fn dims(m: [u32; 3]) -> [usize; 3] {
     m.map(|x| x as usize)
 }
 
-/// The Rust majorants behind a C value: `Err` for NULL or malformed fields.
+/// The Rust majorants behind a C value, in constant time: `Err` for NULL
+/// or malformed fields. The values were checked when the majorants were
+/// built; a walk reports one the caller changed since as `SK_ERR_DOMAIN`
+/// when it reaches its cell (`Majorants::from_parts`), so a call costs the
+/// same at 1 cell or 128^3.
 pub(crate) unsafe fn load_maj<'a, S: MajStore>(
     m: *const S,
 ) -> Result<Majorants<'a, S::T>, sk_status> {
@@ -213,7 +220,20 @@ pub(crate) unsafe fn load_maj<'a, S: MajStore>(
         .unpack();
     let count = majorant_len(dims(n)).ok_or(sk_status::SK_ERR_SIZE)?;
     let sigma = unsafe { slice_in(ptr, count) }?;
-    Majorants::new(sigma, dims(n), lo.to_vec(), hi.to_vec()).map_err(Into::into)
+    Majorants::from_parts(sigma, dims(n), lo.to_vec(), hi.to_vec()).map_err(Into::into)
+}
+
+/// [`load_maj`] with every value checked (finite, `>= 0`), for the
+/// constructors that take majorants: what they build is then checked once.
+pub(crate) unsafe fn load_maj_checked<'a, S: MajStore>(
+    m: *const S,
+) -> Result<Majorants<'a, S::T>, sk_status> {
+    let maj = unsafe { load_maj(m) }?;
+    let (lo, hi) = maj.bounds();
+    let (ptr, _, _, _) = unsafe { &*m }.unpack();
+    let count = majorant_len(maj.dims()).ok_or(sk_status::SK_ERR_SIZE)?;
+    let sigma = unsafe { slice_in(ptr, count) }?;
+    Majorants::new(sigma, maj.dims(), lo, hi).map_err(Into::into)
 }
 
 /// Writes `Ok` values through `out` (checked non-NULL by the caller).

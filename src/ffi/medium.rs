@@ -272,7 +272,7 @@ unsafe fn homogeneous<T: Real>(
     }
     // weight_out is written through a &mut slice: it must not alias the inputs.
     if overlaps(weight_out, sigma_t, channels) || overlaps(weight_out, sigma_s, channels) {
-        return sk_status::SK_ERR_DOMAIN;
+        return sk_status::SK_ERR_OVERLAP;
     }
     let slices = unsafe {
         (
@@ -424,7 +424,7 @@ pub extern "C" fn sk_transmittance_f64(sigma_t: f64, distance: f64) -> f64 {
 /// event), *scattered_out 1 for a medium event and 0 for the surface, and
 /// `weight_out[c]` the weight per channel (sigma_s Tr / mean(sigma_t Tr) or
 /// Tr / mean(Tr)). sigma_t, sigma_s and weight_out hold `channels` values;
-/// weight_out must not overlap the inputs (SK_ERR_DOMAIN).
+/// weight_out must not overlap the inputs (SK_ERR_OVERLAP).
 /// SK_ERR_SIZE for channels = 0; SK_ERR_NULL for NULL pointers;
 /// SK_ERR_DOMAIN for negative or non-finite coefficients, sigma_s > sigma_t
 /// or t_max negative or NaN. Nothing is written on error.

@@ -184,7 +184,7 @@ pub unsafe extern "C" fn sk_mie_table_sizes(
 /// `cos_theta[j]` (decreasing from 1 to -1, the angles crowded into the
 /// forward peak, which is about 1/x radians wide) and `pdf[j]`, the phase
 /// function per steradian there, for j < count. SK_ERR_NULL for NULL
-/// pointers; SK_ERR_DOMAIN for overlapping arrays; SK_ERR_SIZE for count <
+/// pointers; SK_ERR_OVERLAP for overlapping arrays; SK_ERR_SIZE for count <
 /// 2, a malformed sphere, or too many angles to give distinct cosines.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_mie_tabulate(
@@ -204,7 +204,7 @@ pub unsafe extern "C" fn sk_mie_tabulate(
     }
     // Both arrays are written through &mut slices: they must not share memory.
     if overlaps(cos_theta.cast_const(), pdf.cast_const(), count) {
-        return sk_status::SK_ERR_DOMAIN;
+        return sk_status::SK_ERR_OVERLAP;
     }
     let c = match unsafe { slice_out(cos_theta, count) } {
         Ok(s) => s,

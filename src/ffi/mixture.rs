@@ -1,13 +1,14 @@
 //! Mixtures of phase functions and tables.
 
 use super::phase::{PhaseStore, load};
+use super::slot::{self, Slot};
 use super::table::{TableStore, load_table};
 use super::{
     CVec, map_arrays, sk_phase, sk_phase_f64, sk_status, sk_table, sk_table_f64, sk_vec3,
-    sk_vec3_f64,
+    sk_vec3_f64, write_result,
 };
 use crate::math::real::Real;
-use crate::mixture::{MAX_PARTS, Mixture, Part, lobe};
+use crate::mixture::{MAX_PARTS, Mixture, Part};
 use crate::phase::{PhaseFunction, check_uniforms};
 
 /// One component for sk_mixture_new: exactly one of phase and table
@@ -35,121 +36,67 @@ pub struct sk_mixture_part_f64 {
     pub weight: f64,
 }
 
-/// A mixture of up to 8 phase functions and tables (sum of w_i p_i). A plain
-/// value holding copies of the components: build it with sk_mixture_new,
-/// then copy it freely; a table component's data stays borrowed and must
-/// outlive it. Its fields are private.
+/// A mixture of up to 8 phase functions and tables (sum of w_i p_i), as
+/// sk_mixture_new built it: the components, their weights and what the
+/// exact inverse needs, checked and prepared once, so that every call
+/// loads it in constant time. A plain value: copy it freely; a table
+/// component's data stays borrowed and must outlive it. Its contents are
+/// private (a zeroed or never-built mixture gives NaN or SK_ERR_DOMAIN).
+/// 4 KiB; the value it holds takes 2.4 KiB (f32) or 2.6 KiB (double), and
+/// the rest is room for later releases.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct sk_mixture {
-    /// Private: the number of components.
-    pub n: u32,
-    /// Private: 1 where component i is a table.
-    pub is_table: [u32; 8],
-    /// Private: the weights as given.
-    pub weight: [f32; 8],
-    /// Private: the running sums of the normalised weights.
-    pub end: [f32; 8],
-    /// Private: the phase components.
-    pub phase: [sk_phase; 8],
-    /// Private: the table components.
-    pub table: [sk_table; 8],
+    /// Private storage; do not read or write.
+    pub opaque: [u64; 512],
 }
 
 /// A mixture (double); see `sk_mixture`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct sk_mixture_f64 {
-    /// Private: the number of components.
-    pub n: u32,
-    /// Private: 1 where component i is a table.
-    pub is_table: [u32; 8],
-    /// Private: the weights as given.
-    pub weight: [f64; 8],
-    /// Private: the running sums of the normalised weights.
-    pub end: [f64; 8],
-    /// Private: the phase components.
-    pub phase: [sk_phase_f64; 8],
-    /// Private: the table components.
-    pub table: [sk_table_f64; 8],
+    /// Private storage; do not read or write.
+    pub opaque: [u64; 512],
 }
 
 const _: () = assert!(MAX_PARTS == 8);
 
 /// A C mixture type with its part, phase and table types.
-pub(super) trait MixStore: Copy {
+pub(super) trait MixStore: Slot {
     type T: Real;
+    /// The stored value is the mixture (both ways).
+    fn mix(v: &Self::Value) -> &Mixture<'static, Self::T>;
+    fn wrap(m: Mixture<'static, Self::T>) -> Self::Value;
     type P: PhaseStore<T = Self::T>;
     type Tb: TableStore<T = Self::T>;
     type Part: Copy;
     type V: CVec<T = Self::T>;
-    #[allow(clippy::type_complexity)]
-    fn fields(&self) -> (u32, &[u32; 8], &[Self::T; 8], &[Self::P; 8], &[Self::Tb; 8]);
     fn part(p: &Self::Part) -> (*const Self::P, *const Self::Tb, Self::T);
-    fn empty() -> Self;
-    fn set(&mut self, i: usize, phase: Option<Self::P>, table: Option<Self::Tb>, w: Self::T);
-    fn finish(&mut self, n: usize, end: [Self::T; 8]);
-    fn end(&self) -> &[Self::T; 8];
 }
 
 macro_rules! impl_mix_store {
-    ($m:ident, $part:ident, $p:ident, $tb:ident, $t:ty, $v:ty) => {
+    ($m:ident, $part:ident, $p:ident, $tb:ident, $t:ty, $v:ty, $tag:expr, $words:expr) => {
+        impl Slot for $m {
+            type Value = Mixture<'static, $t>;
+            const TAG: u32 = $tag;
+            const ZEROED: Self = $m {
+                opaque: [0; $words],
+            };
+        }
         impl MixStore for $m {
             type T = $t;
             type P = $p;
             type Tb = $tb;
             type Part = $part;
             type V = $v;
-            fn fields(&self) -> (u32, &[u32; 8], &[$t; 8], &[$p; 8], &[$tb; 8]) {
-                (
-                    self.n,
-                    &self.is_table,
-                    &self.weight,
-                    &self.phase,
-                    &self.table,
-                )
+            fn mix<'b>(v: &'b Mixture<'static, $t>) -> &'b Mixture<'static, $t> {
+                v
+            }
+            fn wrap(m: Mixture<'static, $t>) -> Mixture<'static, $t> {
+                m
             }
             fn part(p: &$part) -> (*const $p, *const $tb, $t) {
                 (p.phase, p.table, p.weight)
-            }
-            fn empty() -> Self {
-                $m {
-                    n: 0,
-                    is_table: [0; 8],
-                    weight: [0.0; 8],
-                    end: [0.0; 8],
-                    phase: [<$p as PhaseStore>::ZEROED; 8],
-                    table: [$tb {
-                        data: core::ptr::null(),
-                        n: 0,
-                        kind: 0,
-                    }; 8],
-                }
-            }
-            fn finish(&mut self, n: usize, end: [$t; 8]) {
-                (self.n, self.end) = (n as u32, end);
-            }
-            fn end(&self) -> &[$t; 8] {
-                &self.end
-            }
-            fn set(&mut self, i: usize, phase: Option<$p>, table: Option<$tb>, w: $t) {
-                if let (Some(slot), Some(flag), Some(weight)) = (
-                    self.phase.get_mut(i),
-                    self.is_table.get_mut(i),
-                    self.weight.get_mut(i),
-                ) {
-                    *weight = w;
-                    match (phase, table) {
-                        (Some(p), _) => (*slot, *flag) = (p, 0),
-                        (_, Some(t)) => {
-                            *flag = 1;
-                            if let Some(s) = self.table.get_mut(i) {
-                                *s = t;
-                            }
-                        }
-                        _ => {}
-                    }
-                }
             }
         }
     };
@@ -160,7 +107,9 @@ impl_mix_store!(
     sk_phase,
     sk_table,
     f32,
-    sk_vec3
+    sk_vec3,
+    0x534b_4d78,
+    512
 );
 impl_mix_store!(
     sk_mixture_f64,
@@ -168,51 +117,22 @@ impl_mix_store!(
     sk_phase_f64,
     sk_table_f64,
     f64,
-    sk_vec3_f64
+    sk_vec3_f64,
+    0x534b_4d79,
+    512
 );
 
-type Parts<'a, T> = [(Part<'a, T>, T); MAX_PARTS];
-
-/// The components behind `m` and how many: `Err` for NULL, a count out of
-/// range, or a component that does not load.
-unsafe fn view<'a, S: MixStore>(m: *const S) -> Result<(Parts<'a, S::T>, usize), sk_status> {
-    // SAFETY: a non-NULL m points to a mixture (module contract).
-    let m = unsafe { m.as_ref() }.ok_or(sk_status::SK_ERR_NULL)?;
-    let (n, is_table, weight, phase, table) = m.fields();
-    let n = n as usize;
-    if n == 0 || n > MAX_PARTS {
-        return Err(sk_status::SK_ERR_SIZE);
-    }
-    let filler = (Part::Phase(crate::phase::Phase::isotropic()), S::T::ZERO);
-    let mut parts = [filler; MAX_PARTS];
-    let rows = parts.iter_mut().zip(
-        is_table
-            .iter()
-            .zip(weight.iter().zip(phase.iter().zip(table.iter()))),
-    );
-    for (slot, (&t, (&w, (p, tb)))) in rows.take(n) {
-        let part = if t == 1 {
-            Part::Table(unsafe { load_table(tb) }.ok_or(sk_status::SK_ERR_SIZE)?)
-        } else {
-            Part::Phase(*unsafe { load(p) }.ok_or(sk_status::SK_ERR_DOMAIN)?)
-        };
-        *slot = (part, w);
-    }
-    Ok((parts, n))
-}
-
-/// The narrow Rust mixture behind `m` (no f64 copies), or the status of
-/// what stopped it.
+/// The mixture behind `m`, in constant time: `SK_ERR_NULL` for NULL,
+/// `SK_ERR_DOMAIN` for one sk_mixture_new did not build.
 pub(super) unsafe fn mixture_at<'a, S: MixStore>(
     m: *const S,
-) -> Result<Mixture<'a, S::T>, sk_status> {
-    let (parts, n) = unsafe { view(m) }?;
-    Mixture::new_narrow(parts.get(..n).unwrap_or(&[])).map_err(sk_status::from)
-}
-
-/// The light Rust mixture behind `m` (no f64 copies), or `None`.
-unsafe fn light<'a, S: MixStore>(m: *const S) -> Option<Mixture<'a, S::T>> {
-    unsafe { mixture_at(m) }.ok()
+) -> Result<&'a Mixture<'static, S::T>, sk_status> {
+    if m.is_null() {
+        return Err(sk_status::SK_ERR_NULL);
+    }
+    unsafe { slot::load(m) }
+        .map(S::mix)
+        .ok_or(sk_status::SK_ERR_DOMAIN)
 }
 
 unsafe fn new_mixture<S: MixStore>(parts: *const S::Part, n: usize, out: *mut S) -> sk_status {
@@ -222,33 +142,21 @@ unsafe fn new_mixture<S: MixStore>(parts: *const S::Part, n: usize, out: *mut S)
     if n == 0 || n > MAX_PARTS {
         return sk_status::SK_ERR_SIZE;
     }
-    let mut m = S::empty();
     // SAFETY: parts points to n readable parts (the caller's contract).
     let given = unsafe { core::slice::from_raw_parts(parts, n) };
-    for (i, part) in given.iter().enumerate() {
+    let filler = (Part::Phase(crate::phase::Phase::isotropic()), S::T::ZERO);
+    let mut held = [filler; MAX_PARTS];
+    for (slot, part) in held.iter_mut().zip(given) {
         let (p, t, w) = S::part(part);
         match unsafe { part_at(p, t) } {
-            Ok(Part::Phase(_)) => m.set(i, Some(unsafe { *p }), None, w),
-            Ok(Part::Table(_)) => m.set(i, None, Some(unsafe { *t }), w),
+            Ok(x) => *slot = (x, w),
             Err(e) => return e,
         }
     }
-    // The weights are checked by building the mixture, which also gives
-    // the running sums the lobe choice reads.
-    m.finish(n, [S::T::ZERO; 8]);
-    let built = match unsafe { view(&m) } {
-        Ok((ps, k)) => Mixture::new_narrow(ps.get(..k).unwrap_or(&[])).map(|x| x.ends()),
-        Err(e) => return e,
-    };
-    match built {
-        Ok(end) => {
-            m.finish(n, end);
-            // SAFETY: out checked non-NULL above.
-            unsafe { out.write(m) };
-            sk_status::SK_OK
-        }
-        Err(e) => e.into(),
-    }
+    // The weights are checked here; the f64 copies of the models and the
+    // running sums the lobe choice reads are made once, here.
+    let built = Mixture::new(held.get(..n).unwrap_or(&[]));
+    unsafe { write_result(out, built.map(|m| slot::store::<S>(S::wrap(m)))) }
 }
 
 /// The component behind a (phase, table) pair of pointers, exactly one
@@ -270,40 +178,9 @@ pub(super) unsafe fn part_at<'a, P: PhaseStore, Tb: TableStore<T = P::T>>(
     }
 }
 
-/// The lobe choice straight from the C value: the component whose share
-/// of `[0, 1]` holds `u`, loaded alone and sampled at `u` rescaled (as
-/// [`Mixture::sample_cos_by_lobe`], bit for bit).
-unsafe fn by_lobe<S: MixStore>(m: *const S, u: S::T) -> S::T {
-    // SAFETY: a non-NULL m points to a mixture (module contract).
-    let Some(mix) = (unsafe { m.as_ref() }) else {
-        return S::T::NAN;
-    };
-    let (n, is_table, _, phase, table) = mix.fields();
-    let n = (n as usize).min(MAX_PARTS);
-    let Some((i, v)) = lobe(mix.end().get(..n).unwrap_or(&[]), u) else {
-        return S::T::NAN;
-    };
-    match (is_table.get(i), phase.get(i), table.get(i)) {
-        (Some(1), _, Some(t)) => unsafe { load_table(t) }.map_or(S::T::NAN, |t| t.sample_cos(v)),
-        (Some(_), Some(p), _) => unsafe { load(p) }.map_or(S::T::NAN, |p| p.sample_cos(v)),
-        _ => S::T::NAN,
-    }
-}
-
-/// `f` of the light mixture, NaN when it does not load.
+/// `f` of the mixture, NaN when it does not load.
 unsafe fn with<S: MixStore>(m: *const S, f: impl Fn(&Mixture<'_, S::T>) -> S::T) -> S::T {
-    unsafe { light(m) }.map_or(S::T::NAN, |m| f(&m))
-}
-
-/// The exact inverse, from the full mixture.
-unsafe fn exact<S: MixStore>(m: *const S, u: S::T) -> S::T {
-    let Ok((parts, n)) = (unsafe { view::<S>(m) }) else {
-        return S::T::NAN;
-    };
-    match Mixture::new(parts.get(..n).unwrap_or(&[])) {
-        Ok(m) => m.sample_cos(u),
-        Err(_) => S::T::NAN,
-    }
+    unsafe { mixture_at(m) }.map_or(S::T::NAN, f)
 }
 
 unsafe fn sample_dir<S: MixStore>(
@@ -312,9 +189,9 @@ unsafe fn sample_dir<S: MixStore>(
     (u1, u2): (S::T, S::T),
     pdf_out: *mut S::T,
 ) -> S::V {
-    let (d, pdf) = match unsafe { light(m) } {
-        Some(m) => m.sample_dir_by_lobe(w_in.to_vec(), u1, u2),
-        None => {
+    let (d, pdf) = match unsafe { mixture_at(m) } {
+        Ok(m) => m.sample_dir_by_lobe(w_in.to_vec(), u1, u2),
+        Err(_) => {
             let nan = S::T::NAN;
             (crate::math::geometry::Vec3::new(nan, nan, nan), nan)
         }
@@ -326,8 +203,8 @@ unsafe fn sample_dir<S: MixStore>(
     S::V::from_vec(d)
 }
 
-/// The batch of `u` through the exact inverse (`exact = true`, the full
-/// mixture built once for the batch) or the lobe choice.
+/// The batch of `u` through the exact inverse (`exact = true`) or the lobe
+/// choice.
 unsafe fn sample_cos_n<S: MixStore>(
     m: *const S,
     u: *const S::T,
@@ -335,20 +212,9 @@ unsafe fn sample_cos_n<S: MixStore>(
     n: usize,
     exact: bool,
 ) -> sk_status {
-    if m.is_null() {
-        return sk_status::SK_ERR_NULL;
-    }
-    let Ok((parts, k)) = (unsafe { view::<S>(m) }) else {
-        return sk_status::SK_ERR_DOMAIN;
-    };
-    let parts = parts.get(..k).unwrap_or(&[]);
-    let built = if exact {
-        Mixture::new(parts)
-    } else {
-        Mixture::new_narrow(parts)
-    };
-    let Ok(mix) = built else {
-        return sk_status::SK_ERR_DOMAIN;
+    let mix = match unsafe { mixture_at(m) } {
+        Ok(mix) => mix,
+        Err(e) => return e,
     };
     unsafe {
         map_arrays(u, cos_out, n, check_uniforms, |u, out| {
@@ -430,7 +296,7 @@ pub unsafe extern "C" fn sk_mixture_mean_cosine_f64(m: *const sk_mixture_f64) ->
 /// fast, not monotone in u. NaN for NaN u, NULL or a bad mixture.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_mixture_sample_cos_by_lobe(m: *const sk_mixture, u: f32) -> f32 {
-    unsafe { by_lobe(m, u) }
+    unsafe { with(m, |m| m.sample_cos_by_lobe(u)) }
 }
 
 /// Double twin of `sk_mixture_sample_cos_by_lobe`.
@@ -439,7 +305,7 @@ pub unsafe extern "C" fn sk_mixture_sample_cos_by_lobe_f64(
     m: *const sk_mixture_f64,
     u: f64,
 ) -> f64 {
-    unsafe { by_lobe(m, u) }
+    unsafe { with(m, |m| m.sample_cos_by_lobe(u)) }
 }
 
 /// cos theta by the exact inverse of the mixture's CDF: monotone in u (for
@@ -448,19 +314,18 @@ pub unsafe extern "C" fn sk_mixture_sample_cos_by_lobe_f64(
 /// sk_mixture_sample_cos_by_lobe.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_mixture_sample_cos(m: *const sk_mixture, u: f32) -> f32 {
-    unsafe { exact(m, u) }
+    unsafe { with(m, |m| m.sample_cos(u)) }
 }
 
 /// Double twin of `sk_mixture_sample_cos`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_mixture_sample_cos_f64(m: *const sk_mixture_f64, u: f64) -> f64 {
-    unsafe { exact(m, u) }
+    unsafe { with(m, |m| m.sample_cos(u)) }
 }
 
-/// `cos_out[i] = sk_mixture_sample_cos(m, u[i])` for `i < n`, the mixture
-/// built once for the batch (the single call rebuilds it each time). `u`
+/// `cos_out[i] = sk_mixture_sample_cos(m, u[i])` for `i < n`. `u`
 /// and `cos_out` may be the same array; other overlaps give
-/// SK_ERR_DOMAIN. SK_ERR_DOMAIN if any `u[i]` is NaN or outside `[0, 1]`,
+/// SK_ERR_OVERLAP. SK_ERR_DOMAIN if any `u[i]` is NaN or outside `[0, 1]`,
 /// or the mixture is malformed; SK_ERR_NULL for NULL m, or NULL arrays
 /// with n > 0; SK_ERR_SIZE if n floats cannot exist. On error nothing is
 /// written; n = 0 is SK_OK.

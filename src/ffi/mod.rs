@@ -43,6 +43,7 @@ mod phase;
 mod polarization;
 mod polydisperse;
 mod rayleigh;
+mod slot;
 mod spectral;
 mod spectral_phase;
 mod surface;
@@ -98,7 +99,40 @@ pub enum sk_status {
     SK_ERR_METHOD = 4,
     /// Volume tracking used up its step budget before it could answer.
     SK_ERR_BUDGET = 5,
+    /// Arrays that must not share memory do (an output overlapping an
+    /// input or another output; in place is allowed where documented).
+    SK_ERR_OVERLAP = 6,
 }
+
+/// A short English description of `status` (an sk_status value), as a
+/// static NUL-terminated string: "ok", "NULL pointer", ...; "unknown
+/// status" for a value that is no sk_status. Never NULL.
+#[unsafe(no_mangle)]
+pub extern "C" fn sk_status_string(status: u32) -> *const c_char {
+    let s: &'static str = match status {
+        0 => "ok\0",
+        1 => "NULL pointer\0",
+        2 => "parameter NaN, infinite or outside its domain\0",
+        3 => "buffer too small or count out of range\0",
+        4 => "enum value out of range\0",
+        5 => "step budget used up\0",
+        6 => "arrays overlap\0",
+        _ => "unknown status\0",
+    };
+    s.as_ptr().cast()
+}
+
+/// Every status has its own string (`sk_status_string`): the compiler
+/// stops here when a status is added without one.
+const _: fn(sk_status) -> u32 = |s| match s {
+    sk_status::SK_OK
+    | sk_status::SK_ERR_NULL
+    | sk_status::SK_ERR_DOMAIN
+    | sk_status::SK_ERR_SIZE
+    | sk_status::SK_ERR_METHOD
+    | sk_status::SK_ERR_BUDGET
+    | sk_status::SK_ERR_OVERLAP => s as u32,
+};
 
 impl From<Error> for sk_status {
     fn from(e: Error) -> Self {
@@ -299,13 +333,19 @@ pub(crate) unsafe fn slice_out<'a, T>(p: *mut T, n: usize) -> Result<&'a mut [T]
 
 /// True when the arrays of `n` elements at `a` and `b` share memory.
 pub(crate) fn overlaps<T>(a: *const T, b: *const T, n: usize) -> bool {
-    let bytes = n.saturating_mul(core::mem::size_of::<T>());
-    let (a, b) = (a as usize, b as usize);
-    n > 0 && a < b.saturating_add(bytes) && b < a.saturating_add(bytes)
+    overlaps_len(a, n, b, n)
+}
+
+/// True when the array of `na` elements at `a` and that of `nb` at `b`
+/// share memory.
+pub(crate) fn overlaps_len<T, U>(a: *const T, na: usize, b: *const U, nb: usize) -> bool {
+    let ea = (a as usize).saturating_add(na.saturating_mul(core::mem::size_of::<T>()));
+    let eb = (b as usize).saturating_add(nb.saturating_mul(core::mem::size_of::<U>()));
+    na > 0 && nb > 0 && (a as usize) < eb && (b as usize) < ea
 }
 
 /// Runs `f(u, out)` over two C arrays of `n` elements that are either
-/// disjoint or the same array (in place); partial overlap is `SK_ERR_DOMAIN`.
+/// disjoint or the same array (in place); partial overlap is `SK_ERR_OVERLAP`.
 /// In place, the inputs are copied in chunks to the stack first, after `check`
 /// has seen all of them, so nothing is written unless every input is valid.
 pub(crate) unsafe fn map_arrays<T: Real>(
@@ -345,7 +385,7 @@ pub(crate) unsafe fn map_arrays<T: Real>(
         }
         sk_status::SK_OK
     } else if overlaps(u, out.cast_const(), n) {
-        sk_status::SK_ERR_DOMAIN
+        sk_status::SK_ERR_OVERLAP
     } else {
         let out_s = unsafe { core::slice::from_raw_parts_mut(out, n) };
         match f(u_s, out_s) {
@@ -368,7 +408,7 @@ pub(crate) const SOA_BLOCK: usize = 64;
 /// Checks the arrays of a structure-of-arrays batch of `n` elements: every
 /// input and every non-optional output non-NULL (`SK_ERR_NULL`), `n`
 /// elements possible (`SK_ERR_SIZE`); no output overlapping another output,
-/// nor an input unless it is that same array (`SK_ERR_DOMAIN`). `outputs`
+/// nor an input unless it is that same array (`SK_ERR_OVERLAP`). `outputs`
 /// pairs each pointer with whether it may be NULL.
 pub(crate) fn check_soa<T>(
     inputs: &[*const T],
@@ -394,7 +434,7 @@ pub(crate) fn check_soa<T>(
         let clash_out = outs.clone().skip(k + 1).any(|o2| overlaps(o, o2, n));
         let clash_in = inputs.iter().any(|&i| i != o && overlaps(i, o, n));
         if clash_out || clash_in {
-            return Err(sk_status::SK_ERR_DOMAIN);
+            return Err(sk_status::SK_ERR_OVERLAP);
         }
     }
     Ok(())

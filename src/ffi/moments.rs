@@ -26,7 +26,7 @@ unsafe fn mixture_moments<M: super::mixture::MixStore>(
     out: *mut M::T,
     n: usize,
 ) -> sk_status {
-    if m.is_null() || out.is_null() {
+    if out.is_null() {
         return sk_status::SK_ERR_NULL;
     }
     let mix = match unsafe { mixture_at(m) } {

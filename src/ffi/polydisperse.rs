@@ -183,7 +183,7 @@ pub unsafe extern "C" fn sk_polydisperse_average(
     }
     // phase and scratch are written through &mut slices: no shared memory.
     if count > 0 && overlaps(phase.cast_const(), scratch.cast_const(), count) {
-        return sk_status::SK_ERR_DOMAIN;
+        return sk_status::SK_ERR_OVERLAP;
     }
     let slices = unsafe {
         (

@@ -176,7 +176,7 @@ pub extern "C" fn sk_rayleigh_scattering_coeff(
 /// order, `(out_x[i], out_y[i], out_z[i])` is what sk_rayleigh_sample_dir
 /// would give for `(w_x[i], w_y[i], w_z[i])` with the same rng, bit for bit
 /// (the generator is advanced exactly as by n scalar calls). An output may be
-/// the same array as an input (in place); other overlaps are SK_ERR_DOMAIN.
+/// the same array as an input (in place); other overlaps are SK_ERR_OVERLAP.
 /// SK_ERR_METHOD for an unknown method; SK_ERR_NULL for a NULL rng, NULL
 /// rng->next_u64 or a NULL array with n > 0; SK_ERR_SIZE if n floats cannot
 /// exist. On error nothing is written; n = 0 is SK_OK.

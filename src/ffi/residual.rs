@@ -1,6 +1,6 @@
 //! Residual ratio tracking: majorants paired with minorants.
 
-use super::majorant::{MajStore, finish, grid_at, load_maj, rng_for, write};
+use super::majorant::{MajStore, finish, grid_at, load_maj, load_maj_checked, rng_for, write};
 use super::medium::{GridStore, load};
 use super::{
     CFn, CVec, bind, overlaps, sk_majorants, sk_majorants_f64, sk_rng, sk_status, slice_out,
@@ -94,7 +94,7 @@ where
         return sk_status::SK_ERR_SIZE;
     }
     if overlaps(max_out, min_out, count) {
-        return sk_status::SK_ERR_DOMAIN;
+        return sk_status::SK_ERR_OVERLAP;
     }
     let (max, min) = match unsafe { (slice_out(max_out, count), slice_out(min_out, count)) } {
         (Ok(a), Ok(b)) => (a, b),
@@ -116,7 +116,7 @@ unsafe fn new_ext<E: ExtStore>(max: *const E::M, min: *const E::M, ext_out: *mut
     if max.is_null() || min.is_null() || ext_out.is_null() {
         return sk_status::SK_ERR_NULL;
     }
-    let (a, b) = unsafe { (load_maj(max), load_maj(min)) };
+    let (a, b) = unsafe { (load_maj_checked(max), load_maj_checked(min)) };
     let (a, b): (Majorants<'_, T<E>>, Majorants<'_, T<E>>) = match (a, b) {
         (Ok(a), Ok(b)) => (a, b),
         (Err(e), _) | (_, Err(e)) => return e,
@@ -181,7 +181,7 @@ unsafe fn track_fn<E: ExtStore>(
 /// reaches into it, so the minorants bound the density from below
 /// everywhere. Writes *ext_out borrowing both arrays. SK_ERR_NULL for NULL
 /// pointers; SK_ERR_SIZE for a zero dimension, out_len <
-/// sk_majorant_len(mx, my, mz) or a malformed grid; SK_ERR_DOMAIN if the
+/// sk_majorant_len(mx, my, mz) or a malformed grid; SK_ERR_OVERLAP if the
 /// two arrays overlap.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]

@@ -100,11 +100,11 @@ where
     // or another output.
     for out in [weight, r_u, r_l] {
         if overlaps(out, sa, n) || overlaps(out, ss, n) {
-            return sk_status::SK_ERR_DOMAIN;
+            return sk_status::SK_ERR_OVERLAP;
         }
     }
     if overlaps(weight, r_u, n) || overlaps(weight, r_l, n) || overlaps(r_u, r_l, n) {
-        return sk_status::SK_ERR_DOMAIN;
+        return sk_status::SK_ERR_OVERLAP;
     }
     let views = unsafe {
         (
@@ -223,7 +223,8 @@ where
 /// event is an unbiased estimate for channel c. Errors as
 /// sk_delta_track_majorants, and SK_ERR_SIZE for 0 or more than 16
 /// channels; SK_ERR_DOMAIN for a negative or non-finite coefficient, a hero
-/// out of range, or output arrays that overlap an input or each other.
+/// out of range; SK_ERR_OVERLAP for output arrays that overlap an input or
+/// each other.
 /// Nothing is written on failure.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_delta_track_spectral(

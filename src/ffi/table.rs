@@ -1,7 +1,9 @@
 //! Tables over caller-owned memory.
 
 use super::phase::{PhaseStore, load};
-use super::{CVec, sk_status, sk_vec3, sk_vec3_f64, slice_in, slice_out, write_result};
+use super::{
+    CVec, overlaps_len, sk_status, sk_vec3, sk_vec3_f64, slice_in, slice_out, write_result,
+};
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
 use crate::table::{Table, TableKind};
@@ -130,6 +132,10 @@ unsafe fn measured<S: TableStore>(
         (Ok(x), Ok(p)) => (x, p),
         (Err(e), _) | (_, Err(e)) => return e,
     };
+    // buf is written through a &mut slice: it must not share the data's memory.
+    if overlaps_len(buf, len, cos_theta, m) || overlaps_len(buf, len, pdf, m) {
+        return sk_status::SK_ERR_OVERLAP;
+    }
     let slice = match unsafe { slice_out(buf, len) } {
         Ok(s) => s,
         Err(e) => return e,
@@ -242,7 +248,7 @@ pub unsafe extern "C" fn sk_table_inverse_f64(
 /// density is linear in cos theta between the points and zero outside their
 /// range. buf holds len floats, at least 2(n + 1). SK_ERR_NULL for NULL
 /// pointers; SK_ERR_SIZE for m < 2, n = 0 or len too small; SK_ERR_DOMAIN for
-/// invalid data.
+/// invalid data; SK_ERR_OVERLAP for a buf that shares memory with the data.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_table_measured(
     cos_theta: *const f32,

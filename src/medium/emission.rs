@@ -118,6 +118,11 @@ pub fn emission_cells<T: Real>(
     let (mut tau, mut radiance) = (T::ZERO, T::ZERO);
     let per_cell = |cell: [usize; 3], length: T| {
         let (s, j) = (sigma_t.at(cell), emitted.at(cell));
+        // A bad emitted value (stored by a caller) stops the walk as a bad
+        // extinction does.
+        if !(j >= T::ZERO && j.is_finite()) {
+            return T::NAN;
+        }
         let x = s * length;
         // (1 − e^{−x})/x as −expm1(−x)/x: 1 − e^{−x} cancels for small x.
         let f = if x > T::ZERO {

@@ -92,6 +92,27 @@ impl<'a, T: Real> Majorants<'a, T> {
         Ok(Majorants { sigma, m, lo, hi })
     }
 
+    /// Majorants from the parts of a value [`Majorants::new`] accepted, as a
+    /// caller that stores them keeps them (the C layer's `sk_majorants`), in
+    /// constant time: [`Error::Size`] for a zero dimension, an overflowing
+    /// product or a short buffer, [`Error::Domain`] for a bad box; the
+    /// values are not scanned. A value that is negative, NaN or infinite
+    /// (changed after it was checked) is reported as [`Error::Domain`] by
+    /// the walk that reaches its cell, never used.
+    pub fn from_parts(
+        sigma: &'a [T],
+        m: [usize; 3],
+        lo: Vec3<T>,
+        hi: Vec3<T>,
+    ) -> Result<Self, Error> {
+        let count = majorant_len(m).ok_or(Error::Size)?;
+        let sigma = sigma.get(..count).ok_or(Error::Size)?;
+        if !valid_box(lo, hi) {
+            return Err(Error::Domain);
+        }
+        Ok(Majorants { sigma, m, lo, hi })
+    }
+
     /// Fills `out` with the majorants of `grid` on an `m` division of its
     /// box, in one pass over the grid, and borrows them: each cell gets
     /// `(σ_a + σ_s)` times the largest grid value whose interpolation
@@ -386,6 +407,12 @@ impl<'a, T: Real> Majorants<'a, T> {
         for _ in 0..=(self.m[0] + self.m[1] + self.m[2]) {
             let t_end = dda.next_face().min_of(tb).max_of(t_cell);
             let value = value_of(dda.cell, t_end - t_cell);
+            // Values are checked here, per cell crossed, not when the
+            // caller's array is loaded (`from_parts`): the cost of a call
+            // does not grow with the grid.
+            if !(value >= T::ZERO && value.is_finite()) {
+                return Err(Error::Domain);
+            }
             let sigma_maj = rate * value;
             let mut t = t_cell;
             // An empty cell (majorant 0) is crossed without a draw.

@@ -132,13 +132,13 @@ impl<'a, T: Real> Extrema<'a, T> {
             Ok((tr == T::ZERO).then_some(()))
         };
         // The control's optical depth is summed in the same walk, cell by
-        // cell. A cell whose minorant exceeds its majorant (values a caller
-        // stored) would be crossed without a draw: the walk notes it.
+        // cell. A cell whose minorant exceeds its majorant or is negative
+        // (values a caller stored) would bias it: the walk notes it.
         let (mut control, mut inverted) = (T::ZERO, false);
         let residual = |cell: [usize; 3], length: T| {
             let (lo, hi) = (self.min.at(cell), self.max.at(cell));
             control += lo * length;
-            inverted |= hi < lo;
+            inverted |= !(lo >= T::ZERO && hi >= lo);
             hi - lo
         };
         let walk = self

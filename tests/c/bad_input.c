@@ -186,7 +186,7 @@ static void phase_queries(void) {
     CHECK(sk_phase_sample_cos_n(&hg, u, out, 3) == SK_ERR_DOMAIN);
     CHECK(out[0] == 7.0f && out[1] == 7.0f && out[2] == 7.0f);
     u[1] = 0.5f;
-    CHECK(sk_phase_sample_cos_n(&hg, u, u + 1, 2) == SK_ERR_DOMAIN); /* partial overlap */
+    CHECK(sk_phase_sample_cos_n(&hg, u, u + 1, 2) == SK_ERR_OVERLAP); /* partial overlap */
     CHECK(sk_phase_sample_cos_n(&hg, u, u, 3) == SK_OK);            /* in place */
 }
 
@@ -369,7 +369,7 @@ static void media(void) {
     CHECK(sk_homogeneous_sample(st, ss, 2, -1.0f, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_DOMAIN);
     CHECK(sk_homogeneous_sample(st, ss, 2, NAN, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_DOMAIN);
     CHECK(sk_homogeneous_sample(st, ss, SIZE_MAX, 1.0f, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_SIZE);
-    CHECK(sk_homogeneous_sample(overlap, overlap + 2, 2, 1.0f, 0.5f, 0.5f, &t, &ev, overlap + 1) == SK_ERR_DOMAIN);
+    CHECK(sk_homogeneous_sample(overlap, overlap + 2, 2, 1.0f, 0.5f, 0.5f, &t, &ev, overlap + 1) == SK_ERR_OVERLAP);
     CHECK(w[0] == 7.0f && t == 7.0f && ev == 77);
     CHECK(sk_homogeneous_sample(st, ss, 2, INFINITY, 0.5f, 0.5f, &t, &ev, w) == SK_OK && ev == 1);
 

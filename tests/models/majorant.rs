@@ -255,6 +255,48 @@ fn a_majorant_that_does_not_bound_is_caught() {
 }
 
 #[test]
+fn values_changed_after_the_check_are_caught_where_a_walk_meets_them() {
+    // Majorants loaded in constant time (`from_parts`, as the C layer loads
+    // a caller's array) are checked per cell crossed: a negative, NaN or
+    // infinite value on the ray is Domain for every estimator that walks
+    // it, a bad value off the ray changes nothing.
+    let values = cloud();
+    let g = Grid::new(&values, 12, 10, 9, 0.4, 1.1).unwrap();
+    let mut store = [0.0; 4 * 4 * 4];
+    Majorants::build(&g, [4; 3], &mut store).unwrap();
+    let (lo, hi) = g.bounds();
+    // Along x at y = z = 0.1: cells (i, 0, 0).
+    let ray = Ray::new(Vec3::new(-0.5, 0.1, 0.1), Vec3::new(1.0, 0.0, 0.0), 3.0);
+    let good = store;
+    let mut r = rng(12);
+    for bad in [-1.0, f64::NAN, f64::INFINITY] {
+        for (cell, on_ray) in [(2usize, true), (4 * 4 * 3 + 5, false)] {
+            let mut s = good;
+            s[cell] = bad;
+            let m = Majorants::from_parts(&s, [4; 3], lo, hi).unwrap();
+            let d = m.delta_track(&g, ray, 1 << 20, &mut r).map(|_| ());
+            let t = m.ratio_track(&g, ray, 1 << 20, &mut r).map(|_| ());
+            let tau = m.optical_depth(ray).map(|_| ());
+            for found in [d, t, tau] {
+                assert_eq!(found.is_err(), on_ray, "{bad} at {cell}: {found:?}");
+                if on_ray {
+                    assert_eq!(found, Err(Error::Domain));
+                }
+            }
+        }
+    }
+    // from_parts checks what is cheap: sizes and the box.
+    assert_eq!(
+        Majorants::from_parts(&good[..63], [4; 3], lo, hi).err(),
+        Some(Error::Size)
+    );
+    assert_eq!(
+        Majorants::from_parts(&good, [4; 3], hi, lo).err(),
+        Some(Error::Domain)
+    );
+}
+
+#[test]
 fn escapes_report_the_exit_and_budgets_run_out() {
     let values = [0.0f64; 8];
     let g = Grid::new(&values, 2, 2, 2, 1.0, 1.0)

@@ -84,8 +84,8 @@ pub extern "C" fn sk_particle_mie_buffer_len(
 /// holds len >= sk_particle_mie_buffer_len values, work work_len >= 4096
 /// doubles. Takes about 0.15 s at x = 300 with a table, 0.25 to 0.4 s
 /// without: build once per medium.
-/// SK_ERR_NULL for NULL buf, work or out; SK_ERR_DOMAIN for invalid input
-/// or overlapping buffers; SK_ERR_SIZE for short buffers. *out is written
+/// SK_ERR_NULL for NULL buf, work or out; SK_ERR_DOMAIN for invalid input;
+/// SK_ERR_OVERLAP for overlapping buffers; SK_ERR_SIZE for short buffers. *out is written
 /// only on success.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
@@ -116,7 +116,7 @@ pub unsafe extern "C" fn sk_phase_particle_mie(
         w0.saturating_add(bytes(work_len, 8)),
     );
     if b0 < w1 && w0 < b1 {
-        return sk_status::SK_ERR_DOMAIN;
+        return sk_status::SK_ERR_OVERLAP;
     }
     let slices = unsafe {
         (
@@ -181,7 +181,7 @@ fn choice_to_c(c: crate::choose::mie::MieChoice) -> sk_particle_choice {
 /// NaN. work holds work_len >= 4096 doubles and must not overlap the data.
 /// Takes about 0.25 s without a table: build once per medium. SK_ERR_NULL
 /// for NULL pointers; SK_ERR_DOMAIN for a tolerance outside (0, 1), invalid
-/// data or overlapping arrays; SK_ERR_SIZE for m < 2 or a short work. *out
+/// data; SK_ERR_OVERLAP for overlapping arrays; SK_ERR_SIZE for m < 2 or a short work. *out
 /// is written only on success.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_phase_particle_measured(
@@ -208,7 +208,7 @@ pub unsafe extern "C" fn sk_phase_particle_measured(
     let w = range(work, work_len);
     let apart = |(a0, a1): (usize, usize)| a1 <= w.0 || w.1 <= a0 || a0 == a1;
     if !(apart(range(cos_theta, m)) && apart(range(pdf, m))) {
-        return sk_status::SK_ERR_DOMAIN;
+        return sk_status::SK_ERR_OVERLAP;
     }
     let slices = unsafe {
         (

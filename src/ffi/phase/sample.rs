@@ -149,7 +149,7 @@ pub unsafe extern "C" fn sk_phase_sample_dir_f64(
 }
 
 /// `cos_out[i] = sk_phase_sample_cos(p, u[i])` for `i < n`. `u` and `cos_out`
-/// may be the same array; other overlaps give SK_ERR_DOMAIN. SK_ERR_DOMAIN if
+/// may be the same array; other overlaps give SK_ERR_OVERLAP. SK_ERR_DOMAIN if
 /// any `u[i]` is NaN or outside `[0, 1]`, or p is unconstructed; SK_ERR_NULL for NULL
 /// p, or NULL arrays with n > 0; SK_ERR_SIZE if n floats cannot exist. On
 /// error nothing is written; n = 0 is SK_OK.
@@ -180,7 +180,7 @@ pub unsafe extern "C" fn sk_phase_sample_cos_n_f64(
 /// goes to `(out_x[i], out_y[i], out_z[i])` and its density to `pdf_out[i]`,
 /// bit for bit the scalar call's. pdf_out may be NULL. An output array may
 /// be the same array as an input (in place); any other overlap, or outputs
-/// overlapping each other, is SK_ERR_DOMAIN, as is any `u1[i]` or `u2[i]` NaN
+/// overlapping each other, is SK_ERR_OVERLAP; SK_ERR_DOMAIN for any `u1[i]` or `u2[i]` NaN
 /// or outside [0, 1], or an unconstructed p. SK_ERR_NULL for a NULL p or a
 /// NULL array (other than pdf_out) with n > 0; SK_ERR_SIZE if n floats
 /// cannot exist. On error nothing is written; n = 0 is SK_OK. The loop runs

@@ -30,6 +30,15 @@ pub(crate) fn run_c(
     src: &str,
     extra: &[&str],
 ) -> Option<std::collections::BTreeMap<String, (f64, f64)>> {
+    run_c_env(src, extra, &[])
+}
+
+/// [`run_c`] with environment variables for the program.
+pub(crate) fn run_c_env(
+    src: &str,
+    extra: &[&str],
+    env: &[(&str, &std::path::Path)],
+) -> Option<std::collections::BTreeMap<String, (f64, f64)>> {
     use std::path::{Path, PathBuf};
     use std::process::Command;
     use std::sync::Once;
@@ -91,6 +100,7 @@ pub(crate) fn run_c(
         return None;
     }
     let run = Command::new(&bin)
+        .envs(env.iter().copied())
         .output()
         .expect("C benchmark failed to start");
     assert!(

@@ -32,6 +32,7 @@ mod cloud;
 #[path = "../../benches/peers.rs"]
 mod peers;
 
+mod c_media;
 mod c_view;
 mod chart;
 mod entries;
@@ -42,6 +43,7 @@ mod polarization;
 mod report;
 mod transmittance;
 
+pub(crate) use c_media::*;
 pub(crate) use c_view::*;
 pub(crate) use chart::*;
 pub(crate) use entries::*;
@@ -197,7 +199,7 @@ fn main() -> std::io::Result<()> {
         |n| native_tables(&n),
     );
     print!("{native_md}");
-    let media_md = media_report();
+    let media_md = media_report() + &c_media_report();
     print!("{media_md}");
     let transmittance_md = transmittance_report();
     print!("{transmittance_md}");

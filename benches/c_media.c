@@ -13,6 +13,7 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "scatterkit.h"
@@ -33,7 +34,7 @@ static double now_ns(void) {
 }
 
 static sk_grid grid;
-static sk_extrema ext;
+static sk_majorants ext; /* majorants with minorants */
 static sk_vec3 *orig, *dir;
 static uint32_t *strata;
 static uint32_t n_rays;
@@ -44,24 +45,26 @@ static const char *NAMES[] = {"delta", "ratio", "residual", "march"};
 
 /* One estimate along ray i; its t or transmittance. */
 static float estimate(enum estimator e, sk_vec3 o, sk_vec3 d, uint32_t n, sk_rng *rng) {
-    sk_track_result t;
-    sk_ratio_result r;
-    sk_status s = SK_OK;
+    sk_track_args a;
+    sk_track_result r;
+    memset(&a, 0, sizeof a);
+    a.medium.grid = &grid;
+    a.medium.majorants = &ext;
+    a.o = o, a.d = d, a.t_min = 0.0f, a.t_max = INFINITY;
+    a.budget = BUDGET;
+    a.strata = n;
+    a.rng = rng;
     switch (e) {
     case DELTA:
-        s = sk_delta_track_majorants(&ext.max, &grid, o, d, INFINITY, BUDGET, rng, &t);
-        return s == SK_OK ? t.t : NAN;
+        return sk_delta_track(&a, &r) == SK_OK ? r.t : NAN;
     case RATIO:
-        s = sk_ratio_track_majorants(&ext.max, &grid, o, d, INFINITY, BUDGET, rng, &r);
-        break;
+        return sk_ratio_track(&a, &r) == SK_OK ? r.tr : NAN;
     case RESIDUAL:
-        s = sk_residual_ratio_track(&ext, &grid, o, d, INFINITY, BUDGET, rng, &r);
-        break;
+        return sk_residual_ratio_track(&a, &r) == SK_OK ? r.tr : NAN;
     case MARCH:
-        s = sk_ray_march_transmittance(&grid, o, d, INFINITY, n, BUDGET, rng, &r);
-        break;
+        return sk_ray_march(&a, &r) == SK_OK ? r.tr : NAN;
     }
-    return s == SK_OK ? r.tr : NAN;
+    return NAN;
 }
 
 /* ns per ray over every ray for each estimator, the fastest of REPEATS
@@ -186,13 +189,13 @@ int main(void) {
     for (r = 0; r < 3; r++) {
         uint32_t m = resolutions[r], len = m * m * m;
         float *max = malloc(sizeof(float) * len), *min = malloc(sizeof(float) * len);
-        if (!max || !min || sk_extrema_build(&grid, m, m, m, max, min, len, &ext) != SK_OK) {
+        if (!max || !min || sk_majorants_build(&grid, m, m, m, max, min, len, &ext) != SK_OK) {
             fprintf(stderr, "c_media: extrema at %u failed\n", m);
             return 1;
         }
         /* The ray marcher's strata: the majorant optical depth, rounded up. */
         for (i = 0; i < n_rays; i++) {
-            float tau = sk_majorants_optical_depth(&ext.max, orig[i], dir[i], 0.0f, INFINITY);
+            float tau = sk_majorants_optical_depth(&ext, orig[i], dir[i], 0.0f, INFINITY);
             strata[i] = tau >= 1.0f ? (uint32_t)ceilf(tau) : 1u;
         }
         {

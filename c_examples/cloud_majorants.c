@@ -19,6 +19,7 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "scatterkit.h"
 
@@ -62,8 +63,8 @@ int main(void) {
         for (j = 0; j < N; j++)
             for (i = 0; i < N; i++) density[i + N * (j + N * k)] = cloud(i, j, k);
     if (sk_grid_new(density, N, N, N, 0.2f, 0.8f, &grid) || sk_grid_set_box(&grid, lo, hi) ||
-        sk_majorants_build(&grid, 16, 16, 16, store16, sk_majorant_len(16, 16, 16), &local) ||
-        sk_majorants_build(&grid, 1, 1, 1, store1, 1, &global)) {
+        sk_majorants_build(&grid, 16, 16, 16, store16, NULL, sk_majorant_len(16, 16, 16), &local) ||
+        sk_majorants_build(&grid, 1, 1, 1, store1, NULL, 1, &global)) {
         fprintf(stderr, "building the medium failed\n");
         return 1;
     }
@@ -78,10 +79,17 @@ int main(void) {
                        1.6f * sk_uniform(&rng) - 0.8f};
         sk_vec3 d = {aim.x - o.x, aim.y - o.y, aim.z - o.z};
         for (m = 0; m < 2; m++) {
-            sk_ratio_result rr;
-            sk_track_result tk;
-            if (sk_ratio_track_majorants(maj[m], &grid, o, d, INFINITY, 1u << 24, &rng, &rr) ||
-                sk_delta_track_majorants(maj[m], &grid, o, d, INFINITY, 1u << 24, &rng, &tk)) {
+            /* One argument struct for every estimator: the medium (a grid
+             * here) and its bounds, the ray, the budget, the generator. */
+            sk_track_args a;
+            sk_track_result rr, tk;
+            memset(&a, 0, sizeof a); /* no flags, the default budget */
+            a.medium.grid = &grid;
+            a.medium.majorants = maj[m];
+            a.o = o, a.d = d, a.t_min = 0.0f, a.t_max = INFINITY;
+            a.budget = 1u << 24;
+            a.rng = &rng;
+            if (sk_ratio_track(&a, &rr) || sk_delta_track(&a, &tk)) {
                 fprintf(stderr, "tracking failed\n");
                 return 1;
             }

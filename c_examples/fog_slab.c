@@ -2,9 +2,9 @@
  *
  * A plane-parallel slab 0 <= z <= 1 of optical thickness 2 holds 2 um fog
  * droplets (sk_phase_fog_diameter). Photons enter at z = 0 along +z; the
- * medium is the caller's density function (constant inside the slab), so
- * the library's delta tracking finds each collision, and the photon scatters
- * with the fog phase function (probability = albedo) or is absorbed. Prints
+ * medium is the caller's coefficients (sigma_a, sigma_s: constant inside
+ * the slab), so the library's delta tracking finds each collision and says
+ * whether it scatters (with the fog phase function) or absorbs. Prints
  * the transmitted, reflected and absorbed shares for albedo 0.9 and for a
  * purely absorbing slab; the latter must transmit exp(-2) within 4 standard
  * deviations, and the three shares must add to 1. Exits 0 when they do.
@@ -15,6 +15,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "scatterkit.h"
 
@@ -28,10 +29,19 @@ static uint64_t splitmix64(void *state) {
 
 static float uniform(sk_rng *rng) { return (float)(rng->next_u64(rng->state) >> 40) * (1.0f / 16777216.0f); }
 
-/* sigma_t inside the slab, 0 outside. */
-static float slab_density(void *ctx, sk_vec3 p) {
-    const float *sigma_t = (const float *)ctx;
-    return (p.z >= 0.0f && p.z <= 1.0f) ? *sigma_t : 0.0f;
+/* The slab: sigma_t and the albedo inside, nothing outside. */
+typedef struct {
+    float sigma_t, albedo;
+} slab;
+
+static sk_coefficients slab_coefficients(void *ctx, sk_vec3 p) {
+    const slab *s = (const slab *)ctx;
+    sk_coefficients c = {0.0f, 0.0f};
+    if (p.z >= 0.0f && p.z <= 1.0f) {
+        c.sigma_s = s->sigma_t * s->albedo;
+        c.sigma_a = s->sigma_t - c.sigma_s;
+    }
+    return c;
 }
 
 enum { TRANSMITTED, REFLECTED, ABSORBED, OUTCOMES };
@@ -39,17 +49,27 @@ enum { TRANSMITTED, REFLECTED, ABSORBED, OUTCOMES };
 /* One photon's fate; -1 on a library error. */
 static int trace(const sk_phase *fog, float sigma_t, float albedo, sk_rng *rng) {
     sk_vec3 p = {0.0f, 0.0f, 0.0f}, w = {0.0f, 0.0f, 1.0f};
+    slab s;
+    sk_track_args a;
+    sk_track_result r;
     int bounce;
+    s.sigma_t = sigma_t, s.albedo = albedo;
+    memset(&a, 0, sizeof a); /* no flags, the default budget */
+    a.medium.coefficients = slab_coefficients;
+    a.medium.ctx = &s;
+    a.medium.sigma_maj = sigma_t; /* one majorant: the slab's sigma_t */
+    a.rng = rng;
     for (bounce = 0; bounce < 100000; bounce++) {
-        float t_exit = w.z > 0.0f ? (1.0f - p.z) / w.z : w.z < 0.0f ? -p.z / w.z : INFINITY;
-        float t;
-        uint32_t ev;
-        if (sk_delta_track_fn(slab_density, &sigma_t, sigma_t, p, w, 0.0f, t_exit, rng, &t, &ev) != SK_OK) return -1;
-        if (ev == SK_TRACK_ESCAPED) return w.z > 0.0f ? TRANSMITTED : REFLECTED;
-        p.x += t * w.x;
-        p.y += t * w.y;
-        p.z += t * w.z;
-        if (uniform(rng) >= albedo) return ABSORBED;
+        /* The segment to the slab's face ahead (finite: a medium given by
+         * a callback has no box of its own to leave). */
+        a.o = p, a.d = w;
+        a.t_max = w.z > 0.0f ? (1.0f - p.z) / w.z : w.z < 0.0f ? -p.z / w.z : 1e30f;
+        if (sk_delta_track(&a, &r) != SK_OK) return -1;
+        if (r.event == SK_TRACK_ESCAPED) return w.z > 0.0f ? TRANSMITTED : REFLECTED;
+        if (r.event == SK_TRACK_ABSORBED) return ABSORBED;
+        p.x += r.t * w.x;
+        p.y += r.t * w.y;
+        p.z += r.t * w.z;
         w = sk_phase_sample_dir(fog, w, uniform(rng), uniform(rng), NULL);
     }
     return -1;

@@ -39,6 +39,21 @@
 #define SK_EVENT_SCATTERED 2
 
 /*
+ The step budget a tracking call takes when sk_track_args.budget is 0:
+ tentative collisions, or density evaluations for ray marching.
+ */
+#define SK_TRACK_BUDGET (1 << 20)
+
+/*
+ sk_track_args.flags: the majorants may not bound sigma_t. Ratio
+ tracking then keeps signed weights and delta tracking weights its path
+ (unbiased, where the strict estimators refuse with SK_ERR_DOMAIN), and
+ the result reports the worst sigma_t/sigma_maj met and its cell. Needs
+ majorants.
+ */
+#define SK_TRACK_NONBOUNDING 1
+
+/*
  Result of every fallible call. Out-pointers are written only on `SK_OK`.
  */
 typedef enum {
@@ -72,6 +87,41 @@ typedef enum {
      */
     SK_ERR_OVERLAP = 6
 } sk_status;
+
+/*
+ What delta tracking found (sk_track_result.event).
+ */
+enum sk_track_event
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
+ {
+    /*
+     No collision in the segment: t is where the ray leaves the medium
+     (its box, or t_max), or t_min for a ray that never enters it.
+     */
+    SK_TRACK_ESCAPED = 0,
+    /*
+     A real collision that scatters (probability sigma_s/sigma_t).
+     */
+    SK_TRACK_SCATTERED = 1,
+    /*
+     A real collision that absorbs.
+     */
+    SK_TRACK_ABSORBED = 2,
+    /*
+     A real collision whose kind the caller decides (the Rust API's
+     tracking through a sigma_t function; no C call returns it).
+     */
+    SK_TRACK_COLLIDED = 3
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_track_event sk_track_event;
+#else
+typedef uint32_t sk_track_event;
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
 
 /*
  The sampling methods of Frisvad (2011) for `sk_rayleigh_*` (passed as
@@ -240,40 +290,6 @@ enum sk_crossing_policy
 typedef enum sk_crossing_policy sk_crossing_policy;
 #else
 typedef uint32_t sk_crossing_policy;
-#endif /* __STDC_VERSION__ >= 202311L */
-#endif /* __cplusplus */
-
-/*
- What tracking found (written to `scattered_out`).
- */
-enum sk_track_event
-#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
-  : uint32_t
-#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
- {
-    /*
-     No collision in the interval: t_out is t_max (the majorant-grid calls
-     report where the ray leaves the medium's box instead).
-     */
-    SK_TRACK_ESCAPED = 0,
-    /*
-     A real collision that scatters (grid: probability sigma_s/sigma_t).
-     */
-    SK_TRACK_SCATTERED = 1,
-    /*
-     A real collision that absorbs (grid).
-     */
-    SK_TRACK_ABSORBED = 2,
-    /*
-     A real collision in a caller's medium (its albedo decides).
-     */
-    SK_TRACK_COLLIDED = 3
-};
-#ifndef __cplusplus
-#if __STDC_VERSION__ >= 202311L
-typedef enum sk_track_event sk_track_event;
-#else
-typedef uint32_t sk_track_event;
 #endif /* __STDC_VERSION__ >= 202311L */
 #endif /* __cplusplus */
 
@@ -514,111 +530,18 @@ typedef struct {
 } sk_vec3;
 
 /*
- A grid of majorants (sigma_maj per length unit, >= 0) over a world box,
- one per cell of an mx*my*mz division of it, borrowing the caller's array
- (x fastest), which must outlive it. Build it with sk_majorants_build
- (from a grid) or sk_majorants_new (your own bounds); the fields are what
- that validated. Every value is checked there, once: a call checks only
- the fields (constant time, whatever the size of the grid), and a walk
- reports a value changed since (negative, NaN or infinite) as
- SK_ERR_DOMAIN when it reaches its cell.
+ Equiangular sampling of one ray segment toward one point (a light):
+ distances with density proportional to 1/r^2, r the distance to the
+ point (Kulla & Fajardo 2012, section 3). Filled by sk_equiangular_new;
+ treat the fields as opaque (sample and pdf check them and answer NaN
+ for values sk_equiangular_new would not have written).
  */
 typedef struct {
     /*
-     The caller's majorants.
+     t0, delta, theta_b - theta_a, t_min, t_max.
      */
-    const float *sigma;
-    /*
-     Cells along x.
-     */
-    uint32_t mx;
-    /*
-     Cells along y.
-     */
-    uint32_t my;
-    /*
-     Cells along z.
-     */
-    uint32_t mz;
-    /*
-     The world box's low corner.
-     */
-    sk_vec3 lo;
-    /*
-     The world box's high corner.
-     */
-    sk_vec3 hi;
-} sk_majorants;
-
-/*
- A density grid over a world box (float; the unit cube unless
- sk_grid_set_box moves it), borrowing the caller's buffer of nx*ny*nz
- values (x fastest), which must outlive it. Build it with sk_grid_new;
- the fields are what that validated.
- */
-typedef struct {
-    /*
-     The caller's density values.
-     */
-    const float *density;
-    /*
-     Grid nodes along x.
-     */
-    uint32_t nx;
-    /*
-     Grid nodes along y.
-     */
-    uint32_t ny;
-    /*
-     Grid nodes along z.
-     */
-    uint32_t nz;
-    /*
-     Absorption coefficient per unit density.
-     */
-    float sigma_a;
-    /*
-     Scattering coefficient per unit density.
-     */
-    float sigma_s;
-    /*
-     The largest density value (found by sk_grid_new).
-     */
-    float max_density;
-    /*
-     The world box's low corner ((0, 0, 0) unless sk_grid_set_box moved it).
-     */
-    sk_vec3 lo;
-    /*
-     The world box's high corner ((1, 1, 1) by default).
-     */
-    sk_vec3 hi;
-    /*
-     Where the values sit: an sk_sampling (SK_SAMPLING_NODES by default).
-     */
-    uint32_t sampling;
-} sk_grid;
-
-/*
- The emitted radiance along a ray segment and the segment's
- transmittance.
- */
-typedef struct {
-    /*
-     The integral of T(a, t) sigma_a(t) L_e(t) dt along the segment (in
-     the units of L_e): an unbiased estimate, or exact from
-     sk_emission_cells.
-     */
-    float radiance;
-    /*
-     The transmittance of the whole segment (estimated, or exact).
-     */
-    float tr;
-    /*
-     Tentative collisions drawn (density evaluations); 0 when exact.
-     */
-    uint32_t steps;
-} sk_emission_result;
+    float state[5];
+} sk_equiangular;
 
 /*
  A 3-vector of doubles.
@@ -637,166 +560,6 @@ typedef struct {
      */
     double z;
 } sk_vec3_f64;
-
-/*
- A grid of majorants (double); see `sk_majorants`.
- */
-typedef struct {
-    /*
-     The caller's majorants.
-     */
-    const double *sigma;
-    /*
-     Cells along x.
-     */
-    uint32_t mx;
-    /*
-     Cells along y.
-     */
-    uint32_t my;
-    /*
-     Cells along z.
-     */
-    uint32_t mz;
-    /*
-     The world box's low corner.
-     */
-    sk_vec3_f64 lo;
-    /*
-     The world box's high corner.
-     */
-    sk_vec3_f64 hi;
-} sk_majorants_f64;
-
-/*
- A density grid (double); see `sk_grid`.
- */
-typedef struct {
-    /*
-     The caller's density values.
-     */
-    const double *density;
-    /*
-     Grid nodes along x.
-     */
-    uint32_t nx;
-    /*
-     Grid nodes along y.
-     */
-    uint32_t ny;
-    /*
-     Grid nodes along z.
-     */
-    uint32_t nz;
-    /*
-     Absorption coefficient per unit density.
-     */
-    double sigma_a;
-    /*
-     Scattering coefficient per unit density.
-     */
-    double sigma_s;
-    /*
-     The largest density value (found by sk_grid_new_f64).
-     */
-    double max_density;
-    /*
-     The world box's low corner ((0, 0, 0) unless sk_grid_set_box moved it).
-     */
-    sk_vec3_f64 lo;
-    /*
-     The world box's high corner ((1, 1, 1) by default).
-     */
-    sk_vec3_f64 hi;
-    /*
-     Where the values sit: an sk_sampling (SK_SAMPLING_NODES by default).
-     */
-    uint32_t sampling;
-} sk_grid_f64;
-
-/*
- The emitted radiance along a ray segment (double); see
- `sk_emission_result`.
- */
-typedef struct {
-    /*
-     As in `sk_emission_result`.
-     */
-    double radiance;
-    /*
-     As in `sk_emission_result`.
-     */
-    double tr;
-    /*
-     Tentative collisions drawn.
-     */
-    uint32_t steps;
-} sk_emission_result_f64;
-
-/*
- Absorption and scattering coefficients at a point (per length unit).
- */
-typedef struct {
-    /*
-     sigma_a >= 0.
-     */
-    float sigma_a;
-    /*
-     sigma_s >= 0.
-     */
-    float sigma_s;
-} sk_coefficients;
-
-/*
- The caller's medium for tracking through majorants: sigma_a and sigma_s
- at point p, both >= 0 with a sum within the majorant of the cell holding
- p. Tracking decides absorption, scattering or a null collision itself.
- */
-typedef sk_coefficients (*sk_medium_fn)(void *ctx, sk_vec3 p);
-
-/*
- The caller's medium: sigma_t at point p (per length unit), which must stay
- in [0, sigma_maj] along the ray.
- */
-typedef float (*sk_density_fn)(void *ctx, sk_vec3 p);
-
-/*
- Absorption and scattering coefficients (double).
- */
-typedef struct {
-    /*
-     sigma_a >= 0.
-     */
-    double sigma_a;
-    /*
-     sigma_s >= 0.
-     */
-    double sigma_s;
-} sk_coefficients_f64;
-
-/*
- The caller's medium (double); see `sk_medium_fn`.
- */
-typedef sk_coefficients_f64 (*sk_medium_fn_f64)(void *ctx, sk_vec3_f64 p);
-
-/*
- The caller's medium (double); see `sk_density_fn`.
- */
-typedef double (*sk_density_fn_f64)(void *ctx, sk_vec3_f64 p);
-
-/*
- Equiangular sampling of one ray segment toward one point (a light):
- distances with density proportional to 1/r^2, r the distance to the
- point (Kulla & Fajardo 2012, section 3). Filled by sk_equiangular_new;
- treat the fields as opaque (sample and pdf check them and answer NaN
- for values sk_equiangular_new would not have written).
- */
-typedef struct {
-    /*
-     t0, delta, theta_b - theta_a, t_min, t_max.
-     */
-    float state[5];
-} sk_equiangular;
 
 /*
  Equiangular sampling (double); see `sk_equiangular`.
@@ -840,72 +603,88 @@ typedef struct {
 } sk_legendre_f64;
 
 /*
- What delta tracking through majorants found.
+ A density grid over a world box (float; the unit cube unless
+ sk_grid_set_box moves it), borrowing the caller's buffer of nx*ny*nz
+ values (x fastest), which must outlive it. Build it with sk_grid_new,
+ which checks every value once; a call loads it in constant time. A
+ plain value: copy it freely; its contents are private (a zeroed or
+ never-built grid gives NaN or SK_ERR_DOMAIN). The values stay yours:
+ one changed afterwards is read as it is, and tracking reports one
+ above its majorant as SK_ERR_DOMAIN.
  */
 typedef struct {
     /*
-     Distance along d/|d|: of the real collision, or for
-     SK_TRACK_ESCAPED where the ray leaves the medium's box (within
-     [t_min, t_max]; t_min if it never enters the box).
+     Private storage; do not read or write.
      */
-    float t;
-    /*
-     An sk_track_event: ESCAPED, SCATTERED or ABSORBED.
-     */
-    uint32_t event;
-    /*
-     Tentative collisions drawn (density evaluations), the real one
-     included: the cost of the walk.
-     */
-    uint32_t steps;
-} sk_track_result;
+    uint64_t opaque[32];
+} sk_grid;
 
 /*
- What delta tracking through majorants found (double); see `sk_track_result`.
+ Per-cell bounds of a medium over a world box, one value per cell of an
+ mx*my*mz division of it (x fastest, per length unit, >= 0): majorants
+ (sigma_maj >= sigma_t), and optionally minorants (<= sigma_t, the
+ control of residual ratio tracking). The arrays stay the caller's and
+ must outlive it. Built by sk_majorants_build (from a grid) or
+ sk_majorants_new (your own values), which check every value once; a
+ call loads it in constant time, whatever the number of cells, and a
+ walk reports a value changed since (negative, NaN, infinite, or a
+ minorant above its majorant) as SK_ERR_DOMAIN when it reaches its cell.
+ A plain value: copy it freely; its contents are private.
  */
 typedef struct {
     /*
-     As in `sk_track_result`.
+     Private storage; do not read or write.
      */
-    double t;
-    /*
-     An sk_track_event.
-     */
-    uint32_t event;
-    /*
-     Tentative collisions drawn.
-     */
-    uint32_t steps;
-} sk_track_result_f64;
+    uint64_t opaque[32];
+} sk_majorants;
 
 /*
- What ratio tracking through majorants found.
+ A density grid (double); see `sk_grid`.
  */
 typedef struct {
     /*
-     The unbiased transmittance estimate (>= 0; Russian roulette can raise
-     one estimate above the true value).
+     Private storage; do not read or write.
      */
-    float tr;
-    /*
-     Tentative collisions drawn (density evaluations).
-     */
-    uint32_t steps;
-} sk_ratio_result;
+    uint64_t opaque[32];
+} sk_grid_f64;
 
 /*
- What ratio tracking through majorants found (double).
+ Per-cell bounds (double); see `sk_majorants`.
  */
 typedef struct {
     /*
-     As in `sk_ratio_result`.
+     Private storage; do not read or write.
      */
-    double tr;
+    uint64_t opaque[32];
+} sk_majorants_f64;
+
+/*
+ Absorption and scattering coefficients at a point (per length unit).
+ */
+typedef struct {
     /*
-     Tentative collisions drawn.
+     sigma_a >= 0.
      */
-    uint32_t steps;
-} sk_ratio_result_f64;
+    float sigma_a;
+    /*
+     sigma_s >= 0.
+     */
+    float sigma_s;
+} sk_coefficients;
+
+/*
+ Absorption and scattering coefficients (double).
+ */
+typedef struct {
+    /*
+     sigma_a >= 0.
+     */
+    double sigma_a;
+    /*
+     sigma_s >= 0.
+     */
+    double sigma_s;
+} sk_coefficients_f64;
 
 /*
  A complex number: the relative refractive index m = re + i im (im >= 0
@@ -1082,116 +861,6 @@ typedef struct {
      */
     uint64_t opaque[512];
 } sk_mixture_f64;
-
-/*
- What ratio tracking with signed weights found.
- */
-typedef struct {
-    /*
-     The unbiased transmittance estimate; negative or above 1 only where
-     a majorant did not bound.
-     */
-    float tr;
-    /*
-     Tentative collisions drawn (density evaluations).
-     */
-    uint32_t steps;
-    /*
-     The largest sigma_t / sigma_maj above 1 met on the walk, or 0 when
-     every majorant met bounded the medium.
-     */
-    float exceeded;
-    /*
-     The majorant cell (i, j, k) where `exceeded` was met (0s when none):
-     raise its majorant for later rays.
-     */
-    uint32_t cell[3];
-} sk_signed_result;
-
-/*
- What ratio tracking with signed weights found (double); see
- `sk_signed_result`.
- */
-typedef struct {
-    /*
-     As in `sk_signed_result`.
-     */
-    double tr;
-    /*
-     Tentative collisions drawn.
-     */
-    uint32_t steps;
-    /*
-     As in `sk_signed_result`.
-     */
-    double exceeded;
-    /*
-     As in `sk_signed_result`.
-     */
-    uint32_t cell[3];
-} sk_signed_result_f64;
-
-/*
- What weighted delta tracking found.
- */
-typedef struct {
-    /*
-     Distance along d/|d| of the real collision, or where the ray leaves
-     the box (as in `sk_track_result`).
-     */
-    float t;
-    /*
-     An sk_track_event: ESCAPED, SCATTERED or ABSORBED.
-     */
-    uint32_t event;
-    /*
-     The path's weight: 1 where every majorant met bounded the medium,
-     else signed; the outcome counts with this weight.
-     */
-    float weight;
-    /*
-     Tentative collisions drawn, the real one included.
-     */
-    uint32_t steps;
-    /*
-     As in `sk_signed_result`.
-     */
-    float exceeded;
-    /*
-     As in `sk_signed_result`.
-     */
-    uint32_t cell[3];
-} sk_weighted_track;
-
-/*
- What weighted delta tracking found (double); see `sk_weighted_track`.
- */
-typedef struct {
-    /*
-     As in `sk_weighted_track`.
-     */
-    double t;
-    /*
-     An sk_track_event.
-     */
-    uint32_t event;
-    /*
-     As in `sk_weighted_track`.
-     */
-    double weight;
-    /*
-     Tentative collisions drawn.
-     */
-    uint32_t steps;
-    /*
-     As in `sk_signed_result`.
-     */
-    double exceeded;
-    /*
-     As in `sk_signed_result`.
-     */
-    uint32_t cell[3];
-} sk_weighted_track_f64;
 
 /*
  What sk_phase_particle_mie found.
@@ -1560,52 +1229,6 @@ typedef struct {
 } sk_mie_averages;
 
 /*
- The channels (wavelength samples) of a spectral medium: coefficients per
- unit density, `channels` of each (1 to 16), and the hero channel whose
- majorant draws the free paths.
- */
-typedef struct {
-    /*
-     sigma_a per unit density, one per channel, finite and >= 0.
-     */
-    const float *sigma_a;
-    /*
-     sigma_s per unit density, one per channel, finite and >= 0.
-     */
-    const float *sigma_s;
-    /*
-     Number of channels, 1 to 16.
-     */
-    size_t channels;
-    /*
-     The hero channel, < channels.
-     */
-    uint32_t hero;
-} sk_spectrum;
-
-/*
- The channels of a spectral medium (double); see `sk_spectrum`.
- */
-typedef struct {
-    /*
-     sigma_a per unit density.
-     */
-    const double *sigma_a;
-    /*
-     sigma_s per unit density.
-     */
-    const double *sigma_s;
-    /*
-     Number of channels, 1 to 16.
-     */
-    size_t channels;
-    /*
-     The hero channel, < channels.
-     */
-    uint32_t hero;
-} sk_spectrum_f64;
-
-/*
  One channel's phase function: exactly one of phase and table non-NULL.
  */
 typedef struct {
@@ -1742,34 +1365,367 @@ typedef struct {
 } sk_table2d_f64;
 
 /*
- Majorants and minorants over the same cells of one box: the control
- extinction of residual ratio tracking is each cell's minorant. Build it
- with sk_extrema_build (from a grid) or sk_extrema_new (your own).
+ The caller's medium: sigma_a and sigma_s at point p, both >= 0 with a
+ sum within the majorant of the cell holding p. Tracking decides
+ absorption, scattering or a null collision itself.
  */
-typedef struct {
-    /*
-     The majorants (sigma_maj per length unit).
-     */
-    sk_majorants max;
-    /*
-     The minorants (per length unit, at most the majorants).
-     */
-    sk_majorants min;
-} sk_extrema;
+typedef sk_coefficients (*sk_medium_fn)(void *ctx, sk_vec3 p);
 
 /*
- Majorants and minorants (double); see `sk_extrema`.
+ A scalar field of the caller's at point p: the emitted radiance L_e of
+ sk_emission_track (finite, >= 0).
+ */
+typedef float (*sk_emission_fn)(void *ctx, sk_vec3 p);
+
+/*
+ The medium a tracking call walks. Its coefficients come from exactly
+ one of `grid` and `coefficients` (or, for sk_emission_track, from
+ per-cell values: both NULL, `majorants` then holding sigma_t per cell).
+ Its bounds: `majorants` (local majorants, with minorants for residual
+ ratio tracking), or, when NULL, one constant majorant: the grid's own
+ ((sigma_a + sigma_s) times its largest value), or `sigma_maj` for
+ `coefficients`.
  */
 typedef struct {
     /*
-     The majorants.
+     A density grid, or NULL.
      */
-    sk_majorants_f64 max;
+    const sk_grid *grid;
     /*
-     The minorants.
+     Or the caller's (sigma_a, sigma_s) at a point, or NULL.
      */
-    sk_majorants_f64 min;
-} sk_extrema_f64;
+    sk_medium_fn coefficients;
+    /*
+     Handed to `coefficients` and `emission_fn`.
+     */
+    void *ctx;
+    /*
+     Local majorants over the grid's box (or any box for
+     `coefficients`), or NULL.
+     */
+    const sk_majorants *majorants;
+    /*
+     With `coefficients` and no majorants: the one majorant (finite,
+     >= 0; the segment must then be finite). Otherwise unused.
+     */
+    float sigma_maj;
+    /*
+     sk_emission_track: the emitted radiance L_e as a grid over the
+     medium's box, or NULL.
+     */
+    const sk_grid *emission;
+    /*
+     Or as the caller's field, or NULL.
+     */
+    sk_emission_fn emission_fn;
+    /*
+     Or per cell (sigma_a L_e over the majorants' cells), for the exact
+     integral through a medium constant per cell, or NULL.
+     */
+    const sk_majorants *emission_cells;
+} sk_medium;
+
+/*
+ Hero-wavelength tracking (sk_delta_track, sk_ratio_track with a
+ spectrum): each channel's coefficients per unit density, the hero whose
+ majorant draws the free paths, and where each channel's results go.
+ The medium's majorants must bound the density itself (build them on a
+ grid with sigma_a + sigma_s = 1).
+ */
+typedef struct {
+    /*
+     sigma_a per unit density, `channels` values (finite, >= 0).
+     */
+    const float *sigma_a;
+    /*
+     sigma_s per unit density, `channels` values.
+     */
+    const float *sigma_s;
+    /*
+     1 to 16.
+     */
+    size_t channels;
+    /*
+     The hero channel (< channels).
+     */
+    uint32_t hero;
+    /*
+     Out: the path weight per channel (pbrt-v4's beta; T_ray for ratio
+     tracking), `channels` values.
+     */
+    float *weight;
+    /*
+     Out: each channel's delta-tracking path density over the hero's.
+     */
+    float *r_u;
+    /*
+     Out: each channel's free-flight path density over the hero's.
+     */
+    float *r_l;
+} sk_spectrum;
+
+/*
+ What every tracking call takes.
+ */
+typedef struct {
+    /*
+     The medium and its bounds.
+     */
+    sk_medium medium;
+    /*
+     The ray's origin (finite).
+     */
+    sk_vec3 o;
+    /*
+     Its direction (finite, non-zero, any length: distances are along
+     d/|d|).
+     */
+    sk_vec3 d;
+    /*
+     The segment [t_min, t_max]: 0 <= t_min <= t_max; t_max may be
+     +inf where the medium has a box (a grid, or majorants).
+     */
+    float t_min;
+    /*
+     The segment's end.
+     */
+    float t_max;
+    /*
+     At most this many tentative collisions (density evaluations for ray
+     marching) before SK_ERR_BUDGET; 0 means SK_TRACK_BUDGET.
+     */
+    uint32_t budget;
+    /*
+     Ray marching: strata per march; 0 lets the library choose (the
+     majorant optical depth of the segment rounded up, at least 1; 4
+     times that for the telescoping estimator). Otherwise unused.
+     */
+    uint32_t strata;
+    /*
+     SK_TRACK_NONBOUNDING or 0; other bits are SK_ERR_METHOD.
+     */
+    uint32_t flags;
+    /*
+     The caller's generator.
+     */
+    sk_rng *rng;
+    /*
+     Hero-wavelength tracking, or NULL.
+     */
+    const sk_spectrum *spectrum;
+} sk_track_args;
+
+/*
+ What every tracking call writes on SK_OK. A field an estimator does not
+ produce is NaN (t, tr), 0 (radiance, exceeded, steps, cell) or 1
+ (weight).
+ */
+typedef struct {
+    /*
+     Delta tracking: the distance of the real collision, or where the ray
+     leaves the medium (its box, or t_max) for SK_TRACK_ESCAPED, t_min
+     for a ray that never enters it.
+     */
+    float t;
+    /*
+     The transmittance estimate (ratio, residual ratio tracking, ray
+     marching, emission): unbiased; ray marching's and signed ratio
+     tracking's may leave [0, 1].
+     */
+    float tr;
+    /*
+     Weighted delta tracking (SK_TRACK_NONBOUNDING): the path's weight,
+     1 where every majorant bounded.
+     */
+    float weight;
+    /*
+     sk_emission_track: the radiance emitted along the segment.
+     */
+    float radiance;
+    /*
+     SK_TRACK_NONBOUNDING: the largest sigma_t/sigma_maj > 1 met, 0 if
+     every majorant bounded.
+     */
+    float exceeded;
+    /*
+     Delta tracking: what ended the walk.
+     */
+    sk_track_event event;
+    /*
+     Tentative collisions drawn (density evaluations): the cost.
+     */
+    uint32_t steps;
+    /*
+     SK_TRACK_NONBOUNDING: the majorant cell of `exceeded`.
+     */
+    uint32_t cell[3];
+} sk_track_result;
+
+/*
+ The caller's medium (double); see `sk_medium_fn`.
+ */
+typedef sk_coefficients_f64 (*sk_medium_fn_f64)(void *ctx, sk_vec3_f64 p);
+
+/*
+ The emitted radiance (double); see `sk_emission_fn`.
+ */
+typedef double (*sk_emission_fn_f64)(void *ctx, sk_vec3_f64 p);
+
+/*
+ The medium (double); see `sk_medium`.
+ */
+typedef struct {
+    /*
+     A density grid, or NULL.
+     */
+    const sk_grid_f64 *grid;
+    /*
+     Or the caller's (sigma_a, sigma_s) at a point, or NULL.
+     */
+    sk_medium_fn_f64 coefficients;
+    /*
+     Handed to `coefficients` and `emission_fn`.
+     */
+    void *ctx;
+    /*
+     Local majorants, or NULL.
+     */
+    const sk_majorants_f64 *majorants;
+    /*
+     The one majorant for `coefficients` without majorants.
+     */
+    double sigma_maj;
+    /*
+     The emitted radiance as a grid, or NULL.
+     */
+    const sk_grid_f64 *emission;
+    /*
+     Or as the caller's field, or NULL.
+     */
+    sk_emission_fn_f64 emission_fn;
+    /*
+     Or per cell, or NULL.
+     */
+    const sk_majorants_f64 *emission_cells;
+} sk_medium_f64;
+
+/*
+ Hero-wavelength tracking (double); see `sk_spectrum`.
+ */
+typedef struct {
+    /*
+     sigma_a per unit density.
+     */
+    const double *sigma_a;
+    /*
+     sigma_s per unit density.
+     */
+    const double *sigma_s;
+    /*
+     1 to 16.
+     */
+    size_t channels;
+    /*
+     The hero channel.
+     */
+    uint32_t hero;
+    /*
+     Out: the path weight per channel.
+     */
+    double *weight;
+    /*
+     Out: delta-tracking path density ratios.
+     */
+    double *r_u;
+    /*
+     Out: free-flight path density ratios.
+     */
+    double *r_l;
+} sk_spectrum_f64;
+
+/*
+ What every tracking call takes (double); see `sk_track_args`.
+ */
+typedef struct {
+    /*
+     The medium and its bounds.
+     */
+    sk_medium_f64 medium;
+    /*
+     The ray's origin.
+     */
+    sk_vec3_f64 o;
+    /*
+     Its direction.
+     */
+    sk_vec3_f64 d;
+    /*
+     The segment's start.
+     */
+    double t_min;
+    /*
+     The segment's end.
+     */
+    double t_max;
+    /*
+     The step budget; 0 means SK_TRACK_BUDGET.
+     */
+    uint32_t budget;
+    /*
+     Ray marching: strata per march; 0 lets the library choose.
+     */
+    uint32_t strata;
+    /*
+     SK_TRACK_NONBOUNDING or 0.
+     */
+    uint32_t flags;
+    /*
+     The caller's generator.
+     */
+    sk_rng *rng;
+    /*
+     Hero-wavelength tracking, or NULL.
+     */
+    const sk_spectrum_f64 *spectrum;
+} sk_track_args_f64;
+
+/*
+ What every tracking call writes (double); see `sk_track_result`.
+ */
+typedef struct {
+    /*
+     As in sk_track_result.
+     */
+    double t;
+    /*
+     The transmittance estimate.
+     */
+    double tr;
+    /*
+     The path's weight.
+     */
+    double weight;
+    /*
+     The radiance emitted along the segment.
+     */
+    double radiance;
+    /*
+     The largest sigma_t/sigma_maj > 1 met.
+     */
+    double exceeded;
+    /*
+     What ended the walk.
+     */
+    sk_track_event event;
+    /*
+     Tentative collisions drawn.
+     */
+    uint32_t steps;
+    /*
+     The majorant cell of `exceeded`.
+     */
+    uint32_t cell[3];
+} sk_track_result_f64;
 
 #ifdef __cplusplus
 extern "C" {
@@ -1863,111 +1819,6 @@ double sk_cbrt(double x);
  Cube root of a double with two Lancaster steps: relative error about 1e-14.
  */
 double sk_cbrt_fast(double x);
-
-/*
- The radiance grid g (with majorants m, as sk_ratio_track_majorants)
- emits toward the ray's origin over [0, t_max] (the ray clipped to the
- box): the integral of T(0, t) sigma_a(t) L_e(t) dt, L_e(p) the emitted
- radiance read from grid le (its interpolated density; its own box and
- sampling, its coefficients unused). Ratio tracking that scores
- W sigma_a L_e / sigma_maj at each tentative collision, W the weight so
- far: unbiased; its final weight estimates the transmittance. Writes
- *out. SK_ERR_NULL for NULL pointers or callback; SK_ERR_DOMAIN for a
- zero or non-finite vector, t_max negative or NaN, g over another box
- than m, coefficients above the majorant or an L_e negative or not
- finite where a collision reads it; SK_ERR_BUDGET when more than
- `budget` tentative collisions would be needed; SK_ERR_SIZE for
- malformed grids or majorants.
- */
-sk_status sk_emission_track(const sk_majorants *m,
-                            const sk_grid *g,
-                            const sk_grid *le,
-                            sk_vec3 o,
-                            sk_vec3 d,
-                            float t_max,
-                            uint32_t budget,
-                            sk_rng *rng,
-                            sk_emission_result *out);
-
-/*
- Double twin of `sk_emission_track`.
- */
-sk_status sk_emission_track_f64(const sk_majorants_f64 *m,
-                                const sk_grid_f64 *g,
-                                const sk_grid_f64 *le,
-                                sk_vec3_f64 o,
-                                sk_vec3_f64 d,
-                                double t_max,
-                                uint32_t budget,
-                                sk_rng *rng,
-                                sk_emission_result_f64 *out);
-
-/*
- sk_emission_track through a caller's medium f(ctx, p) (coefficients
- within the majorants m) with the emitted radiance le(le_ctx, p) (finite
- and >= 0, else SK_ERR_DOMAIN), over [t_min, t_max] (clipped to the
- majorants' box; t_max may be INFINITY). Other errors as
- sk_emission_track.
- */
-sk_status sk_emission_track_fn(sk_medium_fn f,
-                               void *ctx,
-                               sk_density_fn le,
-                               void *le_ctx,
-                               const sk_majorants *m,
-                               sk_vec3 o,
-                               sk_vec3 d,
-                               float t_min,
-                               float t_max,
-                               uint32_t budget,
-                               sk_rng *rng,
-                               sk_emission_result *out);
-
-/*
- Double twin of `sk_emission_track_fn`.
- */
-sk_status sk_emission_track_fn_f64(sk_medium_fn_f64 f,
-                                   void *ctx,
-                                   sk_density_fn_f64 le,
-                                   void *le_ctx,
-                                   const sk_majorants_f64 *m,
-                                   sk_vec3_f64 o,
-                                   sk_vec3_f64 d,
-                                   double t_min,
-                                   double t_max,
-                                   uint32_t budget,
-                                   sk_rng *rng,
-                                   sk_emission_result_f64 *out);
-
-/*
- The exact emitted radiance along the ray over [t_min, t_max] through a
- medium constant in each cell: sigma_t holds each cell's extinction and
- emitted its emission coefficient sigma_a L_e (per length unit; both
- built or checked by sk_majorants_new, over the same cells and box). Per
- cell crossed over a length l after optical depth tau:
- exp(-tau) j l (1 - exp(-sigma_t l))/(sigma_t l). Writes *out (steps 0).
- SK_ERR_NULL for NULL pointers; SK_ERR_SIZE for malformed grids;
- SK_ERR_DOMAIN for grids over different cells or boxes, a zero or
- non-finite vector, t_min, t_max out of order, or a radiance that
- overflows.
- */
-sk_status sk_emission_cells(const sk_majorants *sigma_t,
-                            const sk_majorants *emitted,
-                            sk_vec3 o,
-                            sk_vec3 d,
-                            float t_min,
-                            float t_max,
-                            sk_emission_result *out);
-
-/*
- Double twin of `sk_emission_cells`.
- */
-sk_status sk_emission_cells_f64(const sk_majorants_f64 *sigma_t,
-                                const sk_majorants_f64 *emitted,
-                                sk_vec3_f64 o,
-                                sk_vec3_f64 d,
-                                double t_min,
-                                double t_max,
-                                sk_emission_result_f64 *out);
 
 /*
  Equiangular sampling over [t_min, t_max] of the ray from o along d
@@ -2088,27 +1939,31 @@ float sk_legendre_sample_cos(const sk_legendre *s, float u);
 double sk_legendre_sample_cos_f64(const sk_legendre_f64 *s, double u);
 
 /*
- The number of majorants of an mx*my*mz grid (pbrt-v4 uses 16*16*16);
- 0 for a zero dimension or a count that overflows size_t.
+ The number of cells of an mx*my*mz grid (pbrt-v4 uses 16*16*16); 0 for
+ a zero dimension or a count that overflows size_t.
  */
 size_t sk_majorant_len(uint32_t mx, uint32_t my, uint32_t mz);
 
 /*
- Fills out[0 .. mx*my*mz] with the majorants of grid g on an mx*my*mz
- division of its box, in one pass over the grid: each cell gets
+ Fills max_out[0 .. mx*my*mz - 1] with the majorants of grid g on an
+ mx*my*mz division of its box, in one pass over the grid: each cell gets
  (sigma_a + sigma_s) times the largest grid value whose interpolation
- reaches into it, so the majorants bound the density everywhere. Writes
- *maj_out borrowing out. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE for a
- zero dimension, out_len < sk_majorant_len(mx, my, mz) or a malformed
- grid.
+ reaches into it, so the majorants bound the density everywhere. With a
+ non-NULL min_out, also the minorants (the smallest such value, so they
+ bound it from below), for residual ratio tracking. Writes *out
+ borrowing the arrays. SK_ERR_NULL for NULL g, max_out or out;
+ SK_ERR_DOMAIN for a never-built grid; SK_ERR_SIZE for a zero dimension
+ or len < sk_majorant_len(mx, my, mz); SK_ERR_OVERLAP if the two arrays
+ overlap.
  */
 sk_status sk_majorants_build(const sk_grid *g,
                              uint32_t mx,
                              uint32_t my,
                              uint32_t mz,
-                             float *out,
-                             size_t out_len,
-                             sk_majorants *maj_out);
+                             float *max_out,
+                             float *min_out,
+                             size_t len,
+                             sk_majorants *out);
 
 /*
  Double twin of `sk_majorants_build`.
@@ -2117,18 +1972,21 @@ sk_status sk_majorants_build_f64(const sk_grid_f64 *g,
                                  uint32_t mx,
                                  uint32_t my,
                                  uint32_t mz,
-                                 double *out,
-                                 size_t out_len,
-                                 sk_majorants_f64 *maj_out);
+                                 double *max_out,
+                                 double *min_out,
+                                 size_t len,
+                                 sk_majorants_f64 *out);
 
 /*
- Your own majorants over the box [lo, hi]: sigma holds mx*my*mz values
- (x fastest), each finite and >= 0 and bounding sigma_t over its closed
- cell (tracking reports SK_ERR_DOMAIN where it meets one that does not).
- SK_ERR_NULL for NULL pointers; SK_ERR_SIZE for a zero dimension;
+ Your own bounds over the box [lo, hi]: max holds mx*my*mz majorants (x
+ fastest), each finite and >= 0 and bounding sigma_t over its closed
+ cell (tracking reports SK_ERR_DOMAIN where it meets one that does not);
+ min, if not NULL, as many minorants, each at most its cell's majorant.
+ SK_ERR_NULL for NULL max or out; SK_ERR_SIZE for a zero dimension;
  SK_ERR_DOMAIN for a bad value or box (see sk_grid_set_box).
  */
-sk_status sk_majorants_new(const float *sigma,
+sk_status sk_majorants_new(const float *max,
+                           const float *min,
                            uint32_t mx,
                            uint32_t my,
                            uint32_t mz,
@@ -2139,7 +1997,8 @@ sk_status sk_majorants_new(const float *sigma,
 /*
  Double twin of `sk_majorants_new`.
  */
-sk_status sk_majorants_new_f64(const double *sigma,
+sk_status sk_majorants_new_f64(const double *max,
+                               const double *min,
                                uint32_t mx,
                                uint32_t my,
                                uint32_t mz,
@@ -2148,124 +2007,26 @@ sk_status sk_majorants_new_f64(const double *sigma,
                                sk_majorants_f64 *out);
 
 /*
- Delta tracking through grid g walking its majorants m cell by cell, from
- o along d (any non-zero length; distances along d/|d|) over [0, t_max]:
- one uniform per tentative collision decides absorption
- (xi sigma_maj < sigma_a), scattering (< sigma_a + sigma_s) or a null
- collision. Writes *out. SK_ERR_NULL for NULL pointers or callback;
- SK_ERR_DOMAIN for zero or non-finite vectors, t_max negative or NaN,
- majorants over another box than the grid's, or a density above its
- cell's majorant; SK_ERR_BUDGET after `budget` tentative collisions;
- SK_ERR_SIZE for a malformed grid or majorants.
+ The majorant optical depth (the integral of sigma_maj) along the ray
+ from o along d over [t_min, t_max] (distances along d/|d|), cell by
+ cell; not rounded. Its ceiling is the step count sk_ray_march takes by
+ default. NaN for NULL or never-built majorants, a bad value on the
+ ray, a zero or non-finite vector, or t_min, t_max out of order.
  */
-sk_status sk_delta_track_majorants(const sk_majorants *m,
-                                   const sk_grid *g,
-                                   sk_vec3 o,
-                                   sk_vec3 d,
-                                   float t_max,
-                                   uint32_t budget,
-                                   sk_rng *rng,
-                                   sk_track_result *out);
+float sk_majorants_optical_depth(const sk_majorants *m,
+                                 sk_vec3 o,
+                                 sk_vec3 d,
+                                 float t_min,
+                                 float t_max);
 
 /*
- Double twin of `sk_delta_track_majorants`.
+ Double twin of `sk_majorants_optical_depth`.
  */
-sk_status sk_delta_track_majorants_f64(const sk_majorants_f64 *m,
-                                       const sk_grid_f64 *g,
-                                       sk_vec3_f64 o,
-                                       sk_vec3_f64 d,
-                                       double t_max,
-                                       uint32_t budget,
-                                       sk_rng *rng,
-                                       sk_track_result_f64 *out);
-
-/*
- Ratio tracking through grid g walking its majorants m (arguments and
- errors as sk_delta_track_majorants): an unbiased transmittance estimate
- over [0, t_max], with Russian roulette below a weight of 0.05.
- */
-sk_status sk_ratio_track_majorants(const sk_majorants *m,
-                                   const sk_grid *g,
-                                   sk_vec3 o,
-                                   sk_vec3 d,
-                                   float t_max,
-                                   uint32_t budget,
-                                   sk_rng *rng,
-                                   sk_ratio_result *out);
-
-/*
- Double twin of `sk_ratio_track_majorants`.
- */
-sk_status sk_ratio_track_majorants_f64(const sk_majorants_f64 *m,
-                                       const sk_grid_f64 *g,
-                                       sk_vec3_f64 o,
-                                       sk_vec3_f64 d,
-                                       double t_max,
-                                       uint32_t budget,
-                                       sk_rng *rng,
-                                       sk_ratio_result_f64 *out);
-
-/*
- Delta tracking through the caller's medium f(ctx, p) = (sigma_a,
- sigma_s) walking the caller's majorants m, over [t_min, t_max]
- (0 <= t_min <= t_max) from o along d. Events, budget and errors as
- sk_delta_track_majorants (SK_ERR_DOMAIN also for negative coefficients
- or t_min, t_max out of order).
- */
-sk_status sk_delta_track_majorants_fn(sk_medium_fn f,
-                                      void *ctx,
-                                      const sk_majorants *m,
-                                      sk_vec3 o,
-                                      sk_vec3 d,
-                                      float t_min,
-                                      float t_max,
-                                      uint32_t budget,
-                                      sk_rng *rng,
-                                      sk_track_result *out);
-
-/*
- Double twin of `sk_delta_track_majorants_fn`.
- */
-sk_status sk_delta_track_majorants_fn_f64(sk_medium_fn_f64 f,
-                                          void *ctx,
-                                          const sk_majorants_f64 *m,
-                                          sk_vec3_f64 o,
-                                          sk_vec3_f64 d,
-                                          double t_min,
-                                          double t_max,
-                                          uint32_t budget,
-                                          sk_rng *rng,
-                                          sk_track_result_f64 *out);
-
-/*
- Ratio tracking through the caller's medium (arguments and errors as
- sk_delta_track_majorants_fn): an unbiased transmittance estimate over
- [t_min, t_max].
- */
-sk_status sk_ratio_track_majorants_fn(sk_medium_fn f,
-                                      void *ctx,
-                                      const sk_majorants *m,
-                                      sk_vec3 o,
-                                      sk_vec3 d,
-                                      float t_min,
-                                      float t_max,
-                                      uint32_t budget,
-                                      sk_rng *rng,
-                                      sk_ratio_result *out);
-
-/*
- Double twin of `sk_ratio_track_majorants_fn`.
- */
-sk_status sk_ratio_track_majorants_fn_f64(sk_medium_fn_f64 f,
-                                          void *ctx,
-                                          const sk_majorants_f64 *m,
-                                          sk_vec3_f64 o,
-                                          sk_vec3_f64 d,
-                                          double t_min,
-                                          double t_max,
-                                          uint32_t budget,
-                                          sk_rng *rng,
-                                          sk_ratio_result_f64 *out);
+double sk_majorants_optical_depth_f64(const sk_majorants_f64 *m,
+                                      sk_vec3_f64 o,
+                                      sk_vec3_f64 d,
+                                      double t_min,
+                                      double t_max);
 
 /*
  Distance to the next interaction in a homogeneous medium:
@@ -2330,7 +2091,7 @@ sk_status sk_homogeneous_sample_f64(const double *sigma_t,
  sk_grid_set_sampling change that) from the caller's nx*ny*nz values (x
  fastest; borrowed, not copied), sampled at the grid nodes and
  interpolated trilinearly; sigma_t(p) = (sigma_a + sigma_s) density(p).
- Scans the values once. SK_ERR_NULL for NULL density or out; SK_ERR_SIZE
+ Checks every value once, here. SK_ERR_NULL for NULL density or out; SK_ERR_SIZE
  for a zero dimension or a product that overflows; SK_ERR_DOMAIN for a
  negative or non-finite value or coefficient, or a majorant
  (sigma_a + sigma_s) * max(density) that overflows.
@@ -2357,8 +2118,8 @@ sk_status sk_grid_new_f64(const double *density,
 /*
  Places the grid in the world box [lo, hi] (from the unit cube). On
  failure the grid is unchanged: SK_ERR_NULL for NULL g; SK_ERR_DOMAIN
- unless every coordinate is finite and lo < hi on every axis with a
- finite extent whose reciprocal is finite.
+ for a never-built grid, or unless every coordinate is finite and lo < hi
+ on every axis with a finite extent whose reciprocal is finite.
  */
 sk_status sk_grid_set_box(sk_grid *g, sk_vec3 lo, sk_vec3 hi);
 
@@ -2369,7 +2130,8 @@ sk_status sk_grid_set_box_f64(sk_grid_f64 *g, sk_vec3_f64 lo, sk_vec3_f64 hi);
 
 /*
  Sets where the values sit (an sk_sampling). SK_ERR_NULL for NULL g;
- SK_ERR_METHOD for an unknown value (the grid is then unchanged).
+ SK_ERR_METHOD for an unknown value; SK_ERR_DOMAIN for a never-built
+ grid (the grid is then unchanged).
  */
 sk_status sk_grid_set_sampling(sk_grid *g, uint32_t sampling);
 
@@ -2380,7 +2142,7 @@ sk_status sk_grid_set_sampling_f64(sk_grid_f64 *g, uint32_t sampling);
 
 /*
  The interpolated density at p (0 outside the grid's box); NaN for a
- NULL or malformed grid.
+ NULL or never-built grid.
  */
 float sk_grid_density(const sk_grid *g, sk_vec3 p);
 
@@ -2390,114 +2152,16 @@ float sk_grid_density(const sk_grid *g, sk_vec3 p);
 double sk_grid_density_f64(const sk_grid_f64 *g, sk_vec3_f64 p);
 
 /*
- Delta (Woodcock) tracking through the grid from o along d (any non-zero
- length; distances along d/|d|) over [0, t_max], clipped to the grid's box.
- Writes the distance and an sk_track_event (ESCAPED with t_max, SCATTERED
- or ABSORBED). A zero majorant or a ray that misses the box escapes at
- once. SK_ERR_NULL for NULL pointers or callback; SK_ERR_DOMAIN for zero
- or non-finite vectors or t_max negative or NaN; SK_ERR_BUDGET after 2^20
- steps; SK_ERR_SIZE for a malformed grid.
+ (sigma_a, sigma_s) of the grid at p: its coefficients times the
+ interpolated density (0 outside its box), what an sk_medium_fn over the
+ grid returns. Both NaN for a NULL or never-built grid.
  */
-sk_status sk_delta_track(const sk_grid *g,
-                         sk_vec3 o,
-                         sk_vec3 d,
-                         float t_max,
-                         sk_rng *rng,
-                         float *t_out,
-                         uint32_t *scattered_out);
+sk_coefficients sk_grid_coefficients(const sk_grid *g, sk_vec3 p);
 
 /*
- Double twin of `sk_delta_track`.
+ Double twin of `sk_grid_coefficients`.
  */
-sk_status sk_delta_track_f64(const sk_grid_f64 *g,
-                             sk_vec3_f64 o,
-                             sk_vec3_f64 d,
-                             double t_max,
-                             sk_rng *rng,
-                             double *t_out,
-                             uint32_t *scattered_out);
-
-/*
- Ratio tracking through the grid: an unbiased estimate of the
- transmittance from o along d over [0, t_max], with Russian roulette once
- the weight falls below 0.05 (it survives with probability 1/4, times 4).
- 1 for a ray that misses the box; NaN for NULL or invalid arguments or
- after 2^20 steps (a medium far below its majorant over a long ray:
- sk_ratio_track_majorants walks local majorants and reports a used-up
- budget as SK_ERR_BUDGET instead).
- */
-float sk_ratio_track(const sk_grid *g, sk_vec3 o, sk_vec3 d, float t_max, sk_rng *rng);
-
-/*
- Double twin of `sk_ratio_track`.
- */
-double sk_ratio_track_f64(const sk_grid_f64 *g,
-                          sk_vec3_f64 o,
-                          sk_vec3_f64 d,
-                          double t_max,
-                          sk_rng *rng);
-
-/*
- Delta tracking through the caller's medium f(ctx, p) = sigma_t(p) over
- [t_min, t_max] from o along d, with majorant sigma_maj. Writes the
- distance and SK_TRACK_COLLIDED or SK_TRACK_ESCAPED (with t_max).
- SK_ERR_DOMAIN when f returns a value outside [0, sigma_maj] (reported,
- not clamped: clamping would bias), for zero or non-finite vectors,
- sigma_maj negative or non-finite, or t_min < 0 or t_max < t_min;
- SK_ERR_NULL for NULL f, rng or outputs; SK_ERR_BUDGET after 2^20 steps.
- */
-sk_status sk_delta_track_fn(sk_density_fn f,
-                            void *ctx,
-                            float sigma_maj,
-                            sk_vec3 o,
-                            sk_vec3 d,
-                            float t_min,
-                            float t_max,
-                            sk_rng *rng,
-                            float *t_out,
-                            uint32_t *scattered_out);
-
-/*
- Double twin of `sk_delta_track_fn`.
- */
-sk_status sk_delta_track_fn_f64(sk_density_fn_f64 f,
-                                void *ctx,
-                                double sigma_maj,
-                                sk_vec3_f64 o,
-                                sk_vec3_f64 d,
-                                double t_min,
-                                double t_max,
-                                sk_rng *rng,
-                                double *t_out,
-                                uint32_t *scattered_out);
-
-/*
- Ratio tracking through the caller's medium (arguments as
- sk_delta_track_fn): an unbiased transmittance estimate over
- [t_min, t_max], with the roulette of sk_ratio_track. NaN for NULL or
- invalid arguments, a density outside [0, sigma_maj], or after 2^20
- steps (sk_ratio_track_majorants_fn reports each as a status).
- */
-float sk_ratio_track_fn(sk_density_fn f,
-                        void *ctx,
-                        float sigma_maj,
-                        sk_vec3 o,
-                        sk_vec3 d,
-                        float t_min,
-                        float t_max,
-                        sk_rng *rng);
-
-/*
- Double twin of `sk_ratio_track_fn`.
- */
-double sk_ratio_track_fn_f64(sk_density_fn_f64 f,
-                             void *ctx,
-                             double sigma_maj,
-                             sk_vec3_f64 o,
-                             sk_vec3_f64 d,
-                             double t_min,
-                             double t_max,
-                             sk_rng *rng);
+sk_coefficients_f64 sk_grid_coefficients_f64(const sk_grid_f64 *g, sk_vec3_f64 p);
 
 /*
  The size parameter pi d n_medium / lambda of a sphere of diameter d in a
@@ -2711,81 +2375,6 @@ sk_status sk_mixture_legendre_moments(const sk_mixture *m, float *out, size_t n)
  Double twin of `sk_mixture_legendre_moments`.
  */
 sk_status sk_mixture_legendre_moments_f64(const sk_mixture_f64 *m, double *out, size_t n);
-
-/*
- Ratio tracking through the caller's medium f(ctx, p) along the ray
- from o along d over [t_min, t_max] (clipped to the majorants' box;
- t_max may be INFINITY) when the majorants m may not bound it: where
- sigma_t exceeds sigma_maj a factor 1 - sigma_t/sigma_maj turns
- negative and the estimate stays unbiased (Misso et al. 2023). Reports
- the largest sigma_t/sigma_maj above 1 and its cell, to raise that
- majorant for later rays (never during a walk). A cell whose majorant is
- 0 is crossed unseen: give every cell that may hold density a positive
- majorant. Writes *out. SK_ERR_NULL for NULL pointers or callback;
- SK_ERR_DOMAIN for a zero or non-finite vector, t_min, t_max out of
- order, a coefficient negative or not finite, or a weight that
- overflows; SK_ERR_BUDGET after `budget` tentative collisions;
- SK_ERR_SIZE for malformed majorants.
- */
-sk_status sk_ratio_track_signed_fn(sk_medium_fn f,
-                                   void *ctx,
-                                   const sk_majorants *m,
-                                   sk_vec3 o,
-                                   sk_vec3 d,
-                                   float t_min,
-                                   float t_max,
-                                   uint32_t budget,
-                                   sk_rng *rng,
-                                   sk_signed_result *out);
-
-/*
- Double twin of `sk_ratio_track_signed_fn`.
- */
-sk_status sk_ratio_track_signed_fn_f64(sk_medium_fn_f64 f,
-                                       void *ctx,
-                                       const sk_majorants_f64 *m,
-                                       sk_vec3_f64 o,
-                                       sk_vec3_f64 d,
-                                       double t_min,
-                                       double t_max,
-                                       uint32_t budget,
-                                       sk_rng *rng,
-                                       sk_signed_result_f64 *out);
-
-/*
- Delta tracking through the caller's medium f(ctx, p) when the
- majorants m may not bound it (arguments, excess report and errors as
- sk_ratio_track_signed_fn): at a tentative collision with
- sigma_n = sigma_maj - sigma_t, the collision is real with probability
- sigma_t/(sigma_t + |sigma_n|) and the weight is multiplied by
- (sigma_t + |sigma_n|)/sigma_maj, negated for a null collision where
- sigma_n < 0; where the majorant bounds this is delta tracking with
- weight 1. The outcome (event, t) counts with out->weight: unbiased.
- */
-sk_status sk_delta_track_weighted_fn(sk_medium_fn f,
-                                     void *ctx,
-                                     const sk_majorants *m,
-                                     sk_vec3 o,
-                                     sk_vec3 d,
-                                     float t_min,
-                                     float t_max,
-                                     uint32_t budget,
-                                     sk_rng *rng,
-                                     sk_weighted_track *out);
-
-/*
- Double twin of `sk_delta_track_weighted_fn`.
- */
-sk_status sk_delta_track_weighted_fn_f64(sk_medium_fn_f64 f,
-                                         void *ctx,
-                                         const sk_majorants_f64 *m,
-                                         sk_vec3_f64 o,
-                                         sk_vec3_f64 d,
-                                         double t_min,
-                                         double t_max,
-                                         uint32_t budget,
-                                         sk_rng *rng,
-                                         sk_weighted_track_f64 *out);
 
 /*
  Isotropic scattering, p = 1/(4 pi).
@@ -3517,88 +3106,6 @@ sk_status sk_rayleigh_sample_dir_n_f64(uint32_t method,
                                        size_t n);
 
 /*
- Spectral delta tracking (pbrt-v4's hero-wavelength tracking) through
- grid g's density, walking density majorants m (sk_majorants_build on a
- grid with sigma_a + sigma_s = 1, or sk_majorants_new; same box as g),
- with the channels of *s: free paths at the hero's majorant; one uniform
- picks absorption, scattering or a null collision with the hero's
- probabilities; every channel's ratios are updated as pbrt-v4 does.
- Writes *out (the event, its distance or the exit, the tentative
- collisions) and `weight[c]`, `r_u[c]`, `r_l[c]` for each channel c: with the
- hero drawn uniformly among the channels, `weight[c]` / mean(r_u) on each
- event is an unbiased estimate for channel c. Errors as
- sk_delta_track_majorants, and SK_ERR_SIZE for 0 or more than 16
- channels; SK_ERR_DOMAIN for a negative or non-finite coefficient, a hero
- out of range; SK_ERR_OVERLAP for output arrays that overlap an input or
- each other.
- Nothing is written on failure.
- */
-sk_status sk_delta_track_spectral(const sk_majorants *m,
-                                  const sk_grid *g,
-                                  const sk_spectrum *s,
-                                  sk_vec3 o,
-                                  sk_vec3 d,
-                                  float t_max,
-                                  uint32_t budget,
-                                  sk_rng *rng,
-                                  sk_track_result *out,
-                                  float *weight,
-                                  float *r_u,
-                                  float *r_l);
-
-/*
- Double twin of `sk_delta_track_spectral`.
- */
-sk_status sk_delta_track_spectral_f64(const sk_majorants_f64 *m,
-                                      const sk_grid_f64 *g,
-                                      const sk_spectrum_f64 *s,
-                                      sk_vec3_f64 o,
-                                      sk_vec3_f64 d,
-                                      double t_max,
-                                      uint32_t budget,
-                                      sk_rng *rng,
-                                      sk_track_result_f64 *out,
-                                      double *weight,
-                                      double *r_u,
-                                      double *r_l);
-
-/*
- Spectral ratio tracking (arguments as sk_delta_track_spectral): every
- tentative collision is a null one; weight is pbrt-v4's T_ray (with its
- Russian roulette), and with the hero drawn uniformly among the channels
- `weight[c]` / mean(r_l) is an unbiased transmittance estimate for channel
- c. Writes the tentative collisions to *steps_out unless it is NULL.
- */
-sk_status sk_ratio_track_spectral(const sk_majorants *m,
-                                  const sk_grid *g,
-                                  const sk_spectrum *s,
-                                  sk_vec3 o,
-                                  sk_vec3 d,
-                                  float t_max,
-                                  uint32_t budget,
-                                  sk_rng *rng,
-                                  uint32_t *steps_out,
-                                  float *weight,
-                                  float *r_u,
-                                  float *r_l);
-
-/*
- Double twin of `sk_ratio_track_spectral`.
- */
-sk_status sk_ratio_track_spectral_f64(const sk_majorants_f64 *m,
-                                      const sk_grid_f64 *g,
-                                      const sk_spectrum_f64 *s,
-                                      sk_vec3_f64 o,
-                                      sk_vec3_f64 d,
-                                      double t_max,
-                                      uint32_t budget,
-                                      sk_rng *rng,
-                                      uint32_t *steps_out,
-                                      double *weight,
-                                      double *r_u,
-                                      double *r_l);
-
-/*
  cos theta drawn from channel hero's phase function at u (its own
  sampler), and every channel's ratio p_c(cos theta) / p_hero(cos theta)
  into ratio_out[0 .. k] (1 for the hero): the channel's throughput
@@ -4041,259 +3548,109 @@ sk_vec3_f64 sk_table2d_sample_dir_f64(const sk_table2d_f64 *t,
                                       double *pdf_out);
 
 /*
- The majorant optical depth along the ray from o along d over
- [t_min, t_max] (distances along d/|d|), cell by cell: rounded up, a
- step count for sk_ray_march_transmittance that gives each stratum about
- one majorant mean free path. NaN for NULL or malformed majorants, a
- zero or non-finite vector, or t_min, t_max out of order.
+ Delta (Woodcock) tracking: a free-flight distance through the medium.
+ At each tentative collision one uniform xi decides absorption
+ (xi sigma_maj < sigma_a), scattering (< sigma_a + sigma_s) or a null
+ collision; writes t, event and steps (with SK_TRACK_NONBOUNDING: weighted
+ delta tracking, also weight, exceeded and cell; with a spectrum:
+ hero-wavelength tracking, also the spectrum's outputs).
+ SK_ERR_NULL for NULL args, out, rng or callback, or a medium with
+ neither grid nor coefficients; SK_ERR_DOMAIN for a medium with both, a
+ never-built grid or majorants, majorants over another box than the
+ grid's, a zero or non-finite vector, a bad segment (t_max = +inf with a
+ callback and no majorants), a sigma_t above its majorant (unless
+ SK_TRACK_NONBOUNDING), or a bad majorant value met on the way;
+ SK_ERR_METHOD for unknown flags; SK_ERR_BUDGET when the budget runs out.
  */
-float sk_majorants_optical_depth(const sk_majorants *m,
-                                 sk_vec3 o,
-                                 sk_vec3 d,
-                                 float t_min,
-                                 float t_max);
+sk_status sk_delta_track(const sk_track_args *args, sk_track_result *out);
 
 /*
- Double twin of `sk_majorants_optical_depth`.
+ Double twin of `sk_delta_track`.
  */
-double sk_majorants_optical_depth_f64(const sk_majorants_f64 *m,
-                                      sk_vec3_f64 o,
-                                      sk_vec3_f64 d,
-                                      double t_min,
-                                      double t_max);
+sk_status sk_delta_track_f64(const sk_track_args_f64 *args, sk_track_result_f64 *out);
 
 /*
- The unbiased ray-marching transmittance estimator (Kettunen et al.
- 2021, power-series form) through grid g (the ray clipped to its box)
- over [0, t_max], with n strata per march: a power series in
- independent jittered marches (at least 3, on average 4.8), cut at a
- random order and reweighted, each march in turn the pivot, so the
- estimate is unbiased; exact for a constant medium.
- Not bounded: one estimate may exceed 1 or, rarely, fall below 0. Writes
- *out (tr and the density evaluations). SK_ERR_NULL for NULL pointers or
- callback; SK_ERR_DOMAIN for n = 0, a zero or non-finite vector, t_max
- negative or NaN, or strata far too coarse for the medium (the series
- overflows); SK_ERR_BUDGET when more than `budget` density
- evaluations would be needed; SK_ERR_SIZE for a malformed grid.
+ Ratio tracking: an unbiased estimate of the transmittance of the
+ segment (tr), the product of 1 - sigma_t/sigma_maj at the tentative
+ collisions, with Russian roulette below a weight of 0.05 (it survives
+ with probability 1/4, times 4). With SK_TRACK_NONBOUNDING: signed
+ weights where a majorant does not bound (exceeded, cell); with a
+ spectrum: hero-wavelength ratio tracking into the spectrum's outputs
+ (tr NaN). Statuses as sk_delta_track.
  */
-sk_status sk_ray_march_transmittance(const sk_grid *g,
-                                     sk_vec3 o,
-                                     sk_vec3 d,
-                                     float t_max,
-                                     uint32_t n,
-                                     uint32_t budget,
-                                     sk_rng *rng,
-                                     sk_ratio_result *out);
+sk_status sk_ratio_track(const sk_track_args *args, sk_track_result *out);
 
 /*
- Double twin of `sk_ray_march_transmittance`.
+ Double twin of `sk_ratio_track`.
  */
-sk_status sk_ray_march_transmittance_f64(const sk_grid_f64 *g,
-                                         sk_vec3_f64 o,
-                                         sk_vec3_f64 d,
-                                         double t_max,
-                                         uint32_t n,
-                                         uint32_t budget,
-                                         sk_rng *rng,
-                                         sk_ratio_result_f64 *out);
+sk_status sk_ratio_track_f64(const sk_track_args_f64 *args, sk_track_result_f64 *out);
 
 /*
- The estimator through the caller's medium f(ctx, p) = (sigma_a, sigma_s)
- over [t_min, t_max], which must be finite (SK_ERR_DOMAIN otherwise, and
- for a negative coefficient); other arguments and errors as
- sk_ray_march_transmittance.
+ Residual ratio tracking (Novak et al. 2014): the transmittance
+ exp(-integral of the minorants) along the segment, exact, times ratio
+ tracking of the residual at the rate majorant - minorant; unbiased,
+ exact where the density is constant per cell. Needs majorants with
+ minorants (SK_ERR_DOMAIN otherwise, and for a cell whose minorant
+ exceeds its majorant); other statuses as sk_ratio_track.
  */
-sk_status sk_ray_march_transmittance_fn(sk_medium_fn f,
-                                        void *ctx,
-                                        sk_vec3 o,
-                                        sk_vec3 d,
-                                        float t_min,
-                                        float t_max,
-                                        uint32_t n,
-                                        uint32_t budget,
-                                        sk_rng *rng,
-                                        sk_ratio_result *out);
-
-/*
- Double twin of `sk_ray_march_transmittance_fn`.
- */
-sk_status sk_ray_march_transmittance_fn_f64(sk_medium_fn_f64 f,
-                                            void *ctx,
-                                            sk_vec3_f64 o,
-                                            sk_vec3_f64 d,
-                                            double t_min,
-                                            double t_max,
-                                            uint32_t n,
-                                            uint32_t budget,
-                                            sk_rng *rng,
-                                            sk_ratio_result_f64 *out);
-
-/*
- The telescoping ray-marching estimator (Rhee & Glynn 2015 as Misso et
- al. 2022 apply it) through grid g over [0, t_max]: exp(-X_0) of a
- stratified march of n strata, plus corrections exp(-X_k) - exp(-X'_k-1)
- between marches of n 2^k and n 2^(k-1) strata that share their points,
- each further level taken with probability 1/3 and reweighted, so the
- estimate is unbiased; exact for a constant medium; 3n evaluations on
- average. Give it finer strata than sk_ray_march_transmittance (about
- 4x). Arguments, bounds and errors as
- sk_ray_march_transmittance.
- */
-sk_status sk_telescoping_transmittance(const sk_grid *g,
-                                       sk_vec3 o,
-                                       sk_vec3 d,
-                                       float t_max,
-                                       uint32_t n,
-                                       uint32_t budget,
-                                       sk_rng *rng,
-                                       sk_ratio_result *out);
-
-/*
- Double twin of `sk_telescoping_transmittance`.
- */
-sk_status sk_telescoping_transmittance_f64(const sk_grid_f64 *g,
-                                           sk_vec3_f64 o,
-                                           sk_vec3_f64 d,
-                                           double t_max,
-                                           uint32_t n,
-                                           uint32_t budget,
-                                           sk_rng *rng,
-                                           sk_ratio_result_f64 *out);
-
-/*
- sk_telescoping_transmittance through the caller's medium f(ctx, p),
- as sk_ray_march_transmittance_fn.
- */
-sk_status sk_telescoping_transmittance_fn(sk_medium_fn f,
-                                          void *ctx,
-                                          sk_vec3 o,
-                                          sk_vec3 d,
-                                          float t_min,
-                                          float t_max,
-                                          uint32_t n,
-                                          uint32_t budget,
-                                          sk_rng *rng,
-                                          sk_ratio_result *out);
-
-/*
- Double twin of `sk_telescoping_transmittance_fn`.
- */
-sk_status sk_telescoping_transmittance_fn_f64(sk_medium_fn_f64 f,
-                                              void *ctx,
-                                              sk_vec3_f64 o,
-                                              sk_vec3_f64 d,
-                                              double t_min,
-                                              double t_max,
-                                              uint32_t n,
-                                              uint32_t budget,
-                                              sk_rng *rng,
-                                              sk_ratio_result_f64 *out);
-
-/*
- Fills max_out[0 .. mx*my*mz] with the majorants of grid g (as
- sk_majorants_build) and min_out with its minorants: each cell gets
- (sigma_a + sigma_s) times the smallest grid value whose interpolation
- reaches into it, so the minorants bound the density from below
- everywhere. Writes *ext_out borrowing both arrays. SK_ERR_NULL for NULL
- pointers; SK_ERR_SIZE for a zero dimension, out_len <
- sk_majorant_len(mx, my, mz) or a malformed grid; SK_ERR_OVERLAP if the
- two arrays overlap.
- */
-sk_status sk_extrema_build(const sk_grid *g,
-                           uint32_t mx,
-                           uint32_t my,
-                           uint32_t mz,
-                           float *max_out,
-                           float *min_out,
-                           size_t out_len,
-                           sk_extrema *ext_out);
-
-/*
- Double twin of `sk_extrema_build`.
- */
-sk_status sk_extrema_build_f64(const sk_grid_f64 *g,
-                               uint32_t mx,
-                               uint32_t my,
-                               uint32_t mz,
-                               double *max_out,
-                               double *min_out,
-                               size_t out_len,
-                               sk_extrema_f64 *ext_out);
-
-/*
- Pairs your own majorants and minorants (each built or checked by
- sk_majorants_new) into *ext_out. SK_ERR_NULL for NULL pointers;
- SK_ERR_SIZE for malformed ones; SK_ERR_DOMAIN unless both have the same
- cells and box and every minorant is at most its cell's majorant.
- */
-sk_status sk_extrema_new(const sk_majorants *max, const sk_majorants *min, sk_extrema *ext_out);
-
-/*
- Double twin of `sk_extrema_new`.
- */
-sk_status sk_extrema_new_f64(const sk_majorants_f64 *max,
-                             const sk_majorants_f64 *min,
-                             sk_extrema_f64 *ext_out);
-
-/*
- Residual ratio tracking (Novak et al. 2014) through grid g with the
- extrema e (arguments and errors as sk_ratio_track_majorants): the
- transmittance exp(-integral of the minorants) along the ray, exact, times
- ratio tracking of the residual at the rate majorant - minorant. An
- unbiased estimate over [0, t_max]; exact where the density is constant
- in each cell. SK_ERR_DOMAIN also for a cell whose minorant exceeds its
- majorant.
- */
-sk_status sk_residual_ratio_track(const sk_extrema *e,
-                                  const sk_grid *g,
-                                  sk_vec3 o,
-                                  sk_vec3 d,
-                                  float t_max,
-                                  uint32_t budget,
-                                  sk_rng *rng,
-                                  sk_ratio_result *out);
+sk_status sk_residual_ratio_track(const sk_track_args *args, sk_track_result *out);
 
 /*
  Double twin of `sk_residual_ratio_track`.
  */
-sk_status sk_residual_ratio_track_f64(const sk_extrema_f64 *e,
-                                      const sk_grid_f64 *g,
-                                      sk_vec3_f64 o,
-                                      sk_vec3_f64 d,
-                                      double t_max,
-                                      uint32_t budget,
-                                      sk_rng *rng,
-                                      sk_ratio_result_f64 *out);
+sk_status sk_residual_ratio_track_f64(const sk_track_args_f64 *args, sk_track_result_f64 *out);
 
 /*
- Residual ratio tracking through the caller's medium f(ctx, p) = (sigma_a,
- sigma_s) with the extrema e, over [t_min, t_max] (arguments and errors
- as sk_ratio_track_majorants_fn).
+ The unbiased ray-marching transmittance estimator (Kettunen et al.
+ 2021, power series): jittered marches of `strata` strata (0: the
+ segment's majorant optical depth rounded up, at least 1), a power
+ series in independent marches (at least 3, on average 4.8) cut at a
+ random order and reweighted; exact for a constant medium. One estimate
+ may leave [0, 1]. Statuses as sk_ratio_track; also SK_ERR_DOMAIN when
+ the series overflows (strata far too coarse for the medium), and
+ SK_ERR_BUDGET when more than `budget` density evaluations would be
+ needed.
  */
-sk_status sk_residual_ratio_track_fn(sk_medium_fn f,
-                                     void *ctx,
-                                     const sk_extrema *e,
-                                     sk_vec3 o,
-                                     sk_vec3 d,
-                                     float t_min,
-                                     float t_max,
-                                     uint32_t budget,
-                                     sk_rng *rng,
-                                     sk_ratio_result *out);
+sk_status sk_ray_march(const sk_track_args *args, sk_track_result *out);
 
 /*
- Double twin of `sk_residual_ratio_track_fn`.
+ Double twin of `sk_ray_march`.
  */
-sk_status sk_residual_ratio_track_fn_f64(sk_medium_fn_f64 f,
-                                         void *ctx,
-                                         const sk_extrema_f64 *e,
-                                         sk_vec3_f64 o,
-                                         sk_vec3_f64 d,
-                                         double t_min,
-                                         double t_max,
-                                         uint32_t budget,
-                                         sk_rng *rng,
-                                         sk_ratio_result_f64 *out);
+sk_status sk_ray_march_f64(const sk_track_args_f64 *args, sk_track_result_f64 *out);
+
+/*
+ The telescoping ray-marching estimator (Rhee & Glynn 2015 as Misso et
+ al. 2022 apply it): exp(-X_0) of a stratified march of n strata (0: 4
+ times the segment's majorant optical depth rounded up), plus
+ corrections between marches of n 2^k and n 2^(k-1) strata that share
+ their points, each further level taken with probability 1/3 and
+ reweighted; unbiased, exact for a constant medium, 3n evaluations on
+ average. Statuses as sk_ray_march.
+ */
+sk_status sk_telescoping_march(const sk_track_args *args, sk_track_result *out);
+
+/*
+ Double twin of `sk_telescoping_march`.
+ */
+sk_status sk_telescoping_march_f64(const sk_track_args_f64 *args, sk_track_result_f64 *out);
+
+/*
+ The radiance a medium emits along the segment, the integral of
+ T sigma_a L_e, with the segment's transmittance (tr): by ratio tracking
+ that scores sigma_a L_e / sigma_maj at every tentative collision
+ (unbiased; needs majorants, or sigma_maj for a callback), L_e from
+ medium.emission (a grid over the same box) or medium.emission_fn; or,
+ for a medium constant per cell (no grid, no coefficients: majorants
+ holding sigma_t and emission_cells sigma_a L_e per cell, same cells and
+ box), exactly (steps 0). Statuses as sk_ratio_track; SK_ERR_DOMAIN also
+ for no source or more than one, and for a negative or non-finite L_e.
+ */
+sk_status sk_emission_track(const sk_track_args *args, sk_track_result *out);
+
+/*
+ Double twin of `sk_emission_track`.
+ */
+sk_status sk_emission_track_f64(const sk_track_args_f64 *args, sk_track_result_f64 *out);
 
 #ifdef __cplusplus
 } /* extern "C" */

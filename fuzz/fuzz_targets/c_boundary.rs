@@ -8,14 +8,32 @@ use scatterkit::ffi::*;
 /// The fuzzed grid as a caller's medium (its density times its
 /// coefficients), for the trackers that take a callback.
 unsafe extern "C" fn grid_medium(ctx: *mut core::ffi::c_void, p: sk_vec3) -> sk_coefficients {
-    let g = ctx as *const sk_grid;
     // SAFETY: ctx is the fuzz target's own grid, alive for the call.
-    unsafe {
-        let rho = sk_grid_density(g, p);
-        sk_coefficients {
-            sigma_a: (*g).sigma_a * rho,
-            sigma_s: (*g).sigma_s * rho,
-        }
+    unsafe { sk_grid_coefficients(ctx as *const sk_grid, p) }
+}
+
+/// Tracking arguments through grid `g` over `[0, t_max]`.
+fn args(g: &sk_grid, o: sk_vec3, d: sk_vec3, t_max: f32, rng: &mut sk_rng) -> sk_track_args {
+    sk_track_args {
+        medium: sk_medium {
+            grid: g,
+            coefficients: None,
+            ctx: core::ptr::null_mut(),
+            majorants: core::ptr::null(),
+            sigma_maj: 0.0,
+            emission: core::ptr::null(),
+            emission_fn: None,
+            emission_cells: core::ptr::null(),
+        },
+        o,
+        d,
+        t_min: 0.0,
+        t_max,
+        budget: 0,
+        strata: 0,
+        flags: 0,
+        rng,
+        spectrum: core::ptr::null(),
     }
 }
 
@@ -315,218 +333,119 @@ fuzz_target!(|data: &[u8]| {
             w.as_mut_ptr(),
         );
         // Grids of arbitrary dimensions over the data.
-        let mut g = sk_grid {
-            density: core::ptr::null(),
-            nx: 0,
-            ny: 0,
-            nz: 0,
-            sigma_a: 0.0,
-            sigma_s: 0.0,
-            max_density: 0.0,
-            lo: sk_vec3 {
-                x: 0.0,
-                y: 0.0,
-                z: 0.0,
-            },
-            hi: sk_vec3 {
-                x: 1.0,
-                y: 1.0,
-                z: 1.0,
-            },
-            sampling: 0,
-        };
+        let mut g = sk_grid { opaque: [0; 32] };
         let (nx, ny) = (word(6) % 8, word(7) % 8);
         if (nx as usize) * (ny as usize) <= n
             && sk_grid_new(f.as_ptr(), nx, ny, 1, x(20), x(21), &mut g) == sk_status::SK_OK
         {
-            let tr = sk_ratio_track(
-                &g,
-                sk_vec3 {
-                    x: x(22),
-                    y: 0.5,
-                    z: 0.5,
-                },
-                sk_vec3 {
-                    x: 1.0,
-                    y: x(23),
-                    z: 0.0,
-                },
-                x(24),
-                &mut rng,
-            );
-            assert!(tr.is_nan() || (0.0..=1.0).contains(&tr), "{tr}");
+            let mut a = args(&g, v3(x(22), 0.5, 0.5), v3(1.0, x(23), 0.0), x(24), &mut rng);
+            let mut r = core::mem::MaybeUninit::<sk_track_result>::uninit();
+            if sk_ratio_track(&a, r.as_mut_ptr()) == sk_status::SK_OK {
+                let tr = r.assume_init().tr;
+                assert!((0.0..=1.0).contains(&tr), "{tr}");
+            }
             // The same grid in a fuzzed box and sampling, through majorants
             // of a fuzzed resolution with a fuzzed budget.
-            let lo = sk_vec3 {
-                x: x(25),
-                y: x(26),
-                z: -1.0,
+            let (lo, hi) = (v3(x(25), x(26), -1.0), v3(x(27), 2.0, 1.0));
+            let (blo, bhi) = if sk_grid_set_box(&mut g, lo, hi) == sk_status::SK_OK {
+                (lo, hi)
+            } else {
+                (v3(0.0, 0.0, 0.0), v3(1.0, 1.0, 1.0))
             };
-            let hi = sk_vec3 {
-                x: x(27),
-                y: 2.0,
-                z: 1.0,
-            };
-            let _ = sk_grid_set_box(&mut g, lo, hi);
             let _ = sk_grid_set_sampling(&mut g, word(8) % 3);
             let mut store = [0.0f32; 64];
             let (mx, my, mz) = (1 + word(9) % 4, 1 + word(10) % 4, 1 + word(11) % 4);
             let mut maj = core::mem::MaybeUninit::<sk_majorants>::uninit();
-            if sk_majorants_build(&g, mx, my, mz, store.as_mut_ptr(), 64, maj.as_mut_ptr())
+            let null = core::ptr::null_mut();
+            if sk_majorants_build(&g, mx, my, mz, store.as_mut_ptr(), null, 64, maj.as_mut_ptr())
                 == sk_status::SK_OK
             {
                 let maj = maj.assume_init();
-                let o = sk_vec3 {
-                    x: x(28),
-                    y: x(29),
-                    z: 0.25,
-                };
-                let d = sk_vec3 {
-                    x: x(30),
-                    y: 1.0,
-                    z: x(31),
-                };
                 let budget = word(12) % 5000;
-                let mut out = core::mem::MaybeUninit::<sk_ratio_result>::uninit();
-                if sk_ratio_track_majorants(
-                    &maj,
-                    &g,
-                    o,
-                    d,
-                    x(32),
-                    budget,
-                    &mut rng,
-                    out.as_mut_ptr(),
-                ) == sk_status::SK_OK
-                {
-                    let r = out.assume_init();
-                    assert!((0.0..=1.0).contains(&r.tr) && r.steps <= budget, "{r:?}");
+                a = args(&g, v3(x(28), x(29), 0.25), v3(x(30), 1.0, x(31)), x(32), &mut rng);
+                a.medium.majorants = &maj;
+                a.budget = budget;
+                let cap = if budget == 0 { 1 << 20 } else { budget };
+                if sk_ratio_track(&a, r.as_mut_ptr()) == sk_status::SK_OK {
+                    let r = r.assume_init();
+                    assert!((0.0..=1.0).contains(&r.tr) && r.steps <= cap, "{r:?}");
                 }
-                let mut tk = core::mem::MaybeUninit::<sk_track_result>::uninit();
-                if sk_delta_track_majorants(
-                    &maj,
-                    &g,
-                    o,
-                    d,
-                    x(32),
-                    budget,
-                    &mut rng,
-                    tk.as_mut_ptr(),
-                ) == sk_status::SK_OK
-                {
-                    let t = tk.assume_init();
-                    assert!(t.t >= 0.0 && t.event <= 2 && t.steps <= budget, "{t:?}");
+                if sk_delta_track(&a, r.as_mut_ptr()) == sk_status::SK_OK {
+                    let t = r.assume_init();
+                    assert!(t.t >= 0.0 && (t.event as u32) <= 2 && t.steps <= cap, "{t:?}");
                 }
                 // The unbiased ray marchers (power series, telescoping)
-                // with a fuzzed step count: a finite estimate within the
-                // budget.
-                for march in [sk_ray_march_transmittance, sk_telescoping_transmittance] {
-                    let mut out = core::mem::MaybeUninit::<sk_ratio_result>::uninit();
-                    let n = 1 + word(13) % 16;
-                    if march(&g, o, d, x(32), n, budget, &mut rng, out.as_mut_ptr())
-                        == sk_status::SK_OK
-                    {
-                        let r = out.assume_init();
-                        assert!(r.tr.is_finite() && r.steps <= budget, "{r:?}");
+                // with a fuzzed step count (0: the library's): a finite
+                // estimate within the budget.
+                a.strata = word(13) % 16;
+                for march in [sk_ray_march, sk_telescoping_march] {
+                    if march(&a, r.as_mut_ptr()) == sk_status::SK_OK {
+                        let r = r.assume_init();
+                        assert!(r.tr.is_finite() && r.steps <= cap, "{r:?}");
                     }
                 }
                 // Emission with the grid as its own emitted radiance, and
                 // the exact integral over the majorants' cells: a finite,
                 // non-negative radiance within the budget.
-                let mut em = core::mem::MaybeUninit::<sk_emission_result>::uninit();
-                if sk_emission_track(&maj, &g, &g, o, d, x(32), budget, &mut rng, em.as_mut_ptr())
-                    == sk_status::SK_OK
-                {
-                    let e = em.assume_init();
+                a.medium.emission = &g;
+                if sk_emission_track(&a, r.as_mut_ptr()) == sk_status::SK_OK {
+                    let e = r.assume_init();
                     assert!(e.radiance >= 0.0 && e.radiance.is_finite(), "{e:?}");
-                    assert!(e.tr >= 0.0 && e.steps <= budget, "{e:?}");
+                    assert!(e.tr >= 0.0 && e.steps <= cap, "{e:?}");
                 }
-                if sk_emission_cells(&maj, &maj, o, d, 0.0, x(32), em.as_mut_ptr())
-                    == sk_status::SK_OK
-                {
-                    let e = em.assume_init();
+                let mut cells = a;
+                cells.medium.grid = core::ptr::null();
+                cells.medium.emission = core::ptr::null();
+                cells.medium.emission_cells = &maj;
+                if sk_emission_track(&cells, r.as_mut_ptr()) == sk_status::SK_OK {
+                    let e = r.assume_init();
                     assert!(e.radiance >= 0.0 && (0.0..=1.0).contains(&e.tr), "{e:?}");
                 }
-                // The trackers for majorants that may not bound, with the
-                // majorants cut to a fuzzed fraction: signed weights, finite.
+                // Majorants that may not bound, cut to a fuzzed fraction:
+                // signed weights, finite; the strict estimators refuse or
+                // answer, never crash.
                 let cut = store.map(|s| s * x(33).abs().min(1.0));
                 let mut low = core::mem::MaybeUninit::<sk_majorants>::uninit();
-                if sk_majorants_new(cut.as_ptr(), mx, my, mz, maj.lo, maj.hi, low.as_mut_ptr())
+                let no_min = core::ptr::null();
+                if sk_majorants_new(cut.as_ptr(), no_min, mx, my, mz, blo, bhi, low.as_mut_ptr())
                     == sk_status::SK_OK
                 {
                     let low = low.assume_init();
-                    let ctx = &g as *const sk_grid as *mut core::ffi::c_void;
-                    let (t0, t1) = (0.0, x(32));
-                    let mut sr = core::mem::MaybeUninit::<sk_signed_result>::uninit();
-                    let st = sk_ratio_track_signed_fn(
-                        Some(grid_medium),
-                        ctx,
-                        &low,
-                        o,
-                        d,
-                        t0,
-                        t1,
-                        budget,
-                        &mut rng,
-                        sr.as_mut_ptr(),
-                    );
-                    if st == sk_status::SK_OK {
-                        let r = sr.assume_init();
-                        assert!(r.tr.is_finite() && r.steps <= budget, "{r:?}");
+                    let mut nb = a;
+                    nb.medium.emission = core::ptr::null();
+                    nb.medium.majorants = &low;
+                    nb.flags = SK_TRACK_NONBOUNDING;
+                    if sk_ratio_track(&nb, r.as_mut_ptr()) == sk_status::SK_OK {
+                        let r = r.assume_init();
+                        assert!(r.tr.is_finite() && r.steps <= cap, "{r:?}");
                         assert!(r.exceeded == 0.0 || r.exceeded > 1.0, "{r:?}");
                     }
-                    let mut wt = core::mem::MaybeUninit::<sk_weighted_track>::uninit();
-                    let st = sk_delta_track_weighted_fn(
-                        Some(grid_medium),
-                        ctx,
-                        &low,
-                        o,
-                        d,
-                        t0,
-                        t1,
-                        budget,
-                        &mut rng,
-                        wt.as_mut_ptr(),
-                    );
-                    if st == sk_status::SK_OK {
-                        let w = wt.assume_init();
-                        assert!(w.weight.is_finite() && w.event <= 2, "{w:?}");
+                    // The same through the grid as the caller's medium.
+                    nb.medium.grid = core::ptr::null();
+                    nb.medium.coefficients = Some(grid_medium);
+                    nb.medium.ctx = &g as *const sk_grid as *mut core::ffi::c_void;
+                    if sk_delta_track(&nb, r.as_mut_ptr()) == sk_status::SK_OK {
+                        let w = r.assume_init();
+                        assert!(w.weight.is_finite() && (w.event as u32) <= 2, "{w:?}");
                     }
+                    nb.flags = 0;
+                    let _ = sk_ratio_track(&nb, r.as_mut_ptr());
                 }
-                // Residual ratio tracking with the grid's extrema at the
+                // Residual ratio tracking with the grid's minorants at the
                 // same resolution: a transmittance (a weight may pass 1 by
                 // the minorants' rounding, never by more).
                 let (mut hi8, mut lo8) = ([0.0f32; 64], [0.0f32; 64]);
-                let mut ext = core::mem::MaybeUninit::<sk_extrema>::uninit();
-                if sk_extrema_build(
-                    &g,
-                    mx,
-                    my,
-                    mz,
-                    hi8.as_mut_ptr(),
-                    lo8.as_mut_ptr(),
-                    64,
-                    ext.as_mut_ptr(),
-                ) == sk_status::SK_OK
+                let mut ext = core::mem::MaybeUninit::<sk_majorants>::uninit();
+                let (h, l) = (hi8.as_mut_ptr(), lo8.as_mut_ptr());
+                if sk_majorants_build(&g, mx, my, mz, h, l, 64, ext.as_mut_ptr())
+                    == sk_status::SK_OK
                 {
                     let ext = ext.assume_init();
-                    let mut out = core::mem::MaybeUninit::<sk_ratio_result>::uninit();
-                    if sk_residual_ratio_track(
-                        &ext,
-                        &g,
-                        o,
-                        d,
-                        x(32),
-                        budget,
-                        &mut rng,
-                        out.as_mut_ptr(),
-                    ) == sk_status::SK_OK
-                    {
-                        let r = out.assume_init();
-                        assert!(
-                            (0.0..=1.0 + 1e-5).contains(&r.tr) && r.steps <= budget,
-                            "{r:?}"
-                        );
+                    a.medium.emission = core::ptr::null();
+                    a.medium.majorants = &ext;
+                    if sk_residual_ratio_track(&a, r.as_mut_ptr()) == sk_status::SK_OK {
+                        let r = r.assume_init();
+                        assert!((0.0..=1.0 + 1e-5).contains(&r.tr) && r.steps <= cap, "{r:?}");
                     }
                 }
             }

@@ -29,7 +29,6 @@ macro_rules! same_values {
 
 mod albedo;
 mod cbrt;
-mod emission;
 mod equiangular;
 mod geometry;
 mod legendre;
@@ -38,24 +37,20 @@ mod medium;
 mod mie;
 mod mixture;
 mod moments;
-mod nonbounding;
 mod phase;
 mod polarization;
 mod polydisperse;
 mod rayleigh;
 mod slot;
-mod spectral;
 mod spectral_phase;
 mod surface;
 mod table;
 mod table2d;
-// Declared last: their entry points follow the others in the header.
-mod ray_march;
-mod residual;
+// Declared last: its entry points follow the others in the header.
+mod track;
 
 pub use albedo::*;
 pub use cbrt::*;
-pub use emission::*;
 pub use equiangular::*;
 pub use geometry::*;
 pub use legendre::*;
@@ -64,18 +59,15 @@ pub use medium::*;
 pub use mie::*;
 pub use mixture::*;
 pub use moments::*;
-pub use nonbounding::*;
 pub use phase::*;
 pub use polarization::*;
 pub use polydisperse::*;
-pub use ray_march::*;
 pub use rayleigh::*;
-pub use residual::*;
-pub use spectral::*;
 pub use spectral_phase::*;
 pub use surface::*;
 pub use table::*;
 pub use table2d::*;
+pub use track::*;
 
 use crate::error::Error;
 use crate::math::geometry::Vec3;
@@ -263,7 +255,7 @@ pub unsafe extern "C" fn sk_uniform_f64(rng: *mut sk_rng) -> f64 {
 }
 
 /// A caller's callback with its context pointer, as the C API takes them:
-/// `sk_density_fn` is `CFn<sk_vec3, f32>`, `sk_medium_fn` is
+/// `sk_emission_fn` is `CFn<sk_vec3, f32>`, `sk_medium_fn` is
 /// `CFn<sk_vec3, sk_coefficients>`.
 pub(crate) type CFn<A, R> = Option<unsafe extern "C" fn(ctx: *mut c_void, a: A) -> R>;
 

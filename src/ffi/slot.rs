@@ -6,7 +6,9 @@
 //! NULL, zeroed, misaligned or never-constructed struct gives NaN or an
 //! error, never undefined behaviour) and borrows the value in place, with
 //! no copy and no rescan. The C type is plain storage (`uint64_t
-//! opaque[N]`): copy it freely; its bytes are private.
+//! opaque[N]`): copy it freely; its bytes are private, and some of them
+//! are padding a constructor need not define (compare values by what they
+//! answer, not with memcmp).
 
 /// A C type that stores a `Value` after a tag.
 pub(crate) trait Slot: Copy {
@@ -31,7 +33,8 @@ struct Tagged<V> {
     value: V,
 }
 
-/// `value` in a fresh slot (bytes past it zero).
+/// `value` in a fresh slot (bytes past it zero; padding inside it is
+/// not defined).
 pub(crate) fn store<S: Slot>(value: S::Value) -> S {
     let () = S::FITS;
     let mut s = S::ZEROED;

@@ -570,7 +570,7 @@ fn reach<T: Real>(grid: &Grid<'_, T>, c: usize, m: usize, n: usize) -> (usize, u
 
 /// `(σ_a, σ_s)` of the grid at `p`.
 #[inline(always)]
-pub(super) fn grid_coefficients<T: Real>(grid: &Grid<'_, T>, p: Vec3<T>) -> (T, T) {
+pub(crate) fn grid_coefficients<T: Real>(grid: &Grid<'_, T>, p: Vec3<T>) -> (T, T) {
     let (sa, ss) = grid.coefficients();
     let rho = grid.density(p);
     (sa * rho, ss * rho)

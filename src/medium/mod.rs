@@ -469,21 +469,35 @@ impl<'a, T: Real> Grid<'a, T> {
         ray: Ray<T>,
         rng: &mut R,
     ) -> Result<(T, Event), Error> {
+        self.delta_track_within(ray, MAX_STEPS, rng)
+            .map(|(t, e, _)| (t, e))
+    }
+
+    /// [`delta_track`](Self::delta_track) with at most `budget` tentative
+    /// collisions ([`Error::Budget`] beyond), also returning how many it
+    /// drew.
+    pub(crate) fn delta_track_within<R: Rng + ?Sized>(
+        &self,
+        ray: Ray<T>,
+        budget: u32,
+        rng: &mut R,
+    ) -> Result<(T, Event, u32), Error> {
         let (o, d) = ray.checked()?;
         let t_max = ray.t_max;
         let Some((t0, t1)) = clip_box(o, d, self.lo, self.hi, ray.t_min, t_max) else {
-            return Ok((t_max, Event::Escaped));
+            return Ok((t_max, Event::Escaped, 0));
         };
-        let (t, hit) = delta(|p| self.sigma_t(p), self.majorant(), o, d, t0, t1, rng)?;
+        let span = (t0, t1, budget);
+        let (t, hit, steps) = delta(|p| self.sigma_t(p), self.majorant(), o, d, span, rng)?;
         if !hit {
-            return Ok((t_max, Event::Escaped));
+            return Ok((t_max, Event::Escaped, steps));
         }
         let event = if T::uniform(rng) < self.albedo() {
             Event::Scattered
         } else {
             Event::Absorbed
         };
-        Ok((t, event))
+        Ok((t, event, steps))
     }
 
     /// Ratio tracking: an unbiased estimate of the transmittance along
@@ -494,11 +508,31 @@ impl<'a, T: Real> Grid<'a, T> {
     /// medium far below its one majorant over a long ray: walk
     /// [`crate::medium::majorant::Majorants`] instead).
     pub fn ratio_track<R: Rng + ?Sized>(&self, ray: Ray<T>, rng: &mut R) -> Result<T, Error> {
+        self.ratio_track_within(ray, MAX_STEPS, rng)
+            .map(|(tr, _)| tr)
+    }
+
+    /// [`ratio_track`](Self::ratio_track) with at most `budget` tentative
+    /// collisions ([`Error::Budget`] beyond), also returning how many it
+    /// drew.
+    pub(crate) fn ratio_track_within<R: Rng + ?Sized>(
+        &self,
+        ray: Ray<T>,
+        budget: u32,
+        rng: &mut R,
+    ) -> Result<(T, u32), Error> {
         let (o, d) = ray.checked()?;
         let Some((t0, t1)) = clip_box(o, d, self.lo, self.hi, ray.t_min, ray.t_max) else {
-            return Ok(T::ONE);
+            return Ok((T::ONE, 0));
         };
-        ratio(|p| self.sigma_t(p), self.majorant(), o, d, t0, t1, rng)
+        ratio(
+            |p| self.sigma_t(p),
+            self.majorant(),
+            o,
+            d,
+            (t0, t1, budget),
+            rng,
+        )
     }
 }
 
@@ -605,27 +639,30 @@ fn checked<T: Real>(sigma_t: T, sigma_maj: T) -> Result<T, Error> {
 /// (the loop delta and ratio tracking share): at each, `visit(t, σ_t, rng)`
 /// may end the walk with a result. `Ok(None)` when the walk leaves the
 /// interval, [`Error::Domain`] for a σ_t outside `[0, σ_maj]`,
-/// [`Error::Budget`] after [`MAX_STEPS`].
-#[allow(clippy::too_many_arguments)]
+/// [`Error::Budget`] after `budget` tentative collisions. Also returns how
+/// many it drew.
 fn tentative<T: Real, R: Rng + ?Sized, X>(
     sigma_t: impl Fn(Vec3<T>) -> T,
     sigma_maj: T,
-    o: Vec3<T>,
-    d: Vec3<T>,
-    t0: T,
-    t1: T,
+    (o, d): (Vec3<T>, Vec3<T>),
+    (t0, t1, budget): (T, T, u32),
     rng: &mut R,
     mut visit: impl FnMut(T, T, &mut R) -> Option<X>,
-) -> Result<Option<X>, Error> {
+) -> Result<(Option<X>, u32), Error> {
     let mut t = t0;
-    for _ in 0..MAX_STEPS {
+    // Bounded: every pass that does not return counts a step, and the
+    // walk ends once `budget` of them are taken (as the majorant walk's).
+    for steps in 0..=budget {
         t += exponential_step(sigma_maj, T::uniform(rng));
         if t.is_nan() || t >= t1 {
-            return Ok(None);
+            return Ok((None, steps));
+        }
+        if steps == budget {
+            break;
         }
         let st = checked(sigma_t(o + d * t), sigma_maj)?;
         if let Some(x) = visit(t, st, rng) {
-            return Ok(Some(x));
+            return Ok((Some(x), steps + 1));
         }
     }
     Err(Error::Budget)
@@ -638,15 +675,15 @@ fn delta<T: Real, R: Rng + ?Sized>(
     sigma_maj: T,
     o: Vec3<T>,
     d: Vec3<T>,
-    t0: T,
-    t1: T,
+    (t0, t1, budget): (T, T, u32),
     rng: &mut R,
-) -> Result<(T, bool), Error> {
+) -> Result<(T, bool, u32), Error> {
     if sigma_maj.is_nan() || sigma_maj <= T::ZERO {
-        return Ok((t1, false));
+        return Ok((t1, false, 0));
     }
     let real = |t: T, st: T, r: &mut R| (T::uniform(r) * sigma_maj < st).then_some(t);
-    Ok(tentative(sigma_t, sigma_maj, o, d, t0, t1, rng, real)?.map_or((t1, false), |t| (t, true)))
+    let (hit, steps) = tentative(sigma_t, sigma_maj, (o, d), (t0, t1, budget), rng, real)?;
+    Ok(hit.map_or((t1, false, steps), |t| (t, true, steps)))
 }
 
 /// Below this weight ratio tracking plays Russian roulette (pbrt-v4's rule
@@ -688,19 +725,18 @@ fn ratio<T: Real, R: Rng + ?Sized>(
     sigma_maj: T,
     o: Vec3<T>,
     d: Vec3<T>,
-    t0: T,
-    t1: T,
+    span: (T, T, u32),
     rng: &mut R,
-) -> Result<T, Error> {
+) -> Result<(T, u32), Error> {
     if sigma_maj.is_nan() || sigma_maj <= T::ZERO {
-        return Ok(T::ONE);
+        return Ok((T::ONE, 0));
     }
     let mut tr = T::ONE;
-    tentative(sigma_t, sigma_maj, o, d, t0, t1, rng, |_, st, r| {
+    let (_, steps) = tentative(sigma_t, sigma_maj, (o, d), span, rng, |_, st, r| {
         tr = roulette(tr * (T::ONE - st / sigma_maj), r);
         (tr == T::ZERO).then_some(())
     })?;
-    Ok(tr)
+    Ok((tr, steps))
 }
 
 /// Validates the majorant of the callback versions.
@@ -727,7 +763,7 @@ pub fn delta_track_fn<T: Real, R: Rng + ?Sized>(
     let (o, d) = ray.checked()?;
     check_majorant(sigma_maj)?;
     let (t_min, t_max) = (ray.t_min, ray.t_max);
-    let (t, hit) = delta(sigma_t, sigma_maj, o, d, t_min, t_max, rng)?;
+    let (t, hit, _) = delta(sigma_t, sigma_maj, o, d, (t_min, t_max, MAX_STEPS), rng)?;
     Ok(if hit {
         (t, Event::Collided)
     } else {
@@ -748,5 +784,6 @@ pub fn ratio_track_fn<T: Real, R: Rng + ?Sized>(
 ) -> Result<T, Error> {
     let (o, d) = ray.checked()?;
     check_majorant(sigma_maj)?;
-    ratio(sigma_t, sigma_maj, o, d, ray.t_min, ray.t_max, rng)
+    let span = (ray.t_min, ray.t_max, MAX_STEPS);
+    ratio(sigma_t, sigma_maj, o, d, span, rng).map(|(tr, _)| tr)
 }

@@ -337,10 +337,26 @@ static void surfaces(void) {
     CHECK(isnan(sk_scatter_fraction_transmit(600e-9f, 1e-9f, 1.5f, 1.0f, 3.9f, 1.5f)));
 }
 
-static float dense(void *ctx, sk_vec3 p) {
+static sk_coefficients dense(void *ctx, sk_vec3 p) {
+    sk_coefficients c = {2.5f, 2.5f}; /* above the majorant the caller claims */
     (void)ctx;
     (void)p;
-    return 5.0f; /* above the majorant the caller claims */
+    return c;
+}
+
+/* Tracking arguments through grid g or coefficients f (one majorant 1). */
+static sk_track_args track_args(const sk_grid *g, sk_medium_fn f, sk_vec3 o, sk_vec3 d, float t_min, float t_max, sk_rng *rng) {
+    sk_track_args a;
+    memset(&a, 0, sizeof a);
+    a.medium.grid = g;
+    a.medium.coefficients = f;
+    a.medium.sigma_maj = 1.0f;
+    a.o = o;
+    a.d = d;
+    a.t_min = t_min;
+    a.t_max = t_max;
+    a.rng = rng;
+    return a;
 }
 
 static void media(void) {
@@ -351,6 +367,8 @@ static void media(void) {
     float w[2] = {7.0f, 7.0f}, t = 7.0f, overlap[4] = {1.0f, 2.0f, 0.5f, 1.0f};
     uint32_t ev = 77;
     sk_grid g, bogus;
+    sk_track_args a;
+    sk_track_result r;
     sk_vec3 o = {-1.0f, 0.5f, 0.5f}, d = {1.0f, 0.0f, 0.0f}, zero = {0.0f, 0.0f, 0.0f}, nanv = {NAN, 0.0f, 0.0f};
 
     CHECK(isnan(sk_free_path(-1.0f, 0.5f)) && isnan(sk_free_path(NAN, 0.5f)) && isnan(sk_free_path(INFINITY, 0.5f)));
@@ -383,41 +401,57 @@ static void media(void) {
     CHECK(sk_grid_new(values, 2, 2, 2, -1.0f, 1.0f, &g) == SK_ERR_DOMAIN);
     CHECK(sk_grid_new(values, 2, 2, 2, 1.0f, INFINITY, &g) == SK_ERR_DOMAIN);
     CHECK(sk_grid_new(values, 2, 2, 2, 1.0f, 1.0f, &g) == SK_OK);
-    CHECK(g.max_density == 1.0f && sk_grid_density(&g, o) == 0.0f);
+    CHECK(sk_grid_density(&g, o) == 0.0f && sk_grid_coefficients(&g, d).sigma_s == 1.0f);
     CHECK(isnan(sk_grid_density(NULL, o)));
 
-    CHECK(sk_delta_track(NULL, o, d, 3.0f, &rng, &t, &ev) == SK_ERR_NULL);
-    CHECK(sk_delta_track(&g, o, d, 3.0f, NULL, &t, &ev) == SK_ERR_NULL);
-    CHECK(sk_delta_track(&g, o, d, 3.0f, &no_fn, &t, &ev) == SK_ERR_NULL);
-    CHECK(sk_delta_track(&g, o, d, 3.0f, &rng, NULL, &ev) == SK_ERR_NULL);
-    CHECK(sk_delta_track(&g, o, d, 3.0f, &rng, &t, NULL) == SK_ERR_NULL);
-    CHECK(sk_delta_track(&g, o, zero, 3.0f, &rng, &t, &ev) == SK_ERR_DOMAIN);
-    CHECK(sk_delta_track(&g, nanv, d, 3.0f, &rng, &t, &ev) == SK_ERR_DOMAIN);
-    CHECK(sk_delta_track(&g, o, d, -1.0f, &rng, &t, &ev) == SK_ERR_DOMAIN);
-    CHECK(sk_delta_track(&g, o, d, NAN, &rng, &t, &ev) == SK_ERR_DOMAIN);
-    bogus = g;
-    bogus.nx = 0;
-    CHECK(sk_delta_track(&bogus, o, d, 3.0f, &rng, &t, &ev) == SK_ERR_SIZE);
-    CHECK(isnan(sk_ratio_track(&bogus, o, d, 3.0f, &rng)));
-    CHECK(isnan(sk_ratio_track(NULL, o, d, 3.0f, &rng)) && isnan(sk_ratio_track(&g, o, d, 3.0f, NULL)));
-    CHECK(isnan(sk_ratio_track(&g, o, zero, 3.0f, &rng)));
+    a = track_args(&g, NULL, o, d, 0.0f, 3.0f, &rng);
+    CHECK(sk_delta_track(NULL, &r) == SK_ERR_NULL && sk_delta_track(&a, NULL) == SK_ERR_NULL);
+    a.medium.grid = NULL;
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_NULL);
+    a = track_args(&g, NULL, o, d, 0.0f, 3.0f, NULL);
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_NULL);
+    a.rng = &no_fn;
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_NULL);
+    r.t = 7.0f;
+    a = track_args(&g, NULL, o, zero, 0.0f, 3.0f, &rng);
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_DOMAIN && r.t == 7.0f);
+    a = track_args(&g, NULL, nanv, d, 0.0f, 3.0f, &rng);
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_DOMAIN);
+    a = track_args(&g, NULL, o, d, 0.0f, -1.0f, &rng);
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_DOMAIN);
+    a = track_args(&g, NULL, o, d, 0.0f, NAN, &rng);
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_DOMAIN);
+    /* A grid sk_grid_new never built. */
+    memset(&bogus, 0, sizeof bogus);
+    a = track_args(&bogus, NULL, o, d, 0.0f, 3.0f, &rng);
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_DOMAIN && sk_ratio_track(&a, &r) == SK_ERR_DOMAIN);
+    a = track_args(&g, NULL, o, zero, 0.0f, 3.0f, &rng);
+    CHECK(sk_ratio_track(&a, &r) == SK_ERR_DOMAIN);
     {
         sk_vec3 away = {5.0f, 5.0f, 5.0f};
-        CHECK(sk_delta_track(&g, away, d, 3.0f, &rng, &t, &ev) == SK_OK && ev == SK_TRACK_ESCAPED && t == 3.0f);
-        CHECK(sk_ratio_track(&g, away, d, 3.0f, &rng) == 1.0f);
+        a = track_args(&g, NULL, away, d, 0.0f, 3.0f, &rng);
+        CHECK(sk_delta_track(&a, &r) == SK_OK && r.event == SK_TRACK_ESCAPED && r.t == 3.0f);
+        CHECK(sk_ratio_track(&a, &r) == SK_OK && r.tr == 1.0f && r.steps == 0);
     }
 
-    CHECK(sk_delta_track_fn(NULL, NULL, 1.0f, o, d, 0.0f, 1.0f, &rng, &t, &ev) == SK_ERR_NULL);
-    CHECK(sk_delta_track_fn(dense, NULL, 1.0f, o, d, 0.0f, 1.0f, NULL, &t, &ev) == SK_ERR_NULL);
-    CHECK(sk_delta_track_fn(dense, NULL, 1.0f, o, d, 0.0f, 1.0f, &rng, NULL, &ev) == SK_ERR_NULL);
-    CHECK(sk_delta_track_fn(dense, NULL, 1.0f, o, d, 0.0f, 1.0f, &rng, &t, &ev) == SK_ERR_DOMAIN); /* above majorant */
-    CHECK(isnan(sk_ratio_track_fn(dense, NULL, 1.0f, o, d, 0.0f, 1.0f, &rng)));
-    CHECK(sk_delta_track_fn(dense, NULL, 10.0f, o, d, 2.0f, 1.0f, &rng, &t, &ev) == SK_ERR_DOMAIN); /* t_max < t_min */
-    CHECK(sk_delta_track_fn(dense, NULL, -1.0f, o, d, 0.0f, 1.0f, &rng, &t, &ev) == SK_ERR_DOMAIN);
-    CHECK(sk_delta_track_fn(dense, NULL, 10.0f, o, zero, 0.0f, 1.0f, &rng, &t, &ev) == SK_ERR_DOMAIN);
-    CHECK(isnan(sk_ratio_track_fn(NULL, NULL, 10.0f, o, d, 0.0f, 1.0f, &rng)));
-    CHECK(sk_delta_track_fn(dense, NULL, 0.0f, o, d, 0.0f, 1.0f, &rng, &t, &ev) == SK_OK && ev == SK_TRACK_ESCAPED);
-    CHECK(sk_delta_track_fn(dense, NULL, 10.0f, o, d, 0.0f, 1.0f, &rng, &t, &ev) == SK_OK);
+    a = track_args(NULL, dense, o, d, 0.0f, 1.0f, &rng);
+    a.rng = NULL;
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_NULL);
+    a.rng = &rng;
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_DOMAIN); /* above the majorant */
+    CHECK(sk_ratio_track(&a, &r) == SK_ERR_DOMAIN);
+    a.medium.sigma_maj = 10.0f, a.t_min = 2.0f; /* t_max < t_min */
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_DOMAIN);
+    a.medium.sigma_maj = -1.0f, a.t_min = 0.0f;
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_DOMAIN);
+    a.medium.sigma_maj = 10.0f, a.d = zero;
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_DOMAIN);
+    a.d = d, a.t_max = INFINITY; /* one majorant and no box: nowhere to escape to */
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_DOMAIN && sk_ratio_track(&a, &r) == SK_ERR_DOMAIN);
+    a.t_max = 1.0f, a.medium.sigma_maj = 0.0f;
+    CHECK(sk_delta_track(&a, &r) == SK_OK && r.event == SK_TRACK_ESCAPED);
+    a.medium.sigma_maj = 10.0f;
+    CHECK(sk_delta_track(&a, &r) == SK_OK);
 }
 
 static void basis_and_version(void) {

@@ -133,6 +133,8 @@ int main(void) {
         const float st[3] = {0.5f, 1.0f, 2.0f}, ss[3] = {0.4f, 0.9f, 1.5f};
         const float dens[8] = {0.1f, 0.9f, 0.4f, 0.7f, 1.0f, 0.2f, 0.3f, 0.6f};
         sk_grid g;
+        sk_track_args a;
+        sk_track_result res;
         uint64_t seed = 13;
         sk_rng r = {&seed, splitmix64};
         const sk_vec3 o = {-0.5f, 0.31f, 0.47f}, d = {1.0f, 0.1f, 0.0f};
@@ -146,15 +148,19 @@ int main(void) {
             printf(" %08" PRIx32 ":%" PRIu32 ":%08" PRIx32 ":%08" PRIx32 ":%08" PRIx32, b32(t), sc, b32(w[0]), b32(w[1]), b32(w[2]));
         }
         if (sk_grid_new(dens, 2, 2, 2, 1.0f, 3.0f, &g) != SK_OK) return 1;
+        memset(&a, 0, sizeof a);
+        a.medium.grid = &g;
+        a.o = o, a.d = d, a.t_max = 3.0f, a.rng = &r;
         printf("\ndelta_track f32");
         for (i = 0; i < K; i++) {
-            float t;
-            uint32_t ev;
-            if (sk_delta_track(&g, o, d, 3.0f, &r, &t, &ev) != SK_OK) return 1;
-            printf(" %08" PRIx32 ":%" PRIu32, b32(t), ev);
+            if (sk_delta_track(&a, &res) != SK_OK) return 1;
+            printf(" %08" PRIx32 ":%" PRIu32, b32(res.t), (uint32_t)res.event);
         }
         printf("\nratio_track f32");
-        for (i = 0; i < K; i++) printf(" %08" PRIx32, b32(sk_ratio_track(&g, o, d, 3.0f, &r)));
+        for (i = 0; i < K; i++) {
+            if (sk_ratio_track(&a, &res) != SK_OK) return 1;
+            printf(" %08" PRIx32, b32(res.tr));
+        }
         printf("\n");
     }
     return 0;

@@ -33,16 +33,6 @@ static uint64_t splitmix(void *state) {
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
     return z ^ (z >> 31);
 }
-static float dens32(void *ctx, sk_vec3 p) {
-    (void)ctx;
-    (void)p;
-    return 0.5f;
-}
-static double dens64(void *ctx, sk_vec3_f64 p) {
-    (void)ctx;
-    (void)p;
-    return 0.5;
-}
 
 static int in_unit(double x) { return x >= -1.0 && x <= 1.0; }
 static int vec_nan3(sk_vec3 v) { return isnan(v.x) && isnan(v.y) && isnan(v.z); }
@@ -703,90 +693,41 @@ static void surfaces(void) {
     CHECK(sk_refract(d, n, 1, 1.5f, NULL) == SK_ERR_NULL && sk_refract_f64(ddd, nd, 1, 1.5, NULL) == SK_ERR_NULL);
 }
 
-static void media(void) {
-    int i;
-    uint64_t st = 3;
-    sk_rng rng = {&st, counter};
-    const float values[8] = {1, 1, 1, 1, 1, 1, 1, 1};
-    const double valuesd[8] = {1, 1, 1, 1, 1, 1, 1, 1};
-    float sig[2] = {1, 2}, sgs[2] = {0.5f, 1}, w[2], t;
-    double sigd[2] = {1, 2}, sgsd[2] = {0.5, 1}, wd[2], td;
-    uint32_t ev;
-    sk_grid g;
-    sk_grid_f64 gd;
-    sk_vec3 o = {-1, 0.5f, 0.5f}, d = {1, 0, 0};
-    sk_vec3_f64 od = {-1, 0.5, 0.5}, dd = {1, 0, 0};
-    {
-        /* sk_uniform: NULL rng or callback gives NaN without drawing; one
-         * draw otherwise, converted as the samplers convert. */
-        sk_rng no_fn = {&st, NULL};
-        uint64_t before, word;
-        i = 0;
-        before = st;
-        word = before + 0x9e3779b97f4a7c15ULL;
-        CHECK(isnan(sk_uniform(NULL)) && isnan(sk_uniform_f64(NULL)));
-        CHECK(isnan(sk_uniform(&no_fn)) && isnan(sk_uniform_f64(&no_fn)) && st == before);
-        CHECK(sk_uniform(&rng) == (float)(word >> 40) * 0x1p-24f && st == word);
-        word += 0x9e3779b97f4a7c15ULL;
-        CHECK(sk_uniform_f64(&rng) == (double)(word >> 11) * 0x1p-53 && st == word);
-    }
-    sk_grid_new(values, 2, 2, 2, 1, 1, &g);
-    sk_grid_new_f64(valuesd, 2, 2, 2, 1, 1, &gd);
-    for (i = 0; i < NS; i++) {
-        float f = FS[i];
-        double x = DS[i];
-        sk_vec3 v = {f, 0.5f, 0.5f};
-        sk_vec3_f64 vd = {x, 0.5, 0.5};
-        float fp = sk_free_path(f, 0.5f);
-        CHECK((f >= 0.0f && isfinite(f)) ? fp >= 0.0f : isnan(fp));
-        CHECK(isnan(f) ? isnan(sk_free_path(1.0f, f)) : sk_free_path(1.0f, f) >= 0.0f);
-        CHECK(isnan(sk_free_path_f64(x, 0.5)) == !(x >= 0.0 && isfinite(x)));
-        CHECK(isnan(sk_transmittance(f, 1.0f)) == !(f >= 0.0f) && isnan(sk_transmittance(1.0f, f)) == !(f >= 0.0f));
-        CHECK(isnan(sk_transmittance_f64(x, 1.0)) == !(x >= 0.0));
-        sig[1] = f;
-        CHECK(sk_homogeneous_sample(sig, sgs, 2, 1.0f, 0.5f, 0.5f, &t, &ev, w) ==
-              (f >= 1.0f && isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
-        sig[1] = 2;
-        CHECK(sk_homogeneous_sample(sig, sgs, 2, f, 0.5f, 0.5f, &t, &ev, w) == (f >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
-        sigd[0] = x;
-        CHECK(sk_homogeneous_sample_f64(sigd, sgsd, 2, 1.0, 0.5, 0.5, &td, &ev, wd) ==
-              (x >= 0.5 && isfinite(x) ? SK_OK : SK_ERR_DOMAIN));
-        sigd[0] = 1;
-        /* FLT_MAX/DBL_MAX: the majorant (sigma_a + sigma_s) * 1 overflows. */
-        CHECK(sk_grid_new(values, 2, 2, 2, f, 1, &g) == (f >= 0.0f && f < FLT_MAX ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_grid_new_f64(valuesd, 2, 2, 2, 1, x, &gd) == (x >= 0.0 && x < DBL_MAX ? SK_OK : SK_ERR_DOMAIN));
-        sk_grid_new(values, 2, 2, 2, 1, 1, &g);
-        sk_grid_new_f64(valuesd, 2, 2, 2, 1, 1, &gd);
-        CHECK(isnan(f) ? isnan(sk_grid_density(&g, v)) : sk_grid_density(&g, v) >= 0.0f);
-        CHECK(isnan(x) ? isnan(sk_grid_density_f64(&gd, vd)) : sk_grid_density_f64(&gd, vd) >= 0.0);
-        CHECK(sk_delta_track(&g, v, d, 3.0f, &rng, &t, &ev) == (bad(f) ? SK_ERR_DOMAIN : SK_OK));
-        CHECK(sk_delta_track(&g, o, d, f, &rng, &t, &ev) == (f >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_delta_track_f64(&gd, od, vd, 3.0, &rng, &td, &ev) == (bad(x) ? SK_ERR_DOMAIN : SK_OK));
-        CHECK(bad(f) ? isnan(sk_ratio_track(&g, v, d, 3.0f, &rng)) : sk_ratio_track(&g, v, d, 3.0f, &rng) >= 0.0f);
-        CHECK(!(x >= 0.0) ? isnan(sk_ratio_track_f64(&gd, od, dd, x, &rng)) : sk_ratio_track_f64(&gd, od, dd, x, &rng) >= 0.0);
-        /* Majorant: invalid -> DOMAIN; 0 or subnormal -> no tentative collision
-         * in [0, 3], so no density check -> OK; FLT_MAX -> 2^20 tiny steps -> BUDGET. */
-        CHECK(sk_delta_track_fn(dens32, NULL, f, o, d, 0, 3, &rng, &t, &ev) ==
-              (isnan(f) || isinf(f) || f < 0.0f ? SK_ERR_DOMAIN : f > 1e30f ? SK_ERR_BUDGET : SK_OK));
-        CHECK(sk_delta_track_fn_f64(dens64, NULL, 1, od, dd, 0, x, &rng, &td, &ev) == (x >= 0.0 ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(isnan(sk_ratio_track_fn(dens32, NULL, 1, o, d, f, 3, &rng)) == !(f >= 0.0f && f <= 3.0f));
-        CHECK(isnan(sk_ratio_track_fn_f64(dens64, NULL, 1, vd, dd, 0, 3, &rng)) == bad(x));
-    }
-    i = 0;
-    CHECK(sk_homogeneous_sample(sig, sgs, 0, 1, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_SIZE);
-    CHECK(sk_homogeneous_sample(sig, sgs, SIZE_MAX, 1, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_SIZE);
-    CHECK(sk_homogeneous_sample(NULL, sgs, 2, 1, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_NULL);
-    CHECK(sk_homogeneous_sample_f64(sigd, sgsd, 2, 1, 0.5, 0.5, &td, &ev, NULL) == SK_ERR_NULL);
-    CHECK(sk_grid_new(values, 0, 2, 2, 1, 1, &g) == SK_ERR_SIZE && sk_grid_new(NULL, 2, 2, 2, 1, 1, &g) == SK_ERR_NULL);
-    CHECK(sk_grid_new(values, UINT32_MAX, UINT32_MAX, UINT32_MAX, 1, 1, &g) == SK_ERR_SIZE);
-    CHECK(sk_grid_new_f64(valuesd, 2, 2, 2, 1, 1, NULL) == SK_ERR_NULL);
-    CHECK(isnan(sk_grid_density(NULL, o)) && isnan(sk_grid_density_f64(NULL, od)));
-    CHECK(sk_delta_track(NULL, o, d, 1, &rng, &t, &ev) == SK_ERR_NULL && sk_delta_track(&g, o, d, 1, NULL, &t, &ev) == SK_ERR_NULL);
-    CHECK(sk_delta_track_f64(&gd, od, dd, 1, &rng, NULL, &ev) == SK_ERR_NULL);
-    CHECK(isnan(sk_ratio_track(NULL, o, d, 1, &rng)) && isnan(sk_ratio_track_f64(&gd, od, dd, 1, NULL)));
-    CHECK(sk_delta_track_fn(NULL, NULL, 1, o, d, 0, 1, &rng, &t, &ev) == SK_ERR_NULL);
-    CHECK(sk_delta_track_fn_f64(dens64, NULL, 1, od, dd, 0, 1, &rng, &td, NULL) == SK_ERR_NULL);
-    CHECK(isnan(sk_ratio_track_fn(NULL, NULL, 1, o, d, 0, 1, &rng)) && isnan(sk_ratio_track_fn_f64(dens64, NULL, 1, od, dd, 0, 1, NULL)));
+/* Tracking arguments: the ray [t_min, t_max] from o along d through a
+ * grid or the caller's coefficients, with or without majorants. */
+static sk_track_args targs(const sk_grid *g, sk_medium_fn f, void *ctx, const sk_majorants *m, sk_vec3 o, sk_vec3 d,
+                           float t_min, float t_max, uint32_t budget, sk_rng *rng) {
+    sk_track_args a;
+    memset(&a, 0, sizeof a);
+    a.medium.grid = g;
+    a.medium.coefficients = f;
+    a.medium.ctx = ctx;
+    a.medium.majorants = m;
+    a.medium.sigma_maj = 1.0f;
+    a.o = o;
+    a.d = d;
+    a.t_min = t_min;
+    a.t_max = t_max;
+    a.budget = budget;
+    a.rng = rng;
+    return a;
+}
+static sk_track_args_f64 targs64(const sk_grid_f64 *g, sk_medium_fn_f64 f, void *ctx, const sk_majorants_f64 *m, sk_vec3_f64 o,
+                                 sk_vec3_f64 d, double t_min, double t_max, uint32_t budget, sk_rng *rng) {
+    sk_track_args_f64 a;
+    memset(&a, 0, sizeof a);
+    a.medium.grid = g;
+    a.medium.coefficients = f;
+    a.medium.ctx = ctx;
+    a.medium.majorants = m;
+    a.medium.sigma_maj = 1.0;
+    a.o = o;
+    a.d = d;
+    a.t_min = t_min;
+    a.t_max = t_max;
+    a.budget = budget;
+    a.rng = rng;
+    return a;
 }
 
 static sk_coefficients coeff32(void *ctx, sk_vec3 p) {
@@ -812,6 +753,154 @@ static double le64(void *ctx, sk_vec3_f64 p) {
     return ctx ? *(double *)ctx : 1.0;
 }
 
+static void media(void) {
+    int i;
+    uint64_t st = 3;
+    sk_rng rng = {&st, counter};
+    const float values[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+    const double valuesd[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+    float sig[2] = {1, 2}, sgs[2] = {0.5f, 1}, w[2], t, ctxf;
+    double sigd[2] = {1, 2}, sgsd[2] = {0.5, 1}, wd[2], td, ctxd;
+    uint32_t ev;
+    sk_grid g, zero_g;
+    sk_grid_f64 gd;
+    sk_track_result r;
+    sk_track_result_f64 rd;
+    sk_track_args a;
+    sk_track_args_f64 ad;
+    sk_vec3 o = {-1, 0.5f, 0.5f}, d = {1, 0, 0};
+    sk_vec3_f64 od = {-1, 0.5, 0.5}, dd = {1, 0, 0};
+    {
+        /* sk_uniform: NULL rng or callback gives NaN without drawing; one
+         * draw otherwise, converted as the samplers convert. */
+        sk_rng no_fn = {&st, NULL};
+        uint64_t before, word;
+        i = 0;
+        before = st;
+        word = before + 0x9e3779b97f4a7c15ULL;
+        CHECK(isnan(sk_uniform(NULL)) && isnan(sk_uniform_f64(NULL)));
+        CHECK(isnan(sk_uniform(&no_fn)) && isnan(sk_uniform_f64(&no_fn)) && st == before);
+        CHECK(sk_uniform(&rng) == (float)(word >> 40) * 0x1p-24f && st == word);
+        word += 0x9e3779b97f4a7c15ULL;
+        CHECK(sk_uniform_f64(&rng) == (double)(word >> 11) * 0x1p-53 && st == word);
+    }
+    sk_grid_new(values, 2, 2, 2, 1, 1, &g);
+    sk_grid_new_f64(valuesd, 2, 2, 2, 1, 1, &gd);
+    for (i = 0; i < NS; i++) {
+        float f = FS[i];
+        double x = DS[i];
+        sk_vec3 v = {f, 0.5f, 0.5f};
+        sk_vec3_f64 vd = {x, 0.5, 0.5};
+        float fp = sk_free_path(f, 0.5f);
+        sk_coefficients c;
+        sk_status s;
+        CHECK((f >= 0.0f && isfinite(f)) ? fp >= 0.0f : isnan(fp));
+        CHECK(isnan(f) ? isnan(sk_free_path(1.0f, f)) : sk_free_path(1.0f, f) >= 0.0f);
+        CHECK(isnan(sk_free_path_f64(x, 0.5)) == !(x >= 0.0 && isfinite(x)));
+        CHECK(isnan(sk_transmittance(f, 1.0f)) == !(f >= 0.0f) && isnan(sk_transmittance(1.0f, f)) == !(f >= 0.0f));
+        CHECK(isnan(sk_transmittance_f64(x, 1.0)) == !(x >= 0.0));
+        sig[1] = f;
+        CHECK(sk_homogeneous_sample(sig, sgs, 2, 1.0f, 0.5f, 0.5f, &t, &ev, w) ==
+              (f >= 1.0f && isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
+        sig[1] = 2;
+        CHECK(sk_homogeneous_sample(sig, sgs, 2, f, 0.5f, 0.5f, &t, &ev, w) == (f >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
+        sigd[0] = x;
+        CHECK(sk_homogeneous_sample_f64(sigd, sgsd, 2, 1.0, 0.5, 0.5, &td, &ev, wd) ==
+              (x >= 0.5 && isfinite(x) ? SK_OK : SK_ERR_DOMAIN));
+        sigd[0] = 1;
+        /* FLT_MAX/DBL_MAX: the majorant (sigma_a + sigma_s) * 1 overflows. */
+        CHECK(sk_grid_new(values, 2, 2, 2, f, 1, &g) == (f >= 0.0f && f < FLT_MAX ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_grid_new_f64(valuesd, 2, 2, 2, 1, x, &gd) == (x >= 0.0 && x < DBL_MAX ? SK_OK : SK_ERR_DOMAIN));
+        sk_grid_new(values, 2, 2, 2, 1, 1, &g);
+        sk_grid_new_f64(valuesd, 2, 2, 2, 1, 1, &gd);
+        CHECK(isnan(f) ? isnan(sk_grid_density(&g, v)) : sk_grid_density(&g, v) >= 0.0f);
+        CHECK(isnan(x) ? isnan(sk_grid_density_f64(&gd, vd)) : sk_grid_density_f64(&gd, vd) >= 0.0);
+        c = sk_grid_coefficients(&g, v);
+        CHECK(isnan(f) ? isnan(c.sigma_a) && isnan(c.sigma_s) : c.sigma_a >= 0.0f && c.sigma_s == c.sigma_a);
+        CHECK(isnan(x) == isnan(sk_grid_coefficients_f64(&gd, vd).sigma_s));
+        /* Through the grid with its one majorant: a bad origin or t_max is
+         * DOMAIN, and out is untouched then. */
+        r.t = 7.0f;
+        a = targs(&g, NULL, NULL, NULL, v, d, 0, 3, 0, &rng);
+        CHECK(sk_delta_track(&a, &r) == (bad(f) ? SK_ERR_DOMAIN : SK_OK));
+        CHECK(!bad(f) || r.t == 7.0f);
+        a = targs(&g, NULL, NULL, NULL, o, d, 0, f, 0, &rng);
+        CHECK(sk_delta_track(&a, &r) == (f >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
+        ad = targs64(&gd, NULL, NULL, NULL, od, vd, 0, 3, 0, &rng);
+        CHECK(sk_delta_track_f64(&ad, &rd) == (bad(x) ? SK_ERR_DOMAIN : SK_OK));
+        a = targs(&g, NULL, NULL, NULL, v, d, 0, 3, 0, &rng);
+        CHECK(sk_ratio_track(&a, &r) == (bad(f) ? SK_ERR_DOMAIN : SK_OK) && (bad(f) || (r.tr >= 0.0f && isnan(r.t))));
+        ad = targs64(&gd, NULL, NULL, NULL, od, dd, 0, x, 0, &rng);
+        CHECK(sk_ratio_track_f64(&ad, &rd) == (x >= 0.0 ? SK_OK : SK_ERR_DOMAIN));
+        /* The caller's coefficients under one majorant sigma_maj = f: bad
+         * -> DOMAIN; 0 or subnormal -> no tentative collision in [0, 3] ->
+         * OK; FLT_MAX -> tiny steps until the budget runs out. The
+         * coefficients (sigma_a = 0.25 or f, sigma_s 0.25) must stay
+         * within it. */
+        a = targs(NULL, coeff32, NULL, NULL, o, d, 0, 3, 1000, &rng);
+        a.medium.sigma_maj = f;
+        s = sk_delta_track(&a, &r);
+        CHECK(s == (isnan(f) || isinf(f) || f < 0.0f ? SK_ERR_DOMAIN : f > 1e30f ? SK_ERR_BUDGET : f > 0.5f ? SK_OK : s));
+        CHECK(f > 0.5f || bad(f) || f < 0.0f || s == SK_OK || s == SK_ERR_DOMAIN);
+        ctxd = x;
+        ad = targs64(NULL, coeff64, &ctxd, NULL, od, dd, 0, 3, 1000, &rng);
+        ad.medium.sigma_maj = 50.0;
+        CHECK(sk_ratio_track_f64(&ad, &rd) == (x >= 0.0 && x <= 49.75 ? SK_OK : SK_ERR_DOMAIN));
+        a = targs(NULL, coeff32, NULL, NULL, o, d, f, 3, 1000, &rng);
+        CHECK(sk_ratio_track(&a, &r) == (f >= 0.0f && f <= 3.0f ? SK_OK : SK_ERR_DOMAIN));
+        ctxf = f;
+        a = targs(NULL, coeff32, &ctxf, NULL, o, d, 0, 3, 1000, &rng);
+        a.medium.sigma_maj = 50.0f;
+        CHECK(sk_delta_track(&a, &r) == (f >= 0.0f && f <= 49.75f ? SK_OK : SK_ERR_DOMAIN));
+    }
+    i = 0;
+    CHECK(sk_homogeneous_sample(sig, sgs, 0, 1, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_SIZE);
+    CHECK(sk_homogeneous_sample(sig, sgs, SIZE_MAX, 1, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_SIZE);
+    CHECK(sk_homogeneous_sample(NULL, sgs, 2, 1, 0.5f, 0.5f, &t, &ev, w) == SK_ERR_NULL);
+    CHECK(sk_homogeneous_sample_f64(sigd, sgsd, 2, 1, 0.5, 0.5, &td, &ev, NULL) == SK_ERR_NULL);
+    CHECK(sk_grid_new(values, 0, 2, 2, 1, 1, &g) == SK_ERR_SIZE && sk_grid_new(NULL, 2, 2, 2, 1, 1, &g) == SK_ERR_NULL);
+    CHECK(sk_grid_new(values, UINT32_MAX, UINT32_MAX, UINT32_MAX, 1, 1, &g) == SK_ERR_SIZE);
+    CHECK(sk_grid_new_f64(valuesd, 2, 2, 2, 1, 1, NULL) == SK_ERR_NULL);
+    CHECK(isnan(sk_grid_density(NULL, o)) && isnan(sk_grid_density_f64(NULL, od)));
+    CHECK(isnan(sk_grid_coefficients(NULL, o).sigma_a) && isnan(sk_grid_coefficients_f64(NULL, od).sigma_a));
+    /* A zeroed grid was never built: NaN and DOMAIN, never read. */
+    memset(&zero_g, 0, sizeof zero_g);
+    CHECK(isnan(sk_grid_density(&zero_g, o)) && sk_grid_set_box(&zero_g, (sk_vec3){0, 0, 0}, (sk_vec3){1, 1, 1}) == SK_ERR_DOMAIN);
+    CHECK(sk_grid_set_sampling(&zero_g, SK_SAMPLING_CELLS) == SK_ERR_DOMAIN);
+    a = targs(&zero_g, NULL, NULL, NULL, o, d, 0, 1, 0, &rng);
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_DOMAIN && sk_ratio_track(&a, &r) == SK_ERR_DOMAIN);
+    /* NULL arguments, results, generators; no medium, or two. */
+    a = targs(&g, NULL, NULL, NULL, o, d, 0, 1, 0, &rng);
+    CHECK(sk_delta_track(NULL, &r) == SK_ERR_NULL && sk_delta_track(&a, NULL) == SK_ERR_NULL);
+    CHECK(sk_ratio_track(NULL, &r) == SK_ERR_NULL && sk_ratio_track(&a, NULL) == SK_ERR_NULL);
+    a.rng = NULL;
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_NULL);
+    a = targs(NULL, NULL, NULL, NULL, o, d, 0, 1, 0, &rng);
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_NULL && sk_ratio_track(&a, &r) == SK_ERR_NULL);
+    a = targs(&g, coeff32, NULL, NULL, o, d, 0, 1, 0, &rng);
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_DOMAIN);
+    ad = targs64(&gd, NULL, NULL, NULL, od, dd, 0, 1, 0, NULL);
+    CHECK(sk_delta_track_f64(&ad, &rd) == SK_ERR_NULL && sk_ratio_track_f64(NULL, &rd) == SK_ERR_NULL);
+    CHECK(sk_delta_track_f64(NULL, &rd) == SK_ERR_NULL);
+    ad.rng = &rng;
+    CHECK(sk_ratio_track_f64(&ad, NULL) == SK_ERR_NULL);
+    /* A callback with one majorant needs a finite segment: it has no box
+     * to leave. Unknown flags are METHOD. */
+    a = targs(NULL, coeff32, NULL, NULL, o, d, 0, INFINITY, 0, &rng);
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_DOMAIN && sk_ratio_track(&a, &r) == SK_ERR_DOMAIN);
+    a = targs(&g, NULL, NULL, NULL, o, d, 0, 1, 0, &rng);
+    a.flags = 2;
+    CHECK(sk_delta_track(&a, &r) == SK_ERR_METHOD);
+    a.flags = SK_TRACK_NONBOUNDING; /* needs majorants */
+    CHECK(sk_ratio_track(&a, &r) == SK_ERR_DOMAIN);
+    /* An escape through the grid's one majorant reports t_max; the budget
+     * is the caller's. */
+    a = targs(&g, NULL, NULL, NULL, o, d, 0, 1.5f, 0, &rng);
+    CHECK(sk_delta_track(&a, &r) == SK_OK && (r.event != SK_TRACK_ESCAPED || r.t == 1.5f));
+    a = targs(&g, NULL, NULL, NULL, o, d, 0, 1e6f, 1, &rng);
+    CHECK(sk_ratio_track(&a, &r) == SK_ERR_BUDGET || r.steps <= 1);
+}
+
 /* Grid boxes and sampling, majorant grids and tracking through them. */
 static void majorants(void) {
     int i;
@@ -831,21 +920,22 @@ static void majorants(void) {
     sk_majorants_f64 md, mined, bigd;
     sk_track_result tr;
     sk_track_result_f64 trd;
-    sk_ratio_result rr;
-    sk_ratio_result_f64 rrd;
+    sk_track_args a;
+    sk_track_args_f64 ad;
     sk_vec3 o = {-1, 0.5f, 0.5f}, d = {1, 0, 0}, zero = {0, 0, 0}, one = {1, 1, 1};
     sk_vec3_f64 od = {-1, 0.5, 0.5}, dd = {1, 0, 0}, zerod = {0, 0, 0}, oned = {1, 1, 1};
     sk_grid_new(values, 2, 2, 2, 0.5f, 0.5f, &g);
     sk_grid_new_f64(valuesd, 2, 2, 2, 0.5, 0.5, &gd);
     i = 0;
-    CHECK(sk_majorants_new(fifty, 2, 2, 2, zero, one, &big) == SK_OK);
-    CHECK(sk_majorants_new_f64(fiftyd, 2, 2, 2, zerod, oned, &bigd) == SK_OK);
+    CHECK(sk_majorants_new(fifty, NULL, 2, 2, 2, zero, one, &big) == SK_OK);
+    CHECK(sk_majorants_new_f64(fiftyd, NULL, 2, 2, 2, zerod, oned, &bigd) == SK_OK);
     CHECK(sk_majorant_len(0, 1, 1) == 0 && sk_majorant_len(16, 16, 16) == 4096);
     CHECK(sizeof(size_t) < 8 || sk_majorant_len(UINT32_MAX, UINT32_MAX, UINT32_MAX) == 0);
     CHECK(sk_grid_set_sampling(NULL, 0) == SK_ERR_NULL && sk_grid_set_sampling_f64(NULL, 0) == SK_ERR_NULL);
-    CHECK(sk_grid_set_sampling(&g, 2) == SK_ERR_METHOD && g.sampling == SK_SAMPLING_NODES);
+    CHECK(sk_grid_set_sampling(&g, 2) == SK_ERR_METHOD && sk_grid_density(&g, one) == 1.0f);
     CHECK(sk_grid_set_sampling_f64(&gd, UINT32_MAX) == SK_ERR_METHOD);
-    CHECK(sk_grid_set_sampling(&g, SK_SAMPLING_CELLS) == SK_OK && g.sampling == SK_SAMPLING_CELLS);
+    /* Cell-centred values of a constant grid read the same everywhere. */
+    CHECK(sk_grid_set_sampling(&g, SK_SAMPLING_CELLS) == SK_OK && sk_grid_density(&g, zero) == 1.0f);
     CHECK(sk_grid_set_box(NULL, zero, one) == SK_ERR_NULL && sk_grid_set_box_f64(NULL, zerod, oned) == SK_ERR_NULL);
     CHECK(sk_grid_set_box(&g, one, one) == SK_ERR_DOMAIN && sk_grid_set_box_f64(&gd, oned, zerod) == SK_ERR_DOMAIN);
     for (i = 0; i < NS; i++) {
@@ -858,230 +948,239 @@ static void majorants(void) {
         CHECK(sk_grid_set_box(&g2, lo, one) == (isfinite(f) && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_grid_set_box_f64(&gd, lod, oned) == (isfinite(x) && x < 1.0 ? SK_OK : SK_ERR_DOMAIN));
         sk_grid_set_box_f64(&gd, zerod, oned);
-        CHECK(sk_majorants_build(&g, 2, 2, 2, store, 8, &m) == SK_OK);
-        CHECK(sk_majorants_build_f64(&gd, 2, 2, 2, stored, 8, &md) == SK_OK);
+        CHECK(sk_majorants_build(&g, 2, 2, 2, store, NULL, 8, &m) == SK_OK);
+        CHECK(sk_majorants_build_f64(&gd, 2, 2, 2, stored, NULL, 8, &md) == SK_OK);
         /* Your own majorants: a bad value is DOMAIN. */
         store[3] = f;
-        CHECK(sk_majorants_new(store, 2, 2, 2, zero, one, &mine) == (isfinite(f) && f >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_majorants_new(store, NULL, 2, 2, 2, zero, one, &mine) == (isfinite(f) && f >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
         stored[5] = x;
-        CHECK(sk_majorants_new_f64(stored, 2, 2, 2, lod, oned, &mined) ==
+        CHECK(sk_majorants_new_f64(stored, NULL, 2, 2, 2, lod, oned, &mined) ==
               (isfinite(x) && x >= 0.0 && x < 1.0 ? SK_OK : SK_ERR_DOMAIN));
-        sk_majorants_build(&g, 2, 2, 2, store, 8, &m);
-        sk_majorants_build_f64(&gd, 2, 2, 2, stored, 8, &md);
+        sk_majorants_build(&g, 2, 2, 2, store, NULL, 8, &m);
+        sk_majorants_build_f64(&gd, 2, 2, 2, stored, NULL, 8, &md);
         /* Tracking: a bad origin or t_max is DOMAIN; out untouched then. */
         tr.t = 7.0f;
-        CHECK(sk_delta_track_majorants(&m, &g, v, d, 3.0f, 1000, &rng, &tr) == (bad(f) ? SK_ERR_DOMAIN : SK_OK));
+        a = targs(&g, NULL, NULL, &m, v, d, 0, 3, 1000, &rng);
+        CHECK(sk_delta_track(&a, &tr) == (bad(f) ? SK_ERR_DOMAIN : SK_OK));
         CHECK(!bad(f) || tr.t == 7.0f);
-        CHECK(sk_delta_track_majorants(&m, &g, o, d, f, 1000, &rng, &tr) == (f >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_delta_track_majorants_f64(&md, &gd, vd, dd, 3.0, 1000, &rng, &trd) == (bad(x) ? SK_ERR_DOMAIN : SK_OK));
-        rr.tr = 7.0f;
-        CHECK(sk_ratio_track_majorants(&m, &g, o, v, 3.0f, 1000, &rng, &rr) == (bad(f) ? SK_ERR_DOMAIN : SK_OK));
-        CHECK(!bad(f) || rr.tr == 7.0f);
-        CHECK(sk_ratio_track_majorants_f64(&md, &gd, od, dd, x, 1000, &rng, &rrd) == (x >= 0.0 ? SK_OK : SK_ERR_DOMAIN));
-        /* The caller's medium: sigma_a = f against the cell majorant 1. */
+        a = targs(&g, NULL, NULL, &m, o, d, 0, f, 1000, &rng);
+        CHECK(sk_delta_track(&a, &tr) == (f >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
+        ad = targs64(&gd, NULL, NULL, &md, vd, dd, 0, 3, 1000, &rng);
+        CHECK(sk_delta_track_f64(&ad, &trd) == (bad(x) ? SK_ERR_DOMAIN : SK_OK));
+        tr.tr = 7.0f;
+        a = targs(&g, NULL, NULL, &m, o, v, 0, 3, 1000, &rng);
+        CHECK(sk_ratio_track(&a, &tr) == (bad(f) ? SK_ERR_DOMAIN : SK_OK));
+        CHECK(!bad(f) || tr.tr == 7.0f);
+        ad = targs64(&gd, NULL, NULL, &md, od, dd, 0, x, 1000, &rng);
+        CHECK(sk_ratio_track_f64(&ad, &trd) == (x >= 0.0 ? SK_OK : SK_ERR_DOMAIN));
+        /* The caller's medium: sigma_a = f against the cell majorant 50. */
         ctxf = f;
-        CHECK(sk_delta_track_majorants_fn(coeff32, &ctxf, &big, o, d, 0, 3, 1000, &rng, &tr) ==
-              (f >= 0.0f && f <= 49.0f ? SK_OK : SK_ERR_DOMAIN));
+        a = targs(NULL, coeff32, &ctxf, &big, o, d, 0, 3, 1000, &rng);
+        CHECK(sk_delta_track(&a, &tr) == (f >= 0.0f && f <= 49.0f ? SK_OK : SK_ERR_DOMAIN));
         ctxd = x;
-        CHECK(sk_ratio_track_majorants_fn_f64(coeff64, &ctxd, &bigd, od, dd, 0, 3, 1000, &rng, &rrd) ==
-              (x >= 0.0 && x <= 49.0 ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_ratio_track_majorants_fn(coeff32, NULL, &m, o, d, f, 3, 1000, &rng, &rr) ==
-              (f >= 0.0f && f <= 3.0f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_delta_track_majorants_fn_f64(coeff64, NULL, &md, od, dd, 0, x, 1000, &rng, &trd) ==
-              (x >= 0.0 ? SK_OK : SK_ERR_DOMAIN));
+        ad = targs64(NULL, coeff64, &ctxd, &bigd, od, dd, 0, 3, 1000, &rng);
+        CHECK(sk_ratio_track_f64(&ad, &trd) == (x >= 0.0 && x <= 49.0 ? SK_OK : SK_ERR_DOMAIN));
+        a = targs(NULL, coeff32, NULL, &m, o, d, f, 3, 1000, &rng);
+        CHECK(sk_ratio_track(&a, &tr) == (f >= 0.0f && f <= 3.0f ? SK_OK : SK_ERR_DOMAIN));
+        ad = targs64(NULL, coeff64, NULL, &md, od, dd, 0, x, 1000, &rng);
+        CHECK(sk_delta_track_f64(&ad, &trd) == (x >= 0.0 ? SK_OK : SK_ERR_DOMAIN));
     }
     i = 0;
     /* NULL pointers and callbacks. */
-    CHECK(sk_majorants_build(NULL, 2, 2, 2, store, 8, &m) == SK_ERR_NULL);
-    CHECK(sk_majorants_build(&g, 2, 2, 2, NULL, 8, &m) == SK_ERR_NULL);
-    CHECK(sk_majorants_build_f64(&gd, 2, 2, 2, stored, 8, NULL) == SK_ERR_NULL);
-    CHECK(sk_majorants_new(NULL, 2, 2, 2, zero, one, &m) == SK_ERR_NULL);
-    CHECK(sk_majorants_new_f64(stored, 2, 2, 2, zerod, oned, NULL) == SK_ERR_NULL);
-    CHECK(sk_delta_track_majorants(NULL, &g, o, d, 3, 10, &rng, &tr) == SK_ERR_NULL);
-    CHECK(sk_delta_track_majorants(&m, NULL, o, d, 3, 10, &rng, &tr) == SK_ERR_NULL);
-    CHECK(sk_delta_track_majorants(&m, &g, o, d, 3, 10, NULL, &tr) == SK_ERR_NULL);
-    CHECK(sk_delta_track_majorants(&m, &g, o, d, 3, 10, &no_fn, &tr) == SK_ERR_NULL);
-    CHECK(sk_delta_track_majorants_f64(&md, &gd, od, dd, 3, 10, &rng, NULL) == SK_ERR_NULL);
-    CHECK(sk_ratio_track_majorants(&m, &g, o, d, 3, 10, &rng, NULL) == SK_ERR_NULL);
-    CHECK(sk_ratio_track_majorants_f64(NULL, &gd, od, dd, 3, 10, &rng, &rrd) == SK_ERR_NULL);
-    CHECK(sk_delta_track_majorants_fn(NULL, NULL, &m, o, d, 0, 3, 10, &rng, &tr) == SK_ERR_NULL);
-    CHECK(sk_delta_track_majorants_fn_f64(coeff64, NULL, NULL, od, dd, 0, 3, 10, &rng, &trd) == SK_ERR_NULL);
-    CHECK(sk_ratio_track_majorants_fn(coeff32, NULL, &m, o, d, 0, 3, 10, &no_fn, &rr) == SK_ERR_NULL);
-    CHECK(sk_ratio_track_majorants_fn_f64(NULL, NULL, &md, od, dd, 0, 3, 10, &rng, &rrd) == SK_ERR_NULL);
-    /* Sizes: zero dimensions, a short buffer, malformed values. */
-    CHECK(sk_majorants_build(&g, 0, 2, 2, store, 8, &m) == SK_ERR_SIZE);
-    CHECK(sk_majorants_build(&g, 2, 2, 2, store, 7, &m) == SK_ERR_SIZE);
-    CHECK(sk_majorants_build_f64(&gd, 3, 3, 3, stored, 8, &md) == SK_ERR_SIZE);
-    CHECK(sk_majorants_new(store, 2, 0, 2, zero, one, &mine) == SK_ERR_SIZE);
-    CHECK(sk_majorants_new(neg, 2, 2, 2, zero, one, &mine) == SK_ERR_DOMAIN);
-    sk_majorants_build(&g, 2, 2, 2, store, 8, &m);
-    mine = m;
-    mine.mx = 0;
-    CHECK(sk_delta_track_majorants(&mine, &g, o, d, 3, 10, &rng, &tr) == SK_ERR_SIZE);
-    g2 = g;
-    g2.sampling = 9;
-    CHECK(sk_delta_track_majorants(&m, &g2, o, d, 3, 10, &rng, &tr) == SK_ERR_SIZE);
+    CHECK(sk_majorants_build(NULL, 2, 2, 2, store, NULL, 8, &m) == SK_ERR_NULL);
+    CHECK(sk_majorants_build(&g, 2, 2, 2, NULL, NULL, 8, &m) == SK_ERR_NULL);
+    CHECK(sk_majorants_build_f64(&gd, 2, 2, 2, stored, NULL, 8, NULL) == SK_ERR_NULL);
+    CHECK(sk_majorants_new(NULL, NULL, 2, 2, 2, zero, one, &m) == SK_ERR_NULL);
+    CHECK(sk_majorants_new_f64(stored, NULL, 2, 2, 2, zerod, oned, NULL) == SK_ERR_NULL);
+    sk_majorants_build(&g, 2, 2, 2, store, NULL, 8, &m);
+    a = targs(&g, NULL, NULL, &m, o, d, 0, 3, 10, &no_fn);
+    CHECK(sk_delta_track(&a, &tr) == SK_ERR_NULL);
+    a = targs(NULL, NULL, NULL, &m, o, d, 0, 3, 10, &rng);
+    CHECK(sk_delta_track(&a, &tr) == SK_ERR_NULL);
+    ad = targs64(&gd, NULL, NULL, &md, od, dd, 0, 3, 10, &rng);
+    CHECK(sk_delta_track_f64(&ad, NULL) == SK_ERR_NULL);
+    /* Sizes: zero dimensions, a short buffer. */
+    CHECK(sk_majorants_build(&g, 0, 2, 2, store, NULL, 8, &m) == SK_ERR_SIZE);
+    CHECK(sk_majorants_build(&g, 2, 2, 2, store, NULL, 7, &m) == SK_ERR_SIZE);
+    CHECK(sk_majorants_build_f64(&gd, 3, 3, 3, stored, NULL, 8, &md) == SK_ERR_SIZE);
+    CHECK(sk_majorants_new(store, NULL, 2, 0, 2, zero, one, &mine) == SK_ERR_SIZE);
+    CHECK(sk_majorants_new(neg, NULL, 2, 2, 2, zero, one, &mine) == SK_ERR_DOMAIN);
+    sk_majorants_build(&g, 2, 2, 2, store, NULL, 8, &m);
+    /* Never built: a zeroed value, or one whose tag was overwritten. */
+    memset(&mine, 0, sizeof mine);
+    a = targs(&g, NULL, NULL, &mine, o, d, 0, 3, 10, &rng);
+    CHECK(sk_delta_track(&a, &tr) == SK_ERR_DOMAIN && isnan(sk_majorants_optical_depth(&mine, o, d, 0, 3)));
+    memcpy(&mine, &m, sizeof m);
+    memset(&mine, 0xff, 4);
+    CHECK(sk_ratio_track(&a, &tr) == SK_ERR_DOMAIN);
     /* Majorants over another box than the grid's; a zero direction. */
     g2 = g;
     sk_grid_set_box(&g2, zero, (sk_vec3){2, 1, 1});
-    CHECK(sk_delta_track_majorants(&m, &g2, o, d, 3, 10, &rng, &tr) == SK_ERR_DOMAIN);
-    CHECK(sk_ratio_track_majorants(&m, &g, o, zero, 3, 10, &rng, &rr) == SK_ERR_DOMAIN);
-    /* The budget: 0 steps through a medium that has collisions. */
-    CHECK(sk_delta_track_majorants(&big, &g, o, d, 1e6f, 0, &rng, &tr) == SK_ERR_BUDGET);
-    CHECK(sk_ratio_track_majorants_fn_f64(coeff64, NULL, &bigd, od, dd, 0, 1e6, 0, &rng, &rrd) == SK_ERR_BUDGET);
+    a = targs(&g2, NULL, NULL, &m, o, d, 0, 3, 10, &rng);
+    CHECK(sk_delta_track(&a, &tr) == SK_ERR_DOMAIN);
+    a = targs(&g, NULL, NULL, &m, o, zero, 0, 3, 10, &rng);
+    CHECK(sk_ratio_track(&a, &tr) == SK_ERR_DOMAIN);
+    /* The budget: 1 step through a medium that has many collisions. */
+    a = targs(&g, NULL, NULL, &big, o, d, 0, 1e6f, 1, &rng);
+    CHECK(sk_ratio_track(&a, &tr) == SK_ERR_BUDGET);
+    ad = targs64(NULL, coeff64, NULL, &bigd, od, dd, 0, 1e6, 1, &rng);
+    CHECK(sk_ratio_track_f64(&ad, &trd) == SK_ERR_BUDGET);
     {
         /* Values changed after building (checked once, then loaded in
          * constant time): caught where the walk meets them. */
         float kept8[8];
         int c;
-        CHECK(sk_majorants_build(&g, 2, 2, 2, store, 8, &m) == SK_OK);
+        CHECK(sk_majorants_build(&g, 2, 2, 2, store, NULL, 8, &m) == SK_OK);
         memcpy(kept8, store, sizeof store);
+        a = targs(&g, NULL, NULL, &m, o, d, 0, 3, 1000, &rng);
         for (c = 0; c < 3; c++) {
             int k;
             for (k = 0; k < 8; k++) {
                 store[k] = c == 0 ? NAN : c == 1 ? -1.0f : INFINITY;
             }
-            CHECK(sk_delta_track_majorants(&m, &g, o, d, 3, 1000, &rng, &tr) == SK_ERR_DOMAIN);
-            CHECK(sk_ratio_track_majorants(&m, &g, o, d, 3, 1000, &rng, &rr) == SK_ERR_DOMAIN);
+            CHECK(sk_delta_track(&a, &tr) == SK_ERR_DOMAIN && sk_ratio_track(&a, &tr) == SK_ERR_DOMAIN);
             CHECK(isnan(sk_majorants_optical_depth(&m, o, d, 0, 3)));
         }
         memcpy(store, kept8, sizeof store);
-        CHECK(sk_delta_track_majorants(&m, &g, o, d, 3, 1000, &rng, &tr) == SK_OK);
+        CHECK(sk_delta_track(&a, &tr) == SK_OK);
     }
     {
-        /* Extrema (majorants with minorants) and residual ratio tracking:
-         * the grid is constant (sigma_t 1), so its minorants sit just below
-         * its majorants, and swapping them inverts every cell. */
+        /* Minorants and residual ratio tracking: the grid is constant
+         * (sigma_t 1), so its minorants sit just below its majorants, and
+         * swapping them inverts every cell. */
         float hi8[8], lo8[8];
         double hi8d[8], lo8d[8];
         const float zeros8[8] = {0, 0, 0, 0, 0, 0, 0, 0};
         const double zeros8d[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-        sk_majorants z;
-        sk_majorants_f64 zd;
-        sk_extrema e, e2, eb;
-        sk_extrema_f64 ed, ebd;
-        CHECK(sk_extrema_build(&g, 2, 2, 2, hi8, lo8, 8, &e) == SK_OK && lo8[0] <= hi8[0] && lo8[0] > 0.99f);
-        CHECK(sk_extrema_build_f64(&gd, 2, 2, 2, hi8d, lo8d, 8, &ed) == SK_OK);
-        CHECK(sk_extrema_build(NULL, 2, 2, 2, hi8, lo8, 8, &e2) == SK_ERR_NULL);
-        CHECK(sk_extrema_build(&g, 2, 2, 2, NULL, lo8, 8, &e2) == SK_ERR_NULL);
-        CHECK(sk_extrema_build_f64(&gd, 2, 2, 2, hi8d, NULL, 8, &ed) == SK_ERR_NULL);
-        CHECK(sk_extrema_build_f64(&gd, 2, 2, 2, hi8d, lo8d, 8, NULL) == SK_ERR_NULL);
-        CHECK(sk_extrema_build(&g, 2, 2, 2, hi8, lo8, 7, &e2) == SK_ERR_SIZE);
-        CHECK(sk_extrema_build(&g, 0, 2, 2, hi8, lo8, 8, &e2) == SK_ERR_SIZE);
-        CHECK(sk_extrema_build(&g, 2, 2, 2, hi8, hi8 + 1, 8, &e2) == SK_ERR_OVERLAP);
-        CHECK(sk_extrema_new(&e.max, &e.min, &e2) == SK_OK);
-        CHECK(sk_extrema_new(&e.min, &e.max, &e2) == SK_ERR_DOMAIN);
-        CHECK(sk_extrema_new(&m, &big, &e2) == SK_ERR_DOMAIN);
-        CHECK(sk_extrema_new(NULL, &e.min, &e2) == SK_ERR_NULL && sk_extrema_new(&e.max, &e.min, NULL) == SK_ERR_NULL);
-        CHECK(sk_extrema_new_f64(&ed.max, &ed.min, &ebd) == SK_OK && sk_extrema_new_f64(&ed.min, &ed.max, &ebd) == SK_ERR_DOMAIN);
-        CHECK(sk_extrema_new_f64(NULL, &ed.min, &ebd) == SK_ERR_NULL);
-        CHECK(sk_majorants_new(zeros8, 2, 2, 2, zero, one, &z) == SK_OK && sk_extrema_new(&big, &z, &eb) == SK_OK);
-        CHECK(sk_majorants_new_f64(zeros8d, 2, 2, 2, zerod, oned, &zd) == SK_OK && sk_extrema_new_f64(&bigd, &zd, &ebd) == SK_OK);
+        sk_majorants e, e2, eb;
+        sk_majorants_f64 ed, ebd;
+        CHECK(sk_majorants_build(&g, 2, 2, 2, hi8, lo8, 8, &e) == SK_OK && lo8[0] <= hi8[0] && lo8[0] > 0.99f);
+        CHECK(sk_majorants_build_f64(&gd, 2, 2, 2, hi8d, lo8d, 8, &ed) == SK_OK);
+        CHECK(sk_majorants_build(&g, 2, 2, 2, hi8, lo8, 7, &e2) == SK_ERR_SIZE);
+        CHECK(sk_majorants_build(&g, 2, 2, 2, hi8, hi8 + 1, 8, &e2) == SK_ERR_OVERLAP);
+        CHECK(sk_majorants_new(hi8, lo8, 2, 2, 2, zero, one, &e2) == SK_OK);
+        CHECK(sk_majorants_new(lo8, hi8, 2, 2, 2, zero, one, &e2) == SK_ERR_DOMAIN);
+        CHECK(sk_majorants_new(hi8, neg, 2, 2, 2, zero, one, &e2) == SK_ERR_DOMAIN);
+        CHECK(sk_majorants_new_f64(hi8d, lo8d, 2, 2, 2, zerod, oned, &ebd) == SK_OK);
+        CHECK(sk_majorants_new_f64(lo8d, hi8d, 2, 2, 2, zerod, oned, &ebd) == SK_ERR_DOMAIN);
+        CHECK(sk_majorants_new(fifty, zeros8, 2, 2, 2, zero, one, &eb) == SK_OK);
+        CHECK(sk_majorants_new_f64(fiftyd, zeros8d, 2, 2, 2, zerod, oned, &ebd) == SK_OK);
         /* Tracking: the constant grid is exact (no draw); bad rays, NULLs. */
-        rr.tr = 7.0f;
-        CHECK(sk_residual_ratio_track(&e, &g, o, d, 3, 0, &rng, &rr) == SK_OK && rr.steps == 0 &&
-              fabsf(rr.tr - expf(-1.0f)) < 1e-6f);
-        CHECK(sk_residual_ratio_track_f64(&ed, &gd, od, dd, 3, 0, &rng, &rrd) == SK_OK && fabs(rrd.tr - exp(-1.0)) < 1e-14);
-        rr.tr = 7.0f;
-        CHECK(sk_residual_ratio_track(&e, &g, o, zero, 3, 10, &rng, &rr) == SK_ERR_DOMAIN && rr.tr == 7.0f);
-        CHECK(sk_residual_ratio_track(&e, &g, o, d, -1, 10, &rng, &rr) == SK_ERR_DOMAIN);
-        CHECK(sk_residual_ratio_track_f64(&ed, &gd, od, dd, NAN, 10, &rng, &rrd) == SK_ERR_DOMAIN);
-        CHECK(sk_residual_ratio_track(NULL, &g, o, d, 3, 10, &rng, &rr) == SK_ERR_NULL);
-        CHECK(sk_residual_ratio_track(&e, NULL, o, d, 3, 10, &rng, &rr) == SK_ERR_NULL);
-        CHECK(sk_residual_ratio_track(&e, &g, o, d, 3, 10, &no_fn, &rr) == SK_ERR_NULL);
-        CHECK(sk_residual_ratio_track_f64(&ed, &gd, od, dd, 3, 10, &rng, NULL) == SK_ERR_NULL);
-        /* Malformed, inverted (bypassing sk_extrema_new), another box. */
-        e2 = e;
-        e2.min.mx = 0;
-        CHECK(sk_residual_ratio_track(&e2, &g, o, d, 3, 10, &rng, &rr) == SK_ERR_SIZE);
-        e2.max = e.min;
-        e2.min = e.max;
-        CHECK(sk_residual_ratio_track(&e2, &g, o, d, 3, 10, &rng, &rr) == SK_ERR_DOMAIN);
-        e2 = e;
-        e2.min.hi.x = 2;
-        CHECK(sk_residual_ratio_track(&e2, &g, o, d, 3, 10, &rng, &rr) == SK_ERR_DOMAIN);
+        tr.tr = 7.0f;
+        a = targs(&g, NULL, NULL, &e, o, d, 0, 3, 0, &rng);
+        CHECK(sk_residual_ratio_track(&a, &tr) == SK_OK && tr.steps == 0 && fabsf(tr.tr - expf(-1.0f)) < 1e-6f);
+        ad = targs64(&gd, NULL, NULL, &ed, od, dd, 0, 3, 0, &rng);
+        CHECK(sk_residual_ratio_track_f64(&ad, &trd) == SK_OK && fabs(trd.tr - exp(-1.0)) < 1e-14);
+        tr.tr = 7.0f;
+        a = targs(&g, NULL, NULL, &e, o, zero, 0, 3, 10, &rng);
+        CHECK(sk_residual_ratio_track(&a, &tr) == SK_ERR_DOMAIN && tr.tr == 7.0f);
+        a = targs(&g, NULL, NULL, &e, o, d, 0, -1, 10, &rng);
+        CHECK(sk_residual_ratio_track(&a, &tr) == SK_ERR_DOMAIN);
+        ad = targs64(&gd, NULL, NULL, &ed, od, dd, 0, NAN, 10, &rng);
+        CHECK(sk_residual_ratio_track_f64(&ad, &trd) == SK_ERR_DOMAIN);
+        /* No minorants, no majorants: DOMAIN. NULLs. */
+        a = targs(&g, NULL, NULL, &m, o, d, 0, 3, 10, &rng);
+        CHECK(sk_residual_ratio_track(&a, &tr) == SK_ERR_DOMAIN);
+        a.medium.majorants = NULL;
+        CHECK(sk_residual_ratio_track(&a, &tr) == SK_ERR_DOMAIN);
+        a = targs(&g, NULL, NULL, &e, o, d, 0, 3, 10, &no_fn);
+        CHECK(sk_residual_ratio_track(&a, &tr) == SK_ERR_NULL && sk_residual_ratio_track(NULL, &tr) == SK_ERR_NULL);
+        CHECK(sk_residual_ratio_track_f64(&ad, NULL) == SK_ERR_NULL);
+        /* Minorants changed after building to exceed the majorants, or to
+         * go negative: caught on the ray. Another box. */
+        memcpy(lo8, fifty, sizeof lo8);
+        a = targs(&g, NULL, NULL, &e, o, d, 0, 3, 10, &rng);
+        CHECK(sk_residual_ratio_track(&a, &tr) == SK_ERR_DOMAIN);
+        memcpy(lo8, neg, sizeof lo8);
+        lo8[0] = lo8[1] = lo8[2] = lo8[3] = lo8[4] = lo8[5] = lo8[6] = -1.0f;
+        CHECK(sk_residual_ratio_track(&a, &tr) == SK_ERR_DOMAIN);
+        sk_majorants_build(&g, 2, 2, 2, hi8, lo8, 8, &e);
         g2 = g;
         sk_grid_set_box(&g2, zero, (sk_vec3){2, 1, 1});
-        CHECK(sk_residual_ratio_track(&e, &g2, o, d, 3, 10, &rng, &rr) == SK_ERR_DOMAIN);
+        a.medium.grid = &g2;
+        CHECK(sk_residual_ratio_track(&a, &tr) == SK_ERR_DOMAIN);
         /* The caller's medium against a majorant of 50 and a zero control:
          * draws are certain, so the coefficient check runs. */
         for (i = 0; i < NS; i++) {
             ctxf = FS[i];
-            CHECK(sk_residual_ratio_track_fn(coeff32, &ctxf, &eb, o, d, 0, 3, 1000, &rng, &rr) ==
-                  (FS[i] >= 0.0f && FS[i] <= 49.0f ? SK_OK : SK_ERR_DOMAIN));
+            a = targs(NULL, coeff32, &ctxf, &eb, o, d, 0, 3, 1000, &rng);
+            CHECK(sk_residual_ratio_track(&a, &tr) == (FS[i] >= 0.0f && FS[i] <= 49.0f ? SK_OK : SK_ERR_DOMAIN));
             ctxd = DS[i];
-            CHECK(sk_residual_ratio_track_fn_f64(coeff64, &ctxd, &ebd, od, dd, 0, 3, 1000, &rng, &rrd) ==
-                  (DS[i] >= 0.0 && DS[i] <= 49.0 ? SK_OK : SK_ERR_DOMAIN));
+            ad = targs64(NULL, coeff64, &ctxd, &ebd, od, dd, 0, 3, 1000, &rng);
+            CHECK(sk_residual_ratio_track_f64(&ad, &trd) == (DS[i] >= 0.0 && DS[i] <= 49.0 ? SK_OK : SK_ERR_DOMAIN));
         }
         i = 0;
-        CHECK(sk_residual_ratio_track_fn(NULL, NULL, &eb, o, d, 0, 3, 10, &rng, &rr) == SK_ERR_NULL);
-        CHECK(sk_residual_ratio_track_fn_f64(coeff64, NULL, NULL, od, dd, 0, 3, 10, &rng, &rrd) == SK_ERR_NULL);
-        CHECK(sk_residual_ratio_track_fn(coeff32, NULL, &eb, o, d, 0, 3, 10, &no_fn, &rr) == SK_ERR_NULL);
-        CHECK(sk_residual_ratio_track_fn_f64(coeff64, NULL, &ebd, od, dd, 0, 1e6, 0, &rng, &rrd) == SK_ERR_BUDGET);
+        ad = targs64(NULL, coeff64, NULL, &ebd, od, dd, 0, 1e6, 1, &rng);
+        CHECK(sk_residual_ratio_track_f64(&ad, &trd) == SK_ERR_BUDGET);
     }
     {
-        /* The majorant optical depth and the unbiased ray marcher: the grid
-         * is constant (sigma_t 1) and the ray crosses 1 unit of it, so the
-         * march is exact. */
+        /* The majorant optical depth and the unbiased ray marchers: the
+         * grid is constant (sigma_t 1) and the ray crosses 1 unit of it,
+         * so the marches are exact; strata 0 lets the library choose. */
         sk_grid g3;
-        sk_status st;
+        sk_status s;
         float depth = sk_majorants_optical_depth(&m, o, d, 0, 3);
         CHECK(fabsf(depth - 1.0f) < 1e-5f);
         CHECK(fabs(sk_majorants_optical_depth_f64(&md, od, dd, 0, 3) - 1.0) < 1e-12);
         CHECK(isnan(sk_majorants_optical_depth(NULL, o, d, 0, 3)) && isnan(sk_majorants_optical_depth(&m, o, zero, 0, 3)));
         CHECK(isnan(sk_majorants_optical_depth_f64(&md, od, dd, 3, 1)) && isnan(sk_majorants_optical_depth_f64(&md, od, dd, NAN, 1)));
-        rr.tr = 7.0f;
-        CHECK(sk_ray_march_transmittance(&g, o, d, 3, 4, 1000, &rng, &rr) == SK_OK && fabsf(rr.tr - expf(-1.0f)) < 1e-6f);
-        CHECK(sk_ray_march_transmittance_f64(&gd, od, dd, 3, 4, 1000, &rng, &rrd) == SK_OK && fabs(rrd.tr - exp(-1.0)) < 1e-14);
-        rr.tr = 7.0f;
-        CHECK(sk_ray_march_transmittance(&g, o, d, 3, 0, 1000, &rng, &rr) == SK_ERR_DOMAIN && rr.tr == 7.0f);
-        CHECK(sk_ray_march_transmittance(&g, o, zero, 3, 4, 1000, &rng, &rr) == SK_ERR_DOMAIN);
-        CHECK(sk_ray_march_transmittance(&g, o, d, -1, 4, 1000, &rng, &rr) == SK_ERR_DOMAIN);
-        CHECK(sk_ray_march_transmittance_f64(&gd, od, dd, NAN, 4, 1000, &rng, &rrd) == SK_ERR_DOMAIN);
-        CHECK(sk_ray_march_transmittance(&g, o, d, 3, 4, 3, &rng, &rr) == SK_ERR_BUDGET);
-        CHECK(sk_ray_march_transmittance(NULL, o, d, 3, 4, 1000, &rng, &rr) == SK_ERR_NULL);
-        CHECK(sk_ray_march_transmittance(&g, o, d, 3, 4, 1000, &no_fn, &rr) == SK_ERR_NULL);
-        CHECK(sk_ray_march_transmittance_f64(&gd, od, dd, 3, 4, 1000, &rng, NULL) == SK_ERR_NULL);
-        g3 = g;
-        g3.sampling = 9;
-        CHECK(sk_ray_march_transmittance(&g3, o, d, 3, 4, 1000, &rng, &rr) == SK_ERR_SIZE);
+        tr.tr = 7.0f;
+        a = targs(&g, NULL, NULL, NULL, o, d, 0, 3, 1000, &rng);
+        a.strata = 4;
+        CHECK(sk_ray_march(&a, &tr) == SK_OK && fabsf(tr.tr - expf(-1.0f)) < 1e-6f && tr.steps > 0);
+        a.strata = 0;
+        CHECK(sk_ray_march(&a, &tr) == SK_OK && fabsf(tr.tr - expf(-1.0f)) < 1e-6f);
+        a.medium.majorants = &m;
+        CHECK(sk_ray_march(&a, &tr) == SK_OK && fabsf(tr.tr - expf(-1.0f)) < 1e-6f);
+        CHECK(sk_telescoping_march(&a, &tr) == SK_OK && fabsf(tr.tr - expf(-1.0f)) < 1e-6f);
+        ad = targs64(&gd, NULL, NULL, NULL, od, dd, 0, 3, 1000, &rng);
+        CHECK(sk_ray_march_f64(&ad, &trd) == SK_OK && fabs(trd.tr - exp(-1.0)) < 1e-14);
+        CHECK(sk_telescoping_march_f64(&ad, &trd) == SK_OK && fabs(trd.tr - exp(-1.0)) < 1e-14);
+        /* A ray that misses the box, or crosses only empty cells: 1 with
+         * no evaluation, whatever the strata. */
+        a = targs(&g, NULL, NULL, &m, (sk_vec3){3, 3, 3}, d, 0, INFINITY, 1000, &rng);
+        CHECK(sk_ray_march(&a, &tr) == SK_OK && tr.tr == 1.0f && tr.steps == 0);
+        a = targs(&g, NULL, NULL, NULL, o, zero, 0, 3, 1000, &rng);
+        CHECK(sk_ray_march(&a, &tr) == SK_ERR_DOMAIN && sk_telescoping_march(&a, &tr) == SK_ERR_DOMAIN);
+        a = targs(&g, NULL, NULL, NULL, o, d, 0, -1, 1000, &rng);
+        CHECK(sk_ray_march(&a, &tr) == SK_ERR_DOMAIN);
+        ad = targs64(&gd, NULL, NULL, NULL, od, dd, 0, NAN, 1000, &rng);
+        CHECK(sk_ray_march_f64(&ad, &trd) == SK_ERR_DOMAIN && sk_telescoping_march_f64(&ad, &trd) == SK_ERR_DOMAIN);
+        a = targs(&g, NULL, NULL, NULL, o, d, 0, 3, 3, &rng);
+        a.strata = 4;
+        CHECK(sk_ray_march(&a, &tr) == SK_ERR_BUDGET && sk_telescoping_march(&a, &tr) == SK_ERR_BUDGET);
+        a = targs(&g, NULL, NULL, NULL, o, d, 0, 3, 1000, &no_fn);
+        CHECK(sk_ray_march(&a, &tr) == SK_ERR_NULL && sk_telescoping_march(&a, &tr) == SK_ERR_NULL);
+        CHECK(sk_ray_march(NULL, &tr) == SK_ERR_NULL && sk_ray_march_f64(&ad, NULL) == SK_ERR_NULL);
+        CHECK(sk_telescoping_march(NULL, &tr) == SK_ERR_NULL && sk_telescoping_march_f64(&ad, NULL) == SK_ERR_NULL);
+        memset(&g3, 0, sizeof g3);
+        a = targs(&g3, NULL, NULL, NULL, o, d, 0, 3, 1000, &rng);
+        CHECK(sk_ray_march(&a, &tr) == SK_ERR_DOMAIN && sk_telescoping_march(&a, &tr) == SK_ERR_DOMAIN);
         /* The caller's medium: sigma_a = f (float) or sigma_s = x (double)
          * next to 0.25; an optical depth that overflows is DOMAIN. */
         for (i = 0; i < NS; i++) {
             ctxf = FS[i];
-            CHECK(sk_ray_march_transmittance_fn(coeff32, &ctxf, o, d, 0, 3, 4, 1000, &rng, &rr) ==
-                  (FS[i] >= 0.0f && FS[i] < 1e30f ? SK_OK : SK_ERR_DOMAIN));
+            a = targs(NULL, coeff32, &ctxf, NULL, o, d, 0, 3, 1 << 20, &rng);
+            a.strata = 4;
+            CHECK(sk_ray_march(&a, &tr) == (FS[i] >= 0.0f && FS[i] < 1e30f ? SK_OK : SK_ERR_DOMAIN));
+            s = sk_telescoping_march(&a, &tr);
+            CHECK(FS[i] >= 0.0f && FS[i] < 1e30f ? s == SK_OK : s == SK_ERR_DOMAIN || s == SK_ERR_BUDGET);
             ctxd = DS[i];
-            CHECK(sk_ray_march_transmittance_fn_f64(coeff64, &ctxd, od, dd, 0, 3, 4, 1000, &rng, &rrd) ==
-                  (DS[i] >= 0.0 && DS[i] < 1e300 ? SK_OK : SK_ERR_DOMAIN));
+            ad = targs64(NULL, coeff64, &ctxd, NULL, od, dd, 0, 3, 1 << 20, &rng);
+            ad.strata = 4;
+            CHECK(sk_ray_march_f64(&ad, &trd) == (DS[i] >= 0.0 && DS[i] < 1e300 ? SK_OK : SK_ERR_DOMAIN));
+            s = sk_telescoping_march_f64(&ad, &trd);
+            CHECK(DS[i] >= 0.0 && DS[i] < 1e300 ? s == SK_OK : s == SK_ERR_DOMAIN || s == SK_ERR_BUDGET);
         }
         i = 0;
-        CHECK(sk_ray_march_transmittance_fn(coeff32, NULL, o, d, 0, INFINITY, 4, 1000, &rng, &rr) == SK_ERR_DOMAIN);
-        CHECK(sk_ray_march_transmittance_fn(NULL, NULL, o, d, 0, 3, 4, 1000, &rng, &rr) == SK_ERR_NULL);
-        CHECK(sk_ray_march_transmittance_fn_f64(coeff64, NULL, od, dd, 0, 3, 4, 1000, &no_fn, &rrd) == SK_ERR_NULL);
-        CHECK(sk_ray_march_transmittance_fn_f64(coeff64, NULL, od, dd, 0, 3, 4, 1000, &rng, NULL) == SK_ERR_NULL);
-        /* The telescoping member: exact on the constant grid too. */
-        CHECK(sk_telescoping_transmittance(&g, o, d, 3, 4, 1 << 20, &rng, &rr) == SK_OK && fabsf(rr.tr - expf(-1.0f)) < 1e-6f);
-        CHECK(sk_telescoping_transmittance_f64(&gd, od, dd, 3, 4, 1 << 20, &rng, &rrd) == SK_OK && fabs(rrd.tr - exp(-1.0)) < 1e-14);
-        CHECK(sk_telescoping_transmittance(&g, o, d, 3, 0, 1000, &rng, &rr) == SK_ERR_DOMAIN);
-        CHECK(sk_telescoping_transmittance(&g, o, zero, 3, 4, 1000, &rng, &rr) == SK_ERR_DOMAIN);
-        CHECK(sk_telescoping_transmittance_f64(&gd, od, dd, NAN, 4, 1000, &rng, &rrd) == SK_ERR_DOMAIN);
-        CHECK(sk_telescoping_transmittance(&g, o, d, 3, 4, 3, &rng, &rr) == SK_ERR_BUDGET);
-        CHECK(sk_telescoping_transmittance(NULL, o, d, 3, 4, 1000, &rng, &rr) == SK_ERR_NULL);
-        CHECK(sk_telescoping_transmittance(&g, o, d, 3, 4, 1000, &no_fn, &rr) == SK_ERR_NULL);
-        CHECK(sk_telescoping_transmittance(&g3, o, d, 3, 4, 1000, &rng, &rr) == SK_ERR_SIZE);
-        for (i = 0; i < NS; i++) {
-            ctxf = FS[i];
-            st = sk_telescoping_transmittance_fn(coeff32, &ctxf, o, d, 0, 3, 4, 1 << 20, &rng, &rr);
-            CHECK(FS[i] >= 0.0f && FS[i] < 1e30f ? st == SK_OK : st == SK_ERR_DOMAIN || st == SK_ERR_BUDGET);
-            ctxd = DS[i];
-            st = sk_telescoping_transmittance_fn_f64(coeff64, &ctxd, od, dd, 0, 3, 4, 1 << 20, &rng, &rrd);
-            CHECK(DS[i] >= 0.0 && DS[i] < 1e300 ? st == SK_OK : st == SK_ERR_DOMAIN || st == SK_ERR_BUDGET);
-        }
-        i = 0;
-        CHECK(sk_telescoping_transmittance_fn(coeff32, NULL, o, d, 0, INFINITY, 4, 1000, &rng, &rr) == SK_ERR_DOMAIN);
-        CHECK(sk_telescoping_transmittance_fn(NULL, NULL, o, d, 0, 3, 4, 1000, &rng, &rr) == SK_ERR_NULL);
-        CHECK(sk_telescoping_transmittance_fn_f64(coeff64, NULL, od, dd, 0, 3, 4, 1000, &rng, NULL) == SK_ERR_NULL);
+        /* A callback needs a finite segment; strata 0 takes sigma_maj. */
+        a = targs(NULL, coeff32, NULL, NULL, o, d, 0, INFINITY, 1000, &rng);
+        a.strata = 4;
+        CHECK(sk_ray_march(&a, &tr) == SK_ERR_DOMAIN && sk_telescoping_march(&a, &tr) == SK_ERR_DOMAIN);
+        a = targs(NULL, coeff32, NULL, NULL, o, d, 0, 3, 1000, &rng);
+        CHECK(sk_ray_march(&a, &tr) == SK_OK && tr.steps >= 3);
+        a.medium.sigma_maj = NAN;
+        CHECK(sk_ray_march(&a, &tr) == SK_ERR_DOMAIN);
     }
     {
         /* Equiangular sampling toward a point 1 unit off the x axis, over
@@ -1131,153 +1230,192 @@ static void majorants(void) {
     {
         /* Emission. The exact integral over the constant grid's cells
          * (sigma_t 1, emission coefficient 1, a unit path): 1 - e^-1. */
-        sk_emission_result er;
-        sk_emission_result_f64 erd;
         sk_majorants single;
         const float ones[8] = {1, 1, 1, 1, 1, 1, 1, 1};
         const double onesd[8] = {1, 1, 1, 1, 1, 1, 1, 1};
         sk_majorants j;
         sk_majorants_f64 jd;
-        sk_status st;
+        sk_status s;
         sk_grid g3;
-        CHECK(sk_majorants_new(ones, 2, 2, 2, zero, one, &j) == SK_OK);
-        CHECK(sk_majorants_new_f64(onesd, 2, 2, 2, zerod, oned, &jd) == SK_OK);
-        CHECK(sk_majorants_new(ones, 1, 1, 1, zero, one, &single) == SK_OK);
-        CHECK(sk_emission_cells(&m, &j, o, d, 0, 3, &er) == SK_OK && er.steps == 0 &&
-              fabsf(er.radiance - (1.0f - expf(-1.0f))) < 1e-6f && fabsf(er.tr - expf(-1.0f)) < 1e-6f);
-        CHECK(sk_emission_cells_f64(&md, &jd, od, dd, 0, 3, &erd) == SK_OK && fabs(erd.radiance - (1.0 - exp(-1.0))) < 1e-15);
-        CHECK(sk_emission_cells(&m, &single, o, d, 0, 3, &er) == SK_ERR_DOMAIN);
-        CHECK(sk_emission_cells(&m, &j, o, d, 3, 1, &er) == SK_ERR_DOMAIN);
-        CHECK(sk_emission_cells(&m, &j, o, zero, 0, 3, &er) == SK_ERR_DOMAIN);
-        CHECK(sk_emission_cells(NULL, &j, o, d, 0, 3, &er) == SK_ERR_NULL);
-        CHECK(sk_emission_cells_f64(&md, NULL, od, dd, 0, 3, &erd) == SK_ERR_NULL);
-        CHECK(sk_emission_cells(&m, &j, o, d, 0, 3, NULL) == SK_ERR_NULL);
+        CHECK(sk_majorants_new(ones, NULL, 2, 2, 2, zero, one, &j) == SK_OK);
+        CHECK(sk_majorants_new_f64(onesd, NULL, 2, 2, 2, zerod, oned, &jd) == SK_OK);
+        CHECK(sk_majorants_new(ones, NULL, 1, 1, 1, zero, one, &single) == SK_OK);
+        a = targs(NULL, NULL, NULL, &m, o, d, 0, 3, 0, &rng);
+        a.medium.emission_cells = &j;
+        CHECK(sk_emission_track(&a, &tr) == SK_OK && tr.steps == 0 && fabsf(tr.radiance - (1.0f - expf(-1.0f))) < 1e-6f &&
+              fabsf(tr.tr - expf(-1.0f)) < 1e-6f);
+        ad = targs64(NULL, NULL, NULL, &md, od, dd, 0, 3, 0, &rng);
+        ad.medium.emission_cells = &jd;
+        CHECK(sk_emission_track_f64(&ad, &trd) == SK_OK && fabs(trd.radiance - (1.0 - exp(-1.0))) < 1e-15);
+        a.medium.emission_cells = &single;
+        CHECK(sk_emission_track(&a, &tr) == SK_ERR_DOMAIN);
+        a.medium.emission_cells = &j;
+        a.t_min = 3, a.t_max = 1;
+        CHECK(sk_emission_track(&a, &tr) == SK_ERR_DOMAIN);
+        a.t_min = 0, a.t_max = 3, a.d = zero;
+        CHECK(sk_emission_track(&a, &tr) == SK_ERR_DOMAIN);
+        a.d = d, a.medium.majorants = NULL;
+        CHECK(sk_emission_track(&a, &tr) == SK_ERR_NULL);
+        ad.medium.emission_cells = NULL;
+        CHECK(sk_emission_track_f64(&ad, &trd) == SK_ERR_NULL && sk_emission_track(&a, NULL) == SK_ERR_NULL);
         /* Tracking through the grid with L_e read from the same grid (1):
          * the majorant is exact, so one collision ends the walk with
          * radiance sigma_a L_e / sigma_maj = 0.5, or none leaves 0. */
-        CHECK(sk_emission_track(&m, &g, &g, o, d, 3, 1000, &rng, &er) == SK_OK &&
-              (er.radiance == 0.0f || fabsf(er.radiance - 0.5f) < 1e-6f));
-        CHECK(sk_emission_track_f64(&md, &gd, &gd, od, dd, 3, 1000, &rng, &erd) == SK_OK);
-        CHECK(sk_emission_track(NULL, &g, &g, o, d, 3, 1000, &rng, &er) == SK_ERR_NULL);
-        CHECK(sk_emission_track(&m, NULL, &g, o, d, 3, 1000, &rng, &er) == SK_ERR_NULL);
-        CHECK(sk_emission_track(&m, &g, NULL, o, d, 3, 1000, &rng, &er) == SK_ERR_NULL);
-        CHECK(sk_emission_track(&m, &g, &g, o, d, 3, 1000, &no_fn, &er) == SK_ERR_NULL);
-        CHECK(sk_emission_track_f64(&md, &gd, &gd, od, dd, 3, 1000, &rng, NULL) == SK_ERR_NULL);
-        CHECK(sk_emission_track(&m, &g, &g, o, zero, 3, 1000, &rng, &er) == SK_ERR_DOMAIN);
-        CHECK(sk_emission_track_f64(&md, &gd, &gd, od, dd, NAN, 1000, &rng, &erd) == SK_ERR_DOMAIN);
-        CHECK(sk_emission_track(&big, &g, &g, o, d, 3, 0, &rng, &er) == SK_ERR_BUDGET);
-        g3 = g;
-        g3.nx = 0;
-        CHECK(sk_emission_track(&m, &g, &g3, o, d, 3, 1000, &rng, &er) == SK_ERR_SIZE);
+        a = targs(&g, NULL, NULL, &m, o, d, 0, 3, 1000, &rng);
+        a.medium.emission = &g;
+        CHECK(sk_emission_track(&a, &tr) == SK_OK && (tr.radiance == 0.0f || fabsf(tr.radiance - 0.5f) < 1e-6f));
+        ad = targs64(&gd, NULL, NULL, &md, od, dd, 0, 3, 1000, &rng);
+        ad.medium.emission = &gd;
+        CHECK(sk_emission_track_f64(&ad, &trd) == SK_OK);
+        a.medium.majorants = NULL;
+        CHECK(sk_emission_track(&a, &tr) == SK_ERR_DOMAIN); /* a grid needs majorants here */
+        a.medium.majorants = &m;
+        a.medium.emission = NULL;
+        CHECK(sk_emission_track(&a, &tr) == SK_ERR_DOMAIN); /* no source */
+        a.medium.emission = &g;
+        a.medium.emission_fn = le32;
+        CHECK(sk_emission_track(&a, &tr) == SK_ERR_DOMAIN); /* two sources */
+        a.medium.emission_fn = NULL;
+        a.rng = &no_fn;
+        CHECK(sk_emission_track(&a, &tr) == SK_ERR_NULL);
+        a.rng = &rng;
+        a.d = zero;
+        CHECK(sk_emission_track(&a, &tr) == SK_ERR_DOMAIN);
+        a.d = d;
+        a.medium.majorants = &big;
+        a.t_max = 1e6f;
+        a.budget = 1;
+        s = sk_emission_track(&a, &tr);
+        CHECK(s == SK_ERR_BUDGET || s == SK_ERR_DOMAIN);
+        memset(&g3, 0, sizeof g3);
+        a = targs(&g, NULL, NULL, &m, o, d, 0, 3, 1000, &rng);
+        a.medium.emission = &g3;
+        CHECK(sk_emission_track(&a, &tr) == SK_ERR_DOMAIN);
         /* The caller's medium under majorants of 50 (a collision is all
          * but certain, so L_e is read): L_e must be finite and >= 0; an
          * enormous one may overflow the sum, which is DOMAIN. */
         for (i = 0; i < NS; i++) {
             ctxf = FS[i];
-            st = sk_emission_track_fn(coeff32, NULL, le32, &ctxf, &big, o, d, 0, 3, 1000, &rng, &er);
-            CHECK(FS[i] >= 0.0f && isfinite(FS[i]) ? st == SK_OK || (FS[i] > 1e30f && st == SK_ERR_DOMAIN)
-                                                   : st == SK_ERR_DOMAIN);
-            CHECK(st != SK_OK || (er.radiance >= 0.0f && isfinite(er.radiance)));
+            a = targs(NULL, coeff32, &ctxf, &big, o, d, 0, 3, 1000, &rng);
+            a.medium.coefficients = coeff32;
+            a.medium.ctx = &ctxf;
+            a.medium.emission_fn = le32;
+            /* coeff32 reads sigma_a from ctx too: keep it in range. */
+            s = sk_emission_track(&a, &tr);
+            CHECK(FS[i] >= 0.0f && FS[i] <= 49.0f ? s == SK_OK : s == SK_ERR_DOMAIN);
+            CHECK(s != SK_OK || (tr.radiance >= 0.0f && isfinite(tr.radiance)));
             ctxd = DS[i];
-            st = sk_emission_track_fn_f64(coeff64, NULL, le64, &ctxd, &bigd, od, dd, 0, 3, 1000, &rng, &erd);
-            CHECK(DS[i] >= 0.0 && isfinite(DS[i]) ? st == SK_OK || (DS[i] > 1e300 && st == SK_ERR_DOMAIN)
-                                                  : st == SK_ERR_DOMAIN);
+            ad = targs64(NULL, coeff64, &ctxd, &bigd, od, dd, 0, 3, 1000, &rng);
+            ad.medium.emission_fn = le64;
+            s = sk_emission_track_f64(&ad, &trd);
+            CHECK(DS[i] >= 0.0 && DS[i] <= 49.0 ? s == SK_OK : s == SK_ERR_DOMAIN);
         }
         i = 0;
-        CHECK(sk_emission_track_fn(coeff32, NULL, NULL, NULL, &big, o, d, 0, 3, 1000, &rng, &er) == SK_ERR_NULL);
-        CHECK(sk_emission_track_fn(NULL, NULL, le32, NULL, &big, o, d, 0, 3, 1000, &rng, &er) == SK_ERR_NULL);
-        CHECK(sk_emission_track_fn_f64(coeff64, NULL, le64, NULL, NULL, od, dd, 0, 3, 1000, &rng, &erd) == SK_ERR_NULL);
-        CHECK(sk_emission_track_fn(coeff32, NULL, le32, NULL, &big, o, d, 0, INFINITY, 1000, &rng, &er) == SK_OK);
-        CHECK(sk_emission_track_fn(coeff32, NULL, le32, NULL, &big, o, d, 2, 1, 1000, &rng, &er) == SK_ERR_DOMAIN);
+        a = targs(NULL, coeff32, NULL, &big, o, d, 0, INFINITY, 1000, &rng);
+        a.medium.emission_fn = le32;
+        CHECK(sk_emission_track(&a, &tr) == SK_OK);
+        a.t_min = 2, a.t_max = 1;
+        CHECK(sk_emission_track(&a, &tr) == SK_ERR_DOMAIN);
+        /* One majorant for a callback medium, a finite segment. */
+        a = targs(NULL, coeff32, NULL, NULL, o, d, 0, 3, 1000, &rng);
+        a.medium.emission_fn = le32;
+        CHECK(sk_emission_track(&a, &tr) == SK_OK && tr.radiance >= 0.0f);
     }
     {
         /* Majorants that may not bound: under majorants of 50 a tentative
          * collision is all but certain. sigma_a = 60 exceeds them (ratio
          * 60.25/50); the default 0.25 + 0.25 does not. */
-        sk_signed_result sr;
-        sk_signed_result_f64 srd;
-        sk_weighted_track wt;
-        sk_weighted_track_f64 wtd;
-        sk_status st;
+        sk_status s;
         ctxf = 60.0f;
-        CHECK(sk_ratio_track_signed_fn(coeff32, &ctxf, &big, o, d, 0, 3, 100000, &rng, &sr) == SK_OK &&
-              fabsf(sr.exceeded - 60.25f / 50.0f) < 1e-5f && sr.cell[0] < 2 && sr.cell[1] < 2 && sr.cell[2] < 2);
-        CHECK(sk_delta_track_weighted_fn(coeff32, &ctxf, &big, o, d, 0, 3, 100000, &rng, &wt) == SK_OK &&
-              fabsf(wt.exceeded - 60.25f / 50.0f) < 1e-5f && wt.event <= 2);
-        CHECK(sk_ratio_track_signed_fn(coeff32, NULL, &big, o, d, 0, 3, 100000, &rng, &sr) == SK_OK && sr.exceeded == 0.0f &&
-              sr.tr >= 0.0f && sr.tr <= 1.0f);
-        CHECK(sk_delta_track_weighted_fn_f64(coeff64, NULL, &bigd, od, dd, 0, 3, 100000, &rng, &wtd) == SK_OK &&
-              wtd.weight == 1.0 && wtd.exceeded == 0.0);
+        a = targs(NULL, coeff32, &ctxf, &big, o, d, 0, 3, 100000, &rng);
+        a.flags = SK_TRACK_NONBOUNDING;
+        CHECK(sk_ratio_track(&a, &tr) == SK_OK && fabsf(tr.exceeded - 60.25f / 50.0f) < 1e-5f && tr.cell[0] < 2 &&
+              tr.cell[1] < 2 && tr.cell[2] < 2);
+        CHECK(sk_delta_track(&a, &tr) == SK_OK && fabsf(tr.exceeded - 60.25f / 50.0f) < 1e-5f && tr.event <= 2);
+        a.flags = 0; /* the strict estimators refuse */
+        CHECK(sk_ratio_track(&a, &tr) == SK_ERR_DOMAIN && sk_delta_track(&a, &tr) == SK_ERR_DOMAIN);
+        a = targs(NULL, coeff32, NULL, &big, o, d, 0, 3, 100000, &rng);
+        a.flags = SK_TRACK_NONBOUNDING;
+        CHECK(sk_ratio_track(&a, &tr) == SK_OK && tr.exceeded == 0.0f && tr.tr >= 0.0f && tr.tr <= 1.0f);
+        ad = targs64(NULL, coeff64, NULL, &bigd, od, dd, 0, 3, 100000, &rng);
+        ad.flags = SK_TRACK_NONBOUNDING;
+        CHECK(sk_delta_track_f64(&ad, &trd) == SK_OK && trd.weight == 1.0 && trd.exceeded == 0.0);
+        CHECK(sk_residual_ratio_track(&a, &tr) == SK_ERR_DOMAIN); /* no signed residual tracking */
         for (i = 0; i < NS; i++) {
             ctxf = FS[i];
-            st = sk_ratio_track_signed_fn(coeff32, &ctxf, &big, o, d, 0, 3, 100000, &rng, &sr);
-            CHECK(FS[i] >= 0.0f && isfinite(FS[i]) ? st == SK_OK || (FS[i] > 1e30f && st == SK_ERR_DOMAIN)
-                                                   : st == SK_ERR_DOMAIN);
-            st = sk_delta_track_weighted_fn(coeff32, &ctxf, &big, o, d, 0, 3, 100000, &rng, &wt);
-            CHECK(FS[i] >= 0.0f && isfinite(FS[i]) ? st == SK_OK || (FS[i] > 1e30f && st == SK_ERR_DOMAIN)
-                                                   : st == SK_ERR_DOMAIN);
-            CHECK(st != SK_OK || isfinite(wt.weight));
+            a = targs(NULL, coeff32, &ctxf, &big, o, d, 0, 3, 100000, &rng);
+            a.flags = SK_TRACK_NONBOUNDING;
+            s = sk_ratio_track(&a, &tr);
+            CHECK(FS[i] >= 0.0f && isfinite(FS[i]) ? s == SK_OK || (FS[i] > 1e30f && s == SK_ERR_DOMAIN) : s == SK_ERR_DOMAIN);
+            s = sk_delta_track(&a, &tr);
+            CHECK(FS[i] >= 0.0f && isfinite(FS[i]) ? s == SK_OK || (FS[i] > 1e30f && s == SK_ERR_DOMAIN) : s == SK_ERR_DOMAIN);
+            CHECK(s != SK_OK || isfinite(tr.weight));
             ctxd = DS[i];
-            st = sk_ratio_track_signed_fn_f64(coeff64, &ctxd, &bigd, od, dd, 0, 3, 100000, &rng, &srd);
-            CHECK(DS[i] >= 0.0 && isfinite(DS[i]) ? st == SK_OK || (DS[i] > 1e300 && st == SK_ERR_DOMAIN)
-                                                  : st == SK_ERR_DOMAIN);
-            st = sk_delta_track_weighted_fn_f64(coeff64, &ctxd, &bigd, od, dd, 0, 3, 100000, &rng, &wtd);
-            CHECK(DS[i] >= 0.0 && isfinite(DS[i]) ? st == SK_OK || (DS[i] > 1e300 && st == SK_ERR_DOMAIN)
-                                                  : st == SK_ERR_DOMAIN);
+            ad = targs64(NULL, coeff64, &ctxd, &bigd, od, dd, 0, 3, 100000, &rng);
+            ad.flags = SK_TRACK_NONBOUNDING;
+            s = sk_ratio_track_f64(&ad, &trd);
+            CHECK(DS[i] >= 0.0 && isfinite(DS[i]) ? s == SK_OK || (DS[i] > 1e300 && s == SK_ERR_DOMAIN) : s == SK_ERR_DOMAIN);
+            s = sk_delta_track_f64(&ad, &trd);
+            CHECK(DS[i] >= 0.0 && isfinite(DS[i]) ? s == SK_OK || (DS[i] > 1e300 && s == SK_ERR_DOMAIN) : s == SK_ERR_DOMAIN);
             /* A bad t_min is DOMAIN; out untouched then. */
-            sr.tr = 7.0f;
-            CHECK(sk_ratio_track_signed_fn(coeff32, NULL, &big, o, d, FS[i], 3, 1000, &rng, &sr) ==
-                  (FS[i] >= 0.0f && FS[i] <= 3.0f ? SK_OK : SK_ERR_DOMAIN));
-            CHECK(FS[i] >= 0.0f && FS[i] <= 3.0f ? 1 : sr.tr == 7.0f);
+            tr.tr = 7.0f;
+            a = targs(NULL, coeff32, NULL, &big, o, d, FS[i], 3, 1000, &rng);
+            a.flags = SK_TRACK_NONBOUNDING;
+            CHECK(sk_ratio_track(&a, &tr) == (FS[i] >= 0.0f && FS[i] <= 3.0f ? SK_OK : SK_ERR_DOMAIN));
+            CHECK(FS[i] >= 0.0f && FS[i] <= 3.0f ? 1 : tr.tr == 7.0f);
         }
         i = 0;
-        CHECK(sk_ratio_track_signed_fn(NULL, NULL, &big, o, d, 0, 3, 10, &rng, &sr) == SK_ERR_NULL);
-        CHECK(sk_ratio_track_signed_fn(coeff32, NULL, NULL, o, d, 0, 3, 10, &rng, &sr) == SK_ERR_NULL);
-        CHECK(sk_ratio_track_signed_fn(coeff32, NULL, &big, o, d, 0, 3, 10, &no_fn, &sr) == SK_ERR_NULL);
-        CHECK(sk_ratio_track_signed_fn_f64(coeff64, NULL, &bigd, od, dd, 0, 3, 10, &rng, NULL) == SK_ERR_NULL);
-        CHECK(sk_delta_track_weighted_fn(NULL, NULL, &big, o, d, 0, 3, 10, &rng, &wt) == SK_ERR_NULL);
-        CHECK(sk_delta_track_weighted_fn_f64(coeff64, NULL, &bigd, od, dd, 0, 3, 10, &rng, NULL) == SK_ERR_NULL);
-        CHECK(sk_delta_track_weighted_fn(coeff32, NULL, &big, o, zero, 0, 3, 10, &rng, &wt) == SK_ERR_DOMAIN);
-        CHECK(sk_ratio_track_signed_fn_f64(coeff64, NULL, &bigd, od, dd, 0, 3, 0, &rng, &srd) == SK_ERR_BUDGET);
-        CHECK(sk_delta_track_weighted_fn(coeff32, NULL, &big, o, d, 0, 3, 0, &rng, &wt) == SK_ERR_BUDGET);
+        a = targs(NULL, coeff32, NULL, &big, o, zero, 0, 3, 10, &rng);
+        a.flags = SK_TRACK_NONBOUNDING;
+        CHECK(sk_delta_track(&a, &tr) == SK_ERR_DOMAIN);
+        a.d = d;
+        a.t_max = 1e6f;
+        a.budget = 1;
+        CHECK(sk_delta_track(&a, &tr) == SK_ERR_BUDGET && sk_ratio_track(&a, &tr) == SK_ERR_BUDGET);
     }
     {
         /* Spectral tracking: density majorants (the grid's coefficients sum
          * to 1), three channels, hero 1. */
         float sa[3] = {0.1f, 0.2f, 0.0f}, ss[3] = {0.3f, 0.0f, 0.5f}, w[3], u[3], l[3];
         double sad[3] = {0.1, 0.2, 0.0}, ssd[3] = {0.3, 0.0, 0.5}, wd[3], ud[3], ld[3];
-        sk_spectrum sp = {sa, ss, 3, 1};
-        sk_spectrum_f64 spd = {sad, ssd, 3, 1};
-        uint32_t steps;
+        sk_spectrum sp = {sa, ss, 3, 1, w, u, l};
+        sk_spectrum_f64 spd = {sad, ssd, 3, 1, wd, ud, ld};
         int k;
-        CHECK(sk_delta_track_spectral(&m, &g, &sp, o, d, 3, 1000, &rng, &tr, w, u, l) == SK_OK);
-        CHECK(sk_ratio_track_spectral_f64(&md, &gd, &spd, od, dd, 3, 1000, &rng, &steps, wd, ud, ld) == SK_OK);
-        CHECK(sk_ratio_track_spectral(&m, &g, &sp, o, d, 3, 1000, &rng, NULL, w, u, l) == SK_OK);
-        CHECK(sk_delta_track_spectral_f64(&md, &gd, &spd, od, dd, 3, 1000, &rng, &trd, wd, ud, ld) == SK_OK);
-        CHECK(sk_delta_track_spectral(NULL, &g, &sp, o, d, 3, 10, &rng, &tr, w, u, l) == SK_ERR_NULL);
-        CHECK(sk_delta_track_spectral(&m, NULL, &sp, o, d, 3, 10, &rng, &tr, w, u, l) == SK_ERR_NULL);
-        CHECK(sk_delta_track_spectral(&m, &g, NULL, o, d, 3, 10, &rng, &tr, w, u, l) == SK_ERR_NULL);
-        CHECK(sk_delta_track_spectral(&m, &g, &sp, o, d, 3, 10, NULL, &tr, w, u, l) == SK_ERR_NULL);
-        CHECK(sk_delta_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, NULL, w, u, l) == SK_ERR_NULL);
-        CHECK(sk_delta_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, &tr, NULL, u, l) == SK_ERR_NULL);
-        CHECK(sk_ratio_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, &steps, w, NULL, l) == SK_ERR_NULL);
-        CHECK(sk_ratio_track_spectral_f64(&md, &gd, &spd, od, dd, 3, 10, &rng, &steps, wd, ud, NULL) == SK_ERR_NULL);
-        /* Aliased outputs; an output over an input. */
-        CHECK(sk_ratio_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, &steps, w, w, l) == SK_ERR_OVERLAP);
-        CHECK(sk_delta_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, &tr, sa, u, l) == SK_ERR_OVERLAP);
+        a = targs(&g, NULL, NULL, &m, o, d, 0, 3, 1000, &rng);
+        a.spectrum = &sp;
+        ad = targs64(&gd, NULL, NULL, &md, od, dd, 0, 3, 1000, &rng);
+        ad.spectrum = &spd;
+        CHECK(sk_delta_track(&a, &tr) == SK_OK && sk_ratio_track(&a, &tr) == SK_OK && isnan(tr.tr));
+        CHECK(sk_ratio_track_f64(&ad, &trd) == SK_OK && sk_delta_track_f64(&ad, &trd) == SK_OK);
+        /* Only delta and ratio tracking, through a grid with majorants. */
+        CHECK(sk_residual_ratio_track(&a, &tr) == SK_ERR_DOMAIN && sk_ray_march(&a, &tr) == SK_ERR_DOMAIN);
+        a.medium.majorants = NULL;
+        CHECK(sk_delta_track(&a, &tr) == SK_ERR_DOMAIN);
+        a.medium.majorants = &m;
+        /* NULL outputs, aliased outputs; an output over an input. */
+        sp.weight = NULL;
+        CHECK(sk_delta_track(&a, &tr) == SK_ERR_NULL);
+        sp.weight = w, sp.r_u = w;
+        CHECK(sk_ratio_track(&a, &tr) == SK_ERR_OVERLAP);
+        sp.r_u = u, sp.weight = sa;
+        CHECK(sk_delta_track(&a, &tr) == SK_ERR_OVERLAP);
+        sp.weight = w;
+        spd.r_l = NULL;
+        CHECK(sk_ratio_track_f64(&ad, &trd) == SK_ERR_NULL);
+        spd.r_l = ld;
         /* Channel counts, hero, coefficients. */
         sp.channels = 0;
-        CHECK(sk_ratio_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, &steps, w, u, l) == SK_ERR_SIZE);
+        CHECK(sk_ratio_track(&a, &tr) == SK_ERR_SIZE);
         spd.channels = 17;
-        CHECK(sk_ratio_track_spectral_f64(&md, &gd, &spd, od, dd, 3, 10, &rng, &steps, wd, ud, ld) == SK_ERR_SIZE);
+        CHECK(sk_ratio_track_f64(&ad, &trd) == SK_ERR_SIZE);
         spd.channels = SIZE_MAX;
-        CHECK(sk_delta_track_spectral_f64(&md, &gd, &spd, od, dd, 3, 10, &rng, &trd, wd, ud, ld) == SK_ERR_SIZE);
+        CHECK(sk_delta_track_f64(&ad, &trd) == SK_ERR_SIZE);
         sp.channels = 3;
         spd.channels = 3;
         sp.hero = 3;
-        CHECK(sk_ratio_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, &steps, w, u, l) == SK_ERR_DOMAIN);
+        CHECK(sk_ratio_track(&a, &tr) == SK_ERR_DOMAIN);
         sp.hero = UINT32_MAX;
-        CHECK(sk_delta_track_spectral(&m, &g, &sp, o, d, 3, 10, &rng, &tr, w, u, l) == SK_ERR_DOMAIN);
+        CHECK(sk_delta_track(&a, &tr) == SK_ERR_DOMAIN);
         sp.hero = 0;
         for (k = 0; k < NS; k++) {
             float keep = sa[2];
@@ -1286,23 +1424,29 @@ static void majorants(void) {
             sa[2] = FS[k];
             ssd[0] = DS[k];
             w[0] = 7.0f;
-            CHECK(sk_ratio_track_spectral(&m, &g, &sp, o, d, 3, 1000, &rng, &steps, w, u, l) ==
-                  (isfinite(FS[k]) && FS[k] >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
+            CHECK(sk_ratio_track(&a, &tr) == (isfinite(FS[k]) && FS[k] >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
             CHECK(isfinite(FS[k]) && FS[k] >= 0.0f ? 1 : w[0] == 7.0f);
-            CHECK(sk_delta_track_spectral_f64(&md, &gd, &spd, od, dd, 3, 1000, &rng, &trd, wd, ud, ld) ==
-                  (isfinite(DS[k]) && DS[k] >= 0.0 ? SK_OK : SK_ERR_DOMAIN));
+            CHECK(sk_delta_track_f64(&ad, &trd) == (isfinite(DS[k]) && DS[k] >= 0.0 ? SK_OK : SK_ERR_DOMAIN));
             sa[2] = keep;
             ssd[0] = keepd;
-            CHECK(sk_delta_track_spectral(&m, &g, &sp, o, d, FS[k], 1000, &rng, &tr, w, u, l) ==
-                  (FS[k] >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
+            a.t_max = FS[k];
+            CHECK(sk_delta_track(&a, &tr) == (FS[k] >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
+            a.t_max = 3;
         }
         i = 0;
         /* Majorants over another box. */
-        CHECK(sk_ratio_track_spectral(&m, &g2, &sp, o, d, 3, 10, &rng, &steps, w, u, l) == SK_ERR_DOMAIN);
+        g2 = g;
+        sk_grid_set_box(&g2, zero, (sk_vec3){2, 1, 1});
+        a.medium.grid = &g2;
+        CHECK(sk_ratio_track(&a, &tr) == SK_ERR_DOMAIN);
+        /* A spectrum with a callback medium is refused. */
+        a = targs(NULL, coeff32, NULL, &m, o, d, 0, 3, 1000, &rng);
+        a.spectrum = &sp;
+        CHECK(sk_delta_track(&a, &tr) == SK_ERR_DOMAIN);
     }
     /* An escape reports where the ray leaves the box. */
-    CHECK(sk_delta_track_majorants(&m, &g, o, d, 1.5f, 0, &rng, &tr) == SK_ERR_BUDGET ||
-          (tr.event == SK_TRACK_ESCAPED && tr.t == 1.5f));
+    a = targs(&g, NULL, NULL, &m, o, d, 0, 1.5f, 0, &rng);
+    CHECK(sk_delta_track(&a, &tr) == SK_OK && (tr.event != SK_TRACK_ESCAPED || tr.t == 1.5f));
 }
 
 static void mie_tables(const sk_mie *sphere);

@@ -398,9 +398,9 @@ static void time_round(void) {
     TIME("fog_cos.sk", acc += sk_phase_sample_cos(&fog, xo_float(&rng)));
     TIME("rayleigh_cos.sk", acc += sk_phase_sample_cos(&ray, xo_float(&rng)));
     TIME("mix_lobe.sk", acc += sk_mixture_sample_cos_by_lobe(&mix, xo_float(&rng)));
-    TIME("fog_cos.lobe", acc += sk_phase_sample_cos_lobe(&fog, xo_float(&rng)));
+    TIME("fog_cos.lobe", acc += sk_phase_sample_cos_by_lobe(&fog, xo_float(&rng)));
     TIME("two_lobe_cos.sk", acc += sk_phase_sample_cos(&two, xo_float(&rng)));
-    TIME("two_lobe_cos.sk_lobe", acc += sk_phase_sample_cos_lobe(&two, xo_float(&rng)));
+    TIME("two_lobe_cos.sk_lobe", acc += sk_phase_sample_cos_by_lobe(&two, xo_float(&rng)));
     TIME("two_lobe_cos.c", acc += two_lobe_cos(0.8f, -0.3f, 0.9f, xo_float(&rng)));
     TIME("ff_cos.sk", acc += sk_phase_sample_cos(&ff, xo_float(&rng)));
     TIME("ff_cos.cycles", acc += cycles_ff_cos(ffc, xo_float(&rng)));
@@ -446,7 +446,7 @@ static void accuracy(void) {
     int k;
     float pdf;
     sk_phase_f64 iso64;
-    sk_phase_isotropic_f64(&iso64);
+    sk_phase_new_isotropic_f64(&iso64);
     MAX_DIR_ERR("iso_dir.sk", &iso64, sk_phase_sample_dir(&iso, W_IN, u1, u2, &pdf));
     MAX_DIR_ERR("iso_dir.c", &iso64, isotropic_dir(W_IN, u1, u2, &pdf));
     MAX_DIR_ERR("hg_dir.sk", &hg64, sk_phase_sample_dir(&hg, W_IN, u1, u2, &pdf));
@@ -491,19 +491,19 @@ static int batch_agrees(void) {
 
 int main(void) {
     int k, r;
-    if (sk_phase_isotropic(&iso) || sk_phase_hg(0.7f, &hg) || sk_phase_rayleigh(&ray) ||
-        sk_phase_fog_diameter(2.0f, &fog) || sk_phase_hg_f64(0.7, &hg64) ||
-        sk_phase_rayleigh_f64(&ray64) || sk_phase_fog_diameter_f64(2.0, &fog64) ||
-        sk_phase_two_lobe_hg(0.8f, -0.3f, 0.9f, &two) || sk_phase_two_lobe_hg_f64(0.8, -0.3, 0.9, &two64) ||
-        sk_phase_fournier_forand_backscatter(0.0183f, 1.1f, &ff) ||
-        sk_phase_fournier_forand_backscatter_f64(0.0183, 1.1, &ff64) ||
-        sk_phase_cos_inline_init(&hg, &hgi)) {
+    if (sk_phase_new_isotropic(&iso) || sk_phase_new_hg(0.7f, &hg) || sk_phase_new_rayleigh(&ray) ||
+        sk_phase_new_fog_diameter(2.0f, &fog) || sk_phase_new_hg_f64(0.7, &hg64) ||
+        sk_phase_new_rayleigh_f64(&ray64) || sk_phase_new_fog_diameter_f64(2.0, &fog64) ||
+        sk_phase_new_two_lobe_hg(0.8f, -0.3f, 0.9f, &two) || sk_phase_new_two_lobe_hg_f64(0.8, -0.3, 0.9, &two64) ||
+        sk_phase_new_fournier_forand_backscatter(0.0183f, 1.1f, &ff) ||
+        sk_phase_new_fournier_forand_backscatter_f64(0.0183, 1.1, &ff64) ||
+        sk_phase_cos_inline_new(&hg, &hgi)) {
         fprintf(stderr, "constructor failed\n");
         return 1;
     }
     for (k = 0; k < 4; k++) {
-        if (sk_phase_draine(DRAINE_G[k], DRAINE_A[k], &draine[k]) ||
-            sk_phase_draine_f64((double)DRAINE_G[k], (double)DRAINE_A[k], &draine64[k])) {
+        if (sk_phase_new_draine(DRAINE_G[k], DRAINE_A[k], &draine[k]) ||
+            sk_phase_new_draine_f64((double)DRAINE_G[k], (double)DRAINE_A[k], &draine64[k])) {
             fprintf(stderr, "constructor failed\n");
             return 1;
         }

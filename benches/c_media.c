@@ -125,9 +125,9 @@ static double mixture_exact(void) {
     sk_mixture mix;
     double best = INFINITY;
     int k, i, calls = 1 << 14;
-    sk_phase_rayleigh(&ray);
-    sk_phase_hg(0.7f, &hg);
-    sk_phase_fog_diameter(2.0f, &fog);
+    sk_phase_new_rayleigh(&ray);
+    sk_phase_new_hg(0.7f, &hg);
+    sk_phase_new_fog_diameter(2.0f, &fog);
     {
         sk_mixture_part parts[3] = {{&ray, NULL, 0.5f}, {&hg, NULL, 0.3f}, {&fog, NULL, 0.2f}};
         if (sk_mixture_new(parts, 3, &mix) != SK_OK) {
@@ -189,7 +189,7 @@ int main(void) {
     for (r = 0; r < 3; r++) {
         uint32_t m = resolutions[r], len = m * m * m;
         float *max = malloc(sizeof(float) * len), *min = malloc(sizeof(float) * len);
-        if (!max || !min || sk_majorants_build(&grid, m, m, m, max, min, len, &ext) != SK_OK) {
+        if (!max || !min || sk_majorants_new_from_grid(&grid, m, m, m, max, min, len, &ext) != SK_OK) {
             fprintf(stderr, "c_media: extrema at %u failed\n", m);
             return 1;
         }

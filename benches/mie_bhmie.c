@@ -4,7 +4,7 @@
  * C99 complex arithmetic, the logarithmic derivative D_n(mx) by downward
  * recurrence from max(nstop, |mx|) + 15, psi and chi by upward recurrence,
  * the efficiencies and g summed on the way. The same term count as the
- * library's (sk_mie's terms), so both sum the same series; no angles.
+ * library's (sk_mie_f64's terms), so both sum the same series; no angles.
  *
  * Built at -O2 and run by the main example (examples/speed_accuracy), which
  * writes the ratios to docs/measured/PERFORMANCE.md. Timing: ns per sphere, the
@@ -83,28 +83,28 @@ static volatile double sink;
 
 int main(void) {
     static const double XS[3] = {100.0, 1000.0, 10000.0};
-    static const sk_complex MS[2] = {{1.333, 1e-8}, {1.5, 1.0}};
+    static const sk_complex_f64 MS[2] = {{1.333, 1e-8}, {1.5, 1.0}};
     static const char *MNAME[2] = {"water", "absorbing"};
     int i, j, r;
     for (j = 0; j < 2; j++) {
         for (i = 0; i < 3; i++) {
             double x = XS[i], best_sk = 1e300, best_bh = 1e300, diff;
-            size_t len = sk_mie_buffer_len(x, MS[j]);
-            sk_complex *buf = malloc(len * sizeof *buf);
+            size_t len = sk_mie_len_f64(x, MS[j]);
+            sk_complex_f64 *buf = malloc(len * sizeof *buf);
             /* BHMIE's nmx + 1 = max(nstop, |mx|) + 16 values; nstop < 1.1 x + 20. */
             double complex *d = malloc(((size_t)fmax(1.1 * x + 20.0, x * hypot(MS[j].re, MS[j].im)) + 16) * sizeof *d);
             double complex m = MS[j].re + I * MS[j].im;
-            sk_mie sphere;
+            sk_mie_f64 sphere;
             bh_result bh;
             int reps = x >= 10000.0 ? 20 : x >= 1000.0 ? 200 : 2000, k;
-            if (!buf || !d || sk_mie_new(x, MS[j], buf, len, &sphere) != SK_OK) {
+            if (!buf || !d || sk_mie_new_f64(x, MS[j], buf, len, &sphere) != SK_OK) {
                 fprintf(stderr, "setup failed\n");
                 return 1;
             }
             for (r = 0; r < ROUNDS; r++) {
                 double t0 = now_ns(), t1, t2;
                 for (k = 0; k < reps; k++) {
-                    sk_mie_new(x, MS[j], buf, len, &sphere);
+                    sk_mie_new_f64(x, MS[j], buf, len, &sphere);
                     sink = sphere.efficiencies.q_ext;
                 }
                 t1 = now_ns();

@@ -5,7 +5,7 @@
  * random points on a sphere around the box aim at random points inside it.
  * For each ray, ratio tracking estimates the transmittance and delta
  * tracking finds the first collision, once walking 16^3 local majorants
- * (sk_majorants_build, pbrt-v4's default resolution) and once with a 1^3
+ * (sk_majorants_new_from_grid, pbrt-v4's default resolution) and once with a 1^3
  * majorant grid, which is the classic single global majorant. Prints the
  * mean transmittance of both (they must agree: both are unbiased) and the
  * tentative collisions (density evaluations) per ray, the cost the local
@@ -63,8 +63,8 @@ int main(void) {
         for (j = 0; j < N; j++)
             for (i = 0; i < N; i++) density[i + N * (j + N * k)] = cloud(i, j, k);
     if (sk_grid_new(density, N, N, N, 0.2f, 0.8f, &grid) || sk_grid_set_box(&grid, lo, hi) ||
-        sk_majorants_build(&grid, 16, 16, 16, store16, NULL, sk_majorant_len(16, 16, 16), &local) ||
-        sk_majorants_build(&grid, 1, 1, 1, store1, NULL, 1, &global)) {
+        sk_majorants_new_from_grid(&grid, 16, 16, 16, store16, NULL, sk_majorant_len(16, 16, 16), &local) ||
+        sk_majorants_new_from_grid(&grid, 1, 1, 1, store1, NULL, 1, &global)) {
         fprintf(stderr, "building the medium failed\n");
         return 1;
     }

@@ -38,7 +38,7 @@ int main(void) {
     double chi2 = 0.0;
     int i, b;
 
-    if (sk_phase_fog_diameter(2.0f, &fog) != SK_OK) return 1;
+    if (sk_phase_new_fog_diameter(2.0f, &fog) != SK_OK) return 1;
     for (i = 0; i < N; i++) {
         float pdf;
         sk_vec3 d = sk_phase_sample_dir(&fog, w_in, uniform(&seed), uniform(&seed), &pdf);

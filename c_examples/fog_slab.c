@@ -1,7 +1,7 @@
 /* A slab of fog traced with delta tracking and phase sampling.
  *
  * A plane-parallel slab 0 <= z <= 1 of optical thickness 2 holds 2 um fog
- * droplets (sk_phase_fog_diameter). Photons enter at z = 0 along +z; the
+ * droplets (sk_phase_new_fog_diameter). Photons enter at z = 0 along +z; the
  * medium is the caller's coefficients (sigma_a, sigma_s: constant inside
  * the slab), so the library's delta tracking finds each collision and says
  * whether it scatters (with the fog phase function) or absorbs. Prints
@@ -83,7 +83,7 @@ int main(void) {
     sk_phase fog;
     int k, ok = 1;
 
-    if (sk_phase_fog_diameter(2.0f, &fog) != SK_OK) return 1;
+    if (sk_phase_new_fog_diameter(2.0f, &fog) != SK_OK) return 1;
     printf("fog slab: 2 um droplets, optical thickness %.1f, normal incidence, %d photons\n", sigma_t, N);
     for (k = 0; k < 2; k++) {
         long count[OUTCOMES] = {0, 0, 0};

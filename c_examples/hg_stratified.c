@@ -22,7 +22,7 @@ int main(void) {
     double mean = 0.0;
     int i, sorted = 1;
 
-    if (sk_phase_hg(g, &hg) != SK_OK) return 1;
+    if (sk_phase_new_hg(g, &hg) != SK_OK) return 1;
     for (i = 0; i < N; i++) buf[i] = (i + 0.5f) / N;
     if (sk_phase_sample_cos_n(&hg, buf, buf, N) != SK_OK) return 1; /* in place */
 

@@ -33,7 +33,7 @@ int main(void) {
     double chi2 = 0.0, max_len_err = 0.0;
     int i;
 
-    if (sk_phase_rayleigh(&rayleigh) != SK_OK) return 1;
+    if (sk_phase_new_rayleigh(&rayleigh) != SK_OK) return 1;
     for (i = 0; i < N; i++) {
         sk_vec3 d;
         float mu;

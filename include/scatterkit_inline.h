@@ -2,13 +2,13 @@
  * library, for the one sample a C path tracer draws per scattering event.
  *
  * Hand-written (scatterkit.h is generated). Fill an sk_phase_cos_inline once
- * with sk_phase_cos_inline_init, then call sk_phase_cos_inline_sample as often
+ * with sk_phase_cos_inline_new, then call sk_phase_cos_inline_sample as often
  * as you like:
  *
  *     sk_phase hg;
  *     sk_phase_cos_inline hgi;
- *     sk_phase_hg(0.7f, &hg);
- *     sk_phase_cos_inline_init(&hg, &hgi);
+ *     sk_phase_new_hg(0.7f, &hg);
+ *     sk_phase_cos_inline_new(&hg, &hgi);
  *     cos_theta = sk_phase_cos_inline_sample(&hgi, u);
  *
  * The result is sk_phase_sample_cos(&hg, u), bit for bit, for every u

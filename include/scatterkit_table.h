@@ -1,8 +1,8 @@
 /* scatterkit_table.h: the table lookups of scatterkit, header-only.
  *
  * Written by hand (not generated), and the contract for kernels that sample
- * from a table built by the library (sk_table_inverse, sk_table_measured,
- * sk_table_rayleigh_cdf in scatterkit.h) without linking it: a GPU shader, a
+ * from a table built by the library (sk_table_new_inverse, sk_table_new_measured,
+ * sk_table_new_rayleigh_cdf in scatterkit.h) without linking it: a GPU shader, a
  * CUDA or OpenCL kernel, firmware. Plain C99 that also compiles as C++,
  * CUDA and OpenCL C; no library call, no allocation. tests/c_abi/table_header.rs
  * checks every function here bit for bit against sk_table_sample_cos and

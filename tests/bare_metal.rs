@@ -256,7 +256,7 @@ fn bare_metal_library_and_its_code_size() {
         let (all, all_syms) = link(
             &capi,
             "sk_phase_sample_dir",
-            &["-u", "sk_phase_hg", "-u", "sk_phase_rayleigh"],
+            &["-u", "sk_phase_new_hg", "-u", "sk_phase_new_rayleigh"],
         );
         println!(
             "{target}: .text HG direction {hg} B, Rayleigh direction {ray} B (model type {ray_model} B), sk_phase_sample_dir {all} B"

@@ -250,7 +250,7 @@ pub(crate) const C_KEYS: [(&str, &str, &str, bool); 35] = [
     (
         "fog_cos.lobe",
         "fog",
-        "fog 2 µm, sk_phase_sample_cos_lobe (paper's lobe choice)",
+        "fog 2 µm, sk_phase_sample_cos_by_lobe (paper's lobe choice)",
         true,
     ),
     (
@@ -262,7 +262,7 @@ pub(crate) const C_KEYS: [(&str, &str, &str, bool); 35] = [
     (
         "two_lobe_cos.sk_lobe",
         "HG",
-        "two-lobe HG (0.8, −0.3, w 0.9), sk_phase_sample_cos_lobe",
+        "two-lobe HG (0.8, −0.3, w 0.9), sk_phase_sample_cos_by_lobe",
         true,
     ),
     (
@@ -392,7 +392,7 @@ pub(crate) fn c_tables(c: &std::collections::BTreeMap<String, (f64, f64)>, p: &P
         ("fastest `sk_rayleigh_sample_dir` method with max error ≤ 1e-6 ≤ 1.0× simplified rejection inline C".into(),
          format!("{:.2}× ({}, {:.1} vs {:.1} ns)", best_rng.1 / ns("rayleigh_dir.simplified"), best_rng.0, best_rng.1, ns("rayleigh_dir.simplified")),
          vec![(best_rng.1 / ns("rayleigh_dir.simplified"), 1.0)]),
-        ("fog `sk_phase_sample_cos` ≤ 2× `sk_phase_sample_cos_lobe`".into(),
+        ("fog `sk_phase_sample_cos` ≤ 2× `sk_phase_sample_cos_by_lobe`".into(),
          format!("{:.2}×", r("fog_cos.sk", "fog_cos.lobe")),
          vec![(r("fog_cos.sk", "fog_cos.lobe"), 2.0)]),
         ("Draine `sk_phase_sample_cos` ≤ 1.3× eq. 6 inline C (g 0.5, α 1; g 0.9, α 10), ≤ 1.5× (α 250, 1000)".into(),

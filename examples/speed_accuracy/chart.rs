@@ -105,7 +105,7 @@ pub(crate) fn short(e: &Entry) -> String {
         .replace("C ABI: ", "")
         .replace(", sk_phase_sample_cos_n (4096)", ", batch")
         .replace(
-            ", sk_phase_sample_cos_lobe (paper's lobe choice)",
+            ", sk_phase_sample_cos_by_lobe (paper's lobe choice)",
             ", lobe choice",
         )
         .replace(", sk_phase_sample_cos (monotone inverse)", ", inverse")

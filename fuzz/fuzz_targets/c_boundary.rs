@@ -66,17 +66,17 @@ fuzz_target!(|data: &[u8]| {
     assert!(!text.is_null());
     unsafe {
         let statuses = [
-            sk_phase_hg(x(0), &mut p),
-            sk_phase_draine(x(0), x(1), &mut p),
-            sk_phase_fog(x(0), x(1), x(2), x(3), &mut p),
-            sk_phase_fog_diameter(x(2), &mut p),
-            sk_phase_rayleigh_depolarized(x(3), &mut p),
-            sk_phase_modified_hg(x(1), x(2), &mut p),
-            sk_phase_modified_hg_delta(x(2), x(3), &mut p),
-            sk_phase_two_lobe_hg_gamma(x(1), x(2), &mut p),
-            sk_phase_two_lobe_hg_delta(x(2), x(3), &mut p),
-            sk_phase_gegenbauer_gamma(x(1), x(2), &mut p),
-            sk_phase_gegenbauer_delta(x(2), x(3), &mut p),
+            sk_phase_new_hg(x(0), &mut p),
+            sk_phase_new_draine(x(0), x(1), &mut p),
+            sk_phase_new_fog(x(0), x(1), x(2), x(3), &mut p),
+            sk_phase_new_fog_diameter(x(2), &mut p),
+            sk_phase_new_rayleigh_depolarized(x(3), &mut p),
+            sk_phase_new_modified_hg(x(1), x(2), &mut p),
+            sk_phase_new_modified_hg_delta(x(2), x(3), &mut p),
+            sk_phase_new_two_lobe_hg_gamma(x(1), x(2), &mut p),
+            sk_phase_new_two_lobe_hg_delta(x(2), x(3), &mut p),
+            sk_phase_new_gegenbauer_gamma(x(1), x(2), &mut p),
+            sk_phase_new_gegenbauer_delta(x(2), x(3), &mut p),
         ];
         for s in statuses {
             assert!(matches!(s, sk_status::SK_OK | sk_status::SK_ERR_DOMAIN));
@@ -92,7 +92,7 @@ fuzz_target!(|data: &[u8]| {
         // Rayleigh with fuzzed weights: OK or an error; once built, every
         // sample in [-1, 1] (NaN only for a NaN u) and the density >= 0.
         let mut ray = sk_phase { opaque: [0; 32] };
-        let _ = sk_phase_rayleigh(&mut ray);
+        let _ = sk_phase_new_rayleigh(&mut ray);
         let parts = [
             sk_mixture_part {
                 phase: &p,
@@ -161,21 +161,21 @@ fuzz_target!(|data: &[u8]| {
         // An albedo curve of a fuzzed HG layer, a few paths: OK or DOMAIN;
         // then albedos in [0, 1] (NaN only outside) and the inverse.
         let mut hgd = core::mem::MaybeUninit::<sk_phase_f64>::uninit();
-        if sk_phase_hg_f64(x(0) as f64, hgd.as_mut_ptr()) == sk_status::SK_OK {
+        if sk_phase_new_hg_f64(x(0) as f64, hgd.as_mut_ptr()) == sk_status::SK_OK {
             let hgd = hgd.assume_init();
             let mut rng2 = sk_rng {
                 state: &mut state as *mut u64 as *mut _,
                 next_u64: Some(next),
             };
-            let mut curve = core::mem::MaybeUninit::<sk_albedo_curve>::uninit();
-            let s = sk_albedo_curve_simulate(&hgd, x(1) as f64, x(2) as f64, (word(5) % 8) as u64, &mut rng2, curve.as_mut_ptr());
+            let mut curve = core::mem::MaybeUninit::<sk_albedo_curve_f64>::uninit();
+            let s = sk_albedo_curve_new_f64(&hgd, x(1) as f64, x(2) as f64, (word(5) % 8) as u64, &mut rng2, curve.as_mut_ptr());
             assert!(matches!(s, sk_status::SK_OK | sk_status::SK_ERR_DOMAIN), "{s:?}");
             if s == sk_status::SK_OK {
                 let curve = curve.assume_init();
-                let a = sk_albedo_curve_albedo(&curve, x(3) as f64);
+                let a = sk_albedo_curve_albedo_f64(&curve, x(3) as f64);
                 assert!(a.is_nan() || (0.0..=1.0).contains(&a), "{a}");
                 let mut w = 0.0f64;
-                if sk_albedo_curve_single_scattering_albedo(&curve, x(4) as f64, &mut w) == sk_status::SK_OK {
+                if sk_albedo_curve_single_scattering_albedo_f64(&curve, x(4) as f64, &mut w) == sk_status::SK_OK {
                     assert!((0.0..=1.0).contains(&w), "{w}");
                 }
             }
@@ -305,7 +305,7 @@ fuzz_target!(|data: &[u8]| {
             n: 0,
             kind: 0,
         };
-        let s = sk_table_measured(
+        let s = sk_table_new_measured(
             f.as_ptr(),
             f.as_ptr().add(m),
             m,
@@ -357,7 +357,7 @@ fuzz_target!(|data: &[u8]| {
             let (mx, my, mz) = (1 + word(9) % 4, 1 + word(10) % 4, 1 + word(11) % 4);
             let mut maj = core::mem::MaybeUninit::<sk_majorants>::uninit();
             let null = core::ptr::null_mut();
-            if sk_majorants_build(&g, mx, my, mz, store.as_mut_ptr(), null, 64, maj.as_mut_ptr())
+            if sk_majorants_new_from_grid(&g, mx, my, mz, store.as_mut_ptr(), null, 64, maj.as_mut_ptr())
                 == sk_status::SK_OK
             {
                 let maj = maj.assume_init();
@@ -437,7 +437,7 @@ fuzz_target!(|data: &[u8]| {
                 let (mut hi8, mut lo8) = ([0.0f32; 64], [0.0f32; 64]);
                 let mut ext = core::mem::MaybeUninit::<sk_majorants>::uninit();
                 let (h, l) = (hi8.as_mut_ptr(), lo8.as_mut_ptr());
-                if sk_majorants_build(&g, mx, my, mz, h, l, 64, ext.as_mut_ptr())
+                if sk_majorants_new_from_grid(&g, mx, my, mz, h, l, 64, ext.as_mut_ptr())
                     == sk_status::SK_OK
                 {
                     let ext = ext.assume_init();

@@ -1,6 +1,6 @@
 //! Model no more than the scene needs: the cheapest phase function whose
 //! density is within a total-variation distance of the fog fit for a droplet
-//! diameter (`sk_phase_particle` in C).
+//! diameter (`sk_phase_new_particle` in C).
 //!
 //! Candidates, in order of measured sampling cost (f32 `sample_cos`, ns per
 //! sample on the project machine, `cargo run --release --example

@@ -5,18 +5,18 @@ use super::{CRng, sk_phase_f64, sk_rng, sk_status, write_result};
 use crate::error::Error;
 use crate::transport::albedo::{AlbedoCurve, Illumination, Layer, NODES};
 
-/// Nodes of an sk_albedo_curve: omega_k = 1 - (k/64)^2, k = 0..64.
+/// Nodes of an sk_albedo_curve_f64: omega_k = 1 - (k/64)^2, k = 0..64.
 pub const SK_ALBEDO_NODES: usize = 65;
 const _: () = assert!(SK_ALBEDO_NODES == NODES);
 
 /// The multiple-scattering albedo of a layer as a function of the
-/// single-scattering albedo omega, from sk_albedo_curve_simulate: at
+/// single-scattering albedo omega, from sk_albedo_curve_new_f64: at
 /// omega_k = 1 - (k/64)^2, k = 0..64, the albedo `rho[k]` and its standard
 /// error `se[k]` (the functions below interpolate between them). A plain
 /// value: copy it, store it, read the nodes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
-pub struct sk_albedo_curve {
+pub struct sk_albedo_curve_f64 {
     /// The albedo at omega_k.
     pub rho: [f64; SK_ALBEDO_NODES],
     /// Its standard error.
@@ -25,7 +25,7 @@ pub struct sk_albedo_curve {
     pub paths: u64,
 }
 
-fn curve(c: &sk_albedo_curve) -> AlbedoCurve {
+fn curve(c: &sk_albedo_curve_f64) -> AlbedoCurve {
     AlbedoCurve::from_nodes(c.rho, c.se, c.paths)
 }
 
@@ -39,13 +39,13 @@ fn curve(c: &sk_albedo_curve) -> AlbedoCurve {
 /// pointers or callback; SK_ERR_DOMAIN for an unconstructed phase,
 /// paths = 0, or a bad tau or mu0.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_albedo_curve_simulate(
+pub unsafe extern "C" fn sk_albedo_curve_new_f64(
     phase: *const sk_phase_f64,
     tau: f64,
     mu0: f64,
     paths: u64,
     rng: *mut sk_rng,
-    out: *mut sk_albedo_curve,
+    out: *mut sk_albedo_curve_f64,
 ) -> sk_status {
     if phase.is_null() || out.is_null() {
         return sk_status::SK_ERR_NULL;
@@ -68,7 +68,7 @@ pub unsafe extern "C" fn sk_albedo_curve_simulate(
     };
     let result = AlbedoCurve::simulate(p, layer, light, paths, &mut r).map(|c| {
         let (rho, se) = c.nodes();
-        sk_albedo_curve {
+        sk_albedo_curve_f64 {
             rho,
             se,
             paths: c.paths(),
@@ -81,14 +81,20 @@ pub unsafe extern "C" fn sk_albedo_curve_simulate(
 /// [0, 1] (monotone cubic between the nodes); NaN outside, for NaN, or a
 /// NULL curve.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_albedo_curve_albedo(c: *const sk_albedo_curve, omega: f64) -> f64 {
+pub unsafe extern "C" fn sk_albedo_curve_albedo_f64(
+    c: *const sk_albedo_curve_f64,
+    omega: f64,
+) -> f64 {
     // SAFETY: a non-NULL c points to a curve (module contract).
     unsafe { c.as_ref() }.map_or(f64::NAN, |c| curve(c).albedo(omega))
 }
 
-/// The standard error of sk_albedo_curve_albedo at omega; NaN as there.
+/// The standard error of sk_albedo_curve_albedo_f64 at omega; NaN as there.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_albedo_curve_std_error(c: *const sk_albedo_curve, omega: f64) -> f64 {
+pub unsafe extern "C" fn sk_albedo_curve_std_error_f64(
+    c: *const sk_albedo_curve_f64,
+    omega: f64,
+) -> f64 {
     // SAFETY: as above.
     unsafe { c.as_ref() }.map_or(f64::NAN, |c| curve(c).std_error(omega))
 }
@@ -98,8 +104,8 @@ pub unsafe extern "C" fn sk_albedo_curve_std_error(c: *const sk_albedo_curve, om
 /// SK_ERR_DOMAIN for NaN or an albedo outside `[0, rho[0]]` (`rho[0]` = 1 for a
 /// semi-infinite layer; less for a slab).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_albedo_curve_single_scattering_albedo(
-    c: *const sk_albedo_curve,
+pub unsafe extern "C" fn sk_albedo_curve_single_scattering_albedo_f64(
+    c: *const sk_albedo_curve_f64,
     albedo: f64,
     omega_out: *mut f64,
 ) -> sk_status {

@@ -12,7 +12,7 @@ use crate::medium::residual::Extrema;
 /// mx*my*mz division of it (x fastest, per length unit, >= 0): majorants
 /// (sigma_maj >= sigma_t), and optionally minorants (<= sigma_t, the
 /// control of residual ratio tracking). The arrays stay the caller's and
-/// must outlive it. Built by sk_majorants_build (from a grid) or
+/// must outlive it. Built by sk_majorants_new_from_grid (from a grid) or
 /// sk_majorants_new (your own values), which check every value once; a
 /// call loads it in constant time, whatever the number of cells, and a
 /// walk reports a value changed since (negative, NaN, infinite, or a
@@ -198,7 +198,7 @@ pub extern "C" fn sk_majorant_len(mx: u32, my: u32, mz: u32) -> usize {
 /// overlap.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn sk_majorants_build(
+pub unsafe extern "C" fn sk_majorants_new_from_grid(
     g: *const super::sk_grid,
     mx: u32,
     my: u32,
@@ -211,10 +211,10 @@ pub unsafe extern "C" fn sk_majorants_build(
     unsafe { build(g, [mx, my, mz], (max_out, min_out), len, out) }
 }
 
-/// Double twin of `sk_majorants_build`.
+/// Double twin of `sk_majorants_new_from_grid`.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn sk_majorants_build_f64(
+pub unsafe extern "C" fn sk_majorants_new_from_grid_f64(
     g: *const super::sk_grid_f64,
     mx: u32,
     my: u32,

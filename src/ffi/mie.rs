@@ -9,7 +9,7 @@ use crate::mie::{self, Complex, Efficiencies, Mie};
 /// amplitude functions.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
-pub struct sk_complex {
+pub struct sk_complex_f64 {
     /// Real part.
     pub re: f64,
     /// Imaginary part.
@@ -19,7 +19,7 @@ pub struct sk_complex {
 /// Efficiencies (cross sections over pi r^2) and asymmetry of a sphere.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
-pub struct sk_mie_efficiencies {
+pub struct sk_mie_efficiencies_f64 {
     /// Extinction efficiency Q_ext.
     pub q_ext: f64,
     /// Scattering efficiency Q_sca.
@@ -32,27 +32,27 @@ pub struct sk_mie_efficiencies {
 
 /// A solved sphere: its size parameter, efficiencies, and the series
 /// coefficients a_1, b_1, ..., a_terms, b_terms in the caller's buffer,
-/// which must outlive it. Build it with sk_mie_new.
+/// which must outlive it. Build it with sk_mie_new_f64.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
-pub struct sk_mie {
+pub struct sk_mie_f64 {
     /// Size parameter x.
     pub x: f64,
     /// 2 terms coefficients in the caller's buffer.
-    pub ab: *const sk_complex,
+    pub ab: *const sk_complex_f64,
     /// Number of series terms.
     pub terms: usize,
     /// The efficiencies and g.
-    pub efficiencies: sk_mie_efficiencies,
+    pub efficiencies: sk_mie_efficiencies_f64,
 }
 
-fn to_c(z: Complex) -> sk_complex {
-    sk_complex { re: z.re, im: z.im }
+fn to_c(z: Complex) -> sk_complex_f64 {
+    sk_complex_f64 { re: z.re, im: z.im }
 }
 
-/// The Rust sphere behind an sk_mie, or None for NULL or malformed fields.
-unsafe fn load<'a>(m: *const sk_mie) -> Option<Mie<'a>> {
-    // SAFETY: a non-NULL m points to an sk_mie built by sk_mie_new, whose ab
+/// The Rust sphere behind an sk_mie_f64, or None for NULL or malformed fields.
+unsafe fn load<'a>(m: *const sk_mie_f64) -> Option<Mie<'a>> {
+    // SAFETY: a non-NULL m points to an sk_mie_f64 built by sk_mie_new_f64, whose ab
     // holds 2 terms values (module contract).
     let m = unsafe { m.as_ref() }?;
     let len = m.terms.checked_mul(2)?;
@@ -70,31 +70,31 @@ unsafe fn load<'a>(m: *const sk_mie) -> Option<Mie<'a>> {
 /// The size parameter pi d n_medium / lambda of a sphere of diameter d in a
 /// medium of index n_medium at vacuum wavelength lambda (same unit as d).
 #[unsafe(no_mangle)]
-pub extern "C" fn sk_mie_size_parameter(diameter: f64, wavelength: f64, n_medium: f64) -> f64 {
+pub extern "C" fn sk_mie_size_parameter_f64(diameter: f64, wavelength: f64, n_medium: f64) -> f64 {
     mie::size_parameter(diameter, wavelength, n_medium)
 }
 
-/// The number of sk_complex values sk_mie_new needs for (x, m); 0 for input
+/// The number of sk_complex_f64 values sk_mie_new_f64 needs for (x, m); 0 for input
 /// it rejects: x outside [1e-20, 1e5], re outside (0, 1000], im outside
 /// [0, 1000], |m| x above 2e6, or NaN.
 #[unsafe(no_mangle)]
-pub extern "C" fn sk_mie_buffer_len(x: f64, m: sk_complex) -> usize {
+pub extern "C" fn sk_mie_len_f64(x: f64, m: sk_complex_f64) -> usize {
     mie::buffer_len(x, Complex::new(m.re, m.im)).unwrap_or(0)
 }
 
 /// Solves the sphere of size parameter x and relative index m into buf (len
-/// values, at least sk_mie_buffer_len(x, m)) and writes *out, which borrows
+/// values, at least sk_mie_len_f64(x, m)) and writes *out, which borrows
 /// buf. Wiscombe's term count (two more below x = 8), the logarithmic
 /// derivative by downward
 /// recurrence. SK_ERR_NULL for NULL buf or out; SK_ERR_DOMAIN for input
-/// sk_mie_buffer_len rejects; SK_ERR_SIZE for a short buffer.
+/// sk_mie_len_f64 rejects; SK_ERR_SIZE for a short buffer.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_mie_new(
+pub unsafe extern "C" fn sk_mie_new_f64(
     x: f64,
-    m: sk_complex,
-    buf: *mut sk_complex,
+    m: sk_complex_f64,
+    buf: *mut sk_complex_f64,
     len: usize,
-    out: *mut sk_mie,
+    out: *mut sk_mie_f64,
 ) -> sk_status {
     if buf.is_null() || out.is_null() {
         return sk_status::SK_ERR_NULL;
@@ -105,11 +105,11 @@ pub unsafe extern "C" fn sk_mie_new(
     };
     let r = Mie::new(x, Complex::new(m.re, m.im), slice).map(|mie| {
         let e = mie.efficiencies;
-        sk_mie {
+        sk_mie_f64 {
             x: mie.x(),
-            ab: mie.coefficients().as_ptr().cast::<sk_complex>(),
+            ab: mie.coefficients().as_ptr().cast::<sk_complex_f64>(),
             terms: mie.coefficients().len() / 2,
-            efficiencies: sk_mie_efficiencies {
+            efficiencies: sk_mie_efficiencies_f64 {
                 q_ext: e.q_ext,
                 q_sca: e.q_sca,
                 q_back: e.q_back,
@@ -124,11 +124,11 @@ pub unsafe extern "C" fn sk_mie_new(
 /// theta (clamped to [-1, 1]; NaN gives NaN). SK_ERR_NULL for NULL
 /// pointers; SK_ERR_SIZE for a malformed sphere.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_mie_amplitudes(
-    m: *const sk_mie,
+pub unsafe extern "C" fn sk_mie_amplitudes_f64(
+    m: *const sk_mie_f64,
     mu: f64,
-    s1_out: *mut sk_complex,
-    s2_out: *mut sk_complex,
+    s1_out: *mut sk_complex_f64,
+    s2_out: *mut sk_complex_f64,
 ) -> sk_status {
     if m.is_null() || s1_out.is_null() || s2_out.is_null() {
         return sk_status::SK_ERR_NULL;
@@ -148,19 +148,19 @@ pub unsafe extern "C" fn sk_mie_amplitudes(
 /// The unpolarised phase function per steradian of a solved sphere at mu,
 /// normalised over the sphere; NaN for a NULL or malformed sphere or NaN mu.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_mie_phase(m: *const sk_mie, mu: f64) -> f64 {
+pub unsafe extern "C" fn sk_mie_pdf_f64(m: *const sk_mie_f64, mu: f64) -> f64 {
     unsafe { load(m) }.map_or(f64::NAN, |mie| mie.phase(mu))
 }
 
 /// Table sizes for a sphere of size parameter x in [1e-20, 1e5]:
-/// *angles = max(4000, 16 x) for sk_mie_tabulate and *intervals = max(16384,
-/// 64 x) for sk_table_measured_f64 (docs/measured/mie_table.md measures them:
+/// *angles = max(4000, 16 x) for sk_mie_tabulate_f64 and *intervals = max(16384,
+/// 64 x) for sk_table_new_measured_f64 (docs/measured/mie_table.md measures them:
 /// total-variation distance 2.8e-6 at x = 10, 2.5e-4 at 100, 1.2e-3 at
 /// 1000).
 /// SK_ERR_NULL for NULL pointers, SK_ERR_DOMAIN for other x; nothing is
 /// written on error.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_mie_table_sizes(
+pub unsafe extern "C" fn sk_mie_table_len_f64(
     x: f64,
     angles: *mut usize,
     intervals: *mut usize,
@@ -180,15 +180,15 @@ pub unsafe extern "C" fn sk_mie_table_sizes(
     sk_status::SK_OK
 }
 
-/// Tabulates a solved sphere's phase function for sk_table_measured_f64:
+/// Tabulates a solved sphere's phase function for sk_table_new_measured_f64:
 /// `cos_theta[j]` (decreasing from 1 to -1, the angles crowded into the
 /// forward peak, which is about 1/x radians wide) and `pdf[j]`, the phase
 /// function per steradian there, for j < count. SK_ERR_NULL for NULL
 /// pointers; SK_ERR_OVERLAP for overlapping arrays; SK_ERR_SIZE for count <
 /// 2, a malformed sphere, or too many angles to give distinct cosines.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_mie_tabulate(
-    m: *const sk_mie,
+pub unsafe extern "C" fn sk_mie_tabulate_f64(
+    m: *const sk_mie_f64,
     cos_theta: *mut f64,
     pdf: *mut f64,
     count: usize,
@@ -220,10 +220,10 @@ pub unsafe extern "C" fn sk_mie_tabulate(
     }
 }
 
-// Layout: sk_complex is Complex (both repr(C) pairs of f64), so the
+// Layout: sk_complex_f64 is Complex (both repr(C) pairs of f64), so the
 // caller's buffer is used as it is.
 const _: () = {
     use core::mem::{align_of, size_of};
-    assert!(size_of::<sk_complex>() == size_of::<Complex>());
-    assert!(align_of::<sk_complex>() == align_of::<Complex>());
+    assert!(size_of::<sk_complex_f64>() == size_of::<Complex>());
+    assert!(align_of::<sk_complex_f64>() == align_of::<Complex>());
 };

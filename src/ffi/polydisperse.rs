@@ -1,11 +1,11 @@
 //! Mie averaged over a size distribution (double precision).
 
-use super::mie::sk_complex;
+use super::mie::sk_complex_f64;
 use super::{fits, overlaps, sk_status, slice_in, slice_out, write_result};
 use crate::mie::Complex;
 use crate::mie::polydisperse::{Averages, Polydisperse, SizeDistribution};
 
-/// Which size distribution an sk_size_distribution holds.
+/// Which size distribution an sk_size_distribution_f64 holds.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug)]
 pub enum sk_size_kind {
@@ -18,7 +18,7 @@ pub enum sk_size_kind {
     SK_SIZE_MODIFIED_GAMMA = 1,
     /// Junge's power law, n(r) proportional to r^-slope: `params[0]` =
     /// slope in (0, 10] (ocean particles: 3 to 5), the rest unused. It has
-    /// no natural range: sk_size_distribution_range returns SK_ERR_DOMAIN,
+    /// no natural range: sk_size_distribution_range_f64 returns SK_ERR_DOMAIN,
     /// give r_min and r_max.
     SK_SIZE_JUNGE = 2,
 }
@@ -27,7 +27,7 @@ pub enum sk_size_kind {
 /// wavelength's unit).
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
-pub struct sk_size_distribution {
+pub struct sk_size_distribution_f64 {
     /// An sk_size_kind.
     pub kind: u32,
     /// The parameters, as sk_size_kind describes.
@@ -35,12 +35,12 @@ pub struct sk_size_distribution {
 }
 
 /// Spheres with sizes from a distribution, lit at one wavelength: the
-/// input of sk_polydisperse_average.
+/// input of sk_polydisperse_average_f64.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
-pub struct sk_polydisperse {
+pub struct sk_polydisperse_f64 {
     /// The number distribution of radii.
-    pub distribution: sk_size_distribution,
+    pub distribution: sk_size_distribution_f64,
     /// Smallest radius (> 0, the wavelength's unit).
     pub r_min: f64,
     /// Largest radius (> r_min).
@@ -49,16 +49,16 @@ pub struct sk_polydisperse {
     pub wavelength: f64,
     /// Refractive index of the medium around the spheres (> 0).
     pub n_medium: f64,
-    /// Relative refractive index of the spheres (as sk_mie_new).
-    pub m: sk_complex,
+    /// Relative refractive index of the spheres (as sk_mie_new_f64).
+    pub m: sk_complex_f64,
     /// Simpson intervals in ln r: a multiple of 4, from 4 to 2^20.
     pub intervals: usize,
 }
 
-/// The averages sk_polydisperse_average returns.
+/// The averages sk_polydisperse_average_f64 returns.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
-pub struct sk_mie_averages {
+pub struct sk_mie_averages_f64 {
     /// Mean extinction cross section per particle (radius unit squared).
     pub c_ext: f64,
     /// Mean scattering cross section per particle.
@@ -82,7 +82,7 @@ const LOGNORMAL: u32 = sk_size_kind::SK_SIZE_LOGNORMAL as u32;
 const MODIFIED_GAMMA: u32 = sk_size_kind::SK_SIZE_MODIFIED_GAMMA as u32;
 const JUNGE: u32 = sk_size_kind::SK_SIZE_JUNGE as u32;
 
-fn distribution(d: &sk_size_distribution) -> Option<SizeDistribution> {
+fn distribution(d: &sk_size_distribution_f64) -> Option<SizeDistribution> {
     let [p0, p1, p2] = d.params;
     match d.kind {
         LOGNORMAL => Some(SizeDistribution::LogNormal {
@@ -99,10 +99,10 @@ fn distribution(d: &sk_size_distribution) -> Option<SizeDistribution> {
     }
 }
 
-/// The Rust input behind an sk_polydisperse, or None for NULL or an
+/// The Rust input behind an sk_polydisperse_f64, or None for NULL or an
 /// unknown kind.
-unsafe fn load(p: *const sk_polydisperse) -> Option<Polydisperse> {
-    // SAFETY: a non-NULL p points to a readable sk_polydisperse (contract).
+unsafe fn load(p: *const sk_polydisperse_f64) -> Option<Polydisperse> {
+    // SAFETY: a non-NULL p points to a readable sk_polydisperse_f64 (contract).
     let p = unsafe { p.as_ref() }?;
     Some(Polydisperse {
         distribution: distribution(&p.distribution)?,
@@ -121,12 +121,12 @@ unsafe fn load(p: *const sk_polydisperse) -> Option<Polydisperse> {
 /// (SK_SIZE_JUNGE has no peak to measure from). Nothing is written on
 /// error.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_size_distribution_range(
-    d: *const sk_size_distribution,
+pub unsafe extern "C" fn sk_size_distribution_range_f64(
+    d: *const sk_size_distribution_f64,
     r_min: *mut f64,
     r_max: *mut f64,
 ) -> sk_status {
-    // SAFETY: a non-NULL d points to a readable sk_size_distribution.
+    // SAFETY: a non-NULL d points to a readable sk_size_distribution_f64.
     let Some(d) = (unsafe { d.as_ref() }) else {
         return sk_status::SK_ERR_NULL;
     };
@@ -144,10 +144,10 @@ pub unsafe extern "C" fn sk_size_distribution_range(
     sk_status::SK_OK
 }
 
-/// The number of sk_complex values sk_polydisperse_average needs in its
+/// The number of sk_complex_f64 values sk_polydisperse_average_f64 needs in its
 /// buffer (that of the largest sphere); 0 for NULL or input it rejects.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_polydisperse_buffer_len(p: *const sk_polydisperse) -> usize {
+pub unsafe extern "C" fn sk_polydisperse_len_f64(p: *const sk_polydisperse_f64) -> usize {
     unsafe { load(p) }.and_then(|p| p.buffer_len()).unwrap_or(0)
 }
 
@@ -155,22 +155,22 @@ pub unsafe extern "C" fn sk_polydisperse_buffer_len(p: *const sk_polydisperse) -
 /// r, one sphere per node): writes the mean cross sections, g and the error
 /// estimates to *out, and the phase function per steradian at `mu[i]` to
 /// `phase[i]` for i < count. scratch holds count values (the coarser rule's
-/// phase function); buf holds len >= sk_polydisperse_buffer_len(p) values.
+/// phase function); buf holds len >= sk_polydisperse_len_f64(p) values.
 /// SK_ERR_NULL for NULL p, out or buf, or NULL arrays with count > 0;
-/// SK_ERR_DOMAIN for invalid input (see sk_polydisperse, a mu outside [-1,
+/// SK_ERR_DOMAIN for invalid input (see sk_polydisperse_f64, a mu outside [-1,
 /// 1]) or overlapping phase and scratch; SK_ERR_SIZE for a short buffer or
 /// an impossible count. *out is written only on success.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn sk_polydisperse_average(
-    p: *const sk_polydisperse,
+pub unsafe extern "C" fn sk_polydisperse_average_f64(
+    p: *const sk_polydisperse_f64,
     mu: *const f64,
     count: usize,
     phase: *mut f64,
     scratch: *mut f64,
-    buf: *mut sk_complex,
+    buf: *mut sk_complex_f64,
     len: usize,
-    out: *mut sk_mie_averages,
+    out: *mut sk_mie_averages_f64,
 ) -> sk_status {
     if p.is_null() || buf.is_null() || out.is_null() {
         return sk_status::SK_ERR_NULL;
@@ -201,8 +201,8 @@ pub unsafe extern "C" fn sk_polydisperse_average(
     unsafe { write_result(out, r) }
 }
 
-fn to_c(a: Averages) -> sk_mie_averages {
-    sk_mie_averages {
+fn to_c(a: Averages) -> sk_mie_averages_f64 {
+    sk_mie_averages_f64 {
         c_ext: a.c_ext,
         c_sca: a.c_sca,
         c_back: a.c_back,

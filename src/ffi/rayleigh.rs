@@ -20,14 +20,14 @@ pub enum sk_rayleigh_method {
     SK_RAYLEIGH_BARANOSKI = 2,
     /// mu = 2 xi - 1 with acceptance, then rotated about w_in.
     SK_RAYLEIGH_SIMPLIFIED = 3,
-    /// Cardano inversion with sk_cbrtf.
+    /// Cardano inversion with sk_cbrt.
     SK_RAYLEIGH_DIRECT = 4,
-    /// Cardano inversion with sk_cbrtf_fast.
+    /// Cardano inversion with sk_cbrt_fast.
     SK_RAYLEIGH_DIRECT_FAST = 5,
     /// Cardano inversion with cbrt(|s| + sqrt(s^2 + 1)) found as the root of
     /// w^6 - 2|s| w^3 - 1 (cubic minimax seed + one Halley step): as accurate
     /// as DIRECT, branch-free, no sqrt or cbrt; the default of
-    /// sk_phase_rayleigh. (An addition to Frisvad's six.)
+    /// sk_phase_new_rayleigh. (An addition to Frisvad's six.)
     SK_RAYLEIGH_DIRECT_MINIMAX = 6,
     /// Cubic Hermite table of the inverse CDF (128 intervals, built at compile
     /// time): max error 4e-9, O(1), the fastest accurate direction sampler.
@@ -156,14 +156,18 @@ pub unsafe extern "C" fn sk_rayleigh_sample_cos_n_f64(
 /// particle's refractive index over the medium's. NaN unless all three are
 /// finite and positive.
 #[unsafe(no_mangle)]
-pub extern "C" fn sk_rayleigh_cross_section(wavelength: f64, radius: f64, rel_index: f64) -> f64 {
+pub extern "C" fn sk_rayleigh_cross_section_f64(
+    wavelength: f64,
+    radius: f64,
+    rel_index: f64,
+) -> f64 {
     rayleigh::cross_section(wavelength, radius, rel_index).unwrap_or(f64::NAN)
 }
 
 /// Rayleigh scattering coefficient N * cross section (per L) for
 /// number_density N per L^3 (finite, >= 0). NaN on invalid arguments.
 #[unsafe(no_mangle)]
-pub extern "C" fn sk_rayleigh_scattering_coeff(
+pub extern "C" fn sk_rayleigh_scattering_coeff_f64(
     number_density: f64,
     wavelength: f64,
     radius: f64,

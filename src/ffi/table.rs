@@ -194,7 +194,7 @@ pub extern "C" fn sk_table_len(kind: u32, n: usize) -> usize {
 /// buf (len floats, at least sk_table_len(SK_TABLE_RAYLEIGH_CDF, n) = n + 1).
 /// SK_ERR_NULL for NULL buf or out; SK_ERR_SIZE for n = 0 or len too small.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_table_rayleigh_cdf(
+pub unsafe extern "C" fn sk_table_new_rayleigh_cdf(
     buf: *mut f32,
     len: usize,
     n: usize,
@@ -203,9 +203,9 @@ pub unsafe extern "C" fn sk_table_rayleigh_cdf(
     unsafe { rayleigh_cdf(buf, len, n, out) }
 }
 
-/// Double twin of `sk_table_rayleigh_cdf`.
+/// Double twin of `sk_table_new_rayleigh_cdf`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_table_rayleigh_cdf_f64(
+pub unsafe extern "C" fn sk_table_new_rayleigh_cdf_f64(
     buf: *mut f64,
     len: usize,
     n: usize,
@@ -220,7 +220,7 @@ pub unsafe extern "C" fn sk_table_rayleigh_cdf_f64(
 /// for NULL pointers; SK_ERR_DOMAIN for an unconstructed phase; SK_ERR_SIZE for
 /// n = 0 or len too small.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_table_inverse(
+pub unsafe extern "C" fn sk_table_new_inverse(
     p: *const super::sk_phase,
     buf: *mut f32,
     len: usize,
@@ -230,9 +230,9 @@ pub unsafe extern "C" fn sk_table_inverse(
     unsafe { inverse(p, buf, len, n, out) }
 }
 
-/// Double twin of `sk_table_inverse`.
+/// Double twin of `sk_table_new_inverse`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_table_inverse_f64(
+pub unsafe extern "C" fn sk_table_new_inverse_f64(
     p: *const super::sk_phase_f64,
     buf: *mut f64,
     len: usize,
@@ -250,7 +250,7 @@ pub unsafe extern "C" fn sk_table_inverse_f64(
 /// pointers; SK_ERR_SIZE for m < 2, n = 0 or len too small; SK_ERR_DOMAIN for
 /// invalid data; SK_ERR_OVERLAP for a buf that shares memory with the data.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_table_measured(
+pub unsafe extern "C" fn sk_table_new_measured(
     cos_theta: *const f32,
     pdf: *const f32,
     m: usize,
@@ -262,9 +262,9 @@ pub unsafe extern "C" fn sk_table_measured(
     unsafe { measured(cos_theta, pdf, m, buf, len, n, out) }
 }
 
-/// Double twin of `sk_table_measured`.
+/// Double twin of `sk_table_new_measured`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_table_measured_f64(
+pub unsafe extern "C" fn sk_table_new_measured_f64(
     cos_theta: *const f64,
     pdf: *const f64,
     m: usize,

@@ -163,7 +163,7 @@ pub extern "C" fn sk_table2d_len(n: usize, k: usize) -> usize {
 }
 
 /// A 2-D table over data the caller filled slice by slice: slice j at
-/// data + j 2(n + 1), written by sk_table_inverse or sk_table_measured
+/// data + j 2(n + 1), written by sk_table_new_inverse or sk_table_new_measured
 /// (for instance Mie at wavelength x0 + j dx) with the same n. Checked:
 /// SK_ERR_NULL for NULL data or out; SK_ERR_SIZE for n = 0, k = 0 or len
 /// below sk_table2d_len(n, k); SK_ERR_DOMAIN for a non-finite x0, a dx
@@ -202,13 +202,13 @@ pub unsafe extern "C" fn sk_table2d_new_f64(
 
 /// A 2-D table from k phase functions, `phases[j]` at x0 + j dx: each
 /// slice the inverse CDF of its phase at n intervals (as
-/// sk_table_inverse), written to buf (len floats, at least
+/// sk_table_new_inverse), written to buf (len floats, at least
 /// sk_table2d_len(n, k)). SK_ERR_NULL for NULL pointers; SK_ERR_SIZE for
 /// n = 0, k = 0 or a short buf; SK_ERR_DOMAIN for an unconstructed phase
 /// or a bad axis (as sk_table2d_new).
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn sk_table2d_inverse(
+pub unsafe extern "C" fn sk_table2d_new_inverse(
     phases: *const super::sk_phase,
     k: usize,
     buf: *mut f32,
@@ -221,10 +221,10 @@ pub unsafe extern "C" fn sk_table2d_inverse(
     unsafe { inverse(phases, k, buf, len, n, x0, dx, out) }
 }
 
-/// Double twin of `sk_table2d_inverse`.
+/// Double twin of `sk_table2d_new_inverse`.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn sk_table2d_inverse_f64(
+pub unsafe extern "C" fn sk_table2d_new_inverse_f64(
     phases: *const super::sk_phase_f64,
     k: usize,
     buf: *mut f64,

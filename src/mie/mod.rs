@@ -39,7 +39,7 @@ use crate::error::Error;
 use crate::math::numeric::newton_bracketed;
 
 /// A complex number (f64): the refractive index and the series terms.
-/// `repr(C)`: the C layer's `sk_complex` is the same pair.
+/// `repr(C)`: the C layer's `sk_complex_f64` is the same pair.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Complex {
@@ -299,7 +299,7 @@ impl<'a> Mie<'a> {
     /// parameter ([`x`](Self::x)), coefficients
     /// ([`coefficients`](Self::coefficients)) and efficiencies, as a caller
     /// that keeps the coefficients in its own buffer stores them (the C
-    /// layer's `sk_mie` does). Parts of different solves give a sphere that
+    /// layer's `sk_mie_f64` does). Parts of different solves give a sphere that
     /// is safe to use but describes no particle.
     pub fn from_parts(x: f64, ab: &'a [Complex], efficiencies: Efficiencies) -> Self {
         Mie {

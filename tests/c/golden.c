@@ -67,18 +67,18 @@ int main(void) {
     phase32(name, &p);                  \
     if ((ctor64) != SK_OK) return 1;    \
     phase64(name, &q);
-    BOTH("isotropic", sk_phase_isotropic(&p), sk_phase_isotropic_f64(&q))
-    BOTH("rayleigh", sk_phase_rayleigh(&p), sk_phase_rayleigh_f64(&q))
-    BOTH("rayleigh_depolarized_0.028", sk_phase_rayleigh_depolarized(0.028f, &p), sk_phase_rayleigh_depolarized_f64(0.028, &q))
-    BOTH("hg_0.7", sk_phase_hg(0.7f, &p), sk_phase_hg_f64(0.7, &q))
-    BOTH("hg_-0.999", sk_phase_hg(-0.999f, &p), sk_phase_hg_f64(-0.999, &q))
-    BOTH("draine_0.3_250", sk_phase_draine(0.3f, 250.0f, &p), sk_phase_draine_f64(0.3, 250.0, &q))
-    BOTH("cornette_shanks_0.6", sk_phase_cornette_shanks(0.6f, &p), sk_phase_cornette_shanks_f64(0.6, &q))
-    BOTH("fog_2um", sk_phase_fog_diameter(2.0f, &p), sk_phase_fog_diameter_f64(2.0, &q))
-    BOTH("two_lobe_hg_0.8_-0.3_0.9", sk_phase_two_lobe_hg(0.8f, -0.3f, 0.9f, &p), sk_phase_two_lobe_hg_f64(0.8, -0.3, 0.9, &q))
-    BOTH("gegenbauer_-0.25_0.7", sk_phase_gegenbauer(-0.25f, 0.7f, &p), sk_phase_gegenbauer_f64(-0.25, 0.7, &q))
-    BOTH("fournier_forand_1.1_4", sk_phase_fournier_forand(1.1f, 4.0f, &p), sk_phase_fournier_forand_f64(1.1, 4.0, &q))
-    BOTH("particle_0.01_0.01", sk_phase_particle(0.01f, 0.01f, &p), sk_phase_particle_f64(0.01, 0.01, &q))
+    BOTH("isotropic", sk_phase_new_isotropic(&p), sk_phase_new_isotropic_f64(&q))
+    BOTH("rayleigh", sk_phase_new_rayleigh(&p), sk_phase_new_rayleigh_f64(&q))
+    BOTH("rayleigh_depolarized_0.028", sk_phase_new_rayleigh_depolarized(0.028f, &p), sk_phase_new_rayleigh_depolarized_f64(0.028, &q))
+    BOTH("hg_0.7", sk_phase_new_hg(0.7f, &p), sk_phase_new_hg_f64(0.7, &q))
+    BOTH("hg_-0.999", sk_phase_new_hg(-0.999f, &p), sk_phase_new_hg_f64(-0.999, &q))
+    BOTH("draine_0.3_250", sk_phase_new_draine(0.3f, 250.0f, &p), sk_phase_new_draine_f64(0.3, 250.0, &q))
+    BOTH("cornette_shanks_0.6", sk_phase_new_cornette_shanks(0.6f, &p), sk_phase_new_cornette_shanks_f64(0.6, &q))
+    BOTH("fog_2um", sk_phase_new_fog_diameter(2.0f, &p), sk_phase_new_fog_diameter_f64(2.0, &q))
+    BOTH("two_lobe_hg_0.8_-0.3_0.9", sk_phase_new_two_lobe_hg(0.8f, -0.3f, 0.9f, &p), sk_phase_new_two_lobe_hg_f64(0.8, -0.3, 0.9, &q))
+    BOTH("gegenbauer_-0.25_0.7", sk_phase_new_gegenbauer(-0.25f, 0.7f, &p), sk_phase_new_gegenbauer_f64(-0.25, 0.7, &q))
+    BOTH("fournier_forand_1.1_4", sk_phase_new_fournier_forand(1.1f, 4.0f, &p), sk_phase_new_fournier_forand_f64(1.1, 4.0, &q))
+    BOTH("particle_0.01_0.01", sk_phase_new_particle(0.01f, 0.01f, &p), sk_phase_new_particle_f64(0.01, 0.01, &q))
 
     for (m = SK_RAYLEIGH_REJECT_CUBE; m <= SK_RAYLEIGH_TABLE; m++) {
         uint64_t s32 = 7, s64 = 7;

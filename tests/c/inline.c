@@ -37,7 +37,7 @@ static void check_phase(const sk_phase *p, const char *what, unsigned int stride
     const float odd[] = {-0.0f, -1.0f, -1e-30f, 1.0000001f, 2.0f, 1e30f};
     size_t i;
     float inf = from_bits(0x7f800000u), nan = from_bits(0x7fc00000u);
-    if (sk_phase_cos_inline_init(p, &c) != SK_OK) {
+    if (sk_phase_cos_inline_new(p, &c) != SK_OK) {
         printf("%s: init failed\n", what);
         differ++;
         return;
@@ -57,13 +57,13 @@ int main(void) {
     for (i = 0; i < sizeof gs / sizeof gs[0]; i++) {
         char what[32];
         sprintf(what, "HG g = %g", gs[i]);
-        if (sk_phase_hg(gs[i], &p) != SK_OK) return 1;
+        if (sk_phase_new_hg(gs[i], &p) != SK_OK) return 1;
         /* Every float for the first, every 61st for the others. */
         check_phase(&p, what, i == 0 ? SK_STRIDE : 61u * SK_STRIDE);
     }
-    sk_phase_rayleigh(&p);
+    sk_phase_new_rayleigh(&p);
     check_phase(&p, "Rayleigh", 61u * SK_STRIDE);
-    if (sk_phase_fog_diameter(2.0f, &p) != SK_OK) return 1;
+    if (sk_phase_new_fog_diameter(2.0f, &p) != SK_OK) return 1;
     check_phase(&p, "fog 2 um", 997u * SK_STRIDE);
     printf("inline: %lu compared, %lu differ (exact path %d)\n", compared, differ, SK_INLINE_EXACT);
     return differ != 0;

@@ -43,8 +43,8 @@ static int vec_unitd(sk_vec3_f64 v) { return fabs(sqrt(v.x * v.x + v.y * v.y + v
 static void cube_roots_and_version(void) {
     int i;
     for (i = 0; i < NS; i++) {
-        float f = FS[i], y = sk_cbrtf(f), z = sk_cbrtf_fast(f);
-        double d = DS[i], w = sk_cbrt(d), v = sk_cbrt_fast(d);
+        float f = FS[i], y = sk_cbrt(f), z = sk_cbrt_fast(f);
+        double d = DS[i], w = sk_cbrt_f64(d), v = sk_cbrt_fast_f64(d);
         CHECK(isnan(f) ? isnan(y) && isnan(z) : isinf(f) || f == 0.0f ? y == f && z == f : isfinite(y) && isfinite(z));
         CHECK(isnan(d) ? isnan(w) && isnan(v) : isinf(d) || d == 0.0 ? w == d && v == d : isfinite(w) && isfinite(v));
         CHECK(signbit(y) == signbit(f) || isnan(f));
@@ -101,64 +101,64 @@ static void phase_constructors(void) {
         double d = DS[i];
         int g_ok = f > -1.0f && f < 1.0f, gd_ok = d > -1.0 && d < 1.0;
         int a_ok = f >= 0.0f && isfinite(f), ad_ok = d >= 0.0 && isfinite(d);
-        CHECK(sk_phase_hg(f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_hg_f64(d, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_cornette_shanks(f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_cornette_shanks_f64(d, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_draine(f, 1.0f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_draine(0.3f, f, &p) == (a_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_draine_f64(d, 1.0, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_draine_f64(0.3, d, &q) == (ad_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fog(f, 0.5f, 1.0f, 0.5f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fog(0.5f, f, 1.0f, 0.5f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fog(0.5f, 0.5f, f, 0.5f, &p) == (a_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fog(0.5f, 0.5f, 1.0f, f, &p) == (f >= 0.0f && f <= 1.0f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fog_f64(d, 0.5, 1.0, 0.5, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fog_f64(0.5, 0.5, 1.0, d, &q) == (d >= 0.0 && d <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_two_lobe_hg(f, 0.5f, 0.5f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_two_lobe_hg(0.5f, f, 0.5f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_two_lobe_hg(0.5f, -0.5f, f, &p) == (f >= 0.0f && f <= 1.0f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_two_lobe_hg_f64(d, 0.5, 0.5, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_two_lobe_hg_f64(0.5, d, 0.5, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_two_lobe_hg_f64(0.5, -0.5, d, &q) == (d >= 0.0 && d <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fournier_forand(f, 4.0f, &p) == (f > 1.0f && f <= 1.8f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fournier_forand(1.1f, f, &p) == (f > 3.0f && f < 5.0f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fournier_forand_f64(d, 4.0, &q) == (d > 1.0 && d <= 1.8 ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fournier_forand_f64(1.1, d, &q) == (d > 3.0 && d < 5.0 ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fournier_forand_backscatter(f, 1.1f, &p) == (f > 0.0f && f < 0.5f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fournier_forand_backscatter(0.02f, f, &p) == (f > 1.0f && f <= 1.8f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fournier_forand_backscatter_f64(d, 1.1, &q) == (d > 0.0 && d < 0.5 ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fournier_forand_backscatter_f64(0.02, d, &q) == (d > 1.0 && d <= 1.8 ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_gegenbauer(f, 0.5f, &p) == (f > -0.5f && f <= 1000.0f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_gegenbauer(0.5f, f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_gegenbauer_f64(d, 0.5, &q) == (d > -0.5 && d <= 1000.0 ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_gegenbauer_f64(0.5, d, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fog_diameter(f, &p) == (f > 0.0f && f <= 50.0f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_fog_diameter_f64(d, &q) == (d > 0.0 && d <= 50.0 ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_rayleigh_depolarized(f, &p) == (f >= 0.0f && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_rayleigh_depolarized_f64(d, &q) == (d >= 0.0 && d < 1.0 ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_particle(f, 0.1f, &p) == (f > 0.0f && f <= 50.0f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_particle(2.0f, f, &p) == (f > 0.0f && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_particle_f64(d, 0.1, &q) == (d > 0.0 && d <= 50.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_hg(f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_hg_f64(d, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_cornette_shanks(f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_cornette_shanks_f64(d, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_draine(f, 1.0f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_draine(0.3f, f, &p) == (a_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_draine_f64(d, 1.0, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_draine_f64(0.3, d, &q) == (ad_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fog(f, 0.5f, 1.0f, 0.5f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fog(0.5f, f, 1.0f, 0.5f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fog(0.5f, 0.5f, f, 0.5f, &p) == (a_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fog(0.5f, 0.5f, 1.0f, f, &p) == (f >= 0.0f && f <= 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fog_f64(d, 0.5, 1.0, 0.5, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fog_f64(0.5, 0.5, 1.0, d, &q) == (d >= 0.0 && d <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_two_lobe_hg(f, 0.5f, 0.5f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_two_lobe_hg(0.5f, f, 0.5f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_two_lobe_hg(0.5f, -0.5f, f, &p) == (f >= 0.0f && f <= 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_two_lobe_hg_f64(d, 0.5, 0.5, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_two_lobe_hg_f64(0.5, d, 0.5, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_two_lobe_hg_f64(0.5, -0.5, d, &q) == (d >= 0.0 && d <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fournier_forand(f, 4.0f, &p) == (f > 1.0f && f <= 1.8f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fournier_forand(1.1f, f, &p) == (f > 3.0f && f < 5.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fournier_forand_f64(d, 4.0, &q) == (d > 1.0 && d <= 1.8 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fournier_forand_f64(1.1, d, &q) == (d > 3.0 && d < 5.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fournier_forand_backscatter(f, 1.1f, &p) == (f > 0.0f && f < 0.5f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fournier_forand_backscatter(0.02f, f, &p) == (f > 1.0f && f <= 1.8f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fournier_forand_backscatter_f64(d, 1.1, &q) == (d > 0.0 && d < 0.5 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fournier_forand_backscatter_f64(0.02, d, &q) == (d > 1.0 && d <= 1.8 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_gegenbauer(f, 0.5f, &p) == (f > -0.5f && f <= 1000.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_gegenbauer(0.5f, f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_gegenbauer_f64(d, 0.5, &q) == (d > -0.5 && d <= 1000.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_gegenbauer_f64(0.5, d, &q) == (gd_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fog_diameter(f, &p) == (f > 0.0f && f <= 50.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fog_diameter_f64(d, &q) == (d > 0.0 && d <= 50.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_rayleigh_depolarized(f, &p) == (f >= 0.0f && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_rayleigh_depolarized_f64(d, &q) == (d >= 0.0 && d < 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_particle(f, 0.1f, &p) == (f > 0.0f && f <= 50.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_particle(2.0f, f, &p) == (f > 0.0f && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_particle_f64(d, 0.1, &q) == (d > 0.0 && d <= 50.0 ? SK_OK : SK_ERR_DOMAIN));
     }
     i = 0;
-    CHECK(sk_phase_isotropic(NULL) == SK_ERR_NULL && sk_phase_isotropic_f64(NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_rayleigh(NULL) == SK_ERR_NULL && sk_phase_rayleigh_f64(NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_hg(0.1f, NULL) == SK_ERR_NULL && sk_phase_hg_f64(0.1, NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_draine(0.1f, 1, NULL) == SK_ERR_NULL && sk_phase_draine_f64(0.1, 1, NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_cornette_shanks(0.1f, NULL) == SK_ERR_NULL && sk_phase_cornette_shanks_f64(0.1, NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_fog(0.1f, 0.1f, 1, 0.5f, NULL) == SK_ERR_NULL && sk_phase_fog_f64(0.1, 0.1, 1, 0.5, NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_fog_diameter(2, NULL) == SK_ERR_NULL && sk_phase_fog_diameter_f64(2, NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_fournier_forand(1.1f, 4.0f, NULL) == SK_ERR_NULL && sk_phase_fournier_forand_f64(1.1, 4.0, NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_fournier_forand_backscatter(0.02f, 1.1f, NULL) == SK_ERR_NULL &&
-          sk_phase_fournier_forand_backscatter_f64(0.02, 1.1, NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_fournier_forand_backscatter_f64(0.0183, 1.1, &q) == SK_OK && fabs(sk_phase_cdf_f64(&q, 0.0) - 0.0183) < 1e-12);
-    CHECK(sk_phase_gegenbauer(0.5f, 0.3f, NULL) == SK_ERR_NULL && sk_phase_gegenbauer_f64(0.5, 0.3, NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_gegenbauer_f64(0.5, 0.3, &q) == SK_OK && fabs(sk_phase_mean_cosine_f64(&q) - 0.3) < 1e-10);
-    CHECK(sk_phase_two_lobe_hg(0.8f, -0.3f, 0.9f, NULL) == SK_ERR_NULL && sk_phase_two_lobe_hg_f64(0.8, -0.3, 0.9, NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_two_lobe_hg_f64(0.8, -0.3, 0.9, &q) == SK_OK && fabs(sk_phase_mean_cosine_f64(&q) - 0.69) < 1e-12);
-    CHECK(sk_phase_rayleigh_depolarized(0.1f, NULL) == SK_ERR_NULL && sk_phase_rayleigh_depolarized_f64(0.1, NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_particle(2, 0.1f, NULL) == SK_ERR_NULL && sk_phase_particle_f64(2, 0.1, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_isotropic(NULL) == SK_ERR_NULL && sk_phase_new_isotropic_f64(NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_rayleigh(NULL) == SK_ERR_NULL && sk_phase_new_rayleigh_f64(NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_hg(0.1f, NULL) == SK_ERR_NULL && sk_phase_new_hg_f64(0.1, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_draine(0.1f, 1, NULL) == SK_ERR_NULL && sk_phase_new_draine_f64(0.1, 1, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_cornette_shanks(0.1f, NULL) == SK_ERR_NULL && sk_phase_new_cornette_shanks_f64(0.1, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_fog(0.1f, 0.1f, 1, 0.5f, NULL) == SK_ERR_NULL && sk_phase_new_fog_f64(0.1, 0.1, 1, 0.5, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_fog_diameter(2, NULL) == SK_ERR_NULL && sk_phase_new_fog_diameter_f64(2, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_fournier_forand(1.1f, 4.0f, NULL) == SK_ERR_NULL && sk_phase_new_fournier_forand_f64(1.1, 4.0, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_fournier_forand_backscatter(0.02f, 1.1f, NULL) == SK_ERR_NULL &&
+          sk_phase_new_fournier_forand_backscatter_f64(0.02, 1.1, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_fournier_forand_backscatter_f64(0.0183, 1.1, &q) == SK_OK && fabs(sk_phase_cdf_f64(&q, 0.0) - 0.0183) < 1e-12);
+    CHECK(sk_phase_new_gegenbauer(0.5f, 0.3f, NULL) == SK_ERR_NULL && sk_phase_new_gegenbauer_f64(0.5, 0.3, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_gegenbauer_f64(0.5, 0.3, &q) == SK_OK && fabs(sk_phase_mean_cosine_f64(&q) - 0.3) < 1e-10);
+    CHECK(sk_phase_new_two_lobe_hg(0.8f, -0.3f, 0.9f, NULL) == SK_ERR_NULL && sk_phase_new_two_lobe_hg_f64(0.8, -0.3, 0.9, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_two_lobe_hg_f64(0.8, -0.3, 0.9, &q) == SK_OK && fabs(sk_phase_mean_cosine_f64(&q) - 0.69) < 1e-12);
+    CHECK(sk_phase_new_rayleigh_depolarized(0.1f, NULL) == SK_ERR_NULL && sk_phase_new_rayleigh_depolarized_f64(0.1, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_particle(2, 0.1f, NULL) == SK_ERR_NULL && sk_phase_new_particle_f64(2, 0.1, NULL) == SK_ERR_NULL);
 }
 
 /* Queries of every phase kind with each special argument. */
@@ -170,17 +170,17 @@ static void phase_cos_inline(void) {
     sk_phase p, zero;
     sk_phase_cos_inline c;
     memset(&zero, 0, sizeof zero);
-    sk_phase_hg(0.3f, &p);
-    CHECK(sk_phase_cos_inline_init(NULL, &c) == SK_ERR_NULL);
-    CHECK(sk_phase_cos_inline_init(&p, NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_cos_inline_init(NULL, NULL) == SK_ERR_NULL);
+    sk_phase_new_hg(0.3f, &p);
+    CHECK(sk_phase_cos_inline_new(NULL, &c) == SK_ERR_NULL);
+    CHECK(sk_phase_cos_inline_new(&p, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_cos_inline_new(NULL, NULL) == SK_ERR_NULL);
     c.reserved = 99;
-    CHECK(sk_phase_cos_inline_init(&zero, &c) == SK_ERR_DOMAIN && c.reserved == 99);
-    CHECK(sk_phase_cos_inline_init(&p, &c) == SK_OK && c.reserved == 0 && c.kab[2] != 0.0 && c.mirror == 0);
-    sk_phase_hg(-0.3f, &p);
-    CHECK(sk_phase_cos_inline_init(&p, &c) == SK_OK && c.kab[2] != 0.0 && c.mirror == 1);
-    sk_phase_rayleigh(&p);
-    CHECK(sk_phase_cos_inline_init(&p, &c) == SK_OK && c.kab[0] == 0.0 && c.kab[1] == 0.0 && c.kab[2] == 0.0);
+    CHECK(sk_phase_cos_inline_new(&zero, &c) == SK_ERR_DOMAIN && c.reserved == 99);
+    CHECK(sk_phase_cos_inline_new(&p, &c) == SK_OK && c.reserved == 0 && c.kab[2] != 0.0 && c.mirror == 0);
+    sk_phase_new_hg(-0.3f, &p);
+    CHECK(sk_phase_cos_inline_new(&p, &c) == SK_OK && c.kab[2] != 0.0 && c.mirror == 1);
+    sk_phase_new_rayleigh(&p);
+    CHECK(sk_phase_cos_inline_new(&p, &c) == SK_OK && c.kab[0] == 0.0 && c.kab[1] == 0.0 && c.kab[2] == 0.0);
 }
 
 /* What a phase holds: the model and its parameters, as built. */
@@ -192,31 +192,31 @@ static void phase_params(void) {
     sk_phase_params_f64 qp;
     memset(&zero, 0, sizeof zero);
     CHECK(sk_phase_get_params(NULL, &pp) == SK_ERR_NULL);
-    sk_phase_hg(0.3f, &p);
+    sk_phase_new_hg(0.3f, &p);
     CHECK(sk_phase_get_params(&p, NULL) == SK_ERR_NULL);
     pp.model = 99;
     CHECK(sk_phase_get_params(&zero, &pp) == SK_ERR_DOMAIN && pp.model == 99);
     CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_HG && pp.count == 1 && pp.params[0] == 0.3f &&
           pp.params[1] == 0.0f);
-    sk_phase_isotropic(&p);
+    sk_phase_new_isotropic(&p);
     CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_ISOTROPIC && pp.count == 0);
-    sk_phase_rayleigh(&p);
+    sk_phase_new_rayleigh(&p);
     CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_RAYLEIGH && pp.count == 0);
-    sk_phase_rayleigh_depolarized(0.03f, &p);
+    sk_phase_new_rayleigh_depolarized(0.03f, &p);
     CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_RAYLEIGH_DEPOLARIZED && pp.params[0] == 0.03f);
-    sk_phase_draine(0.5f, 2.0f, &p);
+    sk_phase_new_draine(0.5f, 2.0f, &p);
     CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_DRAINE && pp.count == 2 && pp.params[0] == 0.5f &&
           pp.params[1] == 2.0f);
-    sk_phase_fog(0.9f, 0.2f, 10.0f, 0.3f, &p);
+    sk_phase_new_fog(0.9f, 0.2f, 10.0f, 0.3f, &p);
     CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_FOG && pp.count == 4 && pp.params[0] == 0.9f &&
           pp.params[1] == 0.2f && pp.params[2] == 10.0f && pp.params[3] == 0.3f);
-    sk_phase_fournier_forand_f64(1.1, 4.0, &q);
+    sk_phase_new_fournier_forand_f64(1.1, 4.0, &q);
     CHECK(sk_phase_get_params_f64(&q, &qp) == SK_OK && qp.model == SK_PHASE_FOURNIER_FORAND && qp.count == 3 &&
           qp.params[0] == 1.1 && qp.params[1] == -0.5 && fabs(qp.params[2] - sk_phase_cdf_f64(&q, 0.0)) < 1e-12);
-    sk_phase_gegenbauer(-0.25f, 0.7f, &p);
+    sk_phase_new_gegenbauer(-0.25f, 0.7f, &p);
     CHECK(sk_phase_get_params(&p, &pp) == SK_OK && pp.model == SK_PHASE_GEGENBAUER && pp.count == 2 && pp.params[0] == -0.25f &&
           pp.params[1] == 0.7f);
-    sk_phase_draine_f64(-0.25, 1000.0, &q);
+    sk_phase_new_draine_f64(-0.25, 1000.0, &q);
     CHECK(sk_phase_get_params_f64(&q, &qp) == SK_OK && qp.model == SK_PHASE_DRAINE && qp.params[0] == -0.25 &&
           qp.params[1] == 1000.0);
     CHECK(sk_phase_get_params_f64(&q, NULL) == SK_ERR_NULL && sk_phase_get_params_f64(NULL, &qp) == SK_ERR_NULL);
@@ -230,18 +230,18 @@ static void phase_queries(void) {
     double ud[3] = {0.1, 0.5, 0.9}, outd[3];
     memset(&zero, 0, sizeof zero);
     memset(&zero64, 0, sizeof zero64);
-    sk_phase_isotropic(&ps[0]);
-    sk_phase_rayleigh(&ps[1]);
-    sk_phase_hg(0.9f, &ps[2]);
-    sk_phase_draine(0.3f, 250.0f, &ps[3]);
-    sk_phase_fog_diameter(2.0f, &ps[4]);
-    sk_phase_rayleigh_depolarized(0.3f, &ps[5]);
-    sk_phase_isotropic_f64(&qs[0]);
-    sk_phase_rayleigh_f64(&qs[1]);
-    sk_phase_hg_f64(0.9, &qs[2]);
-    sk_phase_draine_f64(0.3, 250.0, &qs[3]);
-    sk_phase_fog_diameter_f64(2.0, &qs[4]);
-    sk_phase_rayleigh_depolarized_f64(0.3, &qs[5]);
+    sk_phase_new_isotropic(&ps[0]);
+    sk_phase_new_rayleigh(&ps[1]);
+    sk_phase_new_hg(0.9f, &ps[2]);
+    sk_phase_new_draine(0.3f, 250.0f, &ps[3]);
+    sk_phase_new_fog_diameter(2.0f, &ps[4]);
+    sk_phase_new_rayleigh_depolarized(0.3f, &ps[5]);
+    sk_phase_new_isotropic_f64(&qs[0]);
+    sk_phase_new_rayleigh_f64(&qs[1]);
+    sk_phase_new_hg_f64(0.9, &qs[2]);
+    sk_phase_new_draine_f64(0.3, 250.0, &qs[3]);
+    sk_phase_new_fog_diameter_f64(2.0, &qs[4]);
+    sk_phase_new_rayleigh_depolarized_f64(0.3, &qs[5]);
     for (k = 0; k < 6; k++) {
         for (i = 0; i < NS; i++) {
             float f = FS[i];
@@ -251,8 +251,8 @@ static void phase_queries(void) {
             float pdf;
             double pdfd;
             /* Scalar u: clamped; NaN gives NaN. */
-            float c = sk_phase_sample_cos(&ps[k], f), cl = sk_phase_sample_cos_lobe(&ps[k], f);
-            double cd = sk_phase_sample_cos_f64(&qs[k], d), cld = sk_phase_sample_cos_lobe_f64(&qs[k], d);
+            float c = sk_phase_sample_cos(&ps[k], f), cl = sk_phase_sample_cos_by_lobe(&ps[k], f);
+            double cd = sk_phase_sample_cos_f64(&qs[k], d), cld = sk_phase_sample_cos_by_lobe_f64(&qs[k], d);
             CHECK(isnan(f) ? isnan(c) && isnan(cl) : in_unit(c) && in_unit(cl));
             CHECK(isnan(d) ? isnan(cd) && isnan(cld) : in_unit(cd) && in_unit(cld));
             /* cdf: clamped argument, result in [0, 1]; NaN gives NaN. */
@@ -306,7 +306,7 @@ static void phase_queries(void) {
             CHECK(isnan(sk_phase_cdf(bad_p[k], 0)) && isnan(sk_phase_cdf_f64(bad_q[k], 0)));
             CHECK(isnan(sk_phase_mean_cosine(bad_p[k])) && isnan(sk_phase_mean_cosine_f64(bad_q[k])));
             CHECK(isnan(sk_phase_sample_cos(bad_p[k], 0.5f)) && isnan(sk_phase_sample_cos_f64(bad_q[k], 0.5)));
-            CHECK(isnan(sk_phase_sample_cos_lobe(bad_p[k], 0.5f)) && isnan(sk_phase_sample_cos_lobe_f64(bad_q[k], 0.5)));
+            CHECK(isnan(sk_phase_sample_cos_by_lobe(bad_p[k], 0.5f)) && isnan(sk_phase_sample_cos_by_lobe_f64(bad_q[k], 0.5)));
             CHECK(vec_nan3(sk_phase_sample_dir(bad_p[k], w, 0.5f, 0.5f, NULL)));
             CHECK(vec_nan3d(sk_phase_sample_dir_f64(bad_q[k], wd, 0.5, 0.5, NULL)));
             CHECK(sk_phase_sample_cos_n(bad_p[k], u, out, 3) == (k ? SK_ERR_DOMAIN : SK_ERR_NULL));
@@ -331,8 +331,8 @@ static void direction_batches(void) {
     sk_rng rng = {&st, counter}, no_fn = {&st, NULL};
     memset(&zero, 0, sizeof zero);
     memset(&zero64, 0, sizeof zero64);
-    sk_phase_hg(0.5f, &p);
-    sk_phase_hg_f64(0.5, &q);
+    sk_phase_new_hg(0.5f, &p);
+    sk_phase_new_hg_f64(0.5, &q);
     for (i = 0; i < NS; i++) {
         float f = FS[i];
         double d = DS[i];
@@ -421,12 +421,12 @@ static void rayleigh_functions(void) {
         double x = DS[i];
         int ok = x > 0.0 && isfinite(x);
         sk_vec3 wi = {FS[i], 0, 1};
-        double cs = sk_rayleigh_cross_section(x, 1e-9, 1.5);
+        double cs = sk_rayleigh_cross_section_f64(x, 1e-9, 1.5);
         CHECK(ok ? cs >= 0.0 : isnan(cs));
-        CHECK(ok ? !isnan(sk_rayleigh_cross_section(500e-9, x, 1.5)) : isnan(sk_rayleigh_cross_section(500e-9, x, 1.5)));
-        CHECK(ok ? !isnan(sk_rayleigh_cross_section(500e-9, 1e-9, x)) : isnan(sk_rayleigh_cross_section(500e-9, 1e-9, x)));
-        CHECK((x >= 0.0 && isfinite(x)) ? !isnan(sk_rayleigh_scattering_coeff(x, 500e-9, 1e-9, 1.5))
-                                        : isnan(sk_rayleigh_scattering_coeff(x, 500e-9, 1e-9, 1.5)));
+        CHECK(ok ? !isnan(sk_rayleigh_cross_section_f64(500e-9, x, 1.5)) : isnan(sk_rayleigh_cross_section_f64(500e-9, x, 1.5)));
+        CHECK(ok ? !isnan(sk_rayleigh_cross_section_f64(500e-9, 1e-9, x)) : isnan(sk_rayleigh_cross_section_f64(500e-9, 1e-9, x)));
+        CHECK((x >= 0.0 && isfinite(x)) ? !isnan(sk_rayleigh_scattering_coeff_f64(x, 500e-9, 1e-9, 1.5))
+                                        : isnan(sk_rayleigh_scattering_coeff_f64(x, 500e-9, 1e-9, 1.5)));
         /* A non-unit or NaN direction: no crash, status OK (not checked on the hot path). */
         CHECK(sk_rayleigh_sample_dir(SK_RAYLEIGH_DIRECT, wi, &rng, &d) == SK_OK);
     }
@@ -440,39 +440,39 @@ static void tables(void) {
     sk_table_f64 td;
     sk_phase p;
     sk_phase_f64 q;
-    sk_phase_hg(0.5f, &p);
-    sk_phase_hg_f64(0.5, &q);
+    sk_phase_new_hg(0.5f, &p);
+    sk_phase_new_hg_f64(0.5, &q);
     i = 0;
     CHECK(sk_table_len(SK_TABLE_RAYLEIGH_CDF, 0) == 0 && sk_table_len(SK_TABLE_INVERSE, SIZE_MAX) == 0);
     CHECK(sk_table_len(3, 8) == 0 && sk_table_len(UINT32_MAX, 8) == 0 && sk_table_len(SK_TABLE_MEASURED, 8) == 18);
-    CHECK(sk_table_rayleigh_cdf(buf, 33, 32, NULL) == SK_ERR_NULL && sk_table_rayleigh_cdf(NULL, 33, 32, &t) == SK_ERR_NULL);
-    CHECK(sk_table_rayleigh_cdf(buf, 33, 0, &t) == SK_ERR_SIZE && sk_table_rayleigh_cdf(buf, 33, SIZE_MAX, &t) == SK_ERR_SIZE);
-    CHECK(sk_table_rayleigh_cdf(buf, SIZE_MAX, 32, &t) == SK_ERR_SIZE);
-    CHECK(sk_table_rayleigh_cdf_f64(bufd, 32, 32, &td) == SK_ERR_SIZE && sk_table_rayleigh_cdf_f64(NULL, 33, 32, &td) == SK_ERR_NULL);
-    CHECK(sk_table_inverse(&p, buf, 66, 32, NULL) == SK_ERR_NULL && sk_table_inverse(NULL, buf, 66, 32, &t) == SK_ERR_NULL);
-    CHECK(sk_table_inverse(&p, buf, 66, 0, &t) == SK_ERR_SIZE && sk_table_inverse(&p, buf, SIZE_MAX, 32, &t) == SK_ERR_SIZE);
-    CHECK(sk_table_inverse_f64(&q, bufd, 65, 32, &td) == SK_ERR_SIZE && sk_table_inverse_f64(&q, NULL, 66, 32, &td) == SK_ERR_NULL);
-    CHECK(sk_table_measured(cosines, pdf, 3, buf, 66, 32, NULL) == SK_ERR_NULL);
-    CHECK(sk_table_measured(cosines, pdf, 0, buf, 66, 32, &t) == SK_ERR_SIZE);
-    CHECK(sk_table_measured(cosines, pdf, SIZE_MAX, buf, 66, 32, &t) == SK_ERR_SIZE);
-    CHECK(sk_table_measured_f64(cosd, pdfd, 3, bufd, 66, 0, &td) == SK_ERR_SIZE);
-    CHECK(sk_table_measured_f64(cosd, NULL, 3, bufd, 66, 32, &td) == SK_ERR_NULL);
+    CHECK(sk_table_new_rayleigh_cdf(buf, 33, 32, NULL) == SK_ERR_NULL && sk_table_new_rayleigh_cdf(NULL, 33, 32, &t) == SK_ERR_NULL);
+    CHECK(sk_table_new_rayleigh_cdf(buf, 33, 0, &t) == SK_ERR_SIZE && sk_table_new_rayleigh_cdf(buf, 33, SIZE_MAX, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_new_rayleigh_cdf(buf, SIZE_MAX, 32, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_new_rayleigh_cdf_f64(bufd, 32, 32, &td) == SK_ERR_SIZE && sk_table_new_rayleigh_cdf_f64(NULL, 33, 32, &td) == SK_ERR_NULL);
+    CHECK(sk_table_new_inverse(&p, buf, 66, 32, NULL) == SK_ERR_NULL && sk_table_new_inverse(NULL, buf, 66, 32, &t) == SK_ERR_NULL);
+    CHECK(sk_table_new_inverse(&p, buf, 66, 0, &t) == SK_ERR_SIZE && sk_table_new_inverse(&p, buf, SIZE_MAX, 32, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_new_inverse_f64(&q, bufd, 65, 32, &td) == SK_ERR_SIZE && sk_table_new_inverse_f64(&q, NULL, 66, 32, &td) == SK_ERR_NULL);
+    CHECK(sk_table_new_measured(cosines, pdf, 3, buf, 66, 32, NULL) == SK_ERR_NULL);
+    CHECK(sk_table_new_measured(cosines, pdf, 0, buf, 66, 32, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_new_measured(cosines, pdf, SIZE_MAX, buf, 66, 32, &t) == SK_ERR_SIZE);
+    CHECK(sk_table_new_measured_f64(cosd, pdfd, 3, bufd, 66, 0, &td) == SK_ERR_SIZE);
+    CHECK(sk_table_new_measured_f64(cosd, NULL, 3, bufd, 66, 32, &td) == SK_ERR_NULL);
     for (i = 0; i < NS; i++) {
         float f = FS[i];
         double d = DS[i];
         cosines[1] = f;
         pdf[1] = 1;
-        CHECK(sk_table_measured(cosines, pdf, 3, buf, 66, 32, &t) == (f > -1.0f && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_table_new_measured(cosines, pdf, 3, buf, 66, 32, &t) == (f > -1.0f && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
         cosines[1] = 0;
         pdf[1] = f;
-        CHECK(sk_table_measured(cosines, pdf, 3, buf, 66, 32, &t) == (f >= 0.0f && isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_table_new_measured(cosines, pdf, 3, buf, 66, 32, &t) == (f >= 0.0f && isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
         pdfd[1] = d;
-        CHECK(sk_table_measured_f64(cosd, pdfd, 3, bufd, 66, 32, &td) == (d >= 0.0 && isfinite(d) ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_table_new_measured_f64(cosd, pdfd, 3, bufd, 66, 32, &td) == (d >= 0.0 && isfinite(d) ? SK_OK : SK_ERR_DOMAIN));
         pdfd[1] = 1;
         /* Lookups: u clamped, NaN gives NaN. */
-        sk_table_rayleigh_cdf(buf, 33, 32, &t);
+        sk_table_new_rayleigh_cdf(buf, 33, 32, &t);
         CHECK(isnan(f) ? isnan(sk_table_sample_cos(&t, f)) : in_unit(sk_table_sample_cos(&t, f)));
-        sk_table_inverse_f64(&q, bufd, 66, 32, &td);
+        sk_table_new_inverse_f64(&q, bufd, 66, 32, &td);
         CHECK(isnan(d) ? isnan(sk_table_sample_cos_f64(&td, d)) : in_unit(sk_table_sample_cos_f64(&td, d)));
         /* pdf: NaN for NaN, 0 outside [-1, 1], finite and >= 0 inside. */
         {
@@ -513,7 +513,7 @@ static void tables(void) {
         CHECK(vec_nan3(sk_table_sample_dir(NULL, w, 0.5f, 0.5f, &pf)) && isnan(pf));
         CHECK(isnan(sk_table_sample_dir_f64(NULL, wd, 0.5, 0.5, &pd).x) && isnan(pd));
         CHECK(vec_nan3(sk_table_sample_dir(&bogus, w, 0.5f, 0.5f, NULL)));
-        sk_table_inverse(&p, buf, 66, 32, &t);
+        sk_table_new_inverse(&p, buf, 66, 32, &t);
         CHECK(!isnan(sk_table_sample_dir(&t, w, 0.5f, 0.5f, NULL).z));
     }
 }
@@ -532,14 +532,14 @@ static void tables2d(void) {
     float pf;
     double pd;
     i = 0;
-    CHECK(sk_phase_hg(0.2f, &ph[0]) == SK_OK && sk_phase_hg(0.5f, &ph[1]) == SK_OK && sk_phase_rayleigh(&ph[2]) == SK_OK);
-    CHECK(sk_phase_hg_f64(0.2, &phd[0]) == SK_OK && sk_phase_hg_f64(0.5, &phd[1]) == SK_OK && sk_phase_rayleigh_f64(&phd[2]) == SK_OK);
+    CHECK(sk_phase_new_hg(0.2f, &ph[0]) == SK_OK && sk_phase_new_hg(0.5f, &ph[1]) == SK_OK && sk_phase_new_rayleigh(&ph[2]) == SK_OK);
+    CHECK(sk_phase_new_hg_f64(0.2, &phd[0]) == SK_OK && sk_phase_new_hg_f64(0.5, &phd[1]) == SK_OK && sk_phase_new_rayleigh_f64(&phd[2]) == SK_OK);
     CHECK(sk_table2d_len(16, 3) == 102 && sk_table2d_len(0, 3) == 0 && sk_table2d_len(16, 0) == 0 && sk_table2d_len(SIZE_MAX / 2, 3) == 0);
-    CHECK(sk_table2d_inverse(ph, 3, buf, 102, 16, 0.0f, 1.0f, &t) == SK_OK && t.k == 3 && t.n == 16);
-    CHECK(sk_table2d_inverse_f64(phd, 3, bufd, 102, 16, 0.0, 1.0, &td) == SK_OK);
-    CHECK(sk_table2d_inverse(NULL, 3, buf, 102, 16, 0.0f, 1.0f, &t) == SK_ERR_NULL && sk_table2d_inverse(ph, 3, NULL, 102, 16, 0.0f, 1.0f, &t) == SK_ERR_NULL);
-    CHECK(sk_table2d_inverse(ph, 3, buf, 102, 16, 0.0f, 1.0f, NULL) == SK_ERR_NULL && sk_table2d_inverse_f64(phd, 3, bufd, 101, 16, 0.0, 1.0, &td) == SK_ERR_SIZE);
-    CHECK(sk_table2d_inverse(ph, 0, buf, 102, 16, 0.0f, 1.0f, &t) == SK_ERR_SIZE && sk_table2d_inverse(ph, 3, buf, 102, 0, 0.0f, 1.0f, &t) == SK_ERR_SIZE);
+    CHECK(sk_table2d_new_inverse(ph, 3, buf, 102, 16, 0.0f, 1.0f, &t) == SK_OK && t.k == 3 && t.n == 16);
+    CHECK(sk_table2d_new_inverse_f64(phd, 3, bufd, 102, 16, 0.0, 1.0, &td) == SK_OK);
+    CHECK(sk_table2d_new_inverse(NULL, 3, buf, 102, 16, 0.0f, 1.0f, &t) == SK_ERR_NULL && sk_table2d_new_inverse(ph, 3, NULL, 102, 16, 0.0f, 1.0f, &t) == SK_ERR_NULL);
+    CHECK(sk_table2d_new_inverse(ph, 3, buf, 102, 16, 0.0f, 1.0f, NULL) == SK_ERR_NULL && sk_table2d_new_inverse_f64(phd, 3, bufd, 101, 16, 0.0, 1.0, &td) == SK_ERR_SIZE);
+    CHECK(sk_table2d_new_inverse(ph, 0, buf, 102, 16, 0.0f, 1.0f, &t) == SK_ERR_SIZE && sk_table2d_new_inverse(ph, 3, buf, 102, 0, 0.0f, 1.0f, &t) == SK_ERR_SIZE);
     CHECK(sk_table2d_new(buf, 102, 16, 3, 0.0f, 1.0f, &t) == SK_OK && sk_table2d_new_f64(bufd, 102, 16, 3, 0.0, 1.0, &td) == SK_OK);
     CHECK(sk_table2d_new(NULL, 102, 16, 3, 0.0f, 1.0f, &t) == SK_ERR_NULL && sk_table2d_new_f64(bufd, 102, 16, 3, 0.0, 1.0, NULL) == SK_ERR_NULL);
     CHECK(sk_table2d_new(buf, 101, 16, 3, 0.0f, 1.0f, &t) == SK_ERR_SIZE && sk_table2d_new(buf, SIZE_MAX, 16, 3, 0.0f, 1.0f, &t) == SK_ERR_SIZE);
@@ -550,7 +550,7 @@ static void tables2d(void) {
         sk_table2d_new_f64(bufd, 102, 16, 3, 0.0, 1.0, &td);
         /* Axis: x0 finite, dx finite and positive. */
         CHECK(sk_table2d_new(buf, 102, 16, 3, f, 1.0f, &bogus) == (isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_table2d_inverse(ph, 3, buf, 102, 16, 0.0f, f, &bogus) == (isfinite(f) && f > 0.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_table2d_new_inverse(ph, 3, buf, 102, 16, 0.0f, f, &bogus) == (isfinite(f) && f > 0.0f ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_table2d_new_f64(bufd, 102, 16, 3, 0.0, d, &td) == (isfinite(d) && d > 0.0 ? SK_OK : SK_ERR_DOMAIN));
         sk_table2d_new_f64(bufd, 102, 16, 3, 0.0, 1.0, &td);
         /* Lookups: NaN x or u gives NaN; otherwise a cosine. */
@@ -573,7 +573,7 @@ static void tables2d(void) {
     bufd[41] = -1.0;
     CHECK(sk_table2d_new_f64(bufd, 102, 16, 3, 0.0, 1.0, &td) == SK_ERR_DOMAIN);
     /* NULL and malformed tables: NaN; pdf_out may be NULL. */
-    CHECK(sk_table2d_inverse(ph, 3, buf, 102, 16, 0.0f, 1.0f, &t) == SK_OK);
+    CHECK(sk_table2d_new_inverse(ph, 3, buf, 102, 16, 0.0f, 1.0f, &t) == SK_OK);
     bogus = t;
     bogus.k = 0;
     CHECK(isnan(sk_table2d_sample_cos(&bogus, 0.5f, 0.5f)) && isnan(sk_table2d_pdf(&bogus, 0.5f, 0.5f)));
@@ -588,7 +588,7 @@ static void tables2d(void) {
     CHECK(vec_nan3d(sk_table2d_sample_dir_f64(NULL, 0.5, wd, 0.5, 0.5, &pd)) && isnan(pd));
     /* Unconstructed phase among the slices. */
     memset(&ph[1], 0, sizeof ph[1]);
-    CHECK(sk_table2d_inverse(ph, 3, buf, 102, 16, 0.0f, 1.0f, &t) == SK_ERR_DOMAIN);
+    CHECK(sk_table2d_new_inverse(ph, 3, buf, 102, 16, 0.0f, 1.0f, &t) == SK_ERR_DOMAIN);
 }
 
 /* The albedo curve: a small run, the inverse, NULLs and bad layers. */
@@ -597,29 +597,29 @@ static void albedo_curves(void) {
     uint64_t st = 1;
     sk_rng rng = {&st, splitmix}, no_fn = {&st, NULL};
     sk_phase_f64 hg, zero_p;
-    sk_albedo_curve c, slab;
+    sk_albedo_curve_f64 c, slab;
     double omega = -1.0;
     memset(&zero_p, 0, sizeof zero_p);
-    CHECK(sk_phase_hg_f64(0.5, &hg) == SK_OK);
-    CHECK(sk_albedo_curve_simulate(&hg, INFINITY, 0.0, 2000, &rng, &c) == SK_OK && c.paths == 2000 && c.rho[0] == 1.0);
-    CHECK(sk_albedo_curve_single_scattering_albedo(&c, 0.4, &omega) == SK_OK && omega > 0.8 && omega < 1.0);
-    CHECK(fabs(sk_albedo_curve_albedo(&c, omega) - 0.4) < 1e-9 && sk_albedo_curve_std_error(&c, omega) > 0.0);
-    CHECK(sk_albedo_curve_simulate(&hg, 2.0, 0.5, 500, &rng, &slab) == SK_OK && slab.rho[0] < 1.0);
-    CHECK(sk_albedo_curve_single_scattering_albedo(&slab, 0.99, &omega) == SK_ERR_DOMAIN);
-    CHECK(sk_albedo_curve_simulate(NULL, INFINITY, 0.0, 10, &rng, &c) == SK_ERR_NULL && sk_albedo_curve_simulate(&hg, INFINITY, 0.0, 10, NULL, &c) == SK_ERR_NULL);
-    CHECK(sk_albedo_curve_simulate(&hg, INFINITY, 0.0, 10, &no_fn, &c) == SK_ERR_NULL && sk_albedo_curve_simulate(&hg, INFINITY, 0.0, 10, &rng, NULL) == SK_ERR_NULL);
-    CHECK(sk_albedo_curve_simulate(&zero_p, INFINITY, 0.0, 10, &rng, &slab) == SK_ERR_DOMAIN && sk_albedo_curve_simulate(&hg, INFINITY, 0.0, 0, &rng, &slab) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_new_hg_f64(0.5, &hg) == SK_OK);
+    CHECK(sk_albedo_curve_new_f64(&hg, INFINITY, 0.0, 2000, &rng, &c) == SK_OK && c.paths == 2000 && c.rho[0] == 1.0);
+    CHECK(sk_albedo_curve_single_scattering_albedo_f64(&c, 0.4, &omega) == SK_OK && omega > 0.8 && omega < 1.0);
+    CHECK(fabs(sk_albedo_curve_albedo_f64(&c, omega) - 0.4) < 1e-9 && sk_albedo_curve_std_error_f64(&c, omega) > 0.0);
+    CHECK(sk_albedo_curve_new_f64(&hg, 2.0, 0.5, 500, &rng, &slab) == SK_OK && slab.rho[0] < 1.0);
+    CHECK(sk_albedo_curve_single_scattering_albedo_f64(&slab, 0.99, &omega) == SK_ERR_DOMAIN);
+    CHECK(sk_albedo_curve_new_f64(NULL, INFINITY, 0.0, 10, &rng, &c) == SK_ERR_NULL && sk_albedo_curve_new_f64(&hg, INFINITY, 0.0, 10, NULL, &c) == SK_ERR_NULL);
+    CHECK(sk_albedo_curve_new_f64(&hg, INFINITY, 0.0, 10, &no_fn, &c) == SK_ERR_NULL && sk_albedo_curve_new_f64(&hg, INFINITY, 0.0, 10, &rng, NULL) == SK_ERR_NULL);
+    CHECK(sk_albedo_curve_new_f64(&zero_p, INFINITY, 0.0, 10, &rng, &slab) == SK_ERR_DOMAIN && sk_albedo_curve_new_f64(&hg, INFINITY, 0.0, 0, &rng, &slab) == SK_ERR_DOMAIN);
     for (i = 0; i < NS; i++) {
         double d = DS[i];
         /* tau: +inf (semi-infinite) or finite positive; mu0: 0 or (0, 1]. */
-        CHECK(sk_albedo_curve_simulate(&hg, d, 0.0, 10, &rng, &slab) == (d > 0.0 ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_albedo_curve_simulate(&hg, INFINITY, d, 10, &rng, &slab) == (d == 0.0 || (d > 0.0 && d <= 1.0) ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(isnan(d) || fabs(d) > 1.0 ? isnan(sk_albedo_curve_albedo(&c, d)) : d == 0.0 || !isnan(sk_albedo_curve_albedo(&c, d)));
-        CHECK(sk_albedo_curve_single_scattering_albedo(&c, d, &omega) == (d >= 0.0 && d <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_albedo_curve_new_f64(&hg, d, 0.0, 10, &rng, &slab) == (d > 0.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_albedo_curve_new_f64(&hg, INFINITY, d, 10, &rng, &slab) == (d == 0.0 || (d > 0.0 && d <= 1.0) ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(isnan(d) || fabs(d) > 1.0 ? isnan(sk_albedo_curve_albedo_f64(&c, d)) : d == 0.0 || !isnan(sk_albedo_curve_albedo_f64(&c, d)));
+        CHECK(sk_albedo_curve_single_scattering_albedo_f64(&c, d, &omega) == (d >= 0.0 && d <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
     }
     i = 0;
-    CHECK(isnan(sk_albedo_curve_albedo(NULL, 0.5)) && isnan(sk_albedo_curve_std_error(NULL, 0.5)));
-    CHECK(sk_albedo_curve_single_scattering_albedo(NULL, 0.5, &omega) == SK_ERR_NULL && sk_albedo_curve_single_scattering_albedo(&c, 0.5, NULL) == SK_ERR_NULL);
+    CHECK(isnan(sk_albedo_curve_albedo_f64(NULL, 0.5)) && isnan(sk_albedo_curve_std_error_f64(NULL, 0.5)));
+    CHECK(sk_albedo_curve_single_scattering_albedo_f64(NULL, 0.5, &omega) == SK_ERR_NULL && sk_albedo_curve_single_scattering_albedo_f64(&c, 0.5, NULL) == SK_ERR_NULL);
 }
 
 static void surfaces(void) {
@@ -948,16 +948,16 @@ static void majorants(void) {
         CHECK(sk_grid_set_box(&g2, lo, one) == (isfinite(f) && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_grid_set_box_f64(&gd, lod, oned) == (isfinite(x) && x < 1.0 ? SK_OK : SK_ERR_DOMAIN));
         sk_grid_set_box_f64(&gd, zerod, oned);
-        CHECK(sk_majorants_build(&g, 2, 2, 2, store, NULL, 8, &m) == SK_OK);
-        CHECK(sk_majorants_build_f64(&gd, 2, 2, 2, stored, NULL, 8, &md) == SK_OK);
+        CHECK(sk_majorants_new_from_grid(&g, 2, 2, 2, store, NULL, 8, &m) == SK_OK);
+        CHECK(sk_majorants_new_from_grid_f64(&gd, 2, 2, 2, stored, NULL, 8, &md) == SK_OK);
         /* Your own majorants: a bad value is DOMAIN. */
         store[3] = f;
         CHECK(sk_majorants_new(store, NULL, 2, 2, 2, zero, one, &mine) == (isfinite(f) && f >= 0.0f ? SK_OK : SK_ERR_DOMAIN));
         stored[5] = x;
         CHECK(sk_majorants_new_f64(stored, NULL, 2, 2, 2, lod, oned, &mined) ==
               (isfinite(x) && x >= 0.0 && x < 1.0 ? SK_OK : SK_ERR_DOMAIN));
-        sk_majorants_build(&g, 2, 2, 2, store, NULL, 8, &m);
-        sk_majorants_build_f64(&gd, 2, 2, 2, stored, NULL, 8, &md);
+        sk_majorants_new_from_grid(&g, 2, 2, 2, store, NULL, 8, &m);
+        sk_majorants_new_from_grid_f64(&gd, 2, 2, 2, stored, NULL, 8, &md);
         /* Tracking: a bad origin or t_max is DOMAIN; out untouched then. */
         tr.t = 7.0f;
         a = targs(&g, NULL, NULL, &m, v, d, 0, 3, 1000, &rng);
@@ -987,12 +987,12 @@ static void majorants(void) {
     }
     i = 0;
     /* NULL pointers and callbacks. */
-    CHECK(sk_majorants_build(NULL, 2, 2, 2, store, NULL, 8, &m) == SK_ERR_NULL);
-    CHECK(sk_majorants_build(&g, 2, 2, 2, NULL, NULL, 8, &m) == SK_ERR_NULL);
-    CHECK(sk_majorants_build_f64(&gd, 2, 2, 2, stored, NULL, 8, NULL) == SK_ERR_NULL);
+    CHECK(sk_majorants_new_from_grid(NULL, 2, 2, 2, store, NULL, 8, &m) == SK_ERR_NULL);
+    CHECK(sk_majorants_new_from_grid(&g, 2, 2, 2, NULL, NULL, 8, &m) == SK_ERR_NULL);
+    CHECK(sk_majorants_new_from_grid_f64(&gd, 2, 2, 2, stored, NULL, 8, NULL) == SK_ERR_NULL);
     CHECK(sk_majorants_new(NULL, NULL, 2, 2, 2, zero, one, &m) == SK_ERR_NULL);
     CHECK(sk_majorants_new_f64(stored, NULL, 2, 2, 2, zerod, oned, NULL) == SK_ERR_NULL);
-    sk_majorants_build(&g, 2, 2, 2, store, NULL, 8, &m);
+    sk_majorants_new_from_grid(&g, 2, 2, 2, store, NULL, 8, &m);
     a = targs(&g, NULL, NULL, &m, o, d, 0, 3, 10, &no_fn);
     CHECK(sk_delta_track(&a, &tr) == SK_ERR_NULL);
     a = targs(NULL, NULL, NULL, &m, o, d, 0, 3, 10, &rng);
@@ -1000,12 +1000,12 @@ static void majorants(void) {
     ad = targs64(&gd, NULL, NULL, &md, od, dd, 0, 3, 10, &rng);
     CHECK(sk_delta_track_f64(&ad, NULL) == SK_ERR_NULL);
     /* Sizes: zero dimensions, a short buffer. */
-    CHECK(sk_majorants_build(&g, 0, 2, 2, store, NULL, 8, &m) == SK_ERR_SIZE);
-    CHECK(sk_majorants_build(&g, 2, 2, 2, store, NULL, 7, &m) == SK_ERR_SIZE);
-    CHECK(sk_majorants_build_f64(&gd, 3, 3, 3, stored, NULL, 8, &md) == SK_ERR_SIZE);
+    CHECK(sk_majorants_new_from_grid(&g, 0, 2, 2, store, NULL, 8, &m) == SK_ERR_SIZE);
+    CHECK(sk_majorants_new_from_grid(&g, 2, 2, 2, store, NULL, 7, &m) == SK_ERR_SIZE);
+    CHECK(sk_majorants_new_from_grid_f64(&gd, 3, 3, 3, stored, NULL, 8, &md) == SK_ERR_SIZE);
     CHECK(sk_majorants_new(store, NULL, 2, 0, 2, zero, one, &mine) == SK_ERR_SIZE);
     CHECK(sk_majorants_new(neg, NULL, 2, 2, 2, zero, one, &mine) == SK_ERR_DOMAIN);
-    sk_majorants_build(&g, 2, 2, 2, store, NULL, 8, &m);
+    sk_majorants_new_from_grid(&g, 2, 2, 2, store, NULL, 8, &m);
     /* Never built: a zeroed value, or one whose tag was overwritten. */
     memset(&mine, 0, sizeof mine);
     a = targs(&g, NULL, NULL, &mine, o, d, 0, 3, 10, &rng);
@@ -1030,7 +1030,7 @@ static void majorants(void) {
          * constant time): caught where the walk meets them. */
         float kept8[8];
         int c;
-        CHECK(sk_majorants_build(&g, 2, 2, 2, store, NULL, 8, &m) == SK_OK);
+        CHECK(sk_majorants_new_from_grid(&g, 2, 2, 2, store, NULL, 8, &m) == SK_OK);
         memcpy(kept8, store, sizeof store);
         a = targs(&g, NULL, NULL, &m, o, d, 0, 3, 1000, &rng);
         for (c = 0; c < 3; c++) {
@@ -1054,10 +1054,10 @@ static void majorants(void) {
         const double zeros8d[8] = {0, 0, 0, 0, 0, 0, 0, 0};
         sk_majorants e, e2, eb;
         sk_majorants_f64 ed, ebd;
-        CHECK(sk_majorants_build(&g, 2, 2, 2, hi8, lo8, 8, &e) == SK_OK && lo8[0] <= hi8[0] && lo8[0] > 0.99f);
-        CHECK(sk_majorants_build_f64(&gd, 2, 2, 2, hi8d, lo8d, 8, &ed) == SK_OK);
-        CHECK(sk_majorants_build(&g, 2, 2, 2, hi8, lo8, 7, &e2) == SK_ERR_SIZE);
-        CHECK(sk_majorants_build(&g, 2, 2, 2, hi8, hi8 + 1, 8, &e2) == SK_ERR_OVERLAP);
+        CHECK(sk_majorants_new_from_grid(&g, 2, 2, 2, hi8, lo8, 8, &e) == SK_OK && lo8[0] <= hi8[0] && lo8[0] > 0.99f);
+        CHECK(sk_majorants_new_from_grid_f64(&gd, 2, 2, 2, hi8d, lo8d, 8, &ed) == SK_OK);
+        CHECK(sk_majorants_new_from_grid(&g, 2, 2, 2, hi8, lo8, 7, &e2) == SK_ERR_SIZE);
+        CHECK(sk_majorants_new_from_grid(&g, 2, 2, 2, hi8, hi8 + 1, 8, &e2) == SK_ERR_OVERLAP);
         CHECK(sk_majorants_new(hi8, lo8, 2, 2, 2, zero, one, &e2) == SK_OK);
         CHECK(sk_majorants_new(lo8, hi8, 2, 2, 2, zero, one, &e2) == SK_ERR_DOMAIN);
         CHECK(sk_majorants_new(hi8, neg, 2, 2, 2, zero, one, &e2) == SK_ERR_DOMAIN);
@@ -1094,7 +1094,7 @@ static void majorants(void) {
         memcpy(lo8, neg, sizeof lo8);
         lo8[0] = lo8[1] = lo8[2] = lo8[3] = lo8[4] = lo8[5] = lo8[6] = -1.0f;
         CHECK(sk_residual_ratio_track(&a, &tr) == SK_ERR_DOMAIN);
-        sk_majorants_build(&g, 2, 2, 2, hi8, lo8, 8, &e);
+        sk_majorants_new_from_grid(&g, 2, 2, 2, hi8, lo8, 8, &e);
         g2 = g;
         sk_grid_set_box(&g2, zero, (sk_vec3){2, 1, 1});
         a.medium.grid = &g2;
@@ -1449,7 +1449,7 @@ static void majorants(void) {
     CHECK(sk_delta_track(&a, &tr) == SK_OK && (tr.event != SK_TRACK_ESCAPED || tr.t == 1.5f));
 }
 
-static void mie_tables(const sk_mie *sphere);
+static void mie_tables(const sk_mie_f64 *sphere);
 static void polydisperse(void);
 static void particle_mie(void);
 static void particle_measured(void);
@@ -1459,35 +1459,35 @@ static void mixtures(void);
 /* Mie: bad input from C, and the BHMIE example through the header. */
 static void mie(void) {
     int i;
-    static sk_complex buf[4096];
-    sk_complex m = {1.55, 0.0}, s1, s2;
-    sk_mie sphere, bogus;
-    double x = sk_mie_size_parameter(1.05, 0.6328, 1.0);
-    size_t len = sk_mie_buffer_len(x, m);
+    static sk_complex_f64 buf[4096];
+    sk_complex_f64 m = {1.55, 0.0}, s1, s2;
+    sk_mie_f64 sphere, bogus;
+    double x = sk_mie_size_parameter_f64(1.05, 0.6328, 1.0);
+    size_t len = sk_mie_len_f64(x, m);
     i = 0;
     CHECK(len > 0 && len <= 4096);
-    CHECK(sk_mie_new(x, m, buf, len, &sphere) == SK_OK);
+    CHECK(sk_mie_new_f64(x, m, buf, len, &sphere) == SK_OK);
     CHECK(fabs(sphere.efficiencies.q_ext - 3.10543) < 5e-6 && fabs(sphere.efficiencies.g - 0.63314) < 5e-6);
-    CHECK(sk_mie_amplitudes(&sphere, -1.0, &s1, &s2) == SK_OK);
+    CHECK(sk_mie_amplitudes_f64(&sphere, -1.0, &s1, &s2) == SK_OK);
     CHECK(fabs(4.0 * (s1.re * s1.re + s1.im * s1.im) / (x * x) - sphere.efficiencies.q_back) < 1e-12);
-    CHECK(sk_mie_phase(&sphere, 1.0) > sk_mie_phase(&sphere, -1.0));
-    CHECK(isnan(sk_mie_phase(&sphere, NAN)) && isnan(sk_mie_phase(NULL, 0.5)));
-    CHECK(sk_mie_new(x, m, NULL, len, &sphere) == SK_ERR_NULL && sk_mie_new(x, m, buf, len, NULL) == SK_ERR_NULL);
-    CHECK(sk_mie_new(x, m, buf, len - 1, &sphere) == SK_ERR_SIZE);
-    CHECK(sk_mie_new(x, m, buf, SIZE_MAX, &sphere) == SK_ERR_SIZE);
-    CHECK(sk_mie_amplitudes(NULL, 0.5, &s1, &s2) == SK_ERR_NULL && sk_mie_amplitudes(&sphere, 0.5, NULL, &s2) == SK_ERR_NULL);
+    CHECK(sk_mie_pdf_f64(&sphere, 1.0) > sk_mie_pdf_f64(&sphere, -1.0));
+    CHECK(isnan(sk_mie_pdf_f64(&sphere, NAN)) && isnan(sk_mie_pdf_f64(NULL, 0.5)));
+    CHECK(sk_mie_new_f64(x, m, NULL, len, &sphere) == SK_ERR_NULL && sk_mie_new_f64(x, m, buf, len, NULL) == SK_ERR_NULL);
+    CHECK(sk_mie_new_f64(x, m, buf, len - 1, &sphere) == SK_ERR_SIZE);
+    CHECK(sk_mie_new_f64(x, m, buf, SIZE_MAX, &sphere) == SK_ERR_SIZE);
+    CHECK(sk_mie_amplitudes_f64(NULL, 0.5, &s1, &s2) == SK_ERR_NULL && sk_mie_amplitudes_f64(&sphere, 0.5, NULL, &s2) == SK_ERR_NULL);
     bogus = sphere;
     bogus.terms = SIZE_MAX;
-    CHECK(sk_mie_amplitudes(&bogus, 0.5, &s1, &s2) == SK_ERR_SIZE && isnan(sk_mie_phase(&bogus, 0.5)));
+    CHECK(sk_mie_amplitudes_f64(&bogus, 0.5, &s1, &s2) == SK_ERR_SIZE && isnan(sk_mie_pdf_f64(&bogus, 0.5)));
     for (i = 0; i < NS; i++) {
         double d = DS[i];
-        sk_complex bad_re = {d, 0.0}, bad_im = {1.5, d};
+        sk_complex_f64 bad_re = {d, 0.0}, bad_im = {1.5, d};
         int x_ok = d >= 1e-20 && d <= 1e5, re_ok = d > 0.0 && d <= 1000.0, im_ok = d >= 0.0 && d <= 1000.0;
-        CHECK((sk_mie_buffer_len(d, m) > 0) == x_ok);
-        CHECK((sk_mie_buffer_len(1.0, bad_re) > 0) == re_ok);
-        CHECK((sk_mie_buffer_len(1.0, bad_im) > 0) == im_ok);
-        CHECK(sk_mie_new(d, m, buf, 4096, &sphere) == (x_ok ? (sk_mie_buffer_len(d, m) <= 4096 ? SK_OK : SK_ERR_SIZE) : SK_ERR_DOMAIN));
-        CHECK(sk_mie_new(1.0, bad_im, buf, 4096, &sphere) == (im_ok ? SK_OK : SK_ERR_DOMAIN));
+        CHECK((sk_mie_len_f64(d, m) > 0) == x_ok);
+        CHECK((sk_mie_len_f64(1.0, bad_re) > 0) == re_ok);
+        CHECK((sk_mie_len_f64(1.0, bad_im) > 0) == im_ok);
+        CHECK(sk_mie_new_f64(d, m, buf, 4096, &sphere) == (x_ok ? (sk_mie_len_f64(d, m) <= 4096 ? SK_OK : SK_ERR_SIZE) : SK_ERR_DOMAIN));
+        CHECK(sk_mie_new_f64(1.0, bad_im, buf, 4096, &sphere) == (im_ok ? SK_OK : SK_ERR_DOMAIN));
     }
     mie_tables(&sphere);
     polydisperse();
@@ -1497,14 +1497,14 @@ static void mie(void) {
 
 /* Mie over size distributions: cumulus C.1 at 550 nm, bad input. */
 static void polydisperse(void) {
-    static sk_complex buf[1 << 12];
+    static sk_complex_f64 buf[1 << 12];
     double mu[3] = {1.0, 0.0, -1.0}, phase[3], scratch[3], lo = 7.0, hi = 7.0;
-    sk_size_distribution c1 = {SK_SIZE_MODIFIED_GAMMA, {6.0, 1.5, 1.0}}, bad = c1;
-    sk_polydisperse p;
-    sk_mie_averages a, untouched;
+    sk_size_distribution_f64 c1 = {SK_SIZE_MODIFIED_GAMMA, {6.0, 1.5, 1.0}}, bad = c1;
+    sk_polydisperse_f64 p;
+    sk_mie_averages_f64 a, untouched;
     size_t len;
     int i = 0;
-    CHECK(sk_size_distribution_range(&c1, &lo, &hi) == SK_OK && lo > 0.05 && lo < 0.2 && hi > 30.0 && hi < 40.0);
+    CHECK(sk_size_distribution_range_f64(&c1, &lo, &hi) == SK_OK && lo > 0.05 && lo < 0.2 && hi > 30.0 && hi < 40.0);
     p.distribution = c1;
     p.r_min = 0.5;
     p.r_max = 10.0;
@@ -1513,62 +1513,62 @@ static void polydisperse(void) {
     p.m.re = 1.333;
     p.m.im = 1e-8;
     p.intervals = 64;
-    len = sk_polydisperse_buffer_len(&p);
+    len = sk_polydisperse_len_f64(&p);
     CHECK(len > 0 && len <= sizeof buf / sizeof buf[0]);
-    CHECK(sk_polydisperse_average(&p, mu, 3, phase, scratch, buf, len, &a) == SK_OK);
+    CHECK(sk_polydisperse_average_f64(&p, mu, 3, phase, scratch, buf, len, &a) == SK_OK);
     CHECK(a.c_ext > a.c_sca && a.c_sca > 0.0 && a.g > 0.7 && a.g < 0.95 && phase[0] > phase[1]);
     CHECK(fabs(a.c_ext / a.area - 2.0) < 0.2 && a.errors[0] >= 0.0 && a.phase_error >= 0.0);
     untouched = a;
-    CHECK(sk_polydisperse_average(&p, mu, 3, phase, scratch, buf, len - 1, &a) == SK_ERR_SIZE);
-    CHECK(sk_polydisperse_average(&p, mu, 3, phase, phase + 1, buf, len, &a) == SK_ERR_OVERLAP);
-    CHECK(sk_polydisperse_average(NULL, mu, 3, phase, scratch, buf, len, &a) == SK_ERR_NULL);
-    CHECK(sk_polydisperse_average(&p, NULL, 3, phase, scratch, buf, len, &a) == SK_ERR_NULL);
-    CHECK(sk_polydisperse_average(&p, mu, 3, NULL, scratch, buf, len, &a) == SK_ERR_NULL);
-    CHECK(sk_polydisperse_average(&p, mu, 3, phase, NULL, buf, len, &a) == SK_ERR_NULL);
-    CHECK(sk_polydisperse_average(&p, mu, 3, phase, scratch, NULL, len, &a) == SK_ERR_NULL);
-    CHECK(sk_polydisperse_average(&p, mu, 3, phase, scratch, buf, len, NULL) == SK_ERR_NULL);
-    CHECK(sk_polydisperse_average(&p, mu, SIZE_MAX, phase, scratch, buf, len, &a) == SK_ERR_SIZE);
+    CHECK(sk_polydisperse_average_f64(&p, mu, 3, phase, scratch, buf, len - 1, &a) == SK_ERR_SIZE);
+    CHECK(sk_polydisperse_average_f64(&p, mu, 3, phase, phase + 1, buf, len, &a) == SK_ERR_OVERLAP);
+    CHECK(sk_polydisperse_average_f64(NULL, mu, 3, phase, scratch, buf, len, &a) == SK_ERR_NULL);
+    CHECK(sk_polydisperse_average_f64(&p, NULL, 3, phase, scratch, buf, len, &a) == SK_ERR_NULL);
+    CHECK(sk_polydisperse_average_f64(&p, mu, 3, NULL, scratch, buf, len, &a) == SK_ERR_NULL);
+    CHECK(sk_polydisperse_average_f64(&p, mu, 3, phase, NULL, buf, len, &a) == SK_ERR_NULL);
+    CHECK(sk_polydisperse_average_f64(&p, mu, 3, phase, scratch, NULL, len, &a) == SK_ERR_NULL);
+    CHECK(sk_polydisperse_average_f64(&p, mu, 3, phase, scratch, buf, len, NULL) == SK_ERR_NULL);
+    CHECK(sk_polydisperse_average_f64(&p, mu, SIZE_MAX, phase, scratch, buf, len, &a) == SK_ERR_SIZE);
     CHECK(memcmp(&a, &untouched, sizeof a) == 0);
-    CHECK(sk_polydisperse_average(&p, NULL, 0, NULL, NULL, buf, len, &a) == SK_OK);
+    CHECK(sk_polydisperse_average_f64(&p, NULL, 0, NULL, NULL, buf, len, &a) == SK_OK);
     mu[1] = 1.5;
-    CHECK(sk_polydisperse_average(&p, mu, 3, phase, scratch, buf, len, &a) == SK_ERR_DOMAIN);
+    CHECK(sk_polydisperse_average_f64(&p, mu, 3, phase, scratch, buf, len, &a) == SK_ERR_DOMAIN);
     mu[1] = 0.0;
-    CHECK(sk_size_distribution_range(NULL, &lo, &hi) == SK_ERR_NULL && sk_size_distribution_range(&c1, NULL, &hi) == SK_ERR_NULL);
-    CHECK(sk_size_distribution_range(&c1, &lo, NULL) == SK_ERR_NULL && sk_polydisperse_buffer_len(NULL) == 0);
+    CHECK(sk_size_distribution_range_f64(NULL, &lo, &hi) == SK_ERR_NULL && sk_size_distribution_range_f64(&c1, NULL, &hi) == SK_ERR_NULL);
+    CHECK(sk_size_distribution_range_f64(&c1, &lo, NULL) == SK_ERR_NULL && sk_polydisperse_len_f64(NULL) == 0);
     bad.kind = 3;
-    CHECK(sk_size_distribution_range(&bad, &lo, &hi) == SK_ERR_DOMAIN);
+    CHECK(sk_size_distribution_range_f64(&bad, &lo, &hi) == SK_ERR_DOMAIN);
     p.distribution = bad;
-    CHECK(sk_polydisperse_buffer_len(&p) == 0 && sk_polydisperse_average(&p, mu, 3, phase, scratch, buf, len, &a) == SK_ERR_DOMAIN);
+    CHECK(sk_polydisperse_len_f64(&p) == 0 && sk_polydisperse_average_f64(&p, mu, 3, phase, scratch, buf, len, &a) == SK_ERR_DOMAIN);
     /* Junge's power law: no natural range, averages over the given one. */
     bad.kind = SK_SIZE_JUNGE;
     bad.params[0] = 4.0;
-    CHECK(sk_size_distribution_range(&bad, &lo, &hi) == SK_ERR_DOMAIN);
+    CHECK(sk_size_distribution_range_f64(&bad, &lo, &hi) == SK_ERR_DOMAIN);
     p.distribution = bad;
-    CHECK(sk_polydisperse_average(&p, mu, 3, phase, scratch, buf, len, &a) == SK_OK && a.g > 0.5 && a.g < 1.0);
+    CHECK(sk_polydisperse_average_f64(&p, mu, 3, phase, scratch, buf, len, &a) == SK_OK && a.g > 0.5 && a.g < 1.0);
     for (i = 0; i < NS; i++) {
         p.distribution.params[0] = DS[i];
-        CHECK((sk_polydisperse_buffer_len(&p) == 0) == !(DS[i] > 0.0 && DS[i] <= 10.0));
+        CHECK((sk_polydisperse_len_f64(&p) == 0) == !(DS[i] > 0.0 && DS[i] <= 10.0));
     }
     p.distribution = c1;
     for (i = 0; i < NS; i++) {
         double d = DS[i];
-        sk_polydisperse q = p;
+        sk_polydisperse_f64 q = p;
         bad = c1;
         bad.params[i % 3] = d;
         {
             int ok = i % 3 == 0 ? (d >= 0.0 && d <= 100.0) : i % 3 == 1 ? (d > 0.0 && d < 1e100) : (d > 0.0 && d <= 10.0);
             /* Valid parameters may still put the range beyond doubles. */
-            sk_status st = sk_size_distribution_range(&bad, &lo, &hi);
+            sk_status st = sk_size_distribution_range_f64(&bad, &lo, &hi);
             CHECK(ok ? (st == SK_ERR_DOMAIN || (st == SK_OK && lo > 0.0 && lo < hi)) : st == SK_ERR_DOMAIN);
         }
         q.r_min = d;
-        CHECK(sk_polydisperse_buffer_len(&q) == 0 || (d > 0.0 && d < p.r_max));
+        CHECK(sk_polydisperse_len_f64(&q) == 0 || (d > 0.0 && d < p.r_max));
         q = p;
         q.wavelength = d;
-        CHECK(sk_polydisperse_buffer_len(&q) == 0 || (d > 0.0 && isfinite(d)));
+        CHECK(sk_polydisperse_len_f64(&q) == 0 || (d > 0.0 && isfinite(d)));
         q = p;
         q.intervals = (size_t)i * 3;
-        CHECK((sk_polydisperse_buffer_len(&q) == 0) == (i == 0 || (i * 3) % 4 != 0));
+        CHECK((sk_polydisperse_len_f64(&q) == 0) == (i == 0 || (i * 3) % 4 != 0));
     }
 }
 
@@ -1576,45 +1576,45 @@ static void polydisperse(void) {
 static void particle_measured(void) {
     static double cosv[1001], pdf[1001], work[4096 + 8];
     sk_phase_f64 hg;
-    sk_particle_choice c, kept;
+    sk_particle_choice_f64 c, kept;
     int i = 0;
-    CHECK(sk_phase_hg_f64(0.8, &hg) == SK_OK);
+    CHECK(sk_phase_new_hg_f64(0.8, &hg) == SK_OK);
     for (i = 0; i < 1001; i++) {
         cosv[i] = cos(3.14159265358979 * i / 1000.0);
         pdf[i] = sk_phase_pdf_f64(&hg, cosv[i]);
     }
-    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.02, 0, work, 4096, &c) == SK_OK);
+    CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, 1001, 0.02, 0, work, 4096, &c) == SK_OK);
     CHECK(c.model == SK_PARTICLE_HG && c.within_tolerance == 1 && c.distance <= 0.02 && isnan(c.x) && isnan(c.m.re));
     CHECK(isnan(c.distances[4]) && fabs(sk_phase_mean_cosine_f64(&c.phase) - 0.8) < 5e-3);
-    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 1e-9, 1, work, 4096, &c) == SK_OK);
+    CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, 1001, 1e-9, 1, work, 4096, &c) == SK_OK);
     CHECK(c.model == SK_PARTICLE_MIE_TABLE && c.distance == 0.0 && isnan(sk_phase_pdf_f64(&c.phase, 0.5)));
     kept = c;
-    CHECK(sk_phase_particle_measured(NULL, pdf, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_NULL);
-    CHECK(sk_phase_particle_measured(cosv, NULL, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_NULL);
-    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, NULL, 4096, &c) == SK_ERR_NULL);
-    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, work, 4096, NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_particle_measured(cosv, pdf, 1, 0.1, 0, work, 4096, &c) == SK_ERR_SIZE);
-    CHECK(sk_phase_particle_measured(cosv, pdf, 0, 0.1, 0, work, 4096, &c) == SK_ERR_SIZE);
-    CHECK(sk_phase_particle_measured(cosv, pdf, SIZE_MAX, 0.1, 0, work, 4096, &c) == SK_ERR_SIZE);
-    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, work, 4095, &c) == SK_ERR_SIZE);
-    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, work, SIZE_MAX, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_new_particle_measured_f64(NULL, pdf, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_NULL);
+    CHECK(sk_phase_new_particle_measured_f64(cosv, NULL, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_NULL);
+    CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, 1001, 0.1, 0, NULL, 4096, &c) == SK_ERR_NULL);
+    CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, 1001, 0.1, 0, work, 4096, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, 1, 0.1, 0, work, 4096, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, 0, 0.1, 0, work, 4096, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, SIZE_MAX, 0.1, 0, work, 4096, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, 1001, 0.1, 0, work, 4095, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, 1001, 0.1, 0, work, SIZE_MAX, &c) == SK_ERR_SIZE);
     /* work overlapping the data. */
-    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, pdf + 500, 4096, &c) == SK_ERR_OVERLAP);
-    CHECK(sk_phase_particle_measured(work + 8, pdf, 10, 0.1, 0, work, 4096, &c) == SK_ERR_OVERLAP);
+    CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, 1001, 0.1, 0, pdf + 500, 4096, &c) == SK_ERR_OVERLAP);
+    CHECK(sk_phase_new_particle_measured_f64(work + 8, pdf, 10, 0.1, 0, work, 4096, &c) == SK_ERR_OVERLAP);
     pdf[3] = -1.0;
-    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_DOMAIN);
     pdf[3] = NAN;
-    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_DOMAIN);
     pdf[3] = sk_phase_pdf_f64(&hg, cosv[3]);
     cosv[3] = cosv[5];
-    CHECK(sk_phase_particle_measured(cosv, pdf, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, 1001, 0.1, 0, work, 4096, &c) == SK_ERR_DOMAIN);
     cosv[3] = cos(3.14159265358979 * 3 / 1000.0);
     CHECK(c.model == kept.model && c.distance == kept.distance && c.within_tolerance == kept.within_tolerance);
     for (i = 0; i < NS; i++) {
         double d = DS[i];
-        CHECK(sk_phase_particle_measured(cosv, pdf, 3, d, 1, work, 4096, &c) == (d > 0.0 && d < 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, 3, d, 1, work, 4096, &c) == (d > 0.0 && d < 1.0 ? SK_OK : SK_ERR_DOMAIN));
         cosv[0] = d;
-        CHECK(sk_phase_particle_measured(cosv, pdf, 3, 0.5, 1, work, 4096, &c) ==
+        CHECK(sk_phase_new_particle_measured_f64(cosv, pdf, 3, 0.5, 1, work, 4096, &c) ==
               (d >= -1.0 && d <= 1.0 && d > cosv[1] ? SK_OK : SK_ERR_DOMAIN));
         cosv[0] = 1.0;
     }
@@ -1622,71 +1622,71 @@ static void particle_measured(void) {
 
 /* The honest chooser against Mie: water at 550 nm, bad input. */
 static void particle_mie(void) {
-    static sk_complex buf[1024];
+    static sk_complex_f64 buf[1024];
     static double work[4096];
-    sk_complex water = {0.0, 0.0}, glass = {1.5, 0.0};
-    sk_particle_choice c, kept;
-    size_t len = sk_particle_mie_buffer_len(0.01, 0.55, water);
+    sk_complex_f64 water = {0.0, 0.0}, glass = {1.5, 0.0};
+    sk_particle_choice_f64 c, kept;
+    size_t len = sk_particle_mie_len_f64(0.01, 0.55, water);
     int i = 0;
-    CHECK(len > 0 && len <= 1024 && sk_particle_mie_buffer_len(1.0, 2.0, water) == 0);
-    CHECK(sk_particle_mie_buffer_len(1.0, 2.0, glass) > 0);
-    CHECK(sk_phase_particle_mie(0.01, 0.55, water, 0.01, 1, buf, 1024, work, 4096, &c) == SK_OK);
+    CHECK(len > 0 && len <= 1024 && sk_particle_mie_len_f64(1.0, 2.0, water) == 0);
+    CHECK(sk_particle_mie_len_f64(1.0, 2.0, glass) > 0);
+    CHECK(sk_phase_new_particle_mie_f64(0.01, 0.55, water, 0.01, 1, buf, 1024, work, 4096, &c) == SK_OK);
     CHECK(c.model == SK_PARTICLE_RAYLEIGH && c.within_tolerance == 1 && c.distance < 0.01 && fabs(c.m.re - 1.3345) < 1e-3);
     CHECK(fabs(sk_phase_pdf_f64(&c.phase, 1.0) - 3.0 / (8.0 * 3.14159265358979)) < 1e-12);
-    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, buf, 1024, work, 4096, &c) == SK_OK);
+    CHECK(sk_phase_new_particle_mie_f64(1.0, 0.55, water, 0.01, 1, buf, 1024, work, 4096, &c) == SK_OK);
     CHECK(c.model == SK_PARTICLE_MIE_TABLE && c.distance == 0.0 && isnan(sk_phase_pdf_f64(&c.phase, 0.5)));
     /* With a table, two-lobe HG, Fournier-Forand and Rayleigh + HG are not
      * fitted. */
     CHECK(isnan(c.distances[5]) && isnan(c.distances[6]) && isnan(c.distances[7]));
     /* 4 um without a table: two-lobe HG is the closest (none within 0.1),
      * never farther than one HG, and samples like a phase. */
-    CHECK(sk_phase_particle_mie(4.0, 0.55, water, 0.1, 0, buf, 1024, work, 4096, &c) == SK_OK);
+    CHECK(sk_phase_new_particle_mie_f64(4.0, 0.55, water, 0.1, 0, buf, 1024, work, 4096, &c) == SK_OK);
     CHECK(c.model == SK_PARTICLE_TWO_LOBE_HG && c.within_tolerance == 0 && c.distance == c.distances[5] &&
           c.distances[5] <= c.distances[1] && c.distances[6] > 0.0 && c.distances[6] < 1.0);
     CHECK(fabs(sk_phase_sample_cos_f64(&c.phase, 0.5)) <= 1.0 && sk_phase_pdf_f64(&c.phase, 0.5) > 0.0);
-    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 0, buf, 1024, work, 4096, &c) == SK_OK);
+    CHECK(sk_phase_new_particle_mie_f64(1.0, 0.55, water, 0.01, 0, buf, 1024, work, 4096, &c) == SK_OK);
     CHECK(c.within_tolerance == 0 && c.model != SK_PARTICLE_MIE_TABLE && sk_phase_pdf_f64(&c.phase, 0.5) > 0.0);
     kept = c;
-    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, NULL, 1024, work, 4096, &c) == SK_ERR_NULL);
-    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, buf, 1024, NULL, 4096, &c) == SK_ERR_NULL);
-    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, buf, 1024, work, 4096, NULL) == SK_ERR_NULL);
-    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, buf, 3, work, 4096, &c) == SK_ERR_SIZE);
-    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, buf, 1024, work, 4095, &c) == SK_ERR_SIZE);
-    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, buf, SIZE_MAX, work, 4096, &c) == SK_ERR_SIZE);
-    CHECK(sk_phase_particle_mie(1.0, 0.55, water, 0.01, 1, (sk_complex *)work, 100, work, 4096, &c) == SK_ERR_OVERLAP);
-    CHECK(sk_phase_particle_mie(1.0, 2.0, water, 0.01, 1, buf, 1024, work, 4096, &c) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_new_particle_mie_f64(1.0, 0.55, water, 0.01, 1, NULL, 1024, work, 4096, &c) == SK_ERR_NULL);
+    CHECK(sk_phase_new_particle_mie_f64(1.0, 0.55, water, 0.01, 1, buf, 1024, NULL, 4096, &c) == SK_ERR_NULL);
+    CHECK(sk_phase_new_particle_mie_f64(1.0, 0.55, water, 0.01, 1, buf, 1024, work, 4096, NULL) == SK_ERR_NULL);
+    CHECK(sk_phase_new_particle_mie_f64(1.0, 0.55, water, 0.01, 1, buf, 3, work, 4096, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_new_particle_mie_f64(1.0, 0.55, water, 0.01, 1, buf, 1024, work, 4095, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_new_particle_mie_f64(1.0, 0.55, water, 0.01, 1, buf, SIZE_MAX, work, 4096, &c) == SK_ERR_SIZE);
+    CHECK(sk_phase_new_particle_mie_f64(1.0, 0.55, water, 0.01, 1, (sk_complex_f64 *)work, 100, work, 4096, &c) == SK_ERR_OVERLAP);
+    CHECK(sk_phase_new_particle_mie_f64(1.0, 2.0, water, 0.01, 1, buf, 1024, work, 4096, &c) == SK_ERR_DOMAIN);
     /* Unchanged on error (the fields, not the phase's opaque bytes, whose
      * enum padding is not defined). */
     CHECK(c.model == kept.model && c.within_tolerance == kept.within_tolerance && c.distance == kept.distance &&
           c.x == kept.x && memcmp(c.distances, kept.distances, sizeof c.distances) == 0);
     for (i = 0; i < NS; i++) {
         double d = DS[i];
-        CHECK(sk_phase_particle_mie(d, 0.55, water, 0.1, 1, buf, 1024, work, 4096, &c) ==
-              (d > 0.0 && sk_particle_mie_buffer_len(d, 0.55, water) > 0 ? (sk_particle_mie_buffer_len(d, 0.55, water) <= 1024 ? SK_OK : SK_ERR_SIZE) : SK_ERR_DOMAIN));
-        CHECK(sk_phase_particle_mie(0.1, 0.55, water, d, 1, buf, 1024, work, 4096, &c) == (d > 0.0 && d < 1.0 ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_particle_mie(0.1, d, water, 0.1, 1, buf, 1024, work, 4096, &c) == SK_ERR_DOMAIN);
+        CHECK(sk_phase_new_particle_mie_f64(d, 0.55, water, 0.1, 1, buf, 1024, work, 4096, &c) ==
+              (d > 0.0 && sk_particle_mie_len_f64(d, 0.55, water) > 0 ? (sk_particle_mie_len_f64(d, 0.55, water) <= 1024 ? SK_OK : SK_ERR_SIZE) : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_particle_mie_f64(0.1, 0.55, water, d, 1, buf, 1024, work, 4096, &c) == (d > 0.0 && d < 1.0 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_particle_mie_f64(0.1, d, water, 0.1, 1, buf, 1024, work, 4096, &c) == SK_ERR_DOMAIN);
     }
 }
 
-/* Mie tables: sizes, tabulation into sk_table_measured_f64, bad input. */
-static void mie_tables(const sk_mie *sphere) {
+/* Mie tables: sizes, tabulation into sk_table_new_measured_f64, bad input. */
+static void mie_tables(const sk_mie_f64 *sphere) {
     static double c[256], p[256], tb[2 * 513];
     size_t angles = 7, intervals = 7;
     int i = 0;
     sk_table_f64 t;
-    CHECK(sk_mie_table_sizes(100.0, &angles, &intervals) == SK_OK && angles == 4000 && intervals == 16384);
-    CHECK(sk_mie_table_sizes(NAN, &angles, &intervals) == SK_ERR_DOMAIN && angles == 4000);
-    CHECK(sk_mie_table_sizes(0.0, &angles, &intervals) == SK_ERR_DOMAIN);
-    CHECK(sk_mie_table_sizes(1.0, NULL, &intervals) == SK_ERR_NULL && sk_mie_table_sizes(1.0, &angles, NULL) == SK_ERR_NULL);
-    CHECK(sk_mie_tabulate(sphere, c, p, 256) == SK_OK && c[0] == 1.0 && c[255] == -1.0);
+    CHECK(sk_mie_table_len_f64(100.0, &angles, &intervals) == SK_OK && angles == 4000 && intervals == 16384);
+    CHECK(sk_mie_table_len_f64(NAN, &angles, &intervals) == SK_ERR_DOMAIN && angles == 4000);
+    CHECK(sk_mie_table_len_f64(0.0, &angles, &intervals) == SK_ERR_DOMAIN);
+    CHECK(sk_mie_table_len_f64(1.0, NULL, &intervals) == SK_ERR_NULL && sk_mie_table_len_f64(1.0, &angles, NULL) == SK_ERR_NULL);
+    CHECK(sk_mie_tabulate_f64(sphere, c, p, 256) == SK_OK && c[0] == 1.0 && c[255] == -1.0);
     for (i = 1; i < 256; i++) CHECK(c[i] < c[i - 1] && p[i] > 0.0);
     i = 0;
-    CHECK(sk_table_measured_f64(c, p, 256, tb, 2 * 513, 512, &t) == SK_OK);
+    CHECK(sk_table_new_measured_f64(c, p, 256, tb, 2 * 513, 512, &t) == SK_OK);
     CHECK(sk_table_sample_cos_f64(&t, 0.999) > 0.9 * sk_table_sample_cos_f64(&t, 1.0));
-    CHECK(sk_mie_tabulate(NULL, c, p, 256) == SK_ERR_NULL && sk_mie_tabulate(sphere, NULL, p, 256) == SK_ERR_NULL);
-    CHECK(sk_mie_tabulate(sphere, c, NULL, 256) == SK_ERR_NULL);
-    CHECK(sk_mie_tabulate(sphere, c, p, 1) == SK_ERR_SIZE && sk_mie_tabulate(sphere, c, p, SIZE_MAX) == SK_ERR_SIZE);
-    CHECK(sk_mie_tabulate(sphere, c, c + 1, 100) == SK_ERR_OVERLAP);
+    CHECK(sk_mie_tabulate_f64(NULL, c, p, 256) == SK_ERR_NULL && sk_mie_tabulate_f64(sphere, NULL, p, 256) == SK_ERR_NULL);
+    CHECK(sk_mie_tabulate_f64(sphere, c, NULL, 256) == SK_ERR_NULL);
+    CHECK(sk_mie_tabulate_f64(sphere, c, p, 1) == SK_ERR_SIZE && sk_mie_tabulate_f64(sphere, c, p, SIZE_MAX) == SK_ERR_SIZE);
+    CHECK(sk_mie_tabulate_f64(sphere, c, c + 1, 100) == SK_ERR_OVERLAP);
 }
 
 int main(void) {
@@ -1845,12 +1845,12 @@ static void mixtures(void) {
     sk_vec3 dir;
     i = 0;
     memset(&zero_p, 0, sizeof zero_p);
-    sk_phase_rayleigh(&ray);
-    sk_phase_hg(0.8f, &hg);
-    sk_phase_rayleigh_f64(&rayd);
-    sk_phase_hg_f64(0.8, &hgd);
-    CHECK(sk_table_inverse(&hg, buf, 2 * 65, 64, &tab) == SK_OK);
-    CHECK(sk_table_inverse_f64(&hgd, bufd, 2 * 65, 64, &tabd) == SK_OK);
+    sk_phase_new_rayleigh(&ray);
+    sk_phase_new_hg(0.8f, &hg);
+    sk_phase_new_rayleigh_f64(&rayd);
+    sk_phase_new_hg_f64(0.8, &hgd);
+    CHECK(sk_table_new_inverse(&hg, buf, 2 * 65, 64, &tab) == SK_OK);
+    CHECK(sk_table_new_inverse_f64(&hgd, bufd, 2 * 65, 64, &tabd) == SK_OK);
     parts[0].phase = &ray, parts[0].table = NULL, parts[0].weight = 0.5f;
     parts[1].phase = &hg, parts[1].table = NULL, parts[1].weight = 0.3f;
     parts[2].phase = NULL, parts[2].table = &tab, parts[2].weight = 0.2f;
@@ -1977,12 +1977,12 @@ static void mixtures(void) {
                 int j;
                 float g, r, beyond;
             } fam[] = {
-                {sk_phase_modified_hg, sk_phase_modified_hg_f64, 2, 0.8f, 1.5f, 1.81f},
-                {sk_phase_modified_hg_delta, sk_phase_modified_hg_delta_f64, 3, 0.8f, 2.0f, 2.45f},
-                {sk_phase_two_lobe_hg_gamma, sk_phase_two_lobe_hg_gamma_f64, 2, 0.8f, 1.5f, 1.81f},
-                {sk_phase_two_lobe_hg_delta, sk_phase_two_lobe_hg_delta_f64, 3, 0.8f, 2.0f, 2.45f},
-                {sk_phase_gegenbauer_gamma, sk_phase_gegenbauer_gamma_f64, 2, 0.8f, 2.2f, 2.5f},
-                {sk_phase_gegenbauer_delta, sk_phase_gegenbauer_delta_f64, 3, 0.8f, 3.0f, 4.0f},
+                {sk_phase_new_modified_hg, sk_phase_new_modified_hg_f64, 2, 0.8f, 1.5f, 1.81f},
+                {sk_phase_new_modified_hg_delta, sk_phase_new_modified_hg_delta_f64, 3, 0.8f, 2.0f, 2.45f},
+                {sk_phase_new_two_lobe_hg_gamma, sk_phase_new_two_lobe_hg_gamma_f64, 2, 0.8f, 1.5f, 1.81f},
+                {sk_phase_new_two_lobe_hg_delta, sk_phase_new_two_lobe_hg_delta_f64, 3, 0.8f, 2.0f, 2.45f},
+                {sk_phase_new_gegenbauer_gamma, sk_phase_new_gegenbauer_gamma_f64, 2, 0.8f, 2.2f, 2.5f},
+                {sk_phase_new_gegenbauer_delta, sk_phase_new_gegenbauer_delta_f64, 3, 0.8f, 3.0f, 4.0f},
             };
             size_t f;
             sk_phase mhg;
@@ -2004,12 +2004,12 @@ static void mixtures(void) {
             }
             i = 0;
             /* The same entry points called by name, with NULL out. */
-            CHECK(sk_phase_modified_hg(0.8f, 1.5f, NULL) == SK_ERR_NULL && sk_phase_modified_hg_f64(0.8, 1.5, NULL) == SK_ERR_NULL);
-            CHECK(sk_phase_modified_hg_delta(0.8f, 2.0f, NULL) == SK_ERR_NULL && sk_phase_modified_hg_delta_f64(0.8, 2.0, NULL) == SK_ERR_NULL);
-            CHECK(sk_phase_two_lobe_hg_gamma(0.8f, 1.5f, NULL) == SK_ERR_NULL && sk_phase_two_lobe_hg_gamma_f64(0.8, 1.5, NULL) == SK_ERR_NULL);
-            CHECK(sk_phase_two_lobe_hg_delta(0.8f, 2.0f, NULL) == SK_ERR_NULL && sk_phase_two_lobe_hg_delta_f64(0.8, 2.0, NULL) == SK_ERR_NULL);
-            CHECK(sk_phase_gegenbauer_gamma(0.8f, 2.2f, NULL) == SK_ERR_NULL && sk_phase_gegenbauer_gamma_f64(0.8, 2.2, NULL) == SK_ERR_NULL);
-            CHECK(sk_phase_gegenbauer_delta(0.8f, 3.0f, NULL) == SK_ERR_NULL && sk_phase_gegenbauer_delta_f64(0.8, 3.0, NULL) == SK_ERR_NULL);
+            CHECK(sk_phase_new_modified_hg(0.8f, 1.5f, NULL) == SK_ERR_NULL && sk_phase_new_modified_hg_f64(0.8, 1.5, NULL) == SK_ERR_NULL);
+            CHECK(sk_phase_new_modified_hg_delta(0.8f, 2.0f, NULL) == SK_ERR_NULL && sk_phase_new_modified_hg_delta_f64(0.8, 2.0, NULL) == SK_ERR_NULL);
+            CHECK(sk_phase_new_two_lobe_hg_gamma(0.8f, 1.5f, NULL) == SK_ERR_NULL && sk_phase_new_two_lobe_hg_gamma_f64(0.8, 1.5, NULL) == SK_ERR_NULL);
+            CHECK(sk_phase_new_two_lobe_hg_delta(0.8f, 2.0f, NULL) == SK_ERR_NULL && sk_phase_new_two_lobe_hg_delta_f64(0.8, 2.0, NULL) == SK_ERR_NULL);
+            CHECK(sk_phase_new_gegenbauer_gamma(0.8f, 2.2f, NULL) == SK_ERR_NULL && sk_phase_new_gegenbauer_gamma_f64(0.8, 2.2, NULL) == SK_ERR_NULL);
+            CHECK(sk_phase_new_gegenbauer_delta(0.8f, 3.0f, NULL) == SK_ERR_NULL && sk_phase_new_gegenbauer_delta_f64(0.8, 3.0, NULL) == SK_ERR_NULL);
         }
         CHECK(sk_phase_legendre_moments(NULL, chi, 4) == SK_ERR_NULL && sk_phase_legendre_moments(&ray, NULL, 4) == SK_ERR_NULL);
         CHECK(sk_phase_legendre_moments(&zero_p, chi, 4) == SK_ERR_DOMAIN);

@@ -117,8 +117,8 @@ static int tables2d(const sk_phase *phases, const sk_phase_f64 *phasesd) {
         size_t n = NS2[k], per = 2 * (n + 1), len = sk_table2d_len(n, K2);
         sk_table2d t;
         sk_table2d_f64 td;
-        if (sk_table2d_inverse(phases, K2, buf2, len, n, 0.4f, 0.1f, &t) ||
-            sk_table2d_inverse_f64(phasesd, K2, buf2d, len, n, 380.0, 25.0, &td))
+        if (sk_table2d_new_inverse(phases, K2, buf2, len, n, 0.4f, 0.1f, &t) ||
+            sk_table2d_new_inverse_f64(phasesd, K2, buf2d, len, n, 380.0, 25.0, &td))
             return 1;
         sweep2d32(&t, 0);
         sweep2d64(&td, 0);
@@ -127,8 +127,8 @@ static int tables2d(const sk_phase *phases, const sk_phase_f64 *phasesd) {
             sk_table_f64 sd;
             cp[1] = 0.5f * (float)j;
             cpd[1] = 0.7 * (double)j;
-            if (sk_table_measured(cx, cp, 3, buf2 + j * per, per, n, &s) ||
-                sk_table_measured_f64(cxd, cpd, 3, buf2d + j * per, per, n, &sd))
+            if (sk_table_new_measured(cx, cp, 3, buf2 + j * per, per, n, &s) ||
+                sk_table_new_measured_f64(cxd, cpd, 3, buf2d + j * per, per, n, &sd))
                 return 1;
         }
         if (sk_table2d_new(buf2, len, n, K2, -1.0f, 0.5f, &t) ||
@@ -147,10 +147,10 @@ int main(void) {
     sk_phase phases[4];
     sk_phase_f64 phasesd[4];
     size_t k, j;
-    if (sk_phase_hg(0.7f, &phases[0]) || sk_phase_fog_diameter(2.0f, &phases[1]) ||
-        sk_phase_draine(0.5f, 1.0f, &phases[2]) || sk_phase_hg_f64(-0.4, &phasesd[0]) ||
-        sk_phase_fog_diameter_f64(5.0, &phasesd[1]) || sk_phase_draine_f64(0.9, 10.0, &phasesd[2]) ||
-        sk_phase_rayleigh(&phases[3]) || sk_phase_hg_f64(0.95, &phasesd[3])) {
+    if (sk_phase_new_hg(0.7f, &phases[0]) || sk_phase_new_fog_diameter(2.0f, &phases[1]) ||
+        sk_phase_new_draine(0.5f, 1.0f, &phases[2]) || sk_phase_new_hg_f64(-0.4, &phasesd[0]) ||
+        sk_phase_new_fog_diameter_f64(5.0, &phasesd[1]) || sk_phase_new_draine_f64(0.9, 10.0, &phasesd[2]) ||
+        sk_phase_new_rayleigh(&phases[3]) || sk_phase_new_hg_f64(0.95, &phasesd[3])) {
         printf("constructor failed\n");
         return 1;
     }
@@ -159,24 +159,24 @@ int main(void) {
         sk_table t;
         sk_table_f64 td;
         for (j = 0; j < 3; j++) {
-            if (sk_table_inverse(&phases[j], buf, 2 * (MAXN + 1), n, &t) ||
-                sk_table_inverse_f64(&phasesd[j], bufd, 2 * (MAXN + 1), n, &td)) {
+            if (sk_table_new_inverse(&phases[j], buf, 2 * (MAXN + 1), n, &t) ||
+                sk_table_new_inverse_f64(&phasesd[j], bufd, 2 * (MAXN + 1), n, &td)) {
                 printf("table failed\n");
                 return 1;
             }
             sweep32(&t);
             sweep64(&td);
         }
-        if (sk_table_measured(cx, cp, 5, buf, 2 * (MAXN + 1), n, &t) ||
-            sk_table_measured_f64(cxd, cpd, 5, bufd, 2 * (MAXN + 1), n, &td) ||
+        if (sk_table_new_measured(cx, cp, 5, buf, 2 * (MAXN + 1), n, &t) ||
+            sk_table_new_measured_f64(cxd, cpd, 5, bufd, 2 * (MAXN + 1), n, &td) ||
             0) {
             printf("measured table failed\n");
             return 1;
         }
         sweep32(&t);
         sweep64(&td);
-        if (sk_table_rayleigh_cdf(buf, 2 * (MAXN + 1), n, &t) ||
-            sk_table_rayleigh_cdf_f64(bufd, 2 * (MAXN + 1), n, &td)) {
+        if (sk_table_new_rayleigh_cdf(buf, 2 * (MAXN + 1), n, &t) ||
+            sk_table_new_rayleigh_cdf_f64(bufd, 2 * (MAXN + 1), n, &td)) {
             printf("cdf table failed\n");
             return 1;
         }

@@ -1,5 +1,5 @@
 //! The chooser against tabulated data (`choose::mie::choose_measured`,
-//! `sk_phase_particle_measured`), and the scene Fournier–Forand is built
+//! `sk_phase_new_particle_measured_f64`), and the scene Fournier–Forand is built
 //! for: Mie averaged over a Junge (power-law) distribution of ocean
 //! particles.
 //!

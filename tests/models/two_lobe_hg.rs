@@ -1,4 +1,4 @@
-//! Two-lobe Henyey–Greenstein (`Phase::two_lobe_hg`, `sk_phase_two_lobe_hg`):
+//! Two-lobe Henyey–Greenstein (`Phase::two_lobe_hg`, `sk_phase_new_two_lobe_hg`):
 //! the exact inverse against a double-double bisection of the mixture's CDF
 //! over the whole accepted domain (|g| up to 0.999, every weight), chi² of
 //! both samplers over the sphere, and the mean cosine.

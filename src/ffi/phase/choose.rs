@@ -2,10 +2,10 @@
 //! Mie, measured data).
 
 use super::*;
-use crate::ffi::mie::sk_complex;
+use crate::ffi::mie::sk_complex_f64;
 use crate::ffi::{fits, slice_in, slice_out};
 
-/// The models sk_phase_particle_mie chooses from.
+/// The models sk_phase_new_particle_mie_f64 chooses from.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug)]
 pub enum sk_particle_model {
@@ -19,8 +19,8 @@ pub enum sk_particle_model {
     SK_PARTICLE_DRAINE = 3,
     /// The fog fit (Jendersie & d'Eon 2023).
     SK_PARTICLE_FOG = 4,
-    /// A table of the exact Mie phase function: build it with sk_mie_new,
-    /// sk_mie_table_sizes, sk_mie_tabulate and sk_table_measured_f64.
+    /// A table of the exact Mie phase function: build it with sk_mie_new_f64,
+    /// sk_mie_table_len_f64, sk_mie_tabulate_f64 and sk_table_new_measured_f64.
     SK_PARTICLE_MIE_TABLE = 5,
     /// Two Henyey-Greenstein lobes with the best-fit g1, g2 and weight
     /// (considered only without a table).
@@ -33,10 +33,10 @@ pub enum sk_particle_model {
     SK_PARTICLE_RAYLEIGH_HG = 8,
 }
 
-/// What sk_phase_particle_mie found.
+/// What sk_phase_new_particle_mie_f64 found.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
-pub struct sk_particle_choice {
+pub struct sk_particle_choice_f64 {
     /// The chosen model, an sk_particle_model.
     pub model: u32,
     /// 1 when distance is within the tolerance (without a table none may
@@ -44,7 +44,7 @@ pub struct sk_particle_choice {
     pub within_tolerance: u32,
     /// The chosen model's total-variation distance to the Mie phase
     /// function (0 for the table, the reference itself; the table built at
-    /// sk_mie_table_sizes adds at most 1.2e-3 for x <= 1000).
+    /// sk_mie_table_len_f64 adds at most 1.2e-3 for x <= 1000).
     pub distance: f64,
     /// Each candidate's best distance: isotropic, HG, Rayleigh, Draine, fog
     /// fit, two-lobe HG, Fournier-Forand, Rayleigh + HG (NaN for the fog
@@ -54,20 +54,20 @@ pub struct sk_particle_choice {
     /// The droplets' size parameter.
     pub x: f64,
     /// The refractive index used.
-    pub m: sk_complex,
+    pub m: sk_complex_f64,
     /// The chosen model ready to sample; unconstructed (every query NaN)
     /// for SK_PARTICLE_MIE_TABLE.
     pub phase: sk_phase_f64,
 }
 
-/// The sk_complex values sk_phase_particle_mie needs in buf; 0 for input
+/// The sk_complex_f64 values sk_phase_new_particle_mie_f64 needs in buf; 0 for input
 /// it rejects. m = {0, 0} means water at that wavelength (0.182 to 1.129
 /// um).
 #[unsafe(no_mangle)]
-pub extern "C" fn sk_particle_mie_buffer_len(
+pub extern "C" fn sk_particle_mie_len_f64(
     diameter_um: f64,
     wavelength_um: f64,
-    m: sk_complex,
+    m: sk_complex_f64,
 ) -> usize {
     let m = (m.re != 0.0 || m.im != 0.0).then(|| crate::mie::Complex::new(m.re, m.im));
     crate::choose::mie::buffer_len(diameter_um, wavelength_um, m).unwrap_or(0)
@@ -81,7 +81,7 @@ pub extern "C" fn sk_particle_mie_buffer_len(
 /// um). Candidates in order of sampling cost: isotropic, HG, Rayleigh, then
 /// with allow_table != 0 the Mie table, else Draine, two-lobe HG, the fog
 /// fit and Fournier-Forand (each with best-fit parameters). buf
-/// holds len >= sk_particle_mie_buffer_len values, work work_len >= 4096
+/// holds len >= sk_particle_mie_len_f64 values, work work_len >= 4096
 /// doubles. Takes about 0.15 s at x = 300 with a table, 0.25 to 0.4 s
 /// without: build once per medium.
 /// SK_ERR_NULL for NULL buf, work or out; SK_ERR_DOMAIN for invalid input;
@@ -89,17 +89,17 @@ pub extern "C" fn sk_particle_mie_buffer_len(
 /// only on success.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn sk_phase_particle_mie(
+pub unsafe extern "C" fn sk_phase_new_particle_mie_f64(
     diameter_um: f64,
     wavelength_um: f64,
-    m: sk_complex,
+    m: sk_complex_f64,
     tolerance: f64,
     allow_table: u32,
-    buf: *mut sk_complex,
+    buf: *mut sk_complex_f64,
     len: usize,
     work: *mut f64,
     work_len: usize,
-    out: *mut sk_particle_choice,
+    out: *mut sk_particle_choice_f64,
 ) -> sk_status {
     use crate::choose::mie::choose_mie;
     use crate::mie::Complex;
@@ -142,7 +142,7 @@ pub unsafe extern "C" fn sk_phase_particle_mie(
     unsafe { write_result(out, r) }
 }
 
-fn choice_to_c(c: crate::choose::mie::MieChoice) -> sk_particle_choice {
+fn choice_to_c(c: crate::choose::mie::MieChoice) -> sk_particle_choice_f64 {
     use crate::choose::fog::Model;
     let model = match c.model {
         Model::Isotropic => sk_particle_model::SK_PARTICLE_ISOTROPIC,
@@ -155,13 +155,13 @@ fn choice_to_c(c: crate::choose::mie::MieChoice) -> sk_particle_choice {
         Model::RayleighHg => sk_particle_model::SK_PARTICLE_RAYLEIGH_HG,
         _ => sk_particle_model::SK_PARTICLE_MIE_TABLE,
     };
-    sk_particle_choice {
+    sk_particle_choice_f64 {
         model: model as u32,
         within_tolerance: u32::from(c.within_tolerance),
         distance: c.distance,
         distances: c.distances,
         x: c.x,
-        m: sk_complex {
+        m: sk_complex_f64 {
             re: c.m.re,
             im: c.m.im,
         },
@@ -171,20 +171,20 @@ fn choice_to_c(c: crate::choose::mie::MieChoice) -> sk_particle_choice {
 
 /// The cheapest model within total-variation distance `tolerance` (0 <
 /// tolerance < 1) of a phase function measured or tabulated at m >= 2
-/// cosines, as sk_table_measured_f64 takes it (`cos_theta[j]` strictly
+/// cosines, as sk_table_new_measured_f64 takes it (`cos_theta[j]` strictly
 /// monotone within [-1, 1], `pdf[j]` finite and non-negative, any scale;
 /// linear in cos theta between the points): a size distribution's Mie
-/// average from sk_polydisperse_average, a measured volume scattering
-/// function. Candidates as sk_phase_particle_mie without the fog fit
+/// average from sk_polydisperse_average_f64, a measured volume scattering
+/// function. Candidates as sk_phase_new_particle_mie_f64 without the fog fit
 /// (`distances[4]` is NaN); SK_PARTICLE_MIE_TABLE means
-/// sk_table_measured_f64 over the same data. x and m of the result are
+/// sk_table_new_measured_f64 over the same data. x and m of the result are
 /// NaN. work holds work_len >= 4096 doubles and must not overlap the data.
 /// Takes about 0.25 s without a table: build once per medium. SK_ERR_NULL
 /// for NULL pointers; SK_ERR_DOMAIN for a tolerance outside (0, 1), invalid
 /// data; SK_ERR_OVERLAP for overlapping arrays; SK_ERR_SIZE for m < 2 or a short work. *out
 /// is written only on success.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_particle_measured(
+pub unsafe extern "C" fn sk_phase_new_particle_measured_f64(
     cos_theta: *const f64,
     pdf: *const f64,
     m: usize,
@@ -192,7 +192,7 @@ pub unsafe extern "C" fn sk_phase_particle_measured(
     allow_table: u32,
     work: *mut f64,
     work_len: usize,
-    out: *mut sk_particle_choice,
+    out: *mut sk_particle_choice_f64,
 ) -> sk_status {
     use crate::choose::mie::choose_measured;
     if cos_theta.is_null() || pdf.is_null() || work.is_null() || out.is_null() {

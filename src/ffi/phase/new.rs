@@ -4,54 +4,54 @@ use super::*;
 
 /// Isotropic scattering, p = 1/(4 pi).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_isotropic(out: *mut sk_phase) -> sk_status {
+pub unsafe extern "C" fn sk_phase_new_isotropic(out: *mut sk_phase) -> sk_status {
     unsafe { construct(out, Ok(Phase::isotropic())) }
 }
 
-/// Double twin of `sk_phase_isotropic`.
+/// Double twin of `sk_phase_new_isotropic`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_isotropic_f64(out: *mut sk_phase_f64) -> sk_status {
+pub unsafe extern "C" fn sk_phase_new_isotropic_f64(out: *mut sk_phase_f64) -> sk_status {
     unsafe { construct(out, Ok(Phase::isotropic())) }
 }
 
 /// Rayleigh scattering, p = 3/(16 pi) (1 + mu^2); sampled by exact inversion.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_rayleigh(out: *mut sk_phase) -> sk_status {
+pub unsafe extern "C" fn sk_phase_new_rayleigh(out: *mut sk_phase) -> sk_status {
     unsafe { construct(out, Ok(Phase::rayleigh())) }
 }
 
-/// Double twin of `sk_phase_rayleigh`.
+/// Double twin of `sk_phase_new_rayleigh`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_rayleigh_f64(out: *mut sk_phase_f64) -> sk_status {
+pub unsafe extern "C" fn sk_phase_new_rayleigh_f64(out: *mut sk_phase_f64) -> sk_status {
     unsafe { construct(out, Ok(Phase::rayleigh())) }
 }
 
 /// Henyey-Greenstein with asymmetry -1 < g < 1 (g > 0 forward).
 /// SK_ERR_DOMAIN for |g| >= 1, NaN or inf; SK_ERR_NULL for a NULL `out`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_hg(g: f32, out: *mut sk_phase) -> sk_status {
+pub unsafe extern "C" fn sk_phase_new_hg(g: f32, out: *mut sk_phase) -> sk_status {
     unsafe { construct(out, Phase::henyey_greenstein(g)) }
 }
 
-/// Double twin of `sk_phase_hg`.
+/// Double twin of `sk_phase_new_hg`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_hg_f64(g: f64, out: *mut sk_phase_f64) -> sk_status {
+pub unsafe extern "C" fn sk_phase_new_hg_f64(g: f64, out: *mut sk_phase_f64) -> sk_status {
     unsafe { construct(out, Phase::henyey_greenstein(g)) }
 }
 
 /// Rayleigh scattering with depolarisation factor 0 <= rho < 1 (air: about
 /// 0.028); rho = 0 is plain Rayleigh. SK_ERR_DOMAIN outside [0, 1) or NaN.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_rayleigh_depolarized(
+pub unsafe extern "C" fn sk_phase_new_rayleigh_depolarized(
     depolarization: f32,
     out: *mut sk_phase,
 ) -> sk_status {
     unsafe { construct(out, Phase::rayleigh_depolarized(depolarization)) }
 }
 
-/// Double twin of `sk_phase_rayleigh_depolarized`.
+/// Double twin of `sk_phase_new_rayleigh_depolarized`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_rayleigh_depolarized_f64(
+pub unsafe extern "C" fn sk_phase_new_rayleigh_depolarized_f64(
     depolarization: f64,
     out: *mut sk_phase_f64,
 ) -> sk_status {
@@ -62,13 +62,13 @@ pub unsafe extern "C" fn sk_phase_rayleigh_depolarized_f64(
 /// finite alpha >= 0; alpha = 1 is Cornette-Shanks, alpha = 0 is HG. Sampled
 /// exactly and accurately on the whole domain. SK_ERR_DOMAIN otherwise.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_draine(g: f32, alpha: f32, out: *mut sk_phase) -> sk_status {
+pub unsafe extern "C" fn sk_phase_new_draine(g: f32, alpha: f32, out: *mut sk_phase) -> sk_status {
     unsafe { construct(out, Phase::draine(g, alpha)) }
 }
 
-/// Double twin of `sk_phase_draine`.
+/// Double twin of `sk_phase_new_draine`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_draine_f64(
+pub unsafe extern "C" fn sk_phase_new_draine_f64(
     g: f64,
     alpha: f64,
     out: *mut sk_phase_f64,
@@ -78,24 +78,27 @@ pub unsafe extern "C" fn sk_phase_draine_f64(
 
 /// Cornette-Shanks (1992): Draine with alpha = 1; -1 < g < 1.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_cornette_shanks(g: f32, out: *mut sk_phase) -> sk_status {
+pub unsafe extern "C" fn sk_phase_new_cornette_shanks(g: f32, out: *mut sk_phase) -> sk_status {
     unsafe { construct(out, Phase::cornette_shanks(g)) }
 }
 
-/// Double twin of `sk_phase_cornette_shanks`.
+/// Double twin of `sk_phase_new_cornette_shanks`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_cornette_shanks_f64(g: f64, out: *mut sk_phase_f64) -> sk_status {
+pub unsafe extern "C" fn sk_phase_new_cornette_shanks_f64(
+    g: f64,
+    out: *mut sk_phase_f64,
+) -> sk_status {
     unsafe { construct(out, Phase::cornette_shanks(g)) }
 }
 
 /// The fog mixture (1 - w_d) HG(g_hg) + w_d Draine(g_d, alpha):
 /// |g_hg| < 1, |g_d| < 1, finite alpha >= 0, 0 <= w_d <= 1, else SK_ERR_DOMAIN.
 /// sk_phase_sample_cos inverts the mixture's CDF exactly (monotone);
-/// sk_phase_sample_cos_lobe is the paper's cheaper lobe-choice sampler.
+/// sk_phase_sample_cos_by_lobe is the paper's cheaper lobe-choice sampler.
 /// Construction tabulates seeds for the inverse (about 10 microseconds):
 /// build once per medium.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_fog(
+pub unsafe extern "C" fn sk_phase_new_fog(
     g_hg: f32,
     g_d: f32,
     alpha: f32,
@@ -105,9 +108,9 @@ pub unsafe extern "C" fn sk_phase_fog(
     unsafe { construct(out, Phase::fog(g_hg, g_d, alpha, w_d)) }
 }
 
-/// Double twin of `sk_phase_fog`.
+/// Double twin of `sk_phase_new_fog`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_fog_f64(
+pub unsafe extern "C" fn sk_phase_new_fog_f64(
     g_hg: f64,
     g_d: f64,
     alpha: f64,
@@ -124,7 +127,7 @@ pub unsafe extern "C" fn sk_phase_fog_f64(
 /// solves it by bracketed Newton steps in double, within 1.1e-15 (double)
 /// and 3e-8 (float) of 50-digit references.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_fournier_forand(
+pub unsafe extern "C" fn sk_phase_new_fournier_forand(
     n: f32,
     mu_j: f32,
     out: *mut sk_phase,
@@ -132,9 +135,9 @@ pub unsafe extern "C" fn sk_phase_fournier_forand(
     unsafe { construct(out, Phase::fournier_forand(n, mu_j)) }
 }
 
-/// Double twin of `sk_phase_fournier_forand`.
+/// Double twin of `sk_phase_new_fournier_forand`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_fournier_forand_f64(
+pub unsafe extern "C" fn sk_phase_new_fournier_forand_f64(
     n: f64,
     mu_j: f64,
     out: *mut sk_phase_f64,
@@ -146,7 +149,7 @@ pub unsafe extern "C" fn sk_phase_fournier_forand_f64(
 /// 1.8, as oceanographers specify it (nu = -ln(2 b (d90 - 1) + 1) / ln d90,
 /// d90 = 2 / (3 (n - 1)^2)); SK_ERR_DOMAIN outside the ranges.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_fournier_forand_backscatter(
+pub unsafe extern "C" fn sk_phase_new_fournier_forand_backscatter(
     b: f32,
     n: f32,
     out: *mut sk_phase,
@@ -154,9 +157,9 @@ pub unsafe extern "C" fn sk_phase_fournier_forand_backscatter(
     unsafe { construct(out, Phase::fournier_forand_backscatter(b, n)) }
 }
 
-/// Double twin of `sk_phase_fournier_forand_backscatter`.
+/// Double twin of `sk_phase_new_fournier_forand_backscatter`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_fournier_forand_backscatter_f64(
+pub unsafe extern "C" fn sk_phase_new_fournier_forand_backscatter_f64(
     b: f64,
     n: f64,
     out: *mut sk_phase_f64,
@@ -170,13 +173,17 @@ pub unsafe extern "C" fn sk_phase_fournier_forand_backscatter_f64(
 /// not). Its inverse CDF is closed form, written without cancellation:
 /// within 5e-15 (double) and 3e-8 (float) of 50-digit references.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_gegenbauer(alpha: f32, g: f32, out: *mut sk_phase) -> sk_status {
+pub unsafe extern "C" fn sk_phase_new_gegenbauer(
+    alpha: f32,
+    g: f32,
+    out: *mut sk_phase,
+) -> sk_status {
     unsafe { construct(out, Phase::gegenbauer(alpha, g)) }
 }
 
-/// Double twin of `sk_phase_gegenbauer`.
+/// Double twin of `sk_phase_new_gegenbauer`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_gegenbauer_f64(
+pub unsafe extern "C" fn sk_phase_new_gegenbauer_f64(
     alpha: f64,
     g: f64,
     out: *mut sk_phase_f64,
@@ -188,11 +195,11 @@ pub unsafe extern "C" fn sk_phase_gegenbauer_f64(
 /// |g2| < 1, 0 <= w <= 1, else SK_ERR_DOMAIN. The fog mixture with alpha =
 /// 0 (sk_phase_get_params reports SK_PHASE_FOG with g_hg = g2, g_d = g1,
 /// alpha = 0, w_d = w): sk_phase_sample_cos inverts the mixture's CDF
-/// exactly (monotone), sk_phase_sample_cos_lobe picks a lobe with the
+/// exactly (monotone), sk_phase_sample_cos_by_lobe picks a lobe with the
 /// uniform and reuses it (cheaper, not monotone). Construction takes about
 /// 10 microseconds: build once per medium.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_two_lobe_hg(
+pub unsafe extern "C" fn sk_phase_new_two_lobe_hg(
     g1: f32,
     g2: f32,
     w: f32,
@@ -201,9 +208,9 @@ pub unsafe extern "C" fn sk_phase_two_lobe_hg(
     unsafe { construct(out, Phase::two_lobe_hg(g1, g2, w)) }
 }
 
-/// Double twin of `sk_phase_two_lobe_hg`.
+/// Double twin of `sk_phase_new_two_lobe_hg`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_two_lobe_hg_f64(
+pub unsafe extern "C" fn sk_phase_new_two_lobe_hg_f64(
     g1: f64,
     g2: f64,
     w: f64,
@@ -222,13 +229,17 @@ pub unsafe extern "C" fn sk_phase_two_lobe_hg_f64(
 /// w_d = 1 - beta). SK_ERR_DOMAIN unless 0 < g < 1 and
 /// 0.6 < gamma <= 1 + g (gamma = 1 + g is HG itself).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_modified_hg(g: f32, gamma: f32, out: *mut sk_phase) -> sk_status {
+pub unsafe extern "C" fn sk_phase_new_modified_hg(
+    g: f32,
+    gamma: f32,
+    out: *mut sk_phase,
+) -> sk_status {
     unsafe { construct(out, Phase::modified_hg(g, gamma)) }
 }
 
-/// Double twin of `sk_phase_modified_hg`.
+/// Double twin of `sk_phase_new_modified_hg`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_modified_hg_f64(
+pub unsafe extern "C" fn sk_phase_new_modified_hg_f64(
     g: f64,
     gamma: f64,
     out: *mut sk_phase_f64,
@@ -236,12 +247,12 @@ pub unsafe extern "C" fn sk_phase_modified_hg_f64(
     unsafe { construct(out, Phase::modified_hg(g, gamma)) }
 }
 
-/// The modified Henyey-Greenstein function of sk_phase_modified_hg set by
+/// The modified Henyey-Greenstein function of sk_phase_new_modified_hg set by
 /// g and delta = (1 - chi_3)/(1 - chi_1): g_HG = sqrt((1 - delta (1 - g))/g),
 /// beta = g/g_HG. SK_ERR_DOMAIN unless 0 < g < 1 and
 /// 1 < delta <= 1 + g + g^2 (the top is HG itself).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_modified_hg_delta(
+pub unsafe extern "C" fn sk_phase_new_modified_hg_delta(
     g: f32,
     delta: f32,
     out: *mut sk_phase,
@@ -249,9 +260,9 @@ pub unsafe extern "C" fn sk_phase_modified_hg_delta(
     unsafe { construct(out, Phase::modified_hg_delta(g, delta)) }
 }
 
-/// Double twin of `sk_phase_modified_hg_delta`.
+/// Double twin of `sk_phase_new_modified_hg_delta`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_modified_hg_delta_f64(
+pub unsafe extern "C" fn sk_phase_new_modified_hg_delta_f64(
     g: f64,
     delta: f64,
     out: *mut sk_phase_f64,
@@ -262,10 +273,10 @@ pub unsafe extern "C" fn sk_phase_modified_hg_delta_f64(
 /// The two-lobe HG whose second lobe is isotropic,
 /// (1 - beta) HG(g_HG) + beta/(4 pi) (Prahl's "modified HG", 1988), set by
 /// g and gamma = (1 - chi_2)/(1 - chi_1): g_HG = (1 - gamma (1 - g))/g,
-/// beta = 1 - g/g_HG; built as sk_phase_two_lobe_hg(g_HG, 0, 1 - beta).
+/// beta = 1 - g/g_HG; built as sk_phase_new_two_lobe_hg(g_HG, 0, 1 - beta).
 /// SK_ERR_DOMAIN unless 0 < g < 1 and 1 < gamma <= 1 + g.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_two_lobe_hg_gamma(
+pub unsafe extern "C" fn sk_phase_new_two_lobe_hg_gamma(
     g: f32,
     gamma: f32,
     out: *mut sk_phase,
@@ -273,9 +284,9 @@ pub unsafe extern "C" fn sk_phase_two_lobe_hg_gamma(
     unsafe { construct(out, Phase::two_lobe_hg_gamma(g, gamma)) }
 }
 
-/// Double twin of `sk_phase_two_lobe_hg_gamma`.
+/// Double twin of `sk_phase_new_two_lobe_hg_gamma`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_two_lobe_hg_gamma_f64(
+pub unsafe extern "C" fn sk_phase_new_two_lobe_hg_gamma_f64(
     g: f64,
     gamma: f64,
     out: *mut sk_phase_f64,
@@ -283,11 +294,11 @@ pub unsafe extern "C" fn sk_phase_two_lobe_hg_gamma_f64(
     unsafe { construct(out, Phase::two_lobe_hg_gamma(g, gamma)) }
 }
 
-/// The two-lobe HG of sk_phase_two_lobe_hg_gamma set by g and
+/// The two-lobe HG of sk_phase_new_two_lobe_hg_gamma set by g and
 /// delta = (1 - chi_3)/(1 - chi_1): g_HG = sqrt((1 - delta (1 - g))/g).
 /// SK_ERR_DOMAIN unless 0 < g < 1 and 1 < delta <= 1 + g + g^2.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_two_lobe_hg_delta(
+pub unsafe extern "C" fn sk_phase_new_two_lobe_hg_delta(
     g: f32,
     delta: f32,
     out: *mut sk_phase,
@@ -295,9 +306,9 @@ pub unsafe extern "C" fn sk_phase_two_lobe_hg_delta(
     unsafe { construct(out, Phase::two_lobe_hg_delta(g, delta)) }
 }
 
-/// Double twin of `sk_phase_two_lobe_hg_delta`.
+/// Double twin of `sk_phase_new_two_lobe_hg_delta`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_two_lobe_hg_delta_f64(
+pub unsafe extern "C" fn sk_phase_new_two_lobe_hg_delta_f64(
     g: f64,
     delta: f64,
     out: *mut sk_phase_f64,
@@ -305,13 +316,13 @@ pub unsafe extern "C" fn sk_phase_two_lobe_hg_delta_f64(
     unsafe { construct(out, Phase::two_lobe_hg_delta(g, delta)) }
 }
 
-/// The Gegenbauer kernel (sk_phase_gegenbauer) with mean cosine
+/// The Gegenbauer kernel (sk_phase_new_gegenbauer) with mean cosine
 /// 0 < g < 1 and gamma = (1 - chi_2)/(1 - chi_1), found by root-finding
 /// on the kernel's moments in closed form (about 0.3 ms: build once). It
 /// reaches gamma in a band around HG's 1 + g, above it too (flatter than
 /// HG), e.g. 1.334 < gamma < 1.874 at g = 0.6; elsewhere SK_ERR_DOMAIN.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_gegenbauer_gamma(
+pub unsafe extern "C" fn sk_phase_new_gegenbauer_gamma(
     g: f32,
     gamma: f32,
     out: *mut sk_phase,
@@ -319,9 +330,9 @@ pub unsafe extern "C" fn sk_phase_gegenbauer_gamma(
     unsafe { construct(out, Phase::gegenbauer_gamma(g, gamma)) }
 }
 
-/// Double twin of `sk_phase_gegenbauer_gamma`.
+/// Double twin of `sk_phase_new_gegenbauer_gamma`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_gegenbauer_gamma_f64(
+pub unsafe extern "C" fn sk_phase_new_gegenbauer_gamma_f64(
     g: f64,
     gamma: f64,
     out: *mut sk_phase_f64,
@@ -330,10 +341,10 @@ pub unsafe extern "C" fn sk_phase_gegenbauer_gamma_f64(
 }
 
 /// The Gegenbauer kernel with mean cosine 0 < g < 1 and
-/// delta = (1 - chi_3)/(1 - chi_1), as sk_phase_gegenbauer_gamma (e.g.
+/// delta = (1 - chi_3)/(1 - chi_1), as sk_phase_new_gegenbauer_gamma (e.g.
 /// 1.513 < delta < 2.302 at g = 0.6); elsewhere SK_ERR_DOMAIN.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_gegenbauer_delta(
+pub unsafe extern "C" fn sk_phase_new_gegenbauer_delta(
     g: f32,
     delta: f32,
     out: *mut sk_phase,
@@ -341,9 +352,9 @@ pub unsafe extern "C" fn sk_phase_gegenbauer_delta(
     unsafe { construct(out, Phase::gegenbauer_delta(g, delta)) }
 }
 
-/// Double twin of `sk_phase_gegenbauer_delta`.
+/// Double twin of `sk_phase_new_gegenbauer_delta`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_gegenbauer_delta_f64(
+pub unsafe extern "C" fn sk_phase_new_gegenbauer_delta_f64(
     g: f64,
     delta: f64,
     out: *mut sk_phase_f64,
@@ -354,15 +365,18 @@ pub unsafe extern "C" fn sk_phase_gegenbauer_delta_f64(
 /// The fog phase function fitted to Mie scattering by water droplets of
 /// diameter 0 < d <= 50 micrometres (Jendersie & d'Eon 2023; four ranges
 /// split at 0.1, 1.5 and 5 um). SK_ERR_DOMAIN outside (0, 50] or NaN.
-/// Construction takes about 10 microseconds (see sk_phase_fog).
+/// Construction takes about 10 microseconds (see sk_phase_new_fog).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_fog_diameter(diameter_um: f32, out: *mut sk_phase) -> sk_status {
+pub unsafe extern "C" fn sk_phase_new_fog_diameter(
+    diameter_um: f32,
+    out: *mut sk_phase,
+) -> sk_status {
     unsafe { construct(out, Phase::fog_diameter(diameter_um)) }
 }
 
-/// Double twin of `sk_phase_fog_diameter`.
+/// Double twin of `sk_phase_new_fog_diameter`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_fog_diameter_f64(
+pub unsafe extern "C" fn sk_phase_new_fog_diameter_f64(
     diameter_um: f64,
     out: *mut sk_phase_f64,
 ) -> sk_status {
@@ -375,7 +389,7 @@ pub unsafe extern "C" fn sk_phase_fog_diameter_f64(
 /// 0 < diameter_um <= 50 micrometres; HG and Draine get best-fit parameters.
 /// Takes milliseconds: build once per medium. SK_ERR_DOMAIN outside the ranges.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_particle(
+pub unsafe extern "C" fn sk_phase_new_particle(
     diameter_um: f32,
     tolerance: f32,
     out: *mut sk_phase,
@@ -383,9 +397,9 @@ pub unsafe extern "C" fn sk_phase_particle(
     unsafe { construct(out, Phase::particle(diameter_um, tolerance)) }
 }
 
-/// Double twin of `sk_phase_particle`.
+/// Double twin of `sk_phase_new_particle`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_particle_f64(
+pub unsafe extern "C" fn sk_phase_new_particle_f64(
     diameter_um: f64,
     tolerance: f64,
     out: *mut sk_phase_f64,

@@ -9,13 +9,13 @@ use super::*;
 /// For every other phase the same as sk_phase_sample_cos. NaN for a NULL or
 /// unconstructed phase.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_sample_cos_lobe(p: *const sk_phase, u: f32) -> f32 {
+pub unsafe extern "C" fn sk_phase_sample_cos_by_lobe(p: *const sk_phase, u: f32) -> f32 {
     unsafe { load(p) }.map_or(f32::NAN, |ph| ph.sample_cos_by_lobe(u))
 }
 
-/// Double twin of `sk_phase_sample_cos_lobe`.
+/// Double twin of `sk_phase_sample_cos_by_lobe`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_sample_cos_lobe_f64(p: *const sk_phase_f64, u: f64) -> f64 {
+pub unsafe extern "C" fn sk_phase_sample_cos_by_lobe_f64(p: *const sk_phase_f64, u: f64) -> f64 {
     unsafe { load(p) }.map_or(f64::NAN, |ph| ph.sample_cos_by_lobe(u))
 }
 
@@ -59,7 +59,7 @@ pub unsafe extern "C" fn sk_phase_sample_cos_f64(p: *const sk_phase_f64, u: f64)
 
 /// What `sk_phase_cos_inline_sample` (include/scatterkit_inline.h) needs to
 /// draw cos theta without a call into the library: fill it with
-/// sk_phase_cos_inline_init, then treat it as read-only. For a
+/// sk_phase_cos_inline_new, then treat it as read-only. For a
 /// Henyey-Greenstein phase on x86, x86-64 and AArch64 (|g| >= 2^-10) it
 /// holds the constants of the f32 sampler's double-precision formula, so
 /// the inline function returns sk_phase_sample_cos's bits; for every other
@@ -83,7 +83,7 @@ pub struct sk_phase_cos_inline {
 /// see sk_phase_cos_inline). SK_ERR_NULL for a NULL pointer; SK_ERR_DOMAIN
 /// for an unconstructed phase. *out is written only on SK_OK.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_phase_cos_inline_init(
+pub unsafe extern "C" fn sk_phase_cos_inline_new(
     p: *const sk_phase,
     out: *mut sk_phase_cos_inline,
 ) -> sk_status {

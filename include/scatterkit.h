@@ -574,18 +574,18 @@ typedef struct {
 /*
  A phase function given by its Legendre moments chi_0 .. chi_{n-1}
  (p = sum (2l + 1) chi_l P_l / 4 pi; DISORT's and libRadtran's form),
- borrowing the caller's array, which must not change after
- sk_legendre_new. Build it with sk_legendre_new.
+ borrowing the caller's array, which must outlive it. Build it with
+ sk_legendre_new, which checks every moment and the sign of the density
+ once; a call loads it in constant time. A plain value: copy it freely;
+ its contents are private (a zeroed or never-built series gives NaN or
+ SK_ERR_DOMAIN). Moments changed after building are read as they are
+ (NaN in, NaN out), never out of bounds.
  */
 typedef struct {
     /*
-     The moments (chi_0 = 1).
+     Private storage; do not read or write.
      */
-    const float *chi;
-    /*
-     How many.
-     */
-    size_t n;
+    uint64_t opaque[8];
 } sk_legendre;
 
 /*
@@ -593,13 +593,9 @@ typedef struct {
  */
 typedef struct {
     /*
-     The moments (chi_0 = 1).
+     Private storage; do not read or write.
      */
-    const double *chi;
-    /*
-     How many.
-     */
-    size_t n;
+    uint64_t opaque[8];
 } sk_legendre_f64;
 
 /*
@@ -1939,6 +1935,98 @@ float sk_legendre_sample_cos(const sk_legendre *s, float u);
 double sk_legendre_sample_cos_f64(const sk_legendre_f64 *s, double u);
 
 /*
+ A direction about w_in (unit): cos theta from sk_legendre_sample_cos(s,
+ u1), the azimuth 2 pi u2 (clamped); writes its density (sk_legendre_pdf)
+ to pdf_out unless NULL. NaN (direction and pdf) for a NULL or never-built
+ series.
+ */
+sk_vec3 sk_legendre_sample_dir(const sk_legendre *s,
+                               sk_vec3 w_in,
+                               float u1,
+                               float u2,
+                               float *pdf_out);
+
+/*
+ Double twin of `sk_legendre_sample_dir`.
+ */
+sk_vec3_f64 sk_legendre_sample_dir_f64(const sk_legendre_f64 *s,
+                                       sk_vec3_f64 w_in,
+                                       double u1,
+                                       double u2,
+                                       double *pdf_out);
+
+/*
+ The mean cosine, chi_1 (0 for a series of one moment). NaN as
+ sk_legendre_pdf.
+ */
+float sk_legendre_mean_cosine(const sk_legendre *s);
+
+/*
+ Double twin of `sk_legendre_mean_cosine`.
+ */
+double sk_legendre_mean_cosine_f64(const sk_legendre_f64 *s);
+
+/*
+ `cos_out[i] = sk_legendre_sample_cos(s, u[i])` for `i < n`, bit for bit;
+ arrays, overlaps and statuses as sk_phase_sample_cos_n (SK_ERR_DOMAIN
+ also for a never-built series).
+ */
+sk_status sk_legendre_sample_cos_n(const sk_legendre *s, const float *u, float *cos_out, size_t n);
+
+/*
+ Double twin of `sk_legendre_sample_cos_n`.
+ */
+sk_status sk_legendre_sample_cos_n_f64(const sk_legendre_f64 *s,
+                                       const double *u,
+                                       double *cos_out,
+                                       size_t n);
+
+/*
+ Directions for n rays, structure of arrays, each bit for bit
+ sk_legendre_sample_dir's; arrays, overlaps and statuses as
+ sk_phase_sample_dir_n.
+ */
+sk_status sk_legendre_sample_dir_n(const sk_legendre *s,
+                                   const float *w_x,
+                                   const float *w_y,
+                                   const float *w_z,
+                                   const float *u1,
+                                   const float *u2,
+                                   float *out_x,
+                                   float *out_y,
+                                   float *out_z,
+                                   float *pdf_out,
+                                   size_t n);
+
+/*
+ Double twin of `sk_legendre_sample_dir_n`.
+ */
+sk_status sk_legendre_sample_dir_n_f64(const sk_legendre_f64 *s,
+                                       const double *w_x,
+                                       const double *w_y,
+                                       const double *w_z,
+                                       const double *u1,
+                                       const double *u2,
+                                       double *out_x,
+                                       double *out_y,
+                                       double *out_z,
+                                       double *pdf_out,
+                                       size_t n);
+
+/*
+ The Legendre moments chi_0 .. chi_{n-1} of the series: its own, and 0
+ past the last it holds. SK_ERR_NULL for NULL s or a NULL out with
+ n > 0; SK_ERR_DOMAIN for a never-built series; SK_ERR_SIZE if n values
+ cannot exist.
+ */
+sk_status sk_legendre_legendre_moments(const sk_legendre *s, float *out, size_t n);
+
+/*
+ Double twin of `sk_legendre_legendre_moments`.
+ */
+sk_status sk_legendre_legendre_moments_f64(const sk_legendre_f64 *s, double *out, size_t n);
+
+/*
  The number of cells of an mx*my*mz grid (pbrt-v4 uses 16*16*16); 0 for
  a zero dimension or a count that overflows size_t.
  */
@@ -2352,6 +2440,39 @@ sk_vec3_f64 sk_mixture_sample_dir_f64(const sk_mixture_f64 *m,
                                       double u1,
                                       double u2,
                                       double *pdf_out);
+
+/*
+ Directions for n rays, structure of arrays, each bit for bit
+ sk_mixture_sample_dir's (cos theta by lobe choice); arrays, overlaps and
+ statuses as sk_phase_sample_dir_n (SK_ERR_DOMAIN also for a mixture
+ sk_mixture_new did not build).
+ */
+sk_status sk_mixture_sample_dir_n(const sk_mixture *m,
+                                  const float *w_x,
+                                  const float *w_y,
+                                  const float *w_z,
+                                  const float *u1,
+                                  const float *u2,
+                                  float *out_x,
+                                  float *out_y,
+                                  float *out_z,
+                                  float *pdf_out,
+                                  size_t n);
+
+/*
+ Double twin of `sk_mixture_sample_dir_n`.
+ */
+sk_status sk_mixture_sample_dir_n_f64(const sk_mixture_f64 *m,
+                                      const double *w_x,
+                                      const double *w_y,
+                                      const double *w_z,
+                                      const double *u1,
+                                      const double *u2,
+                                      double *out_x,
+                                      double *out_y,
+                                      double *out_z,
+                                      double *pdf_out,
+                                      size_t n);
 
 /*
  The Legendre moments chi_0 .. chi_{n-1} of p into out: chi_l = <P_l(cos
@@ -3445,6 +3566,92 @@ sk_vec3_f64 sk_table_sample_dir_f64(const sk_table_f64 *t,
                                     double *pdf_out);
 
 /*
+ The CDF of the distribution sk_table_sample_cos draws from (the table's
+ own, exact for its interpolant) at cos_theta: 0 below the range the
+ table covers, 1 above. NaN for NaN or a NULL or malformed table.
+ */
+float sk_table_cdf(const sk_table *t, float cos_theta);
+
+/*
+ Double twin of `sk_table_cdf`.
+ */
+double sk_table_cdf_f64(const sk_table_f64 *t, double cos_theta);
+
+/*
+ The mean cosine of the distribution the table samples. NaN for a NULL
+ or malformed table.
+ */
+float sk_table_mean_cosine(const sk_table *t);
+
+/*
+ Double twin of `sk_table_mean_cosine`.
+ */
+double sk_table_mean_cosine_f64(const sk_table_f64 *t);
+
+/*
+ `cos_out[i] = sk_table_sample_cos(t, u[i])` for `i < n`, bit for bit.
+ `u` and `cos_out` may be the same array; other overlaps give
+ SK_ERR_OVERLAP. SK_ERR_DOMAIN if any `u[i]` is NaN or outside [0, 1];
+ SK_ERR_NULL for NULL t, or NULL arrays with n > 0; SK_ERR_SIZE for a
+ malformed table or n floats that cannot exist. On error nothing is
+ written; n = 0 is SK_OK.
+ */
+sk_status sk_table_sample_cos_n(const sk_table *t, const float *u, float *cos_out, size_t n);
+
+/*
+ Double twin of `sk_table_sample_cos_n`.
+ */
+sk_status sk_table_sample_cos_n_f64(const sk_table_f64 *t,
+                                    const double *u,
+                                    double *cos_out,
+                                    size_t n);
+
+/*
+ Directions for n rays, structure of arrays, each bit for bit
+ sk_table_sample_dir's; arrays, overlaps and statuses as
+ sk_phase_sample_dir_n (SK_ERR_SIZE for a malformed table).
+ */
+sk_status sk_table_sample_dir_n(const sk_table *t,
+                                const float *w_x,
+                                const float *w_y,
+                                const float *w_z,
+                                const float *u1,
+                                const float *u2,
+                                float *out_x,
+                                float *out_y,
+                                float *out_z,
+                                float *pdf_out,
+                                size_t n);
+
+/*
+ Double twin of `sk_table_sample_dir_n`.
+ */
+sk_status sk_table_sample_dir_n_f64(const sk_table_f64 *t,
+                                    const double *w_x,
+                                    const double *w_y,
+                                    const double *w_z,
+                                    const double *u1,
+                                    const double *u2,
+                                    double *out_x,
+                                    double *out_y,
+                                    double *out_z,
+                                    double *pdf_out,
+                                    size_t n);
+
+/*
+ The Legendre moments chi_0 .. chi_{n-1} of the distribution the table
+ samples, chi_l = <P_l(cos theta)>, by quadrature over its inverse CDF,
+ into out. SK_ERR_NULL for NULL t or a NULL out with n > 0; SK_ERR_SIZE
+ for a malformed table or n values that cannot exist.
+ */
+sk_status sk_table_legendre_moments(const sk_table *t, float *out, size_t n);
+
+/*
+ Double twin of `sk_table_legendre_moments`.
+ */
+sk_status sk_table_legendre_moments_f64(const sk_table_f64 *t, double *out, size_t n);
+
+/*
  Number of floats (or doubles) a 2-D table of k >= 1 slices of
  resolution n >= 1 needs, 2k(n + 1); 0 for n = 0, k = 0 or overflow.
  */
@@ -3559,6 +3766,95 @@ sk_vec3_f64 sk_table2d_sample_dir_f64(const sk_table2d_f64 *t,
                                       double u1,
                                       double u2,
                                       double *pdf_out);
+
+/*
+ The CDF of the distribution sk_table2d_sample_cos draws from at x, at
+ cos_theta (the blended spline's own). NaN for NaN or a NULL or
+ malformed table.
+ */
+float sk_table2d_cdf(const sk_table2d *t, float x, float cos_theta);
+
+/*
+ Double twin of `sk_table2d_cdf`.
+ */
+double sk_table2d_cdf_f64(const sk_table2d_f64 *t, double x, double cos_theta);
+
+/*
+ The mean cosine of the distribution the table samples at x. NaN for NaN
+ x or a NULL or malformed table.
+ */
+float sk_table2d_mean_cosine(const sk_table2d *t, float x);
+
+/*
+ Double twin of `sk_table2d_mean_cosine`.
+ */
+double sk_table2d_mean_cosine_f64(const sk_table2d_f64 *t, double x);
+
+/*
+ `cos_out[i] = sk_table2d_sample_cos(t, x, u[i])` for `i < n` (one x for
+ the batch), bit for bit; arrays, overlaps and statuses as
+ sk_table_sample_cos_n.
+ */
+sk_status sk_table2d_sample_cos_n(const sk_table2d *t,
+                                  float x,
+                                  const float *u,
+                                  float *cos_out,
+                                  size_t n);
+
+/*
+ Double twin of `sk_table2d_sample_cos_n`.
+ */
+sk_status sk_table2d_sample_cos_n_f64(const sk_table2d_f64 *t,
+                                      double x,
+                                      const double *u,
+                                      double *cos_out,
+                                      size_t n);
+
+/*
+ Directions for n rays at one x, structure of arrays, each bit for bit
+ sk_table2d_sample_dir's; arrays, overlaps and statuses as
+ sk_table_sample_dir_n.
+ */
+sk_status sk_table2d_sample_dir_n(const sk_table2d *t,
+                                  float x,
+                                  const float *w_x,
+                                  const float *w_y,
+                                  const float *w_z,
+                                  const float *u1,
+                                  const float *u2,
+                                  float *out_x,
+                                  float *out_y,
+                                  float *out_z,
+                                  float *pdf_out,
+                                  size_t n);
+
+/*
+ Double twin of `sk_table2d_sample_dir_n`.
+ */
+sk_status sk_table2d_sample_dir_n_f64(const sk_table2d_f64 *t,
+                                      double x,
+                                      const double *w_x,
+                                      const double *w_y,
+                                      const double *w_z,
+                                      const double *u1,
+                                      const double *u2,
+                                      double *out_x,
+                                      double *out_y,
+                                      double *out_z,
+                                      double *pdf_out,
+                                      size_t n);
+
+/*
+ The Legendre moments chi_0 .. chi_{n-1} of the distribution the table
+ samples at x, by quadrature over its inverse CDF, into out; statuses as
+ sk_table_legendre_moments.
+ */
+sk_status sk_table2d_legendre_moments(const sk_table2d *t, float x, float *out, size_t n);
+
+/*
+ Double twin of `sk_table2d_legendre_moments`.
+ */
+sk_status sk_table2d_legendre_moments_f64(const sk_table2d_f64 *t, double x, double *out, size_t n);
 
 /*
  Delta (Woodcock) tracking: a free-flight distance through the medium.

@@ -12,6 +12,38 @@ unsafe extern "C" fn grid_medium(ctx: *mut core::ffi::c_void, p: sk_vec3) -> sk_
     unsafe { sk_grid_coefficients(ctx as *const sk_grid, p) }
 }
 
+/// A batch over the fuzzed floats as uniforms: OK with every cosine in
+/// [-1, 1], or DOMAIN for a uniform outside [0, 1].
+fn batch(s: sk_status, outs: &[f32]) {
+    match s {
+        sk_status::SK_OK => assert!(outs.iter().all(|c| c.abs() <= 1.0), "{outs:?}"),
+        s => assert_eq!(s, sk_status::SK_ERR_DOMAIN),
+    }
+}
+
+/// A direction batch with the fuzzed floats as directions and uniforms:
+/// OK or DOMAIN (a uniform outside [0, 1]); never a crash.
+fn batch_dirs(
+    f: &[f32],
+    run: impl Fn([*const f32; 3], *const f32, [*mut f32; 3], *mut f32) -> sk_status,
+) {
+    let n = f.len();
+    let mut o = [vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]];
+    let mut pdf = vec![0.0f32; n];
+    let w = [f.as_ptr(); 3];
+    let [a, b, c] = &mut o;
+    let s = run(
+        w,
+        f.as_ptr(),
+        [a.as_mut_ptr(), b.as_mut_ptr(), c.as_mut_ptr()],
+        pdf.as_mut_ptr(),
+    );
+    assert!(
+        matches!(s, sk_status::SK_OK | sk_status::SK_ERR_DOMAIN),
+        "{s:?}"
+    );
+}
+
 /// Tracking arguments through grid `g` over `[0, t_max]`.
 fn args(g: &sk_grid, o: sk_vec3, d: sk_vec3, t_max: f32, rng: &mut sk_rng) -> sk_track_args {
     sk_track_args {
@@ -126,6 +158,9 @@ fuzz_target!(|data: &[u8]| {
                     s => assert_eq!(s, sk_status::SK_ERR_DOMAIN),
                 }
             }
+            batch_dirs(&f, |w, u, o, pdf| {
+                sk_mixture_sample_dir_n(&mix, w[0], w[1], w[2], u, u, o[0], o[1], o[2], pdf, n)
+            });
             let d = sk_mixture_pdf(&mix, x(8).clamp(-1.0, 1.0));
             assert!(x(8).is_nan() || d >= 0.0, "{d}");
             let mut chi = [0.0f32; 4];
@@ -141,6 +176,19 @@ fuzz_target!(|data: &[u8]| {
             let lg = lg.assume_init();
             let mu = sk_legendre_sample_cos(&lg, x(13));
             assert!((x(13).is_nan() && mu.is_nan()) || mu.abs() <= 1.0, "{mu}");
+            let mut outs = vec![0.0f32; n];
+            batch(
+                sk_legendre_sample_cos_n(&lg, f.as_ptr(), outs.as_mut_ptr(), n),
+                &outs,
+            );
+            batch_dirs(&f, |w, u, o, pdf| {
+                sk_legendre_sample_dir_n(&lg, w[0], w[1], w[2], u, u, o[0], o[1], o[2], pdf, n)
+            });
+            let mut chi4 = [0.0f32; 6];
+            assert_eq!(
+                sk_legendre_legendre_moments(&lg, chi4.as_mut_ptr(), 6),
+                sk_status::SK_OK
+            );
         }
         // The fuzzed floats as a 2-D table's data: refused, or a cosine in
         // [-1, 1] (NaN only for NaN x or u) and a density >= 0 (or NaN).
@@ -157,6 +205,16 @@ fuzz_target!(|data: &[u8]| {
             );
             let d = sk_table2d_pdf(&t2, x(2), x(4));
             assert!(d.is_nan() || d >= 0.0, "{d}");
+            let c = sk_table2d_cdf(&t2, x(2), x(4));
+            assert!(c.is_nan() || (0.0..=1.0).contains(&c), "{c}");
+            let mut outs = vec![0.0f32; n];
+            let s = sk_table2d_sample_cos_n(&t2, x(2), f.as_ptr(), outs.as_mut_ptr(), n);
+            if !x(2).is_nan() {
+                batch(s, &outs);
+            }
+            batch_dirs(&f, |w, u, o, pdf| {
+                sk_table2d_sample_dir_n(&t2, x(2), w[0], w[1], w[2], u, u, o[0], o[1], o[2], pdf, n)
+            });
         }
         // An albedo curve of a fuzzed HG layer, a few paths: OK or DOMAIN;
         // then albedos in [0, 1] (NaN only outside) and the inverse.
@@ -168,14 +226,26 @@ fuzz_target!(|data: &[u8]| {
                 next_u64: Some(next),
             };
             let mut curve = core::mem::MaybeUninit::<sk_albedo_curve_f64>::uninit();
-            let s = sk_albedo_curve_new_f64(&hgd, x(1) as f64, x(2) as f64, (word(5) % 8) as u64, &mut rng2, curve.as_mut_ptr());
-            assert!(matches!(s, sk_status::SK_OK | sk_status::SK_ERR_DOMAIN), "{s:?}");
+            let s = sk_albedo_curve_new_f64(
+                &hgd,
+                x(1) as f64,
+                x(2) as f64,
+                (word(5) % 8) as u64,
+                &mut rng2,
+                curve.as_mut_ptr(),
+            );
+            assert!(
+                matches!(s, sk_status::SK_OK | sk_status::SK_ERR_DOMAIN),
+                "{s:?}"
+            );
             if s == sk_status::SK_OK {
                 let curve = curve.assume_init();
                 let a = sk_albedo_curve_albedo_f64(&curve, x(3) as f64);
                 assert!(a.is_nan() || (0.0..=1.0).contains(&a), "{a}");
                 let mut w = 0.0f64;
-                if sk_albedo_curve_single_scattering_albedo_f64(&curve, x(4) as f64, &mut w) == sk_status::SK_OK {
+                if sk_albedo_curve_single_scattering_albedo_f64(&curve, x(4) as f64, &mut w)
+                    == sk_status::SK_OK
+                {
                     assert!((0.0..=1.0).contains(&w), "{w}");
                 }
             }
@@ -317,6 +387,20 @@ fuzz_target!(|data: &[u8]| {
         if s == sk_status::SK_OK {
             let c = sk_table_sample_cos(&t, x(4));
             assert!(c.is_nan() || c.abs() <= 1.0);
+            let c = sk_table_cdf(&t, x(4));
+            assert!(c.is_nan() || (0.0..=1.0).contains(&c), "{c}");
+            let mut outs = vec![0.0f32; n];
+            batch(
+                sk_table_sample_cos_n(&t, f.as_ptr(), outs.as_mut_ptr(), n),
+                &outs,
+            );
+            batch_dirs(&f, |w, u, o, pdf| {
+                sk_table_sample_dir_n(&t, w[0], w[1], w[2], u, u, o[0], o[1], o[2], pdf, n)
+            });
+            let mut chi = [0.0f32; 4];
+            if sk_table_legendre_moments(&t, chi.as_mut_ptr(), 4) == sk_status::SK_OK {
+                assert!(chi.iter().all(|c| c.abs() <= 1.0 + 1e-3), "{chi:?}");
+            }
         }
         // Homogeneous media with arbitrary channels.
         let mut w = vec![0.0f32; m];
@@ -338,7 +422,13 @@ fuzz_target!(|data: &[u8]| {
         if (nx as usize) * (ny as usize) <= n
             && sk_grid_new(f.as_ptr(), nx, ny, 1, x(20), x(21), &mut g) == sk_status::SK_OK
         {
-            let mut a = args(&g, v3(x(22), 0.5, 0.5), v3(1.0, x(23), 0.0), x(24), &mut rng);
+            let mut a = args(
+                &g,
+                v3(x(22), 0.5, 0.5),
+                v3(1.0, x(23), 0.0),
+                x(24),
+                &mut rng,
+            );
             let mut r = core::mem::MaybeUninit::<sk_track_result>::uninit();
             if sk_ratio_track(&a, r.as_mut_ptr()) == sk_status::SK_OK {
                 let tr = r.assume_init().tr;
@@ -357,12 +447,26 @@ fuzz_target!(|data: &[u8]| {
             let (mx, my, mz) = (1 + word(9) % 4, 1 + word(10) % 4, 1 + word(11) % 4);
             let mut maj = core::mem::MaybeUninit::<sk_majorants>::uninit();
             let null = core::ptr::null_mut();
-            if sk_majorants_new_from_grid(&g, mx, my, mz, store.as_mut_ptr(), null, 64, maj.as_mut_ptr())
-                == sk_status::SK_OK
+            if sk_majorants_new_from_grid(
+                &g,
+                mx,
+                my,
+                mz,
+                store.as_mut_ptr(),
+                null,
+                64,
+                maj.as_mut_ptr(),
+            ) == sk_status::SK_OK
             {
                 let maj = maj.assume_init();
                 let budget = word(12) % 5000;
-                a = args(&g, v3(x(28), x(29), 0.25), v3(x(30), 1.0, x(31)), x(32), &mut rng);
+                a = args(
+                    &g,
+                    v3(x(28), x(29), 0.25),
+                    v3(x(30), 1.0, x(31)),
+                    x(32),
+                    &mut rng,
+                );
                 a.medium.majorants = &maj;
                 a.budget = budget;
                 let cap = if budget == 0 { 1 << 20 } else { budget };
@@ -372,7 +476,10 @@ fuzz_target!(|data: &[u8]| {
                 }
                 if sk_delta_track(&a, r.as_mut_ptr()) == sk_status::SK_OK {
                     let t = r.assume_init();
-                    assert!(t.t >= 0.0 && (t.event as u32) <= 2 && t.steps <= cap, "{t:?}");
+                    assert!(
+                        t.t >= 0.0 && (t.event as u32) <= 2 && t.steps <= cap,
+                        "{t:?}"
+                    );
                 }
                 // The unbiased ray marchers (power series, telescoping)
                 // with a fuzzed step count (0: the library's): a finite
@@ -445,7 +552,10 @@ fuzz_target!(|data: &[u8]| {
                     a.medium.majorants = &ext;
                     if sk_residual_ratio_track(&a, r.as_mut_ptr()) == sk_status::SK_OK {
                         let r = r.assume_init();
-                        assert!((0.0..=1.0 + 1e-5).contains(&r.tr) && r.steps <= cap, "{r:?}");
+                        assert!(
+                            (0.0..=1.0 + 1e-5).contains(&r.tr) && r.steps <= cap,
+                            "{r:?}"
+                        );
                     }
                 }
             }

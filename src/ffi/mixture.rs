@@ -3,6 +3,7 @@
 use super::phase::{PhaseStore, load};
 use super::slot::{self, Slot};
 use super::table::{TableStore, load_table};
+use super::verbs;
 use super::{
     CVec, map_arrays, sk_phase, sk_phase_f64, sk_status, sk_table, sk_table_f64, sk_vec3,
     sk_vec3_f64, write_result,
@@ -398,4 +399,66 @@ pub unsafe extern "C" fn sk_mixture_sample_dir_f64(
     pdf_out: *mut f64,
 ) -> sk_vec3_f64 {
     unsafe { sample_dir(m, w_in, (u1, u2), pdf_out) }
+}
+
+#[allow(clippy::too_many_arguments)]
+unsafe fn sample_dir_n<S: MixStore>(
+    m: *const S,
+    w: [*const S::T; 3],
+    (u1, u2): (*const S::T, *const S::T),
+    out: [*mut S::T; 3],
+    pdf_out: *mut S::T,
+    n: usize,
+) -> sk_status {
+    match unsafe { mixture_at(m) } {
+        Ok(mix) => unsafe {
+            verbs::dir_n((w, u1, u2), (out, pdf_out), n, |w_in, a, b| {
+                mix.sample_dir_by_lobe(w_in, a, b)
+            })
+        },
+        Err(e) => e,
+    }
+}
+
+/// Directions for n rays, structure of arrays, each bit for bit
+/// sk_mixture_sample_dir's (cos theta by lobe choice); arrays, overlaps and
+/// statuses as sk_phase_sample_dir_n (SK_ERR_DOMAIN also for a mixture
+/// sk_mixture_new did not build).
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_mixture_sample_dir_n(
+    m: *const sk_mixture,
+    w_x: *const f32,
+    w_y: *const f32,
+    w_z: *const f32,
+    u1: *const f32,
+    u2: *const f32,
+    out_x: *mut f32,
+    out_y: *mut f32,
+    out_z: *mut f32,
+    pdf_out: *mut f32,
+    n: usize,
+) -> sk_status {
+    let (w, out) = ([w_x, w_y, w_z], [out_x, out_y, out_z]);
+    unsafe { sample_dir_n(m, w, (u1, u2), out, pdf_out, n) }
+}
+
+/// Double twin of `sk_mixture_sample_dir_n`.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_mixture_sample_dir_n_f64(
+    m: *const sk_mixture_f64,
+    w_x: *const f64,
+    w_y: *const f64,
+    w_z: *const f64,
+    u1: *const f64,
+    u2: *const f64,
+    out_x: *mut f64,
+    out_y: *mut f64,
+    out_z: *mut f64,
+    pdf_out: *mut f64,
+    n: usize,
+) -> sk_status {
+    let (w, out) = ([w_x, w_y, w_z], [out_x, out_y, out_z]);
+    unsafe { sample_dir_n(m, w, (u1, u2), out, pdf_out, n) }
 }

@@ -46,6 +46,7 @@ mod spectral_phase;
 mod surface;
 mod table;
 mod table2d;
+mod verbs;
 // Declared last: its entry points follow the others in the header.
 mod track;
 

@@ -1,6 +1,7 @@
 //! Tables over caller-owned memory.
 
 use super::phase::{PhaseStore, load};
+use super::verbs;
 use super::{
     CVec, overlaps_len, sk_status, sk_vec3, sk_vec3_f64, slice_in, slice_out, write_result,
 };
@@ -333,4 +334,172 @@ pub unsafe extern "C" fn sk_table_sample_dir_f64(
     pdf_out: *mut f64,
 ) -> sk_vec3_f64 {
     unsafe { sample_dir(t, w_in, u1, u2, pdf_out) }
+}
+
+/// The table behind `t` for a batch: `SK_ERR_NULL` for NULL, `SK_ERR_SIZE`
+/// for malformed fields (as the constructors report a short buffer).
+unsafe fn table_for_batch<'a, S: TableStore>(t: *const S) -> Result<Table<'a, S::T>, sk_status> {
+    if t.is_null() {
+        return Err(sk_status::SK_ERR_NULL);
+    }
+    unsafe { load_table(t) }.ok_or(sk_status::SK_ERR_SIZE)
+}
+
+unsafe fn sample_cos_n<S: TableStore>(
+    t: *const S,
+    u: *const S::T,
+    out: *mut S::T,
+    n: usize,
+) -> sk_status {
+    match unsafe { table_for_batch(t) } {
+        Ok(table) => unsafe { verbs::cos_n(u, out, n, |v| table.sample_cos(v)) },
+        Err(e) => e,
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+unsafe fn sample_dir_n<S: TableStore>(
+    t: *const S,
+    w: [*const S::T; 3],
+    (u1, u2): (*const S::T, *const S::T),
+    out: [*mut S::T; 3],
+    pdf_out: *mut S::T,
+    n: usize,
+) -> sk_status {
+    match unsafe { table_for_batch(t) } {
+        Ok(table) => unsafe {
+            verbs::dir_n((w, u1, u2), (out, pdf_out), n, |w_in, a, b| {
+                table.sample_dir(w_in, a, b)
+            })
+        },
+        Err(e) => e,
+    }
+}
+
+unsafe fn moments<S: TableStore>(t: *const S, out: *mut S::T, n: usize) -> sk_status {
+    match unsafe { table_for_batch(t) } {
+        Ok(table) => unsafe {
+            verbs::moments(out, n, |u| table.sample_cos(S::T::from_f64(u)).to_f64())
+        },
+        Err(e) => e,
+    }
+}
+
+/// The CDF of the distribution sk_table_sample_cos draws from (the table's
+/// own, exact for its interpolant) at cos_theta: 0 below the range the
+/// table covers, 1 above. NaN for NaN or a NULL or malformed table.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_cdf(t: *const sk_table, cos_theta: f32) -> f32 {
+    unsafe { load_table(t) }.map_or(f32::NAN, |table| table.cdf(cos_theta))
+}
+
+/// Double twin of `sk_table_cdf`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_cdf_f64(t: *const sk_table_f64, cos_theta: f64) -> f64 {
+    unsafe { load_table(t) }.map_or(f64::NAN, |table| table.cdf(cos_theta))
+}
+
+/// The mean cosine of the distribution the table samples. NaN for a NULL
+/// or malformed table.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_mean_cosine(t: *const sk_table) -> f32 {
+    unsafe { load_table(t) }.map_or(f32::NAN, |table| table.mean_cosine())
+}
+
+/// Double twin of `sk_table_mean_cosine`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_mean_cosine_f64(t: *const sk_table_f64) -> f64 {
+    unsafe { load_table(t) }.map_or(f64::NAN, |table| table.mean_cosine())
+}
+
+/// `cos_out[i] = sk_table_sample_cos(t, u[i])` for `i < n`, bit for bit.
+/// `u` and `cos_out` may be the same array; other overlaps give
+/// SK_ERR_OVERLAP. SK_ERR_DOMAIN if any `u[i]` is NaN or outside [0, 1];
+/// SK_ERR_NULL for NULL t, or NULL arrays with n > 0; SK_ERR_SIZE for a
+/// malformed table or n floats that cannot exist. On error nothing is
+/// written; n = 0 is SK_OK.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_sample_cos_n(
+    t: *const sk_table,
+    u: *const f32,
+    cos_out: *mut f32,
+    n: usize,
+) -> sk_status {
+    unsafe { sample_cos_n(t, u, cos_out, n) }
+}
+
+/// Double twin of `sk_table_sample_cos_n`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_sample_cos_n_f64(
+    t: *const sk_table_f64,
+    u: *const f64,
+    cos_out: *mut f64,
+    n: usize,
+) -> sk_status {
+    unsafe { sample_cos_n(t, u, cos_out, n) }
+}
+
+/// Directions for n rays, structure of arrays, each bit for bit
+/// sk_table_sample_dir's; arrays, overlaps and statuses as
+/// sk_phase_sample_dir_n (SK_ERR_SIZE for a malformed table).
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_table_sample_dir_n(
+    t: *const sk_table,
+    w_x: *const f32,
+    w_y: *const f32,
+    w_z: *const f32,
+    u1: *const f32,
+    u2: *const f32,
+    out_x: *mut f32,
+    out_y: *mut f32,
+    out_z: *mut f32,
+    pdf_out: *mut f32,
+    n: usize,
+) -> sk_status {
+    let (w, out) = ([w_x, w_y, w_z], [out_x, out_y, out_z]);
+    unsafe { sample_dir_n(t, w, (u1, u2), out, pdf_out, n) }
+}
+
+/// Double twin of `sk_table_sample_dir_n`.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_table_sample_dir_n_f64(
+    t: *const sk_table_f64,
+    w_x: *const f64,
+    w_y: *const f64,
+    w_z: *const f64,
+    u1: *const f64,
+    u2: *const f64,
+    out_x: *mut f64,
+    out_y: *mut f64,
+    out_z: *mut f64,
+    pdf_out: *mut f64,
+    n: usize,
+) -> sk_status {
+    let (w, out) = ([w_x, w_y, w_z], [out_x, out_y, out_z]);
+    unsafe { sample_dir_n(t, w, (u1, u2), out, pdf_out, n) }
+}
+
+/// The Legendre moments chi_0 .. chi_{n-1} of the distribution the table
+/// samples, chi_l = <P_l(cos theta)>, by quadrature over its inverse CDF,
+/// into out. SK_ERR_NULL for NULL t or a NULL out with n > 0; SK_ERR_SIZE
+/// for a malformed table or n values that cannot exist.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_legendre_moments(
+    t: *const sk_table,
+    out: *mut f32,
+    n: usize,
+) -> sk_status {
+    unsafe { moments(t, out, n) }
+}
+
+/// Double twin of `sk_table_legendre_moments`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table_legendre_moments_f64(
+    t: *const sk_table_f64,
+    out: *mut f64,
+    n: usize,
+) -> sk_status {
+    unsafe { moments(t, out, n) }
 }

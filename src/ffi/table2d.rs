@@ -1,6 +1,7 @@
 //! 2-D tables (cos theta x a second variable) over caller-owned memory.
 
 use super::phase::{PhaseStore, load};
+use super::verbs;
 use super::{CVec, sk_status, sk_vec3, sk_vec3_f64, slice_in, slice_out, write_result};
 use crate::error::Error;
 use crate::math::geometry::Vec3;
@@ -302,4 +303,182 @@ pub unsafe extern "C" fn sk_table2d_sample_dir_f64(
     pdf_out: *mut f64,
 ) -> sk_vec3_f64 {
     unsafe { sample_dir(t, x, w_in, u1, u2, pdf_out) }
+}
+
+/// The table behind `t` for a batch: `SK_ERR_NULL` for NULL, `SK_ERR_SIZE`
+/// for malformed fields.
+unsafe fn table_for_batch<'a, S: Table2dStore>(
+    t: *const S,
+) -> Result<Table2d<'a, S::T>, sk_status> {
+    if t.is_null() {
+        return Err(sk_status::SK_ERR_NULL);
+    }
+    unsafe { load2d(t) }.ok_or(sk_status::SK_ERR_SIZE)
+}
+
+unsafe fn sample_cos_n<S: Table2dStore>(
+    t: *const S,
+    x: S::T,
+    u: *const S::T,
+    out: *mut S::T,
+    n: usize,
+) -> sk_status {
+    match unsafe { table_for_batch(t) } {
+        Ok(table) => unsafe { verbs::cos_n(u, out, n, |v| table.sample_cos(x, v)) },
+        Err(e) => e,
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+unsafe fn sample_dir_n<S: Table2dStore>(
+    t: *const S,
+    x: S::T,
+    w: [*const S::T; 3],
+    (u1, u2): (*const S::T, *const S::T),
+    out: [*mut S::T; 3],
+    pdf_out: *mut S::T,
+    n: usize,
+) -> sk_status {
+    match unsafe { table_for_batch(t) } {
+        Ok(table) => unsafe {
+            verbs::dir_n((w, u1, u2), (out, pdf_out), n, |w_in, a, b| {
+                table.sample_dir(x, w_in, a, b)
+            })
+        },
+        Err(e) => e,
+    }
+}
+
+unsafe fn moments<S: Table2dStore>(t: *const S, x: S::T, out: *mut S::T, n: usize) -> sk_status {
+    match unsafe { table_for_batch(t) } {
+        Ok(table) => unsafe {
+            verbs::moments(out, n, |u| table.sample_cos(x, S::T::from_f64(u)).to_f64())
+        },
+        Err(e) => e,
+    }
+}
+
+/// The CDF of the distribution sk_table2d_sample_cos draws from at x, at
+/// cos_theta (the blended spline's own). NaN for NaN or a NULL or
+/// malformed table.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table2d_cdf(t: *const sk_table2d, x: f32, cos_theta: f32) -> f32 {
+    unsafe { load2d(t) }.map_or(f32::NAN, |t| t.cdf(x, cos_theta))
+}
+
+/// Double twin of `sk_table2d_cdf`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table2d_cdf_f64(
+    t: *const sk_table2d_f64,
+    x: f64,
+    cos_theta: f64,
+) -> f64 {
+    unsafe { load2d(t) }.map_or(f64::NAN, |t| t.cdf(x, cos_theta))
+}
+
+/// The mean cosine of the distribution the table samples at x. NaN for NaN
+/// x or a NULL or malformed table.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table2d_mean_cosine(t: *const sk_table2d, x: f32) -> f32 {
+    unsafe { load2d(t) }.map_or(f32::NAN, |t| t.mean_cosine(x))
+}
+
+/// Double twin of `sk_table2d_mean_cosine`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table2d_mean_cosine_f64(t: *const sk_table2d_f64, x: f64) -> f64 {
+    unsafe { load2d(t) }.map_or(f64::NAN, |t| t.mean_cosine(x))
+}
+
+/// `cos_out[i] = sk_table2d_sample_cos(t, x, u[i])` for `i < n` (one x for
+/// the batch), bit for bit; arrays, overlaps and statuses as
+/// sk_table_sample_cos_n.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table2d_sample_cos_n(
+    t: *const sk_table2d,
+    x: f32,
+    u: *const f32,
+    cos_out: *mut f32,
+    n: usize,
+) -> sk_status {
+    unsafe { sample_cos_n(t, x, u, cos_out, n) }
+}
+
+/// Double twin of `sk_table2d_sample_cos_n`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table2d_sample_cos_n_f64(
+    t: *const sk_table2d_f64,
+    x: f64,
+    u: *const f64,
+    cos_out: *mut f64,
+    n: usize,
+) -> sk_status {
+    unsafe { sample_cos_n(t, x, u, cos_out, n) }
+}
+
+/// Directions for n rays at one x, structure of arrays, each bit for bit
+/// sk_table2d_sample_dir's; arrays, overlaps and statuses as
+/// sk_table_sample_dir_n.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_table2d_sample_dir_n(
+    t: *const sk_table2d,
+    x: f32,
+    w_x: *const f32,
+    w_y: *const f32,
+    w_z: *const f32,
+    u1: *const f32,
+    u2: *const f32,
+    out_x: *mut f32,
+    out_y: *mut f32,
+    out_z: *mut f32,
+    pdf_out: *mut f32,
+    n: usize,
+) -> sk_status {
+    let (w, out) = ([w_x, w_y, w_z], [out_x, out_y, out_z]);
+    unsafe { sample_dir_n(t, x, w, (u1, u2), out, pdf_out, n) }
+}
+
+/// Double twin of `sk_table2d_sample_dir_n`.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_table2d_sample_dir_n_f64(
+    t: *const sk_table2d_f64,
+    x: f64,
+    w_x: *const f64,
+    w_y: *const f64,
+    w_z: *const f64,
+    u1: *const f64,
+    u2: *const f64,
+    out_x: *mut f64,
+    out_y: *mut f64,
+    out_z: *mut f64,
+    pdf_out: *mut f64,
+    n: usize,
+) -> sk_status {
+    let (w, out) = ([w_x, w_y, w_z], [out_x, out_y, out_z]);
+    unsafe { sample_dir_n(t, x, w, (u1, u2), out, pdf_out, n) }
+}
+
+/// The Legendre moments chi_0 .. chi_{n-1} of the distribution the table
+/// samples at x, by quadrature over its inverse CDF, into out; statuses as
+/// sk_table_legendre_moments.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table2d_legendre_moments(
+    t: *const sk_table2d,
+    x: f32,
+    out: *mut f32,
+    n: usize,
+) -> sk_status {
+    unsafe { moments(t, x, out, n) }
+}
+
+/// Double twin of `sk_table2d_legendre_moments`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_table2d_legendre_moments_f64(
+    t: *const sk_table2d_f64,
+    x: f64,
+    out: *mut f64,
+    n: usize,
+) -> sk_status {
+    unsafe { moments(t, x, out, n) }
 }

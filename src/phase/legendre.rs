@@ -62,6 +62,11 @@ impl<'a, T: Real> LegendreSeries<'a, T> {
         Ok(LegendreSeries { chi })
     }
 
+    /// The moments `χ_0 … χ_L` the series holds.
+    pub fn moments(&self) -> &'a [T] {
+        self.chi
+    }
+
     /// The first of `64 (L + 1) + 1` evenly spaced cosines where the
     /// density is negative, or `None`.
     pub fn check(&self) -> Option<Negative> {

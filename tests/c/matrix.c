@@ -1689,6 +1689,205 @@ static void mie_tables(const sk_mie_f64 *sphere) {
     CHECK(sk_mie_tabulate_f64(sphere, c, c + 1, 100) == SK_ERR_OVERLAP);
 }
 
+/* The verbs every phase-like handle speaks: each batch is bit for bit its
+ * scalar call, in place too; bad uniforms, overlaps, NULLs and sizes give
+ * their statuses with nothing written. One adapter per handle, float. */
+typedef struct {
+    const char *name;
+    const void *h;
+    float (*cos)(const void *h, float u);
+    sk_status (*cos_n)(const void *h, const float *u, float *out, size_t n);
+    sk_vec3 (*dir)(const void *h, sk_vec3 w, float u1, float u2, float *pdf);
+    sk_status (*dir_n)(const void *h, const float *wx, const float *wy, const float *wz, const float *u1, const float *u2,
+                       float *ox, float *oy, float *oz, float *pdf, size_t n);
+} verbs32;
+
+static float tab_cos(const void *h, float u) { return sk_table_sample_cos((const sk_table *)h, u); }
+static sk_status tab_cos_n(const void *h, const float *u, float *o, size_t n) { return sk_table_sample_cos_n((const sk_table *)h, u, o, n); }
+static sk_vec3 tab_dir(const void *h, sk_vec3 w, float a, float b, float *pdf) { return sk_table_sample_dir((const sk_table *)h, w, a, b, pdf); }
+static sk_status tab_dir_n(const void *h, const float *wx, const float *wy, const float *wz, const float *a, const float *b, float *ox,
+                           float *oy, float *oz, float *pdf, size_t n) {
+    return sk_table_sample_dir_n((const sk_table *)h, wx, wy, wz, a, b, ox, oy, oz, pdf, n);
+}
+static float t2_cos(const void *h, float u) { return sk_table2d_sample_cos((const sk_table2d *)h, 0.37f, u); }
+static sk_status t2_cos_n(const void *h, const float *u, float *o, size_t n) { return sk_table2d_sample_cos_n((const sk_table2d *)h, 0.37f, u, o, n); }
+static sk_vec3 t2_dir(const void *h, sk_vec3 w, float a, float b, float *pdf) { return sk_table2d_sample_dir((const sk_table2d *)h, 0.37f, w, a, b, pdf); }
+static sk_status t2_dir_n(const void *h, const float *wx, const float *wy, const float *wz, const float *a, const float *b, float *ox,
+                          float *oy, float *oz, float *pdf, size_t n) {
+    return sk_table2d_sample_dir_n((const sk_table2d *)h, 0.37f, wx, wy, wz, a, b, ox, oy, oz, pdf, n);
+}
+static float lg_cos(const void *h, float u) { return sk_legendre_sample_cos((const sk_legendre *)h, u); }
+static sk_status lg_cos_n(const void *h, const float *u, float *o, size_t n) { return sk_legendre_sample_cos_n((const sk_legendre *)h, u, o, n); }
+static sk_vec3 lg_dir(const void *h, sk_vec3 w, float a, float b, float *pdf) { return sk_legendre_sample_dir((const sk_legendre *)h, w, a, b, pdf); }
+static sk_status lg_dir_n(const void *h, const float *wx, const float *wy, const float *wz, const float *a, const float *b, float *ox,
+                          float *oy, float *oz, float *pdf, size_t n) {
+    return sk_legendre_sample_dir_n((const sk_legendre *)h, wx, wy, wz, a, b, ox, oy, oz, pdf, n);
+}
+static float mx_cos(const void *h, float u) { return sk_mixture_sample_cos((const sk_mixture *)h, u); }
+static sk_status mx_cos_n(const void *h, const float *u, float *o, size_t n) { return sk_mixture_sample_cos_n((const sk_mixture *)h, u, o, n); }
+static sk_vec3 mx_dir(const void *h, sk_vec3 w, float a, float b, float *pdf) { return sk_mixture_sample_dir((const sk_mixture *)h, w, a, b, pdf); }
+static sk_status mx_dir_n(const void *h, const float *wx, const float *wy, const float *wz, const float *a, const float *b, float *ox,
+                          float *oy, float *oz, float *pdf, size_t n) {
+    return sk_mixture_sample_dir_n((const sk_mixture *)h, wx, wy, wz, a, b, ox, oy, oz, pdf, n);
+}
+
+static int same_bits(float a, float b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+static void check_verbs(const verbs32 *v, const void *zeroed) {
+    enum { N = 9 };
+    const float us[N] = {0.0f, 1e-7f, 0.1f, 0.25f, 0.5f, 0.7f, 0.9f, 0.999f, 1.0f};
+    float u[N], c[N], wx[N], wy[N], wz[N], ox[N], oy[N], oz[N], pdf[N], big[N + 1];
+    int i, k;
+    for (k = 0; k < N; k++) {
+        float s = sinf(0.7f * k + 0.3f), t = cosf(0.7f * k + 0.3f);
+        wx[k] = s * 0.6f, wy[k] = s * 0.8f, wz[k] = t;
+        u[k] = us[k];
+    }
+    i = 0;
+    /* Bit for bit the scalar calls; in place too. */
+    CHECK(v->cos_n(v->h, u, c, N) == SK_OK);
+    for (k = 0; k < N; k++) CHECK(same_bits(c[k], v->cos(v->h, u[k])));
+    memcpy(big, u, sizeof u);
+    CHECK(v->cos_n(v->h, big, big, N) == SK_OK && memcmp(big, c, sizeof c) == 0);
+    CHECK(v->dir_n(v->h, wx, wy, wz, u, us, ox, oy, oz, pdf, N) == SK_OK);
+    for (k = 0; k < N; k++) {
+        float p;
+        sk_vec3 w = {wx[k], wy[k], wz[k]}, d = v->dir(v->h, w, u[k], us[k], &p);
+        CHECK(same_bits(d.x, ox[k]) && same_bits(d.y, oy[k]) && same_bits(d.z, oz[k]) && same_bits(p, pdf[k]));
+    }
+    /* Bad uniforms: DOMAIN, nothing written. */
+    for (i = 0; i < NS; i++) {
+        int ok = FS[i] >= 0.0f && FS[i] <= 1.0f;
+        memcpy(big, u, sizeof u);
+        big[3] = FS[i];
+        c[3] = 7.0f;
+        CHECK(v->cos_n(v->h, big, c, N) == (ok ? SK_OK : SK_ERR_DOMAIN) && (ok || c[3] == 7.0f));
+        ox[0] = 7.0f;
+        CHECK(v->dir_n(v->h, wx, wy, wz, u, big, ox, oy, oz, NULL, N) == (ok ? SK_OK : SK_ERR_DOMAIN) && (ok || ox[0] == 7.0f));
+    }
+    i = 0;
+    /* Overlaps, NULLs, sizes, never-built handles. */
+    memcpy(big, u, sizeof u);
+    CHECK(v->cos_n(v->h, big, big + 1, 4) == SK_ERR_OVERLAP);
+    CHECK(v->dir_n(v->h, wx, wy, wz, u, u, ox, ox, oz, pdf, N) == SK_ERR_OVERLAP);
+    CHECK(v->dir_n(v->h, big, wy, wz, u, u, big + 1, oy, oz, pdf, 4) == SK_ERR_OVERLAP);
+    CHECK(v->cos_n(v->h, NULL, c, N) == SK_ERR_NULL && v->cos_n(v->h, u, NULL, N) == SK_ERR_NULL);
+    CHECK(v->cos_n(v->h, NULL, NULL, 0) == SK_OK && v->cos_n(v->h, u, c, SIZE_MAX) == SK_ERR_SIZE);
+    CHECK(v->dir_n(v->h, NULL, wy, wz, u, u, ox, oy, oz, pdf, N) == SK_ERR_NULL);
+    CHECK(v->dir_n(v->h, wx, wy, wz, u, u, ox, oy, NULL, pdf, N) == SK_ERR_NULL);
+    CHECK(v->dir_n(v->h, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0) == SK_OK);
+    CHECK(v->dir_n(v->h, wx, wy, wz, u, u, ox, oy, oz, pdf, SIZE_MAX) == SK_ERR_SIZE);
+    CHECK(v->cos_n(NULL, u, c, N) == SK_ERR_NULL && v->dir_n(NULL, wx, wy, wz, u, u, ox, oy, oz, pdf, N) == SK_ERR_NULL);
+    {
+        sk_status a = v->cos_n(zeroed, u, c, N), b = v->dir_n(zeroed, wx, wy, wz, u, u, ox, oy, oz, pdf, N);
+        CHECK((a == SK_ERR_DOMAIN || a == SK_ERR_SIZE) && a == b);
+        CHECK(isnan(v->cos(zeroed, 0.5f)) && isnan(v->dir(zeroed, (sk_vec3){0, 0, 1}, 0.5f, 0.5f, pdf).x) && isnan(pdf[0]));
+    }
+    if (failed) printf("  (in the verbs of %s)\n", v->name);
+}
+
+static void same_verbs(void) {
+    static float tbuf[2 * 65], t2buf[2 * 65 * 3];
+    static double tbufd[2 * 65], t2bufd[2 * 65 * 3];
+    const float chi[3] = {1.0f, 0.3f, 0.1f};
+    const double chid[3] = {1.0, 0.3, 0.1};
+    sk_phase hg, three[3], ray;
+    sk_phase_f64 hgd, threed[3];
+    sk_table t, tz;
+    sk_table_f64 td;
+    sk_table2d t2, t2z;
+    sk_table2d_f64 t2d;
+    sk_legendre lg, lgz;
+    sk_legendre_f64 lgd;
+    sk_mixture m, mz;
+    sk_mixture_f64 md;
+    float mom[6];
+    double momd[6];
+    int i = 0, k;
+    sk_phase_new_hg(0.6f, &hg);
+    sk_phase_new_rayleigh(&ray);
+    sk_phase_new_hg_f64(0.6, &hgd);
+    for (k = 0; k < 3; k++) {
+        sk_phase_new_hg(0.2f + 0.3f * k, &three[k]);
+        sk_phase_new_hg_f64(0.2 + 0.3 * k, &threed[k]);
+    }
+    CHECK(sk_table_new_inverse(&hg, tbuf, 2 * 65, 64, &t) == SK_OK);
+    CHECK(sk_table_new_inverse_f64(&hgd, tbufd, 2 * 65, 64, &td) == SK_OK);
+    CHECK(sk_table2d_new_inverse(three, 3, t2buf, 2 * 65 * 3, 64, 0.0f, 0.5f, &t2) == SK_OK);
+    CHECK(sk_table2d_new_inverse_f64(threed, 3, t2bufd, 2 * 65 * 3, 64, 0.0, 0.5, &t2d) == SK_OK);
+    CHECK(sk_legendre_new(chi, 3, &lg) == SK_OK && sk_legendre_new_f64(chid, 3, &lgd) == SK_OK);
+    {
+        sk_mixture_part parts[2] = {{&ray, NULL, 0.5f}, {NULL, &t, 0.5f}};
+        sk_mixture_part_f64 partsd[2] = {{&hgd, NULL, 0.5}, {NULL, &td, 0.5}};
+        CHECK(sk_mixture_new(parts, 2, &m) == SK_OK && sk_mixture_new_f64(partsd, 2, &md) == SK_OK);
+    }
+    memset(&tz, 0, sizeof tz);
+    memset(&t2z, 0, sizeof t2z);
+    memset(&lgz, 0, sizeof lgz);
+    memset(&mz, 0, sizeof mz);
+    {
+        const verbs32 all[4] = {{"sk_table", &t, tab_cos, tab_cos_n, tab_dir, tab_dir_n},
+                                {"sk_table2d", &t2, t2_cos, t2_cos_n, t2_dir, t2_dir_n},
+                                {"sk_legendre", &lg, lg_cos, lg_cos_n, lg_dir, lg_dir_n},
+                                {"sk_mixture", &m, mx_cos, mx_cos_n, mx_dir, mx_dir_n}};
+        const void *zeroed[4] = {&tz, &t2z, &lgz, &mz};
+        for (k = 0; k < 4; k++) check_verbs(&all[k], zeroed[k]);
+    }
+    /* CDF and mean cosine agree with the samplers; moments: chi_0 = 1 and
+     * chi_1 the mean cosine. */
+    CHECK(fabsf(sk_table_cdf(&t, sk_table_sample_cos(&t, 0.3f)) - 0.3f) < 1e-5f);
+    CHECK(fabs(sk_table_cdf_f64(&td, sk_table_sample_cos_f64(&td, 0.3)) - 0.3) < 1e-10);
+    CHECK(fabsf(sk_table2d_cdf(&t2, 0.37f, sk_table2d_sample_cos(&t2, 0.37f, 0.6f)) - 0.6f) < 1e-5f);
+    CHECK(fabs(sk_table2d_cdf_f64(&t2d, 0.37, sk_table2d_sample_cos_f64(&t2d, 0.37, 0.6)) - 0.6) < 1e-10);
+    CHECK(fabsf(sk_table_mean_cosine(&t) - 0.6f) < 1e-3f && fabs(sk_table_mean_cosine_f64(&td) - 0.6) < 1e-3);
+    CHECK(fabsf(sk_table2d_mean_cosine(&t2, 0.5f) - 0.5f) < 1e-3f && fabs(sk_table2d_mean_cosine_f64(&t2d, 0.0) - 0.2) < 1e-3);
+    CHECK(sk_legendre_mean_cosine(&lg) == 0.3f && sk_legendre_mean_cosine_f64(&lgd) == 0.3);
+    CHECK(sk_table_legendre_moments(&t, mom, 6) == SK_OK && fabsf(mom[0] - 1.0f) < 1e-6f && fabsf(mom[1] - sk_table_mean_cosine(&t)) < 1e-4f);
+    CHECK(sk_table_legendre_moments_f64(&td, momd, 6) == SK_OK && fabs(momd[2] - 0.36) < 1e-3);
+    CHECK(sk_table2d_legendre_moments(&t2, 0.5f, mom, 6) == SK_OK && fabsf(mom[1] - 0.5f) < 1e-3f);
+    CHECK(sk_table2d_legendre_moments_f64(&t2d, 1.0, momd, 6) == SK_OK && fabs(momd[1] - 0.8) < 1e-3);
+    CHECK(sk_legendre_legendre_moments(&lg, mom, 6) == SK_OK && mom[1] == 0.3f && mom[2] == 0.1f && mom[3] == 0.0f && mom[5] == 0.0f);
+    CHECK(sk_legendre_legendre_moments_f64(&lgd, momd, 2) == SK_OK && momd[1] == 0.3);
+    {
+        double pd;
+        sk_vec3_f64 w = {0, 0, 1}, dd = sk_legendre_sample_dir_f64(&lgd, w, 0.4, 0.6, &pd);
+        CHECK(fabs(pd - sk_legendre_pdf_f64(&lgd, dd.z)) < 1e-12 * pd);
+    }
+    for (i = 0; i < NS; i++) {
+        CHECK(isnan(FS[i]) == isnan(sk_table_cdf(&t, FS[i])) && isnan(DS[i]) == isnan(sk_table2d_cdf_f64(&t2d, 0.5, DS[i])));
+        CHECK(isnan(FS[i]) == isnan(sk_table2d_mean_cosine(&t2, FS[i])));
+    }
+    i = 0;
+    /* NULL and never-built handles; NULL out. */
+    CHECK(isnan(sk_table_cdf(NULL, 0.0f)) && isnan(sk_table_mean_cosine(&tz)) && isnan(sk_table_mean_cosine_f64(NULL)));
+    CHECK(isnan(sk_table2d_cdf(&t2z, 0.5f, 0.0f)) && isnan(sk_table2d_mean_cosine_f64(NULL, 0.5)));
+    CHECK(isnan(sk_legendre_mean_cosine(&lgz)) && isnan(sk_legendre_mean_cosine_f64(NULL)));
+    CHECK(sk_table_legendre_moments(NULL, mom, 6) == SK_ERR_NULL && sk_table_legendre_moments(&t, NULL, 6) == SK_ERR_NULL);
+    CHECK(sk_table_legendre_moments(&tz, mom, 6) == SK_ERR_SIZE && sk_table_legendre_moments(&t, mom, SIZE_MAX) == SK_ERR_SIZE);
+    CHECK(sk_table2d_legendre_moments(&t2z, 0.5f, mom, 6) == SK_ERR_SIZE && sk_table2d_legendre_moments_f64(NULL, 0.5, momd, 6) == SK_ERR_NULL);
+    CHECK(sk_legendre_legendre_moments(&lgz, mom, 6) == SK_ERR_DOMAIN && sk_legendre_legendre_moments_f64(&lgd, NULL, 6) == SK_ERR_NULL);
+    CHECK(sk_legendre_legendre_moments(&lg, mom, 0) == SK_OK && sk_table_legendre_moments_f64(&td, NULL, 0) == SK_OK);
+    /* The double batches: bit for bit too. */
+    {
+        const double u[4] = {0.0, 0.3, 0.8, 1.0}, wx[4] = {0, 0, 1, 0}, wy[4] = {0, 1, 0, 0}, wz[4] = {1, 0, 0, -1};
+        double c[4], ox[4], oy[4], oz[4], pd[4];
+        CHECK(sk_table_sample_cos_n_f64(&td, u, c, 4) == SK_OK && c[1] == sk_table_sample_cos_f64(&td, 0.3));
+        CHECK(sk_table2d_sample_cos_n_f64(&t2d, 0.2, u, c, 4) == SK_OK && c[2] == sk_table2d_sample_cos_f64(&t2d, 0.2, 0.8));
+        CHECK(sk_legendre_sample_cos_n_f64(&lgd, u, c, 4) == SK_OK && c[2] == sk_legendre_sample_cos_f64(&lgd, 0.8));
+        CHECK(sk_table_sample_dir_n_f64(&td, wx, wy, wz, u, u, ox, oy, oz, pd, 4) == SK_OK);
+        CHECK(sk_table2d_sample_dir_n_f64(&t2d, 0.2, wx, wy, wz, u, u, ox, oy, oz, NULL, 4) == SK_OK);
+        CHECK(sk_legendre_sample_dir_n_f64(&lgd, wx, wy, wz, u, u, ox, oy, oz, pd, 4) == SK_OK);
+        CHECK(sk_mixture_sample_dir_n_f64(&md, wx, wy, wz, u, u, ox, oy, oz, pd, 4) == SK_OK);
+        {
+            double p;
+            sk_vec3_f64 w = {0, 1, 0}, d = sk_mixture_sample_dir_f64(&md, w, 0.3, 0.3, &p);
+            CHECK(d.x == ox[1] && d.y == oy[1] && d.z == oz[1] && p == pd[1]);
+        }
+        CHECK(sk_table_sample_dir_n_f64(NULL, wx, wy, wz, u, u, ox, oy, oz, pd, 4) == SK_ERR_NULL);
+        CHECK(sk_legendre_sample_cos_n_f64(&lgd, u, c, SIZE_MAX) == SK_ERR_SIZE);
+    }
+}
+
 int main(void) {
     cube_roots_and_version();
     basis();
@@ -1707,6 +1906,7 @@ int main(void) {
     mie();
     polarization();
     mixtures();
+    same_verbs();
     printf("matrix: %d checks passed, %d failed\n", passed, failed);
     return failed;
 }
@@ -2048,11 +2248,11 @@ static void mixtures(void) {
         CHECK(sk_legendre_new(chir, 0, &lg_bad) == SK_ERR_SIZE && sk_legendre_new(chir, 1025, &lg_bad) == SK_ERR_SIZE);
         CHECK(sk_legendre_check(NULL, 3, &where) == SK_ERR_NULL && sk_legendre_check(chir, 3, NULL) == SK_ERR_NULL);
         CHECK(isnan(sk_legendre_pdf(NULL, 0.0f)) && isnan(sk_legendre_sample_cos_f64(NULL, 0.5)) && isnan(sk_legendre_cdf_f64(NULL, 0.0)));
-        lg_bad = lg;
-        lg_bad.n = 0;
-        CHECK(isnan(sk_legendre_sample_cos(&lg_bad, 0.5f)));
-        lg_bad.chi = NULL, lg_bad.n = 3;
-        CHECK(isnan(sk_legendre_pdf(&lg_bad, 0.5f)));
+        memset(&lg_bad, 0, sizeof lg_bad); /* never built */
+        CHECK(isnan(sk_legendre_sample_cos(&lg_bad, 0.5f)) && isnan(sk_legendre_pdf(&lg_bad, 0.5f)));
+        memcpy(&lg_bad, &lg, sizeof lg);
+        memset(&lg_bad, 0xff, 4); /* its tag overwritten */
+        CHECK(isnan(sk_legendre_cdf(&lg_bad, 0.5f)));
     }
     {
         /* Spectral phase: Rayleigh, HG 0.8 and the HG table per channel. */

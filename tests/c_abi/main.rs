@@ -13,3 +13,4 @@ mod matrix;
 mod sanitize;
 mod symbols;
 mod table_header;
+mod verbs;

@@ -6,7 +6,7 @@
  * Conventions: a name without a suffix is float, the suffix _f64 is double
  * (what exists only in double carries it too). Fallible calls return sk_status and write out-pointers only on
  * SK_OK. Functions returning a float return NaN for a NULL object. Enum
- * arguments arrive as uint32_t and are validated (SK_ERR_METHOD). Directions
+ * arguments are typed (uint32_t underneath) and validated (SK_ERR_METHOD). Directions
  * are unit propagation directions; cos theta = dot(w_in, w_out). Phase
  * functions are densities per steradian. Uniforms u are in [0, 1]: scalar
  * calls clamp, batch calls reject (SK_ERR_DOMAIN). No allocation, no global
@@ -89,92 +89,29 @@ typedef enum {
 } sk_status;
 
 /*
- What delta tracking found (sk_track_result.event).
+ Where a grid's values sit in its box.
  */
-enum sk_track_event
+enum sk_sampling
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
 #endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
  {
     /*
-     No collision in the segment: t is where the ray leaves the medium
-     (its box, or t_max), or t_min for a ray that never enters it.
+     At the nodes lo + (hi - lo) i/(n - 1): the faces carry the outermost
+     values, a linear density is exact. The default.
      */
-    SK_TRACK_ESCAPED = 0,
+    SK_SAMPLING_NODES = 0,
     /*
-     A real collision that scatters (probability sigma_s/sigma_t).
+     At the cell centres lo + (hi - lo)(i + 1/2)/n, as pbrt-v4 and
+     OpenVDB place voxels; held at the outermost value out to the faces.
      */
-    SK_TRACK_SCATTERED = 1,
-    /*
-     A real collision that absorbs.
-     */
-    SK_TRACK_ABSORBED = 2,
-    /*
-     A real collision whose kind the caller decides (the Rust API's
-     tracking through a sigma_t function; no C call returns it).
-     */
-    SK_TRACK_COLLIDED = 3
+    SK_SAMPLING_CELLS = 1
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
-typedef enum sk_track_event sk_track_event;
+typedef enum sk_sampling sk_sampling;
 #else
-typedef uint32_t sk_track_event;
-#endif /* __STDC_VERSION__ >= 202311L */
-#endif /* __cplusplus */
-
-/*
- The sampling methods of Frisvad (2011) for `sk_rayleigh_*` (passed as
- uint32_t; other values give SK_ERR_METHOD).
- */
-enum sk_rayleigh_method
-#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
-  : uint32_t
-#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
- {
-    /*
-     von Neumann cube + acceptance (1 + mu^2)/2.
-     */
-    SK_RAYLEIGH_REJECT_CUBE = 0,
-    /*
-     Spherical-coordinate isotropic direction + acceptance (1 + mu^2)/2.
-     */
-    SK_RAYLEIGH_REJECT_SPHERICAL = 1,
-    /*
-     mu = cos(pi xi) with Frisvad's corrected bound.
-     */
-    SK_RAYLEIGH_BARANOSKI = 2,
-    /*
-     mu = 2 xi - 1 with acceptance, then rotated about w_in.
-     */
-    SK_RAYLEIGH_SIMPLIFIED = 3,
-    /*
-     Cardano inversion with sk_cbrt.
-     */
-    SK_RAYLEIGH_DIRECT = 4,
-    /*
-     Cardano inversion with sk_cbrt_fast.
-     */
-    SK_RAYLEIGH_DIRECT_FAST = 5,
-    /*
-     Cardano inversion with cbrt(|s| + sqrt(s^2 + 1)) found as the root of
-     w^6 - 2|s| w^3 - 1 (cubic minimax seed + one Halley step): as accurate
-     as DIRECT, branch-free, no sqrt or cbrt; the default of
-     sk_phase_new_rayleigh. (An addition to Frisvad's six.)
-     */
-    SK_RAYLEIGH_DIRECT_MINIMAX = 6,
-    /*
-     Cubic Hermite table of the inverse CDF (128 intervals, built at compile
-     time): max error 4e-9, O(1), the fastest accurate direction sampler.
-     (An addition to Frisvad's six.)
-     */
-    SK_RAYLEIGH_TABLE = 7
-};
-#ifndef __cplusplus
-#if __STDC_VERSION__ >= 202311L
-typedef enum sk_rayleigh_method sk_rayleigh_method;
-#else
-typedef uint32_t sk_rayleigh_method;
+typedef uint32_t sk_sampling;
 #endif /* __STDC_VERSION__ >= 202311L */
 #endif /* __cplusplus */
 
@@ -208,115 +145,59 @@ typedef uint32_t sk_table_kind;
 #endif /* __cplusplus */
 
 /*
- How a surface scatters (passed as uint32_t; other values give SK_ERR_METHOD).
+ The models sk_phase_new_particle_mie_f64 chooses from.
  */
-enum sk_surface_model
+enum sk_particle_model
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
 #endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
  {
     /*
-     No scattering: mirror reflection or Snell refraction.
+     Uniform over the sphere.
      */
-    SK_SURFACE_SPECULAR = 0,
+    SK_PARTICLE_ISOTROPIC = 0,
     /*
-     Lambertian: cosine-weighted about the normal on the leaving side.
+     Henyey-Greenstein with the best-fit g.
      */
-    SK_SURFACE_LAMBERT = 1,
+    SK_PARTICLE_HG = 1,
     /*
-     Phong: cos(dtheta) = u^(1/(alpha+1)) about the specular direction.
+     Rayleigh.
      */
-    SK_SURFACE_PHONG = 2
+    SK_PARTICLE_RAYLEIGH = 2,
+    /*
+     Draine with the best-fit g and alpha.
+     */
+    SK_PARTICLE_DRAINE = 3,
+    /*
+     The fog fit (Jendersie & d'Eon 2023).
+     */
+    SK_PARTICLE_FOG = 4,
+    /*
+     A table of the exact Mie phase function: build it with sk_mie_new_f64,
+     sk_mie_table_len_f64, sk_mie_tabulate_f64 and sk_table_new_measured_f64.
+     */
+    SK_PARTICLE_MIE_TABLE = 5,
+    /*
+     Two Henyey-Greenstein lobes with the best-fit g1, g2 and weight
+     (considered only without a table).
+     */
+    SK_PARTICLE_TWO_LOBE_HG = 6,
+    /*
+     Fournier-Forand with the best-fit n and nu (considered only without
+     a table).
+     */
+    SK_PARTICLE_FOURNIER_FORAND = 7,
+    /*
+     w HG(g) + (1 - w) Rayleigh with the best-fit g and w (considered only
+     without a table), sampled as a fog mixture with a Rayleigh lobe.
+     */
+    SK_PARTICLE_RAYLEIGH_HG = 8
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
-typedef enum sk_surface_model sk_surface_model;
+typedef enum sk_particle_model sk_particle_model;
 #else
-typedef uint32_t sk_surface_model;
-#endif /* __STDC_VERSION__ >= 202311L */
-#endif /* __cplusplus */
-
-/*
- Which share of rays scatters (passed as uint32_t).
- */
-enum sk_fraction_model
-#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
-  : uint32_t
-#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
- {
-    /*
-     A constant share in [0, 1].
-     */
-    SK_FRACTION_CONSTANT = 0,
-    /*
-     The scalar-scattering model from the RMS roughness.
-     */
-    SK_FRACTION_SCALAR = 1
-};
-#ifndef __cplusplus
-#if __STDC_VERSION__ >= 202311L
-typedef enum sk_fraction_model sk_fraction_model;
-#else
-typedef uint32_t sk_fraction_model;
-#endif /* __STDC_VERSION__ >= 202311L */
-#endif /* __cplusplus */
-
-/*
- What happens to a Phong direction that lands on the wrong side of the
- surface (passed as uint32_t).
- */
-enum sk_crossing_policy
-#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
-  : uint32_t
-#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
- {
-    /*
-     SunSolve: polar angle theta > 90 deg about the leaving-side normal
-     becomes theta - 90 deg at the same azimuth.
-     */
-    SK_CROSSING_FOLD = 0,
-    /*
-     Draw again until above the surface (16 draws at most, then mirror):
-     the lobe truncated to the hemisphere and renormalised.
-     */
-    SK_CROSSING_RESAMPLE = 1,
-    /*
-     Reflect the direction across the surface plane.
-     */
-    SK_CROSSING_MIRROR = 2
-};
-#ifndef __cplusplus
-#if __STDC_VERSION__ >= 202311L
-typedef enum sk_crossing_policy sk_crossing_policy;
-#else
-typedef uint32_t sk_crossing_policy;
-#endif /* __STDC_VERSION__ >= 202311L */
-#endif /* __cplusplus */
-
-/*
- Where a grid's values sit in its box.
- */
-enum sk_sampling
-#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
-  : uint32_t
-#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
- {
-    /*
-     At the nodes lo + (hi - lo) i/(n - 1): the faces carry the outermost
-     values, a linear density is exact. The default.
-     */
-    SK_SAMPLING_NODES = 0,
-    /*
-     At the cell centres lo + (hi - lo)(i + 1/2)/n, as pbrt-v4 and
-     OpenVDB place voxels; held at the outermost value out to the faces.
-     */
-    SK_SAMPLING_CELLS = 1
-};
-#ifndef __cplusplus
-#if __STDC_VERSION__ >= 202311L
-typedef enum sk_sampling sk_sampling;
-#else
-typedef uint32_t sk_sampling;
+typedef uint32_t sk_particle_model;
 #endif /* __STDC_VERSION__ >= 202311L */
 #endif /* __cplusplus */
 
@@ -407,59 +288,178 @@ typedef uint32_t sk_size_kind;
 #endif /* __cplusplus */
 
 /*
- The models sk_phase_new_particle_mie_f64 chooses from.
+ The sampling methods of Frisvad (2011) for `sk_rayleigh_*` (passed as
+ uint32_t; other values give SK_ERR_METHOD).
  */
-enum sk_particle_model
+enum sk_rayleigh_method
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
 #endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
  {
     /*
-     Uniform over the sphere.
+     von Neumann cube + acceptance (1 + mu^2)/2.
      */
-    SK_PARTICLE_ISOTROPIC = 0,
+    SK_RAYLEIGH_REJECT_CUBE = 0,
     /*
-     Henyey-Greenstein with the best-fit g.
+     Spherical-coordinate isotropic direction + acceptance (1 + mu^2)/2.
      */
-    SK_PARTICLE_HG = 1,
+    SK_RAYLEIGH_REJECT_SPHERICAL = 1,
     /*
-     Rayleigh.
+     mu = cos(pi xi) with Frisvad's corrected bound.
      */
-    SK_PARTICLE_RAYLEIGH = 2,
+    SK_RAYLEIGH_BARANOSKI = 2,
     /*
-     Draine with the best-fit g and alpha.
+     mu = 2 xi - 1 with acceptance, then rotated about w_in.
      */
-    SK_PARTICLE_DRAINE = 3,
+    SK_RAYLEIGH_SIMPLIFIED = 3,
     /*
-     The fog fit (Jendersie & d'Eon 2023).
+     Cardano inversion with sk_cbrt.
      */
-    SK_PARTICLE_FOG = 4,
+    SK_RAYLEIGH_DIRECT = 4,
     /*
-     A table of the exact Mie phase function: build it with sk_mie_new_f64,
-     sk_mie_table_len_f64, sk_mie_tabulate_f64 and sk_table_new_measured_f64.
+     Cardano inversion with sk_cbrt_fast.
      */
-    SK_PARTICLE_MIE_TABLE = 5,
+    SK_RAYLEIGH_DIRECT_FAST = 5,
     /*
-     Two Henyey-Greenstein lobes with the best-fit g1, g2 and weight
-     (considered only without a table).
+     Cardano inversion with cbrt(|s| + sqrt(s^2 + 1)) found as the root of
+     w^6 - 2|s| w^3 - 1 (cubic minimax seed + one Halley step): as accurate
+     as DIRECT, branch-free, no sqrt or cbrt; the default of
+     sk_phase_new_rayleigh. (An addition to Frisvad's six.)
      */
-    SK_PARTICLE_TWO_LOBE_HG = 6,
+    SK_RAYLEIGH_DIRECT_MINIMAX = 6,
     /*
-     Fournier-Forand with the best-fit n and nu (considered only without
-     a table).
+     Cubic Hermite table of the inverse CDF (128 intervals, built at compile
+     time): max error 4e-9, O(1), the fastest accurate direction sampler.
+     (An addition to Frisvad's six.)
      */
-    SK_PARTICLE_FOURNIER_FORAND = 7,
-    /*
-     w HG(g) + (1 - w) Rayleigh with the best-fit g and w (considered only
-     without a table), sampled as a fog mixture with a Rayleigh lobe.
-     */
-    SK_PARTICLE_RAYLEIGH_HG = 8
+    SK_RAYLEIGH_TABLE = 7
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
-typedef enum sk_particle_model sk_particle_model;
+typedef enum sk_rayleigh_method sk_rayleigh_method;
 #else
-typedef uint32_t sk_particle_model;
+typedef uint32_t sk_rayleigh_method;
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
+
+/*
+ What happens to a Phong direction that lands on the wrong side of the
+ surface (passed as uint32_t).
+ */
+enum sk_crossing_policy
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
+ {
+    /*
+     SunSolve: polar angle theta > 90 deg about the leaving-side normal
+     becomes theta - 90 deg at the same azimuth.
+     */
+    SK_CROSSING_FOLD = 0,
+    /*
+     Draw again until above the surface (16 draws at most, then mirror):
+     the lobe truncated to the hemisphere and renormalised.
+     */
+    SK_CROSSING_RESAMPLE = 1,
+    /*
+     Reflect the direction across the surface plane.
+     */
+    SK_CROSSING_MIRROR = 2
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_crossing_policy sk_crossing_policy;
+#else
+typedef uint32_t sk_crossing_policy;
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
+
+/*
+ How a surface scatters (passed as uint32_t; other values give SK_ERR_METHOD).
+ */
+enum sk_surface_model
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
+ {
+    /*
+     No scattering: mirror reflection or Snell refraction.
+     */
+    SK_SURFACE_SPECULAR = 0,
+    /*
+     Lambertian: cosine-weighted about the normal on the leaving side.
+     */
+    SK_SURFACE_LAMBERT = 1,
+    /*
+     Phong: cos(dtheta) = u^(1/(alpha+1)) about the specular direction.
+     */
+    SK_SURFACE_PHONG = 2
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_surface_model sk_surface_model;
+#else
+typedef uint32_t sk_surface_model;
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
+
+/*
+ Which share of rays scatters (passed as uint32_t).
+ */
+enum sk_fraction_model
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
+ {
+    /*
+     A constant share in [0, 1].
+     */
+    SK_FRACTION_CONSTANT = 0,
+    /*
+     The scalar-scattering model from the RMS roughness.
+     */
+    SK_FRACTION_SCALAR = 1
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_fraction_model sk_fraction_model;
+#else
+typedef uint32_t sk_fraction_model;
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
+
+/*
+ What delta tracking found (sk_track_result.event).
+ */
+enum sk_track_event
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
+ {
+    /*
+     No collision in the segment: t is where the ray leaves the medium
+     (its box, or t_max), or t_min for a ray that never enters it.
+     */
+    SK_TRACK_ESCAPED = 0,
+    /*
+     A real collision that scatters (probability sigma_s/sigma_t).
+     */
+    SK_TRACK_SCATTERED = 1,
+    /*
+     A real collision that absorbs.
+     */
+    SK_TRACK_ABSORBED = 2,
+    /*
+     A real collision whose kind the caller decides (the Rust API's
+     tracking through a sigma_t function; no C call returns it).
+     */
+    SK_TRACK_COLLIDED = 3
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_track_event sk_track_event;
+#else
+typedef uint32_t sk_track_event;
 #endif /* __STDC_VERSION__ >= 202311L */
 #endif /* __cplusplus */
 
@@ -773,7 +773,7 @@ typedef struct {
     /*
      An sk_table_kind.
      */
-    uint32_t kind;
+    sk_table_kind kind;
 } sk_table;
 
 /*
@@ -827,7 +827,7 @@ typedef struct {
     /*
      An sk_table_kind.
      */
-    uint32_t kind;
+    sk_table_kind kind;
 } sk_table_f64;
 
 /*
@@ -865,7 +865,7 @@ typedef struct {
     /*
      The chosen model, an sk_particle_model.
      */
-    uint32_t model;
+    sk_particle_model model;
     /*
      1 when distance is within the tolerance (without a table none may
      be, and the closest model is returned), else 0.
@@ -937,7 +937,7 @@ typedef struct {
     /*
      An sk_phase_model.
      */
-    uint32_t model;
+    sk_phase_model model;
     /*
      How many of `params` the model uses (0 to 4).
      */
@@ -955,7 +955,7 @@ typedef struct {
     /*
      An sk_phase_model.
      */
-    uint32_t model;
+    sk_phase_model model;
     /*
      How many of `params` the model uses (0 to 4).
      */
@@ -1145,7 +1145,7 @@ typedef struct {
     /*
      An sk_size_kind.
      */
-    uint32_t kind;
+    sk_size_kind kind;
     /*
      The parameters, as sk_size_kind describes.
      */
@@ -1261,15 +1261,15 @@ typedef struct {
     /*
      An sk_surface_model.
      */
-    uint32_t model;
+    sk_surface_model model;
     /*
      An sk_fraction_model.
      */
-    uint32_t fraction_model;
+    sk_fraction_model fraction_model;
     /*
      An sk_crossing_policy.
      */
-    uint32_t policy;
+    sk_crossing_policy policy;
     /*
      Phong exponent.
      */
@@ -1287,15 +1287,15 @@ typedef struct {
     /*
      An sk_surface_model.
      */
-    uint32_t model;
+    sk_surface_model model;
     /*
      An sk_fraction_model.
      */
-    uint32_t fraction_model;
+    sk_fraction_model fraction_model;
     /*
      An sk_crossing_policy.
      */
-    uint32_t policy;
+    sk_crossing_policy policy;
     /*
      Phong exponent.
      */
@@ -1732,7 +1732,7 @@ extern "C" {
  static NUL-terminated string: "ok", "NULL pointer", ...; "unknown
  status" for a value that is no sk_status. Never NULL.
  */
-const char *sk_status_string(uint32_t status);
+const char *sk_status_string(sk_status status);
 
 /*
  A uniform float in [0, 1) from one draw of `rng`, taken exactly as the
@@ -2221,12 +2221,12 @@ sk_status sk_grid_set_box_f64(sk_grid_f64 *g, sk_vec3_f64 lo, sk_vec3_f64 hi);
  SK_ERR_METHOD for an unknown value; SK_ERR_DOMAIN for a never-built
  grid (the grid is then unchanged).
  */
-sk_status sk_grid_set_sampling(sk_grid *g, uint32_t sampling);
+sk_status sk_grid_set_sampling(sk_grid *g, sk_sampling sampling);
 
 /*
  Double twin of `sk_grid_set_sampling`.
  */
-sk_status sk_grid_set_sampling_f64(sk_grid_f64 *g, uint32_t sampling);
+sk_status sk_grid_set_sampling_f64(sk_grid_f64 *g, sk_sampling sampling);
 
 /*
  The interpolated density at p (0 outside the grid's box); NaN for a
@@ -3166,12 +3166,15 @@ sk_status sk_polydisperse_average_f64(const sk_polydisperse_f64 *p,
  SK_ERR_METHOD for an unknown method; SK_ERR_NULL for a NULL rng, NULL
  rng->next_u64 or NULL dir_out.
  */
-sk_status sk_rayleigh_sample_dir(uint32_t method, sk_vec3 w_in, sk_rng *rng, sk_vec3 *dir_out);
+sk_status sk_rayleigh_sample_dir(sk_rayleigh_method method,
+                                 sk_vec3 w_in,
+                                 sk_rng *rng,
+                                 sk_vec3 *dir_out);
 
 /*
  Double twin of `sk_rayleigh_sample_dir`.
  */
-sk_status sk_rayleigh_sample_dir_f64(uint32_t method,
+sk_status sk_rayleigh_sample_dir_f64(sk_rayleigh_method method,
                                      sk_vec3_f64 w_in,
                                      sk_rng *rng,
                                      sk_vec3_f64 *dir_out);
@@ -3181,12 +3184,18 @@ sk_status sk_rayleigh_sample_dir_f64(uint32_t method,
  SK_ERR_METHOD for an unknown method; SK_ERR_NULL for a NULL rng or
  callback, or NULL cos_out with n > 0; n = 0 is SK_OK.
  */
-sk_status sk_rayleigh_sample_cos_n(uint32_t method, sk_rng *rng, float *cos_out, size_t n);
+sk_status sk_rayleigh_sample_cos_n(sk_rayleigh_method method,
+                                   sk_rng *rng,
+                                   float *cos_out,
+                                   size_t n);
 
 /*
  Double twin of `sk_rayleigh_sample_cos_n`.
  */
-sk_status sk_rayleigh_sample_cos_n_f64(uint32_t method, sk_rng *rng, double *cos_out, size_t n);
+sk_status sk_rayleigh_sample_cos_n_f64(sk_rayleigh_method method,
+                                       sk_rng *rng,
+                                       double *cos_out,
+                                       size_t n);
 
 /*
  Rayleigh scattering cross section of a small sphere, 128 pi^5 a^2 /
@@ -3216,7 +3225,7 @@ double sk_rayleigh_scattering_coeff_f64(double number_density,
  rng->next_u64 or a NULL array with n > 0; SK_ERR_SIZE if n floats cannot
  exist. On error nothing is written; n = 0 is SK_OK.
  */
-sk_status sk_rayleigh_sample_dir_n(uint32_t method,
+sk_status sk_rayleigh_sample_dir_n(sk_rayleigh_method method,
                                    const float *w_x,
                                    const float *w_y,
                                    const float *w_z,
@@ -3229,7 +3238,7 @@ sk_status sk_rayleigh_sample_dir_n(uint32_t method,
 /*
  Double twin of `sk_rayleigh_sample_dir_n`.
  */
-sk_status sk_rayleigh_sample_dir_n_f64(uint32_t method,
+sk_status sk_rayleigh_sample_dir_n_f64(sk_rayleigh_method method,
                                        const double *w_x,
                                        const double *w_y,
                                        const double *w_z,
@@ -3343,7 +3352,7 @@ sk_vec3_f64 sk_lambert_sample_f64(sk_vec3_f64 normal, double u1, double u2);
 sk_vec3 sk_phong_sample(sk_vec3 axis,
                         sk_vec3 normal,
                         float alpha,
-                        uint32_t policy,
+                        sk_crossing_policy policy,
                         float u1,
                         float u2);
 
@@ -3353,7 +3362,7 @@ sk_vec3 sk_phong_sample(sk_vec3 axis,
 sk_vec3_f64 sk_phong_sample_f64(sk_vec3_f64 axis,
                                 sk_vec3_f64 normal,
                                 double alpha,
-                                uint32_t policy,
+                                sk_crossing_policy policy,
                                 double u1,
                                 double u2);
 
@@ -3404,23 +3413,23 @@ double sk_scatter_fraction_transmit_f64(double wavelength,
  SK_ERR_METHOD for unknown enum values, SK_ERR_DOMAIN for values out of
  range, SK_ERR_NULL for a NULL out.
  */
-sk_status sk_surface_new(uint32_t model,
+sk_status sk_surface_new(sk_surface_model model,
                          float phong_alpha,
-                         uint32_t fraction_model,
+                         sk_fraction_model fraction_model,
                          float fraction,
                          float sigma_rms,
-                         uint32_t policy,
+                         sk_crossing_policy policy,
                          sk_surface *out);
 
 /*
  Double twin of `sk_surface_new`.
  */
-sk_status sk_surface_new_f64(uint32_t model,
+sk_status sk_surface_new_f64(sk_surface_model model,
                              double phong_alpha,
-                             uint32_t fraction_model,
+                             sk_fraction_model fraction_model,
                              double fraction,
                              double sigma_rms,
-                             uint32_t policy,
+                             sk_crossing_policy policy,
                              sk_surface_f64 *out);
 
 /*
@@ -3460,7 +3469,7 @@ sk_status sk_surface_interact_f64(const sk_surface_f64 *s,
  Number of floats (or doubles) a table of `kind` and resolution n needs;
  0 for an unknown kind, n = 0, or a count that overflows size_t.
  */
-size_t sk_table_len(uint32_t kind, size_t n);
+size_t sk_table_len(sk_table_kind kind, size_t n);
 
 /*
  Frisvad's (2011) tabulated Rayleigh CDF with n >= 1 intervals, written to

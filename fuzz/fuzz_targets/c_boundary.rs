@@ -94,7 +94,9 @@ fuzz_target!(|data: &[u8]| {
     let n = f.len();
     let mut out = vec![0.0f32; n];
     // Any value has a status string, never NULL.
-    let text = sk_status_string(word(0) | (word(1) << 8) | (word(2) << 24));
+    let text = sk_status_string(enum_arg::sk_status(
+        word(0) | (word(1) << 8) | (word(2) << 24),
+    ));
     assert!(!text.is_null());
     unsafe {
         let statuses = [
@@ -326,7 +328,7 @@ fuzz_target!(|data: &[u8]| {
             z: 0.0,
         };
         let s = sk_rayleigh_sample_dir(
-            word(0),
+            enum_arg::sk_rayleigh_method(word(0)),
             sk_vec3 {
                 x: 0.0,
                 y: 0.0,
@@ -337,13 +339,21 @@ fuzz_target!(|data: &[u8]| {
         );
         assert!((s == sk_status::SK_OK) == (word(0) <= 7));
         let mut surf = sk_surface {
-            model: 0,
-            fraction_model: 0,
-            policy: 0,
+            model: enum_arg::sk_surface_model(0),
+            fraction_model: enum_arg::sk_fraction_model(0),
+            policy: enum_arg::sk_crossing_policy(0),
             phong_alpha: 1.0,
             fraction: 0.0,
         };
-        let s = sk_surface_new(word(1), x(5), word(2), x(6), x(7), word(3), &mut surf);
+        let s = sk_surface_new(
+            enum_arg::sk_surface_model(word(1)),
+            x(5),
+            enum_arg::sk_fraction_model(word(2)),
+            x(6),
+            x(7),
+            enum_arg::sk_crossing_policy(word(3)),
+            &mut surf,
+        );
         if s == sk_status::SK_OK {
             let mut ev = 0u32;
             let _ = sk_surface_interact(
@@ -373,7 +383,7 @@ fuzz_target!(|data: &[u8]| {
         let mut t = sk_table {
             data: core::ptr::null(),
             n: 0,
-            kind: 0,
+            kind: enum_arg::sk_table_kind(0),
         };
         let s = sk_table_new_measured(
             f.as_ptr(),
@@ -442,7 +452,7 @@ fuzz_target!(|data: &[u8]| {
             } else {
                 (v3(0.0, 0.0, 0.0), v3(1.0, 1.0, 1.0))
             };
-            let _ = sk_grid_set_sampling(&mut g, word(8) % 3);
+            let _ = sk_grid_set_sampling(&mut g, enum_arg::sk_sampling(word(8) % 3));
             let mut store = [0.0f32; 64];
             let (mx, my, mz) = (1 + word(9) % 4, 1 + word(10) % 4, 1 + word(11) % 4);
             let mut maj = core::mem::MaybeUninit::<sk_majorants>::uninit();

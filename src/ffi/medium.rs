@@ -350,14 +350,20 @@ pub unsafe extern "C" fn sk_grid_set_box_f64(
 /// SK_ERR_METHOD for an unknown value; SK_ERR_DOMAIN for a never-built
 /// grid (the grid is then unchanged).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_grid_set_sampling(g: *mut sk_grid, sampling: u32) -> sk_status {
-    unsafe { grid_set_sampling(g, sampling) }
+pub unsafe extern "C" fn sk_grid_set_sampling(
+    g: *mut sk_grid,
+    sampling: super::enum_arg::sk_sampling,
+) -> sk_status {
+    unsafe { grid_set_sampling(g, sampling.0) }
 }
 
 /// Double twin of `sk_grid_set_sampling`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sk_grid_set_sampling_f64(g: *mut sk_grid_f64, sampling: u32) -> sk_status {
-    unsafe { grid_set_sampling(g, sampling) }
+pub unsafe extern "C" fn sk_grid_set_sampling_f64(
+    g: *mut sk_grid_f64,
+    sampling: super::enum_arg::sk_sampling,
+) -> sk_status {
+    unsafe { grid_set_sampling(g, sampling.0) }
 }
 
 /// The interpolated density at p (0 outside the grid's box); NaN for a

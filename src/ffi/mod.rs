@@ -27,6 +27,36 @@ macro_rules! same_values {
     };
 }
 
+/// The enum-valued arguments and fields as the C layer receives them: a
+/// `uint32_t` under the enum's own name, so that the header's signatures
+/// are typed (cbindgen prints the enum's name) while a value outside the
+/// enum, which C allows, arrives as a plain integer and is refused
+/// (`SK_ERR_METHOD`) rather than being undefined behaviour in Rust.
+pub mod enum_arg {
+    macro_rules! enum_arg {
+        ($($name:ident),* $(,)?) => {
+            $(
+                #[doc = concat!("`", stringify!($name), "` as received from C.")]
+                #[repr(transparent)]
+                #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+                pub struct $name(pub u32);
+            )*
+        };
+    }
+    enum_arg!(
+        sk_sampling,
+        sk_rayleigh_method,
+        sk_table_kind,
+        sk_surface_model,
+        sk_fraction_model,
+        sk_crossing_policy,
+        sk_size_kind,
+        sk_particle_model,
+        sk_phase_model,
+        sk_status,
+    );
+}
+
 mod albedo;
 mod cbrt;
 mod equiangular;
@@ -101,8 +131,8 @@ pub enum sk_status {
 /// static NUL-terminated string: "ok", "NULL pointer", ...; "unknown
 /// status" for a value that is no sk_status. Never NULL.
 #[unsafe(no_mangle)]
-pub extern "C" fn sk_status_string(status: u32) -> *const c_char {
-    let s: &'static str = match status {
+pub extern "C" fn sk_status_string(status: enum_arg::sk_status) -> *const c_char {
+    let s: &'static str = match status.0 {
         0 => "ok\0",
         1 => "NULL pointer\0",
         2 => "parameter NaN, infinite or outside its domain\0",

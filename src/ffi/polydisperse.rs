@@ -29,7 +29,7 @@ pub enum sk_size_kind {
 #[derive(Clone, Copy, Debug)]
 pub struct sk_size_distribution_f64 {
     /// An sk_size_kind.
-    pub kind: u32,
+    pub kind: super::enum_arg::sk_size_kind,
     /// The parameters, as sk_size_kind describes.
     pub params: [f64; 3],
 }
@@ -84,7 +84,7 @@ const JUNGE: u32 = sk_size_kind::SK_SIZE_JUNGE as u32;
 
 fn distribution(d: &sk_size_distribution_f64) -> Option<SizeDistribution> {
     let [p0, p1, p2] = d.params;
-    match d.kind {
+    match d.kind.0 {
         LOGNORMAL => Some(SizeDistribution::LogNormal {
             median_radius: p0,
             sigma_g: p1,

@@ -107,23 +107,23 @@ unsafe fn sample_cos_n<T: Real>(method: u32, rng: *mut sk_rng, out: *mut T, n: u
 /// rng->next_u64 or NULL dir_out.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_rayleigh_sample_dir(
-    method: u32,
+    method: super::enum_arg::sk_rayleigh_method,
     w_in: sk_vec3,
     rng: *mut sk_rng,
     dir_out: *mut sk_vec3,
 ) -> sk_status {
-    unsafe { sample_dir(method, w_in, rng, dir_out) }
+    unsafe { sample_dir(method.0, w_in, rng, dir_out) }
 }
 
 /// Double twin of `sk_rayleigh_sample_dir`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_rayleigh_sample_dir_f64(
-    method: u32,
+    method: super::enum_arg::sk_rayleigh_method,
     w_in: sk_vec3_f64,
     rng: *mut sk_rng,
     dir_out: *mut sk_vec3_f64,
 ) -> sk_status {
-    unsafe { sample_dir(method, w_in, rng, dir_out) }
+    unsafe { sample_dir(method.0, w_in, rng, dir_out) }
 }
 
 /// n Rayleigh-distributed cosines by `method`, with uniforms from `rng`.
@@ -131,23 +131,23 @@ pub unsafe extern "C" fn sk_rayleigh_sample_dir_f64(
 /// callback, or NULL cos_out with n > 0; n = 0 is SK_OK.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_rayleigh_sample_cos_n(
-    method: u32,
+    method: super::enum_arg::sk_rayleigh_method,
     rng: *mut sk_rng,
     cos_out: *mut f32,
     n: usize,
 ) -> sk_status {
-    unsafe { sample_cos_n(method, rng, cos_out, n) }
+    unsafe { sample_cos_n(method.0, rng, cos_out, n) }
 }
 
 /// Double twin of `sk_rayleigh_sample_cos_n`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_rayleigh_sample_cos_n_f64(
-    method: u32,
+    method: super::enum_arg::sk_rayleigh_method,
     rng: *mut sk_rng,
     cos_out: *mut f64,
     n: usize,
 ) -> sk_status {
-    unsafe { sample_cos_n(method, rng, cos_out, n) }
+    unsafe { sample_cos_n(method.0, rng, cos_out, n) }
 }
 
 /// Rayleigh scattering cross section of a small sphere, 128 pi^5 a^2 /
@@ -187,7 +187,7 @@ pub extern "C" fn sk_rayleigh_scattering_coeff_f64(
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn sk_rayleigh_sample_dir_n(
-    method: u32,
+    method: super::enum_arg::sk_rayleigh_method,
     w_x: *const f32,
     w_y: *const f32,
     w_z: *const f32,
@@ -197,14 +197,14 @@ pub unsafe extern "C" fn sk_rayleigh_sample_dir_n(
     out_z: *mut f32,
     n: usize,
 ) -> sk_status {
-    unsafe { sample_dir_n(method, [w_x, w_y, w_z], rng, [out_x, out_y, out_z], n) }
+    unsafe { sample_dir_n(method.0, [w_x, w_y, w_z], rng, [out_x, out_y, out_z], n) }
 }
 
 /// Double twin of `sk_rayleigh_sample_dir_n`.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn sk_rayleigh_sample_dir_n_f64(
-    method: u32,
+    method: super::enum_arg::sk_rayleigh_method,
     w_x: *const f64,
     w_y: *const f64,
     w_z: *const f64,
@@ -214,5 +214,5 @@ pub unsafe extern "C" fn sk_rayleigh_sample_dir_n_f64(
     out_z: *mut f64,
     n: usize,
 ) -> sk_status {
-    unsafe { sample_dir_n(method, [w_x, w_y, w_z], rng, [out_x, out_y, out_z], n) }
+    unsafe { sample_dir_n(method.0, [w_x, w_y, w_z], rng, [out_x, out_y, out_z], n) }
 }

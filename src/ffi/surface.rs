@@ -67,11 +67,11 @@ pub const SK_EVENT_SCATTERED: u32 = 2;
 #[derive(Clone, Copy, Debug)]
 pub struct sk_surface {
     /// An sk_surface_model.
-    pub model: u32,
+    pub model: super::enum_arg::sk_surface_model,
     /// An sk_fraction_model.
-    pub fraction_model: u32,
+    pub fraction_model: super::enum_arg::sk_fraction_model,
     /// An sk_crossing_policy.
-    pub policy: u32,
+    pub policy: super::enum_arg::sk_crossing_policy,
     /// Phong exponent.
     pub phong_alpha: f32,
     /// Constant share, or RMS roughness for the scalar model.
@@ -83,11 +83,11 @@ pub struct sk_surface {
 #[derive(Clone, Copy, Debug)]
 pub struct sk_surface_f64 {
     /// An sk_surface_model.
-    pub model: u32,
+    pub model: super::enum_arg::sk_surface_model,
     /// An sk_fraction_model.
-    pub fraction_model: u32,
+    pub fraction_model: super::enum_arg::sk_fraction_model,
     /// An sk_crossing_policy.
-    pub policy: u32,
+    pub policy: super::enum_arg::sk_crossing_policy,
     /// Phong exponent.
     pub phong_alpha: f64,
     /// Constant share, or RMS roughness for the scalar model.
@@ -118,19 +118,20 @@ macro_rules! impl_surface_store {
                 phong_alpha: $t,
                 fraction: $t,
             ) -> Self {
+                use super::enum_arg as e;
                 Self {
-                    model,
-                    fraction_model,
-                    policy,
+                    model: e::sk_surface_model(model),
+                    fraction_model: e::sk_fraction_model(fraction_model),
+                    policy: e::sk_crossing_policy(policy),
                     phong_alpha,
                     fraction,
                 }
             }
             fn unpack(&self) -> (u32, u32, u32, $t, $t) {
                 (
-                    self.model,
-                    self.fraction_model,
-                    self.policy,
+                    self.model.0,
+                    self.fraction_model.0,
+                    self.policy.0,
                     self.phong_alpha,
                     self.fraction,
                 )
@@ -335,11 +336,11 @@ pub extern "C" fn sk_phong_sample(
     axis: sk_vec3,
     normal: sk_vec3,
     alpha: f32,
-    policy: u32,
+    policy: super::enum_arg::sk_crossing_policy,
     u1: f32,
     u2: f32,
 ) -> sk_vec3 {
-    phong(axis, normal, alpha, policy, u1, u2)
+    phong(axis, normal, alpha, policy.0, u1, u2)
 }
 
 /// Double twin of `sk_phong_sample`.
@@ -348,11 +349,11 @@ pub extern "C" fn sk_phong_sample_f64(
     axis: sk_vec3_f64,
     normal: sk_vec3_f64,
     alpha: f64,
-    policy: u32,
+    policy: super::enum_arg::sk_crossing_policy,
     u1: f64,
     u2: f64,
 ) -> sk_vec3_f64 {
-    phong(axis, normal, alpha, policy, u1, u2)
+    phong(axis, normal, alpha, policy.0, u1, u2)
 }
 
 /// Scalar-scattering share on reflection:
@@ -417,31 +418,31 @@ pub extern "C" fn sk_scatter_fraction_transmit_f64(
 /// range, SK_ERR_NULL for a NULL out.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_surface_new(
-    model: u32,
+    model: super::enum_arg::sk_surface_model,
     phong_alpha: f32,
-    fraction_model: u32,
+    fraction_model: super::enum_arg::sk_fraction_model,
     fraction: f32,
     sigma_rms: f32,
-    policy: u32,
+    policy: super::enum_arg::sk_crossing_policy,
     out: *mut sk_surface,
 ) -> sk_status {
-    let frac = (fraction_model, fraction, sigma_rms);
-    unsafe { surface_new(model, phong_alpha, frac, policy, out) }
+    let frac = (fraction_model.0, fraction, sigma_rms);
+    unsafe { surface_new(model.0, phong_alpha, frac, policy.0, out) }
 }
 
 /// Double twin of `sk_surface_new`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_surface_new_f64(
-    model: u32,
+    model: super::enum_arg::sk_surface_model,
     phong_alpha: f64,
-    fraction_model: u32,
+    fraction_model: super::enum_arg::sk_fraction_model,
     fraction: f64,
     sigma_rms: f64,
-    policy: u32,
+    policy: super::enum_arg::sk_crossing_policy,
     out: *mut sk_surface_f64,
 ) -> sk_status {
-    let frac = (fraction_model, fraction, sigma_rms);
-    unsafe { surface_new(model, phong_alpha, frac, policy, out) }
+    let frac = (fraction_model.0, fraction, sigma_rms);
+    unsafe { surface_new(model.0, phong_alpha, frac, policy.0, out) }
 }
 
 /// One interaction of a ray along `d` with the surface of geometric normal

@@ -36,7 +36,7 @@ pub struct sk_table {
     /// Resolution the table was built with.
     pub n: usize,
     /// An sk_table_kind.
-    pub kind: u32,
+    pub kind: super::enum_arg::sk_table_kind,
 }
 
 /// A table sampler (double); see `sk_table`.
@@ -48,7 +48,7 @@ pub struct sk_table_f64 {
     /// Resolution the table was built with.
     pub n: usize,
     /// An sk_table_kind.
-    pub kind: u32,
+    pub kind: super::enum_arg::sk_table_kind,
 }
 
 /// A C table type and its float.
@@ -66,11 +66,11 @@ macro_rules! impl_table_store {
                 Self {
                     data,
                     n,
-                    kind: kind as u32,
+                    kind: super::enum_arg::sk_table_kind(kind as u32),
                 }
             }
             fn parts(&self) -> (*const $t, usize, u32) {
-                (self.data, self.n, self.kind)
+                (self.data, self.n, self.kind.0)
             }
         }
     };
@@ -184,8 +184,8 @@ unsafe fn sample_dir<S: TableStore, V: CVec<T = S::T>>(
 /// Number of floats (or doubles) a table of `kind` and resolution n needs;
 /// 0 for an unknown kind, n = 0, or a count that overflows size_t.
 #[unsafe(no_mangle)]
-pub extern "C" fn sk_table_len(kind: u32, n: usize) -> usize {
-    TableKind::try_from(kind)
+pub extern "C" fn sk_table_len(kind: super::enum_arg::sk_table_kind, n: usize) -> usize {
+    TableKind::try_from(kind.0)
         .ok()
         .and_then(|k| k.len(n))
         .unwrap_or(0)

@@ -38,7 +38,7 @@ pub enum sk_particle_model {
 #[derive(Clone, Copy, Debug)]
 pub struct sk_particle_choice_f64 {
     /// The chosen model, an sk_particle_model.
-    pub model: u32,
+    pub model: crate::ffi::enum_arg::sk_particle_model,
     /// 1 when distance is within the tolerance (without a table none may
     /// be, and the closest model is returned), else 0.
     pub within_tolerance: u32,
@@ -156,7 +156,7 @@ fn choice_to_c(c: crate::choose::mie::MieChoice) -> sk_particle_choice_f64 {
         _ => sk_particle_model::SK_PARTICLE_MIE_TABLE,
     };
     sk_particle_choice_f64 {
-        model: model as u32,
+        model: crate::ffi::enum_arg::sk_particle_model(model as u32),
         within_tolerance: u32::from(c.within_tolerance),
         distance: c.distance,
         distances: c.distances,

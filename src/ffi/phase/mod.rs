@@ -50,7 +50,7 @@ macro_rules! impl_phase_store {
             const ZEROED: Self = $c { opaque: [0; 32] };
             fn params(model: u32, count: u32, params: [$t; 4]) -> $params {
                 $params {
-                    model,
+                    model: crate::ffi::enum_arg::sk_phase_model(model),
                     count,
                     params,
                 }

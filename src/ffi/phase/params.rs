@@ -32,7 +32,7 @@ pub enum sk_phase_model {
 #[derive(Clone, Copy, Debug)]
 pub struct sk_phase_params {
     /// An sk_phase_model.
-    pub model: u32,
+    pub model: crate::ffi::enum_arg::sk_phase_model,
     /// How many of `params` the model uses (0 to 4).
     pub count: u32,
     /// The parameters, in the order sk_phase_model lists them.
@@ -44,7 +44,7 @@ pub struct sk_phase_params {
 #[derive(Clone, Copy, Debug)]
 pub struct sk_phase_params_f64 {
     /// An sk_phase_model.
-    pub model: u32,
+    pub model: crate::ffi::enum_arg::sk_phase_model,
     /// How many of `params` the model uses (0 to 4).
     pub count: u32,
     /// The parameters.

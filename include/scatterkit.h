@@ -480,13 +480,13 @@ typedef struct {
 } sk_rng;
 
 /*
- A phase function (double); see `sk_phase`.
+ A phase function (double); see `sk_phase`. 512 bytes.
  */
 typedef struct {
     /*
      Private storage; do not read or write.
      */
-    uint64_t opaque[32];
+    uint64_t opaque[64];
 } sk_phase_f64;
 
 /*
@@ -746,16 +746,17 @@ typedef struct {
 
 /*
  A phase function (float). A plain value with no pointers inside: build it
- with an `sk_phase_*` constructor, then copy it and share it freely across
- threads. Its contents are private, and some of its bytes are padding a
- constructor need not define: compare phases with sk_phase_get_params,
- not memcmp.
+ with sk_phase_new or an sk_phase_new_<model> constructor, then copy it and
+ share it freely across threads. 256 bytes: a tag and room for 63 floats
+ (the largest model takes 31). Its contents are private, and some of its
+ bytes are padding a constructor need not define: compare phases with
+ sk_phase_get_params, not memcmp.
  */
 typedef struct {
     /*
      Private storage; do not read or write.
      */
-    uint32_t opaque[32];
+    uint32_t opaque[64];
 } sk_phase;
 
 /*
@@ -2950,6 +2951,23 @@ sk_status sk_phase_sample_dir_n_f64(const sk_phase_f64 *p,
                                     double *out_z,
                                     double *pdf_out,
                                     size_t n);
+
+/*
+ Builds the phase function of `model` (an sk_phase_model) from its `n`
+ parameters at `params`, in the order sk_phase_model lists them: the
+ inverse of sk_phase_get_params (`sk_phase_new(q.model, q.params,
+ q.count, &p)` rebuilds what q describes). It checks them as the model's
+ own constructor does. SK_ERR_NULL for a NULL out, or NULL params with
+ n > 0; SK_ERR_METHOD for an unknown model; SK_ERR_SIZE for another
+ number of parameters than the model has; SK_ERR_DOMAIN for values out
+ of range.
+ */
+sk_status sk_phase_new(sk_phase_model model, const float *params, size_t n, sk_phase *out);
+
+/*
+ Double twin of `sk_phase_new`.
+ */
+sk_status sk_phase_new_f64(sk_phase_model model, const double *params, size_t n, sk_phase_f64 *out);
 
 /*
  Writes what `p` holds to *out. SK_ERR_NULL for NULL pointers;

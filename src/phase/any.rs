@@ -2,6 +2,7 @@
 //! the dispatch from it to the model inside.
 
 use super::function::{PhaseFunction, PhaseVisitor};
+use super::model::{Lobes, Model};
 use super::{
     Draine, Fog, FournierForand, Gegenbauer, HenyeyGreenstein, Isotropic, Rayleigh,
     RayleighDepolarized,
@@ -10,96 +11,149 @@ use crate::error::Error;
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
 
-/// One phase function, chosen at run time. A small `Copy` value with no
-/// pointers: build it once per medium, share it across threads.
-///
-/// `#[repr(C, u32)]` with discriminants from 1, so that the C layer can check
-/// the tag of a caller's `sk_phase` (an all-zero value is invalid) before it
-/// reads the payload.
-///
-/// # Example
-///
-/// Henyey–Greenstein with `g = 0.7`: a direction about the incoming one,
-/// its density, and the inverse CDF that stratified or quasi-random
-/// uniforms keep stratified.
-///
-/// ```
-/// use scatterkit::{Phase, PhaseFunction, Vec3};
-///
-/// let hg = Phase::<f32>::henyey_greenstein(0.7).unwrap();
-/// let w_in = Vec3::new(0.0, 0.0, 1.0);
-/// let (w_out, pdf) = hg.sample_dir(w_in, 0.25, 0.5);
-/// assert!((w_out.length() - 1.0).abs() < 1e-6);
-/// assert!((pdf - hg.pdf(w_out.dot(w_in))).abs() < 1e-3 * pdf);
-/// // Monotone in u: the median direction, and F(μ(u)) = u.
-/// let mu = hg.sample_cos(0.5);
-/// assert!((hg.cdf(mu) - 0.5).abs() < 1e-6);
-/// ```
-#[repr(C, u32)]
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum Phase<T> {
+/// The registry of models, one line each: `tag => Variant(Type) "name"`.
+/// It generates the `Phase` enum (`#[repr(C, u32)]`, the tags its
+/// discriminants), `dispatch!`, `Phase::tag`, `name`, `cast`, `params` and
+/// `from_params` (through each model's [`Model`] implementation, so a model
+/// missing a method does not compile), and a check, when `Phase<T>` is
+/// used, that every model fits in [`Phase::ROOM`] values of its precision,
+/// naming the model that does not. A new model is its file and one line.
+macro_rules! models {
+    ($($(#[$doc:meta])* $tag:literal => $variant:ident($ty:ty) $name:literal),+ $(,)?) => {
+        /// One phase function, chosen at run time. A small `Copy` value with no
+        /// pointers: build it once per medium, share it across threads.
+        ///
+        /// `#[repr(C, u32)]` with discriminants from 1, so that the C layer can check
+        /// the tag of a caller's `sk_phase` (an all-zero value is invalid) before it
+        /// reads the payload.
+        ///
+        /// # Example
+        ///
+        /// Henyey–Greenstein with `g = 0.7`: a direction about the incoming one,
+        /// its density, and the inverse CDF that stratified or quasi-random
+        /// uniforms keep stratified.
+        ///
+        /// ```
+        /// use scatterkit::{Phase, PhaseFunction, Vec3};
+        ///
+        /// let hg = Phase::<f32>::henyey_greenstein(0.7).unwrap();
+        /// let w_in = Vec3::new(0.0, 0.0, 1.0);
+        /// let (w_out, pdf) = hg.sample_dir(w_in, 0.25, 0.5);
+        /// assert!((w_out.length() - 1.0).abs() < 1e-6);
+        /// assert!((pdf - hg.pdf(w_out.dot(w_in))).abs() < 1e-3 * pdf);
+        /// // Monotone in u: the median direction, and F(μ(u)) = u.
+        /// let mu = hg.sample_cos(0.5);
+        /// assert!((hg.cdf(mu) - 0.5).abs() < 1e-6);
+        /// ```
+        #[repr(C, u32)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        #[non_exhaustive]
+        pub enum Phase<T> {
+            $($(#[$doc])* $variant($ty) = $tag,)+
+        }
+
+        /// `dispatch!(phase, m => expr)`: `expr` with `m` bound to the model inside.
+        macro_rules! dispatch {
+            ($self:expr, $m:ident => $e:expr) => {
+                match $self {
+                    $(Phase::$variant($m) => $e,)+
+                }
+            };
+        }
+
+        $(impl<T: Real> From<$ty> for Phase<T> {
+            fn from(m: $ty) -> Self {
+                Phase::$variant(m)
+            }
+        })+
+
+        impl<T: Real> Phase<T> {
+            /// Every model fits (checked when `Phase<T>` is used).
+            const FITS: () = {
+                $(assert!(
+                    core::mem::size_of::<$ty>() <= Self::ROOM,
+                    concat!("Phase::ROOM has no room for ", stringify!($variant))
+                );)+
+            };
+            /// The tags in use: `1..=LAST_TAG`.
+            pub const LAST_TAG: u32 = {
+                let tags = [$($tag),+];
+                tags[tags.len() - 1]
+            };
+            /// The model's tag (its discriminant, the C API's
+            /// `sk_phase_model`).
+            pub fn tag(&self) -> u32 {
+                let () = Self::FITS;
+                match self {
+                    $(Phase::$variant(_) => $tag,)+
+                }
+            }
+            /// The model's name.
+            pub fn name(&self) -> &'static str {
+                match self {
+                    $(Phase::$variant(_) => $name,)+
+                }
+            }
+            /// The same phase function in another precision (parameters
+            /// rounded; a parameter that must stay below 1 in magnitude
+            /// stays below it).
+            pub fn cast<U: Real>(&self) -> Phase<U> {
+                match self {
+                    $(Phase::$variant(m) => Phase::$variant(Model::<T>::cast::<U>(m)),)+
+                }
+            }
+            /// The model's tag and its parameters (the rest 0), in the
+            /// order [`Model::params`] gives them.
+            pub fn params(&self) -> (u32, usize, [T; 4]) {
+                match self {
+                    $(Phase::$variant(m) => ($tag, <$ty as Model<T>>::PARAMS, Model::<T>::params(m)),)+
+                }
+            }
+            /// The model of `tag` from its parameters, the inverse of
+            /// [`params`](Self::params): [`Error::Method`] for an unknown
+            /// tag, [`Error::Size`] for the wrong number of parameters,
+            /// [`Error::Domain`] for values out of range.
+            pub fn from_params(tag: u32, p: &[T]) -> Result<Self, Error> {
+                let () = Self::FITS;
+                match tag {
+                    $($tag => <$ty as Model<T>>::from_params(p).map(Phase::$variant),)+
+                    _ => Err(Error::Method),
+                }
+            }
+            /// Its Draine lobes if its Legendre moments have a closed form.
+            #[inline]
+            pub(crate) fn lobes(&self) -> Option<Lobes> {
+                match self {
+                    $(Phase::$variant(m) => Model::<T>::lobes(m),)+
+                }
+            }
+        }
+    };
+}
+
+models! {
     /// Uniform over the sphere.
-    Isotropic(Isotropic) = 1,
+    1 => Isotropic(Isotropic) "isotropic",
     /// Rayleigh, `3/(16π) (1 + μ²)`.
-    Rayleigh(Rayleigh) = 2,
+    2 => Rayleigh(Rayleigh) "Rayleigh",
     /// Rayleigh with depolarisation.
-    RayleighDepolarized(RayleighDepolarized<T>) = 3,
+    3 => RayleighDepolarized(RayleighDepolarized<T>) "depolarised Rayleigh",
     /// Henyey–Greenstein.
-    HenyeyGreenstein(HenyeyGreenstein<T>) = 4,
+    4 => HenyeyGreenstein(HenyeyGreenstein<T>) "Henyey-Greenstein",
     /// Draine (Cornette–Shanks for α = 1).
-    Draine(Draine<T>) = 5,
+    5 => Draine(Draine<T>) "Draine",
     /// The fog mixture of HG and Draine.
-    Fog(Fog<T>) = 6,
+    6 => Fog(Fog<T>) "fog",
     /// The Gegenbauer kernel of Reynolds & McCormick.
-    Gegenbauer(Gegenbauer<T>) = 7,
+    7 => Gegenbauer(Gegenbauer<T>) "Gegenbauer",
     /// Fournier–Forand, for ocean particles.
-    FournierForand(FournierForand<T>) = 8,
+    8 => FournierForand(FournierForand<T>) "Fournier-Forand",
 }
 
 impl<T: Real> Phase<T> {
-    /// The same phase function in another precision (parameters rounded;
-    /// a parameter that must stay below 1 in magnitude stays below it).
-    pub fn cast<U: Real>(&self) -> Phase<U> {
-        let c = |x: T| U::from_f64(x.to_f64());
-        let open = |x: T| {
-            let y = U::from_f64(x.to_f64());
-            if y.abs() < U::ONE {
-                y
-            } else {
-                (U::ONE - U::EPSILON * U::HALF).copysign(y)
-            }
-        };
-        match *self {
-            Phase::Isotropic(i) => Phase::Isotropic(i),
-            Phase::Rayleigh(r) => Phase::Rayleigh(r),
-            Phase::RayleighDepolarized(r) => match RayleighDepolarized::new(open(r.rho())) {
-                Ok(d) => Phase::RayleighDepolarized(d),
-                Err(_) => Phase::Rayleigh(Rayleigh),
-            },
-            Phase::HenyeyGreenstein(h) => {
-                Phase::HenyeyGreenstein(HenyeyGreenstein::from_g(open(h.g())))
-            }
-            Phase::Draine(d) => Phase::Draine(Draine::from_parts(open(d.g), c(d.alpha))),
-            Phase::Fog(f) => {
-                let (a, b, al, w) = f.params();
-                Phase::Fog(Fog::from_parts(open(a), open(b), c(al), c(w)))
-            }
-            Phase::Gegenbauer(k) => match Gegenbauer::new(c(k.alpha()), open(k.g())) {
-                Ok(k) => Phase::Gegenbauer(k),
-                // α just above −½ can round onto it: the nearest valid α.
-                Err(_) => Phase::Gegenbauer(Gegenbauer::from_parts(
-                    U::from_f64(-0.5 + 1e-7),
-                    open(k.g()),
-                )),
-            },
-            Phase::FournierForand(f) => Phase::FournierForand(FournierForand::from_parts(
-                c(f.n()),
-                // ν stays inside (−1, 0) after rounding.
-                U::from_f64(f.nu().to_f64().clamp(-1.0 + 1e-7, -1e-30)),
-            )),
-        }
-    }
+    /// The room every model must fit in: 63 values of `T` (252 bytes in
+    /// f32, 504 in f64; the C layer's fixed storage is 64 with the tag).
+    pub const ROOM: usize = 63 * core::mem::size_of::<T>();
 
     /// `cos θ` by lobe: for the fog mixture, the paper's sampler
     /// ([`Fog::sample_cos_by_lobe`]: one uniform picks the lobe and is reused
@@ -182,22 +236,6 @@ impl<T: Real> Phase<T> {
     pub fn two_lobe_hg(g1: T, g2: T, w: T) -> Result<Self, Error> {
         Fog::new(g2, g1, T::ZERO, w).map(Phase::Fog)
     }
-}
-
-/// `dispatch!(phase, m => expr)`: `expr` with `m` bound to the model inside.
-macro_rules! dispatch {
-    ($self:expr, $m:ident => $e:expr) => {
-        match $self {
-            Phase::Isotropic($m) => $e,
-            Phase::Rayleigh($m) => $e,
-            Phase::RayleighDepolarized($m) => $e,
-            Phase::HenyeyGreenstein($m) => $e,
-            Phase::Draine($m) => $e,
-            Phase::Fog($m) => $e,
-            Phase::Gegenbauer($m) => $e,
-            Phase::FournierForand($m) => $e,
-        }
-    };
 }
 
 impl<T: Real> Phase<T> {

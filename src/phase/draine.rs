@@ -51,6 +51,7 @@
 
 use super::function::PhaseFunction;
 use super::hg::HenyeyGreenstein;
+use super::model::{Lobes, Model, exactly, open, to};
 use super::seeds::Seeds;
 use crate::error::Error;
 use crate::math::numeric::{Eval, depressed_cubic_root, solve_bracketed};
@@ -672,6 +673,25 @@ pub fn sample_cos_eq6<T: Real>(g: T, alpha: T, u: T) -> T {
     let t9 = (six * (one + g2) + t8).sqrt();
     let d = (six * (one + g2) - t8 + eight * t4 / (t0 * t9)).sqrt() - t9;
     g / two + (one / (two * g) - d * d / (eight * g))
+}
+
+impl<T: Real> Model<T> for Draine<T> {
+    type In<U: Real> = Draine<U>;
+    const PARAMS: usize = 2;
+    fn params(&self) -> [T; 4] {
+        [self.g(), self.alpha(), T::ZERO, T::ZERO]
+    }
+    fn from_params(p: &[T]) -> Result<Self, Error> {
+        let [g, alpha] = exactly(p)?;
+        Self::new(g, alpha)
+    }
+    fn cast<U: Real>(&self) -> Draine<U> {
+        Draine::from_parts(open(self.g()), to(self.alpha()))
+    }
+    fn lobes(&self) -> Option<Lobes> {
+        let f = |x: T| x.to_f64();
+        Some(((f(self.g()), f(self.alpha())), (0.0, 0.0), 0.0))
+    }
 }
 
 #[cfg(test)]

@@ -30,6 +30,7 @@
 //! `F_fwd ≈ δ^{−ν}` corrected by a 16-node table built with the object.
 
 use super::function::PhaseFunction;
+use super::model::{Lobes, Model, exactly, to};
 use crate::error::Error;
 use crate::math::numeric::{newton_bracketed, simpson_unit};
 use crate::math::real::Real;
@@ -427,5 +428,31 @@ impl<T: Real> PhaseFunction<T> for FournierForand<T> {
     fn mean_cosine(&self) -> T {
         let k = Ff::from_bits(self.ff);
         T::from_f64(simpson_unit(|u| k.inverse(u, &self.seeds), 4096))
+    }
+}
+
+impl<T: Real> Model<T> for FournierForand<T> {
+    type In<U: Real> = FournierForand<U>;
+    const PARAMS: usize = 3;
+    fn params(&self) -> [T; 4] {
+        [self.n, self.nu, self.backscatter(), T::ZERO]
+    }
+    /// From `(n, ν, b)` as reported: `n ∈ (1, 1.8]`, `ν ∈ (−1, 0)`; `b`
+    /// follows from them and is not read.
+    fn from_params(p: &[T]) -> Result<Self, Error> {
+        let [n, nu, _] = exactly(p)?;
+        let (nf, nuf) = (n.to_f64(), nu.to_f64());
+        if !(nf > 1.0 && nf <= Self::MAX_N && nuf > -1.0 && nuf < 0.0) {
+            return Err(Error::Domain);
+        }
+        Ok(Self::from_parts(n, nu))
+    }
+    fn cast<U: Real>(&self) -> FournierForand<U> {
+        // ν stays inside (−1, 0) after rounding.
+        let nu = U::from_f64(self.nu.to_f64().clamp(-1.0 + 1e-7, -1e-30));
+        FournierForand::from_parts(to(self.n), nu)
+    }
+    fn lobes(&self) -> Option<Lobes> {
+        None
     }
 }

@@ -24,6 +24,7 @@
 //! `1 − μ` with `expm1`, never through `y`.
 
 use super::function::PhaseFunction;
+use super::model::{Lobes, Model, exactly, open, to};
 use crate::error::Error;
 use crate::math::numeric::simpson_unit;
 use crate::math::real::{PackedF64, Real};
@@ -335,4 +336,29 @@ fn low_moments_series(a: f64, g: f64) -> [f64; 3] {
     let n2 = g2 * lam * (lam + 1.0) / (2.0 * 0.5 * 1.5 * 2.5);
     let n3 = g2 * g * lam * (lam + 1.0) * (lam + 2.0) / (2.0 * 0.5 * 1.5 * 2.5 * 3.5);
     [sum(1.0, n1) / d, sum(2.0, n2) / d, sum(3.0, n3) / d]
+}
+
+impl<T: Real> Model<T> for Gegenbauer<T> {
+    type In<U: Real> = Gegenbauer<U>;
+    const PARAMS: usize = 2;
+    fn params(&self) -> [T; 4] {
+        [self.alpha, self.g, T::ZERO, T::ZERO]
+    }
+    fn from_params(p: &[T]) -> Result<Self, Error> {
+        let [alpha, g] = exactly(p)?;
+        Self::new(alpha, g)
+    }
+    fn cast<U: Real>(&self) -> Gegenbauer<U> {
+        // α just above −½ can round onto it: the nearest valid α.
+        let alpha = to::<T, U>(self.alpha);
+        let alpha = if alpha.to_f64() > -0.5 {
+            alpha
+        } else {
+            U::from_f64(-0.5 + 1e-7)
+        };
+        Gegenbauer::from_parts(alpha, open(self.g))
+    }
+    fn lobes(&self) -> Option<Lobes> {
+        None
+    }
 }

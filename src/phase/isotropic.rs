@@ -1,6 +1,8 @@
 //! Isotropic scattering: `p(μ) = 1/(4π)`.
 
 use super::function::PhaseFunction;
+use super::model::{Lobes, Model, exactly};
+use crate::error::Error;
 use crate::math::real::Real;
 
 /// Uniform scattering over the sphere. Mean cosine 0.
@@ -29,5 +31,22 @@ impl<T: Real> PhaseFunction<T> for Isotropic {
     #[inline(always)]
     fn mean_cosine(&self) -> T {
         T::ZERO
+    }
+}
+
+impl<T: Real> Model<T> for Isotropic {
+    type In<U: Real> = Isotropic;
+    const PARAMS: usize = 0;
+    fn params(&self) -> [T; 4] {
+        [T::ZERO; 4]
+    }
+    fn from_params(p: &[T]) -> Result<Self, Error> {
+        exactly::<T, 0>(p).map(|_| Isotropic)
+    }
+    fn cast<U: Real>(&self) -> Isotropic {
+        Isotropic
+    }
+    fn lobes(&self) -> Option<Lobes> {
+        Some(((0.0, 0.0), (0.0, 0.0), 0.0))
     }
 }

@@ -44,23 +44,9 @@ pub fn legendre_moments<T: Real>(phase: &Phase<T>, out: &mut [T]) {
 
 /// `l ↦ χ_l` for the models with a closed form (module docs), else `None`.
 pub fn closed_form<T: Real>(phase: &Phase<T>) -> Option<impl Fn(usize) -> f64> {
-    let f = |x: T| x.to_f64();
-    // (g, α) of up to two Draine lobes and the second's weight.
-    let lobes = match phase {
-        Phase::Isotropic(_) => ((0.0, 0.0), (0.0, 0.0), 0.0),
-        Phase::Rayleigh(_) => ((0.0, 1.0), (0.0, 0.0), 0.0),
-        Phase::RayleighDepolarized(r) => {
-            let g = f(r.gamma());
-            ((0.0, (1.0 - g) / (1.0 + 3.0 * g)), (0.0, 0.0), 0.0)
-        }
-        Phase::HenyeyGreenstein(h) => ((f(h.g()), 0.0), (0.0, 0.0), 0.0),
-        Phase::Draine(d) => ((f(d.g()), f(d.alpha())), (0.0, 0.0), 0.0),
-        Phase::Fog(fog) => {
-            let (g_hg, g_d, alpha, w_d) = fog.params();
-            ((f(g_hg), 0.0), (f(g_d), f(alpha)), f(w_d))
-        }
-        _ => return None,
-    };
+    // (g, α) of up to two Draine lobes and the second's weight, as each
+    // model declares them (`Model::lobes`).
+    let lobes = phase.lobes()?;
     let ((g1, a1), (g2, a2), w) = lobes;
     Some(move |l: usize| {
         let first = draine(g1, a1, l);

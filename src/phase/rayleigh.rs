@@ -9,6 +9,7 @@
 //! (one that returns a constant) cannot hang the caller.
 
 use super::function::PhaseFunction;
+use super::model::{Lobes, Model, exactly};
 use crate::error::{Error, try_from_u32};
 use crate::math::geometry::{Vec3, direction_about_turns, sin_from_cos};
 use crate::math::numeric::depressed_cubic_root;
@@ -542,4 +543,22 @@ pub fn scattering_coeff(
         return Err(Error::Domain);
     }
     Ok(number_density * cross_section(wavelength, radius, rel_index)?)
+}
+
+impl<T: Real> Model<T> for Rayleigh {
+    type In<U: Real> = Rayleigh;
+    const PARAMS: usize = 0;
+    fn params(&self) -> [T; 4] {
+        [T::ZERO; 4]
+    }
+    fn from_params(p: &[T]) -> Result<Self, Error> {
+        exactly::<T, 0>(p).map(|_| Rayleigh)
+    }
+    fn cast<U: Real>(&self) -> Rayleigh {
+        Rayleigh
+    }
+    /// Draine with `g = 0`, `α = 1`.
+    fn lobes(&self) -> Option<Lobes> {
+        Some(((0.0, 1.0), (0.0, 0.0), 0.0))
+    }
 }

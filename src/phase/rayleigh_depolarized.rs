@@ -10,6 +10,7 @@
 //! solved by the same cancellation-free Cardano root as plain Rayleigh.
 
 use super::function::PhaseFunction;
+use super::model::{Lobes, Model, exactly, open};
 use crate::error::Error;
 use crate::math::numeric::depressed_cubic_root;
 use crate::math::real::Real;
@@ -32,17 +33,21 @@ impl<T: Real> RayleighDepolarized<T> {
         if !(rho >= T::ZERO && rho < T::ONE) {
             return Err(Error::Domain);
         }
+        Ok(Self::from_rho(rho))
+    }
+    /// The constants for a `rho` already known to lie in `[0, 1)`.
+    pub(crate) fn from_rho(rho: T) -> Self {
         let gamma = rho / (T::TWO - rho);
         let omg = T::ONE - gamma;
         let a = (T::ONE + T::from_f64(3.0) * gamma) / omg;
         let k = T::TWO * (T::ONE + T::TWO * gamma) / omg;
-        Ok(RayleighDepolarized {
+        RayleighDepolarized {
             rho,
             gamma,
             a,
             a2: a * a,
             k,
-        })
+        }
     }
     /// The depolarisation factor ρ.
     pub fn rho(&self) -> T {
@@ -77,5 +82,26 @@ impl<T: Real> PhaseFunction<T> for RayleighDepolarized<T> {
     #[inline(always)]
     fn mean_cosine(&self) -> T {
         T::ZERO
+    }
+}
+
+impl<T: Real> Model<T> for RayleighDepolarized<T> {
+    type In<U: Real> = RayleighDepolarized<U>;
+    const PARAMS: usize = 1;
+    fn params(&self) -> [T; 4] {
+        [self.rho, T::ZERO, T::ZERO, T::ZERO]
+    }
+    fn from_params(p: &[T]) -> Result<Self, Error> {
+        let [rho] = exactly(p)?;
+        Self::new(rho)
+    }
+    fn cast<U: Real>(&self) -> RayleighDepolarized<U> {
+        // ρ ∈ [0, 1) stays there: `open` keeps it below 1.
+        RayleighDepolarized::from_rho(open(self.rho))
+    }
+    /// Draine with `g = 0`, `α = (1 − γ)/(1 + 3γ)`.
+    fn lobes(&self) -> Option<Lobes> {
+        let g = self.gamma.to_f64();
+        Some(((0.0, (1.0 - g) / (1.0 + 3.0 * g)), (0.0, 0.0), 0.0))
     }
 }

@@ -61,3 +61,22 @@ fn the_handle_verb_table_is_the_header() {
         }
     }
 }
+
+/// Every model of the library's registry has its `SK_PHASE_` constant in
+/// the header, with its tag: the C enum line a new model adds.
+#[test]
+fn every_registered_model_has_its_c_constant() {
+    let header = std::fs::read_to_string(root().join("include/scatterkit.h")).unwrap();
+    let values: std::collections::BTreeSet<u32> = header
+        .lines()
+        .map(str::trim)
+        .filter(|l| l.starts_with("SK_PHASE_"))
+        .filter_map(|l| l.split('=').nth(1))
+        .filter_map(|v| v.trim().trim_end_matches(',').parse().ok())
+        .collect();
+    let tags: std::collections::BTreeSet<u32> = (1..=scatterkit::Phase::<f32>::LAST_TAG).collect();
+    assert_eq!(
+        values, tags,
+        "the header's sk_phase_model against the registry"
+    );
+}

@@ -14,23 +14,24 @@ use crate::math::real::Real;
 use crate::phase::{Phase, PhaseFunction, PhaseVisitor, check_uniforms};
 
 /// A phase function (float). A plain value with no pointers inside: build it
-/// with an `sk_phase_*` constructor, then copy it and share it freely across
-/// threads. Its contents are private, and some of its bytes are padding a
-/// constructor need not define: compare phases with sk_phase_get_params,
-/// not memcmp.
+/// with sk_phase_new or an sk_phase_new_<model> constructor, then copy it and
+/// share it freely across threads. 256 bytes: a tag and room for 63 floats
+/// (the largest model takes 31). Its contents are private, and some of its
+/// bytes are padding a constructor need not define: compare phases with
+/// sk_phase_get_params, not memcmp.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct sk_phase {
     /// Private storage; do not read or write.
-    pub opaque: [u32; 32],
+    pub opaque: [u32; 64],
 }
 
-/// A phase function (double); see `sk_phase`.
+/// A phase function (double); see `sk_phase`. 512 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct sk_phase_f64 {
     /// Private storage; do not read or write.
-    pub opaque: [u64; 32],
+    pub opaque: [u64; 64],
 }
 
 /// Storage of a [`Phase<T>`] behind a C type.
@@ -47,7 +48,7 @@ macro_rules! impl_phase_store {
         impl PhaseStore for $c {
             type T = $t;
             type Params = $params;
-            const ZEROED: Self = $c { opaque: [0; 32] };
+            const ZEROED: Self = $c { opaque: [0; 64] };
             fn params(model: u32, count: u32, params: [$t; 4]) -> $params {
                 $params {
                     model: crate::ffi::enum_arg::sk_phase_model(model),
@@ -63,6 +64,9 @@ impl_phase_store!(sk_phase_f64, f64, sk_phase_params_f64);
 
 const _: () = {
     use core::mem::{align_of, size_of};
+    // The tag and the room every model is checked to fit in (Phase::ROOM).
+    assert!(size_of::<u32>() + Phase::<f32>::ROOM <= size_of::<sk_phase>());
+    assert!(size_of::<u64>() + Phase::<f64>::ROOM <= size_of::<sk_phase_f64>());
     assert!(size_of::<Phase<f32>>() <= size_of::<sk_phase>());
     assert!(align_of::<Phase<f32>>() <= align_of::<sk_phase>());
     assert!(size_of::<Phase<f64>>() <= size_of::<sk_phase_f64>());
@@ -89,30 +93,10 @@ pub(crate) unsafe fn load<'a, S: PhaseStore>(p: *const S) -> Option<&'a Phase<S:
     // SAFETY: p points to an S (module contract), which begins with the u32
     // tag of the repr(C, u32) enum; the payload is floats, valid for any bits.
     let tag = unsafe { p.cast::<u32>().read() };
-    if tag == 0 || tag > LAST_TAG {
+    if tag == 0 || tag > Phase::<S::T>::LAST_TAG {
         return None;
     }
     Some(unsafe { &*p.cast::<Phase<S::T>>() })
-}
-
-/// The discriminant of `Phase`'s last variant: valid tags are
-/// `1..=LAST_TAG` (`Phase` is `#[repr(C, u32)]` with tags from 1).
-const LAST_TAG: u32 = 8;
-
-/// The tag of each variant, matched exhaustively: a new model fails to
-/// compile here until its tag is listed and `LAST_TAG` follows.
-#[cfg(test)]
-fn tag_of<T: Real>(p: &Phase<T>) -> u32 {
-    match p {
-        Phase::Isotropic(_) => 1,
-        Phase::Rayleigh(_) => 2,
-        Phase::RayleighDepolarized(_) => 3,
-        Phase::HenyeyGreenstein(_) => 4,
-        Phase::Draine(_) => 5,
-        Phase::Fog(_) => 6,
-        Phase::Gegenbauer(_) => 7,
-        Phase::FournierForand(_) => 8,
-    }
 }
 
 unsafe fn construct<S: PhaseStore>(out: *mut S, r: Result<Phase<S::T>, Error>) -> sk_status {
@@ -297,8 +281,8 @@ unsafe fn sample_dir_n<S: PhaseStore>(
 mod tag_tests {
     use super::*;
 
-    /// Every model's stored tag is the one `tag_of` lists, in `1..=LAST_TAG`,
-    /// and the last variant's is `LAST_TAG`.
+    /// Every model's stored tag is its registry tag, in `1..=LAST_TAG`, and
+    /// the registry's tags are exactly `1..=LAST_TAG`.
     #[test]
     fn tags_match_the_repr() {
         let models: [Phase<f32>; 8] = [
@@ -314,10 +298,20 @@ mod tag_tests {
         for m in &models {
             // SAFETY: Phase is repr(C, u32): it begins with its u32 tag.
             let stored = unsafe { (m as *const Phase<f32>).cast::<u32>().read() };
-            assert_eq!(stored, tag_of(m));
-            assert!((1..=LAST_TAG).contains(&stored));
+            assert_eq!(stored, m.tag());
+            assert!((1..=Phase::<f32>::LAST_TAG).contains(&stored));
         }
-        assert_eq!(tag_of(&models[7]), LAST_TAG);
+        for tag in 1..=Phase::<f32>::LAST_TAG {
+            assert_ne!(
+                Phase::<f32>::from_params(tag, &[]),
+                Err(Error::Method),
+                "{tag}"
+            );
+        }
+        assert_eq!(
+            Phase::<f32>::from_params(Phase::<f32>::LAST_TAG + 1, &[]),
+            Err(Error::Method)
+        );
     }
 }
 

@@ -51,39 +51,59 @@ pub struct sk_phase_params_f64 {
     pub params: [f64; 4],
 }
 
-/// The model and parameters of a phase, in the order the C enum lists them.
-fn model_params<T: Real>(p: &Phase<T>) -> (sk_phase_model, u32, [T; 4]) {
-    use sk_phase_model::*;
-    let z = T::ZERO;
-    match *p {
-        Phase::Isotropic(_) => (SK_PHASE_ISOTROPIC, 0, [z; 4]),
-        Phase::Rayleigh(_) => (SK_PHASE_RAYLEIGH, 0, [z; 4]),
-        Phase::RayleighDepolarized(r) => (SK_PHASE_RAYLEIGH_DEPOLARIZED, 1, [r.rho(), z, z, z]),
-        Phase::HenyeyGreenstein(h) => (SK_PHASE_HG, 1, [h.g(), z, z, z]),
-        Phase::Draine(d) => (SK_PHASE_DRAINE, 2, [d.g(), d.alpha(), z, z]),
-        Phase::Fog(f) => {
-            let (a, b, c, d) = f.params();
-            (SK_PHASE_FOG, 4, [a, b, c, d])
-        }
-        Phase::Gegenbauer(k) => (SK_PHASE_GEGENBAUER, 2, [k.alpha(), k.g(), z, z]),
-        Phase::FournierForand(f) => (
-            SK_PHASE_FOURNIER_FORAND,
-            3,
-            [f.n(), f.nu(), f.backscatter(), z],
-        ),
-    }
-}
-
 /// Writes `make(model, count, params)` for the phase behind `p` to *out.
 unsafe fn get_params<S: PhaseStore>(p: *const S, out: *mut S::Params) -> sk_status {
     if p.is_null() || out.is_null() {
         return sk_status::SK_ERR_NULL;
     }
     let r = unsafe { load(p) }.ok_or(Error::Domain).map(|ph| {
-        let (model, count, params) = model_params(ph);
-        S::params(model as u32, count, params)
+        let (model, count, params) = ph.params();
+        S::params(model, count as u32, params)
     });
     unsafe { write_result(out, r) }
+}
+
+/// The phase of `model` from `n` parameters at `params`.
+unsafe fn new_from_params<S: PhaseStore>(
+    model: crate::ffi::enum_arg::sk_phase_model,
+    params: *const S::T,
+    n: usize,
+    out: *mut S,
+) -> sk_status {
+    let p = match unsafe { crate::ffi::slice_in(params, n) } {
+        Ok(p) => p,
+        Err(e) => return e,
+    };
+    unsafe { construct(out, Phase::from_params(model.0, p)) }
+}
+
+/// Builds the phase function of `model` (an sk_phase_model) from its `n`
+/// parameters at `params`, in the order sk_phase_model lists them: the
+/// inverse of sk_phase_get_params (`sk_phase_new(q.model, q.params,
+/// q.count, &p)` rebuilds what q describes). It checks them as the model's
+/// own constructor does. SK_ERR_NULL for a NULL out, or NULL params with
+/// n > 0; SK_ERR_METHOD for an unknown model; SK_ERR_SIZE for another
+/// number of parameters than the model has; SK_ERR_DOMAIN for values out
+/// of range.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_new(
+    model: crate::ffi::enum_arg::sk_phase_model,
+    params: *const f32,
+    n: usize,
+    out: *mut sk_phase,
+) -> sk_status {
+    unsafe { new_from_params(model, params, n, out) }
+}
+
+/// Double twin of `sk_phase_new`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_phase_new_f64(
+    model: crate::ffi::enum_arg::sk_phase_model,
+    params: *const f64,
+    n: usize,
+    out: *mut sk_phase_f64,
+) -> sk_status {
+    unsafe { new_from_params(model, params, n, out) }
 }
 
 /// Writes what `p` holds to *out. SK_ERR_NULL for NULL pointers;

@@ -23,6 +23,7 @@ mod inverse;
 
 use super::draine::{Params, from_tail, inverse_tail};
 use super::function::PhaseFunction;
+use super::model::{Lobes, Model, exactly, open, to};
 use super::seeds::{HalfSeeds, Seeds};
 use crate::error::Error;
 use crate::math::double_double::Dd;
@@ -502,6 +503,30 @@ impl<T: Real> PhaseFunction<T> for Fog<T> {
         let draine = super::Draine::lobe(self.g_d, self.alpha);
         let w = self.w_d;
         (T::ONE - w) * self.g_hg + w * draine.mean_cosine()
+    }
+}
+
+impl<T: Real> Model<T> for Fog<T> {
+    type In<U: Real> = Fog<U>;
+    const PARAMS: usize = 4;
+    fn params(&self) -> [T; 4] {
+        let (a, b, c, d) = Fog::params(self);
+        [a, b, c, d]
+    }
+    fn from_params(p: &[T]) -> Result<Self, Error> {
+        let [g_hg, g_d, alpha, w_d] = exactly(p)?;
+        Self::new(g_hg, g_d, alpha, w_d)
+    }
+    fn cast<U: Real>(&self) -> Fog<U> {
+        let (a, b, al, w) = Fog::params(self);
+        Fog::from_parts(open(a), open(b), to(al), to(w))
+    }
+    /// The HG lobe (Draine with `α = 0`) and the Draine lobe with weight
+    /// `w_d`.
+    fn lobes(&self) -> Option<Lobes> {
+        let f = |x: T| x.to_f64();
+        let (g_hg, g_d, alpha, w_d) = Fog::params(self);
+        Some(((f(g_hg), 0.0), (f(g_d), f(alpha)), f(w_d)))
     }
 }
 

@@ -44,6 +44,7 @@
 mod batch;
 
 use super::function::PhaseFunction;
+use super::model::{Lobes, Model, exactly, open};
 use crate::error::Error;
 use crate::math::geometry::{Vec3, direction_about_turns};
 use crate::math::real::{PackedF64, Real};
@@ -362,6 +363,25 @@ impl<T: Real> PhaseFunction<T> for HenyeyGreenstein<T> {
     #[inline(always)]
     fn mean_cosine(&self) -> T {
         self.g
+    }
+}
+
+impl<T: Real> Model<T> for HenyeyGreenstein<T> {
+    type In<U: Real> = HenyeyGreenstein<U>;
+    const PARAMS: usize = 1;
+    fn params(&self) -> [T; 4] {
+        [self.g, T::ZERO, T::ZERO, T::ZERO]
+    }
+    fn from_params(p: &[T]) -> Result<Self, Error> {
+        let [g] = exactly(p)?;
+        Self::new(g)
+    }
+    fn cast<U: Real>(&self) -> HenyeyGreenstein<U> {
+        HenyeyGreenstein::from_g(open(self.g))
+    }
+    /// Draine with `α = 0`.
+    fn lobes(&self) -> Option<Lobes> {
+        Some(((self.g.to_f64(), 0.0), (0.0, 0.0), 0.0))
     }
 }
 

@@ -148,6 +148,8 @@ models! {
     7 => Gegenbauer(Gegenbauer<T>) "Gegenbauer",
     /// Fournier–Forand, for ocean particles.
     8 => FournierForand(FournierForand<T>) "Fournier-Forand",
+    /// Schlick's rational stand-in for HG.
+    9 => Schlick(super::schlick::Schlick<T>) "Schlick",
 }
 
 impl<T: Real> Phase<T> {

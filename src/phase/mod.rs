@@ -25,6 +25,7 @@ pub mod moments;
 pub mod rayleigh;
 mod rayleigh_depolarized;
 pub mod rayleigh_polarized;
+pub mod schlick;
 mod seeds;
 
 pub use any::Phase;

@@ -78,6 +78,12 @@ int main(void) {
     BOTH("two_lobe_hg_0.8_-0.3_0.9", sk_phase_new_two_lobe_hg(0.8f, -0.3f, 0.9f, &p), sk_phase_new_two_lobe_hg_f64(0.8, -0.3, 0.9, &q))
     BOTH("gegenbauer_-0.25_0.7", sk_phase_new_gegenbauer(-0.25f, 0.7f, &p), sk_phase_new_gegenbauer_f64(-0.25, 0.7, &q))
     BOTH("fournier_forand_1.1_4", sk_phase_new_fournier_forand(1.1f, 4.0f, &p), sk_phase_new_fournier_forand_f64(1.1, 4.0, &q))
+    {
+        /* Schlick through the generic constructor, as a new model arrives. */
+        const float k32 = 0.6f;
+        const double k64 = 0.6;
+        BOTH("schlick_0.6", sk_phase_new(SK_PHASE_SCHLICK, &k32, 1, &p), sk_phase_new_f64(SK_PHASE_SCHLICK, &k64, 1, &q))
+    }
     BOTH("particle_0.01_0.01", sk_phase_new_particle(0.01f, 0.01f, &p), sk_phase_new_particle_f64(0.01, 0.01, &q))
 
     for (m = SK_RAYLEIGH_REJECT_CUBE; m <= SK_RAYLEIGH_TABLE; m++) {

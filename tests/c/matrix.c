@@ -1804,6 +1804,7 @@ static void phase_new_generic(void) {
     sk_phase_new_fog_diameter(2.0f, &named[5]);
     sk_phase_new_gegenbauer(0.4f, 0.6f, &named[6]);
     sk_phase_new_fournier_forand(1.1f, 4.0f, &named[7]);
+    CHECK(sk_phase_new(SK_PHASE_SCHLICK, &k, 1, &named[models++]) == SK_OK);
     for (m = 0; m < models; m++) {
         /* Rebuilt from what it reports: the same model, the same answers. */
         CHECK(sk_phase_get_params(&named[m], &a) == SK_OK && a.model == (uint32_t)(m + 1));
@@ -1817,10 +1818,12 @@ static void phase_new_generic(void) {
     CHECK(sk_phase_new_f64(SK_PHASE_HG, &kd, 1, &pd) == SK_OK && sk_phase_get_params_f64(&pd, &ad) == SK_OK);
     CHECK(ad.model == SK_PHASE_HG && ad.count == 1 && ad.params[0] == 0.6);
     CHECK(fabs(sk_phase_cdf_f64(&pd, sk_phase_sample_cos_f64(&pd, 0.3)) - 0.3) < 1e-15);
+    CHECK(sk_phase_new_f64(SK_PHASE_SCHLICK, &kd, 1, &pd) == SK_OK && fabs(sk_phase_cdf_f64(&pd, sk_phase_sample_cos_f64(&pd, 0.3)) - 0.3) < 1e-15);
     for (i = 0; i < NS; i++) {
         float f = FS[i];
         double d = DS[i];
         CHECK(sk_phase_new(SK_PHASE_HG, &f, 1, &p) == (f > -1.0f && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new(SK_PHASE_SCHLICK, &f, 1, &p) == (f > -1.0f && f < 1.0f ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_new_f64(SK_PHASE_HG, &d, 1, &pd) == (d > -1.0 && d < 1.0 ? SK_OK : SK_ERR_DOMAIN));
         {
             const float gp[2] = {f, 1.0f};

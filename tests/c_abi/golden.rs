@@ -9,6 +9,7 @@ use crate::common;
 
 use common::cbuild::{build_program, root, run};
 use rand_xoshiro::rand_core::TryRng;
+use scatterkit::phase::schlick::Schlick;
 use scatterkit::surface::{
     CrossingPolicy, Fraction, Surface, SurfaceModel, lambert_sample, phong_sample,
 };
@@ -83,7 +84,7 @@ fn phase_lines(s: &mut String, name: &str, p: &Phase<f32>, q: &Phase<f64>) {
 /// The golden lines through the Rust API.
 fn rust_lines() -> String {
     let mut s = String::new();
-    let phases: [(&str, Phase<f32>, Phase<f64>); 12] = [
+    let phases: [(&str, Phase<f32>, Phase<f64>); 13] = [
         ("isotropic", Phase::isotropic(), Phase::isotropic()),
         ("rayleigh", Phase::rayleigh(), Phase::rayleigh()),
         (
@@ -130,6 +131,11 @@ fn rust_lines() -> String {
             "fournier_forand_1.1_4",
             Phase::fournier_forand(1.1, 4.0).unwrap(),
             Phase::fournier_forand(1.1, 4.0).unwrap(),
+        ),
+        (
+            "schlick_0.6",
+            Phase::from(Schlick::new(0.6).unwrap()),
+            Phase::from(Schlick::new(0.6).unwrap()),
         ),
         (
             "particle_0.01_0.01",

@@ -72,6 +72,7 @@ fn the_registry_holds_every_model() {
         "two-lobe hg",
         "gegenbauer",
         "fournier-forand",
+        "schlick",
     ] {
         assert!(names.contains(&want), "{want} is not registered");
     }

@@ -69,6 +69,7 @@ pub fn models() -> Vec<Model> {
         model!("fog", |p| Phase::fog_diameter(p[0]), sets: &[&[2.0], &[10.0], &[40.0]], bad: &[&[0.0], &[-1.0], &[NAN], &[INF]], golden: ("fog_2um", &[2.0]), mu_tol: ITERATIVE),
         model!("two-lobe hg", |p| Phase::two_lobe_hg(p[0], p[1], p[2]), sets: &[&[0.8, -0.3, 0.9], &[-0.9, 0.9, 0.5]], bad: &[&[1.0, 0.0, 0.5], &[0.0, -1.0, 0.5], &[0.5, 0.5, -0.1], &[0.5, 0.5, 1.1], &[NAN, 0.0, 0.5], &[0.0, NAN, 0.5], &[0.0, 0.0, NAN]], golden: ("two_lobe_hg_0.8_-0.3_0.9", &[0.8, -0.3, 0.9]), mu_tol: ITERATIVE),
         model!("gegenbauer", |p| Phase::gegenbauer(p[0], p[1]), sets: &[&[-0.25, 0.7], &[0.5, 0.3], &[2.0, -0.6], &[-0.4, 0.6], &[0.0, -0.7], &[0.5, 0.9], &[2.0, 0.5], &[50.0, 0.3]], bad: &[&[-0.5, 0.3], &[1000.5, 0.3], &[0.5, 1.0], &[0.5, -1.0], &[NAN, 0.3], &[0.5, NAN], &[INF, 0.3]], golden: ("gegenbauer_-0.25_0.7", &[-0.25, 0.7]), mu_tol: ITERATIVE),
+        model!("schlick", |p| scatterkit::phase::schlick::Schlick::new(p[0]).map(Phase::from), sets: &[&[-0.9], &[-0.3], &[0.0], &[1e-5], &[0.5], &[0.8], &[0.99]], bad: &[&[1.0], &[-1.0], &[1.5], &[NAN], &[INF], &[-INF]], golden: ("schlick_0.6", &[0.6]), mu_tol: CLOSED),
         model!("fournier-forand", |p| Phase::fournier_forand(p[0], p[1]), sets: &[&[1.1, 4.0], &[1.05, 3.5]], bad: &[&[1.0, 4.0], &[1.81, 4.0], &[1.1, 3.0], &[1.1, 5.0], &[NAN, 4.0], &[1.1, NAN]], golden: ("fournier_forand_1.1_4", &[1.1, 4.0]), mu_tol: ITERATIVE),
     ]
 }

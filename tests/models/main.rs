@@ -31,6 +31,7 @@ mod ray_march;
 mod rayleigh;
 mod rayleigh_polarized;
 mod residual;
+mod schlick;
 mod spectral;
 mod spectral_phase;
 mod surface;

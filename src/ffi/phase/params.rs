@@ -24,6 +24,8 @@ pub enum sk_phase_model {
     /// Fournier-Forand: `params[0]` = n, `params[1]` = nu = (3 - Junge
     /// slope)/2, `params[2]` = the backscatter fraction.
     SK_PHASE_FOURNIER_FORAND = 8,
+    /// Schlick's phase function (1 - k^2)/(4 pi (1 - k mu)^2): `params[0]` = k.
+    SK_PHASE_SCHLICK = 9,
 }
 
 /// What an sk_phase holds, for a host to hand to a device: the model (an

@@ -1,4 +1,4 @@
-//! Gives the shared library a SONAME on Linux (`libscatterkit.so.0.1`: major
+//! Gives the shared library a SONAME on Linux (`libscatterkit.so.0.2`: major
 //! and minor while the major is 0, as cargo-c names it), so programs record
 //! the ABI they were linked against rather than a bare `libscatterkit.so`.
 

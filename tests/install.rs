@@ -54,7 +54,7 @@ fn shared_library_through_pkg_config() {
     // The program records the SONAME (as cargo-c installs it), and the
     // install holds the versioned file it names.
     assert!(
-        ldd.contains("libscatterkit.so.0.1"),
+        ldd.contains("libscatterkit.so.0.2"),
         "not linked to the shared library by its SONAME:\n{ldd}"
     );
 }

@@ -10,7 +10,26 @@
  * are unit propagation directions; cos theta = dot(w_in, w_out). Phase
  * functions are densities per steradian. Uniforms u are in [0, 1]: scalar
  * calls clamp, batch calls reject (SK_ERR_DOMAIN). No allocation, no global
- * state; objects are plain values, safe to share across threads. */
+ * state; objects are plain values, safe to share across threads.
+ *
+ * The declarations read by family, in this order (types first, then the
+ * functions of each family):
+ *   1. status, vectors, the caller's generator: sk_status, sk_status_string,
+ *      sk_vec3, sk_rng, sk_uniform, sk_version;
+ *   2. phase functions: sk_phase (sk_phase_new and sk_phase_new_<model>,
+ *      pdf, cdf, sample_cos, sample_dir, mean_cosine, batches, Legendre
+ *      moments, parameters), Rayleigh's sampling methods, polarised Rayleigh;
+ *   3. tables: sk_table, sk_table2d (include/scatterkit_table.h looks them
+ *      up inline);
+ *   4. mixtures and expansions: sk_mixture, per-wavelength phases,
+ *      sk_legendre;
+ *   5. media: free paths, homogeneous media, sk_grid, sk_majorants, the
+ *      tracking estimators (sk_track_args -> sk_track_result), equiangular
+ *      sampling, the albedo curve;
+ *   6. surfaces: the solar-cell interface step;
+ *   7. particles: Lorenz-Mie, size distributions;
+ *   8. utilities: cube roots, the orthonormal basis.
+ * Every phase-like handle answers the same verbs (docs/guides/c_api.md). */
 
 #ifndef SCATTERKIT_H
 #define SCATTERKIT_H
@@ -22,21 +41,6 @@
 #define SK_VERSION_MINOR 2
 #define SK_VERSION_PATCH 0
 
-
-/*
- Nodes of an sk_albedo_curve_f64: omega_k = 1 - (k/64)^2, k = 0..64.
- */
-#define SK_ALBEDO_NODES 65
-
-/*
- Bit of `event_out`: the ray was transmitted (else reflected).
- */
-#define SK_EVENT_TRANSMITTED 1
-
-/*
- Bit of `event_out`: the ray was scattered by the model (else specular).
- */
-#define SK_EVENT_SCATTERED 2
 
 /*
  The step budget a tracking call takes when sk_track_args.budget is 0:
@@ -52,6 +56,21 @@
  majorants.
  */
 #define SK_TRACK_NONBOUNDING 1
+
+/*
+ Nodes of an sk_albedo_curve_f64: omega_k = 1 - (k/64)^2, k = 0..64.
+ */
+#define SK_ALBEDO_NODES 65
+
+/*
+ Bit of `event_out`: the ray was transmitted (else reflected).
+ */
+#define SK_EVENT_TRANSMITTED 1
+
+/*
+ Bit of `event_out`: the ray was scattered by the model (else specular).
+ */
+#define SK_EVENT_SCATTERED 2
 
 /*
  Result of every fallible call. Out-pointers are written only on `SK_OK`.
@@ -87,62 +106,6 @@ typedef enum {
      */
     SK_ERR_OVERLAP = 6
 } sk_status;
-
-/*
- Where a grid's values sit in its box.
- */
-enum sk_sampling
-#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
-  : uint32_t
-#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
- {
-    /*
-     At the nodes lo + (hi - lo) i/(n - 1): the faces carry the outermost
-     values, a linear density is exact. The default.
-     */
-    SK_SAMPLING_NODES = 0,
-    /*
-     At the cell centres lo + (hi - lo)(i + 1/2)/n, as pbrt-v4 and
-     OpenVDB place voxels; held at the outermost value out to the faces.
-     */
-    SK_SAMPLING_CELLS = 1
-};
-#ifndef __cplusplus
-#if __STDC_VERSION__ >= 202311L
-typedef enum sk_sampling sk_sampling;
-#else
-typedef uint32_t sk_sampling;
-#endif /* __STDC_VERSION__ >= 202311L */
-#endif /* __cplusplus */
-
-/*
- What a table holds (passed as uint32_t; other values give SK_ERR_METHOD).
- */
-enum sk_table_kind
-#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
-  : uint32_t
-#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
- {
-    /*
-     Frisvad's tabulated Rayleigh CDF: n + 1 values at cos theta = -1 + 2i/n.
-     */
-    SK_TABLE_RAYLEIGH_CDF = 0,
-    /*
-     Inverse CDF of a phase function, cubic Hermite in u: 2(n + 1) values.
-     */
-    SK_TABLE_INVERSE = 1,
-    /*
-     Inverse CDF of a measured phase function, cubic Hermite: 2(n + 1) values.
-     */
-    SK_TABLE_MEASURED = 2
-};
-#ifndef __cplusplus
-#if __STDC_VERSION__ >= 202311L
-typedef enum sk_table_kind sk_table_kind;
-#else
-typedef uint32_t sk_table_kind;
-#endif /* __STDC_VERSION__ >= 202311L */
-#endif /* __cplusplus */
 
 /*
  The models sk_phase_new_particle_mie_f64 chooses from.
@@ -257,41 +220,6 @@ typedef uint32_t sk_phase_model;
 #endif /* __cplusplus */
 
 /*
- Which size distribution an sk_size_distribution_f64 holds.
- */
-enum sk_size_kind
-#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
-  : uint32_t
-#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
- {
-    /*
-     Lognormal, n(r) proportional to exp(-ln^2(r/r_g) / (2 ln^2 sigma_g))
-     / r: `params[0]` = median radius r_g > 0, `params[1]` = geometric
-     standard deviation sigma_g > 1 (`params[2]` unused).
-     */
-    SK_SIZE_LOGNORMAL = 0,
-    /*
-     Deirmendjian's modified gamma, n(r) proportional to r^alpha exp(-b
-     r^gamma): params = {alpha in [0, 100], b > 0, gamma in (0, 10]}.
-     */
-    SK_SIZE_MODIFIED_GAMMA = 1,
-    /*
-     Junge's power law, n(r) proportional to r^-slope: `params[0]` =
-     slope in (0, 10] (ocean particles: 3 to 5), the rest unused. It has
-     no natural range: sk_size_distribution_range_f64 returns SK_ERR_DOMAIN,
-     give r_min and r_max.
-     */
-    SK_SIZE_JUNGE = 2
-};
-#ifndef __cplusplus
-#if __STDC_VERSION__ >= 202311L
-typedef enum sk_size_kind sk_size_kind;
-#else
-typedef uint32_t sk_size_kind;
-#endif /* __STDC_VERSION__ >= 202311L */
-#endif /* __cplusplus */
-
-/*
  The sampling methods of Frisvad (2011) for `sk_rayleigh_*` (passed as
  uint32_t; other values give SK_ERR_METHOD).
  */
@@ -343,6 +271,97 @@ enum sk_rayleigh_method
 typedef enum sk_rayleigh_method sk_rayleigh_method;
 #else
 typedef uint32_t sk_rayleigh_method;
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
+
+/*
+ What a table holds (passed as uint32_t; other values give SK_ERR_METHOD).
+ */
+enum sk_table_kind
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
+ {
+    /*
+     Frisvad's tabulated Rayleigh CDF: n + 1 values at cos theta = -1 + 2i/n.
+     */
+    SK_TABLE_RAYLEIGH_CDF = 0,
+    /*
+     Inverse CDF of a phase function, cubic Hermite in u: 2(n + 1) values.
+     */
+    SK_TABLE_INVERSE = 1,
+    /*
+     Inverse CDF of a measured phase function, cubic Hermite: 2(n + 1) values.
+     */
+    SK_TABLE_MEASURED = 2
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_table_kind sk_table_kind;
+#else
+typedef uint32_t sk_table_kind;
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
+
+/*
+ Where a grid's values sit in its box.
+ */
+enum sk_sampling
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
+ {
+    /*
+     At the nodes lo + (hi - lo) i/(n - 1): the faces carry the outermost
+     values, a linear density is exact. The default.
+     */
+    SK_SAMPLING_NODES = 0,
+    /*
+     At the cell centres lo + (hi - lo)(i + 1/2)/n, as pbrt-v4 and
+     OpenVDB place voxels; held at the outermost value out to the faces.
+     */
+    SK_SAMPLING_CELLS = 1
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_sampling sk_sampling;
+#else
+typedef uint32_t sk_sampling;
+#endif /* __STDC_VERSION__ >= 202311L */
+#endif /* __cplusplus */
+
+/*
+ What delta tracking found (sk_track_result.event).
+ */
+enum sk_track_event
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
+ {
+    /*
+     No collision in the segment: t is where the ray leaves the medium
+     (its box, or t_max), or t_min for a ray that never enters it.
+     */
+    SK_TRACK_ESCAPED = 0,
+    /*
+     A real collision that scatters (probability sigma_s/sigma_t).
+     */
+    SK_TRACK_SCATTERED = 1,
+    /*
+     A real collision that absorbs.
+     */
+    SK_TRACK_ABSORBED = 2,
+    /*
+     A real collision whose kind the caller decides (the Rust API's
+     tracking through a sigma_t function; no C call returns it).
+     */
+    SK_TRACK_COLLIDED = 3
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum sk_track_event sk_track_event;
+#else
+typedef uint32_t sk_track_event;
 #endif /* __STDC_VERSION__ >= 202311L */
 #endif /* __cplusplus */
 
@@ -433,37 +452,37 @@ typedef uint32_t sk_fraction_model;
 #endif /* __cplusplus */
 
 /*
- What delta tracking found (sk_track_result.event).
+ Which size distribution an sk_size_distribution_f64 holds.
  */
-enum sk_track_event
+enum sk_size_kind
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
 #endif /* defined(__cplusplus) || __STDC_VERSION__ >= 202311L */
  {
     /*
-     No collision in the segment: t is where the ray leaves the medium
-     (its box, or t_max), or t_min for a ray that never enters it.
+     Lognormal, n(r) proportional to exp(-ln^2(r/r_g) / (2 ln^2 sigma_g))
+     / r: `params[0]` = median radius r_g > 0, `params[1]` = geometric
+     standard deviation sigma_g > 1 (`params[2]` unused).
      */
-    SK_TRACK_ESCAPED = 0,
+    SK_SIZE_LOGNORMAL = 0,
     /*
-     A real collision that scatters (probability sigma_s/sigma_t).
+     Deirmendjian's modified gamma, n(r) proportional to r^alpha exp(-b
+     r^gamma): params = {alpha in [0, 100], b > 0, gamma in (0, 10]}.
      */
-    SK_TRACK_SCATTERED = 1,
+    SK_SIZE_MODIFIED_GAMMA = 1,
     /*
-     A real collision that absorbs.
+     Junge's power law, n(r) proportional to r^-slope: `params[0]` =
+     slope in (0, 10] (ocean particles: 3 to 5), the rest unused. It has
+     no natural range: sk_size_distribution_range_f64 returns SK_ERR_DOMAIN,
+     give r_min and r_max.
      */
-    SK_TRACK_ABSORBED = 2,
-    /*
-     A real collision whose kind the caller decides (the Rust API's
-     tracking through a sigma_t function; no C call returns it).
-     */
-    SK_TRACK_COLLIDED = 3
+    SK_SIZE_JUNGE = 2
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
-typedef enum sk_track_event sk_track_event;
+typedef enum sk_size_kind sk_size_kind;
 #else
-typedef uint32_t sk_track_event;
+typedef uint32_t sk_size_kind;
 #endif /* __STDC_VERSION__ >= 202311L */
 #endif /* __cplusplus */
 
@@ -484,6 +503,21 @@ typedef struct {
 } sk_rng;
 
 /*
+ A phase function (float). A plain value with no pointers inside: build it
+ with sk_phase_new or an sk_phase_new_<model> constructor, then copy it and
+ share it freely across threads. 256 bytes: a tag and room for 63 floats
+ (the largest model takes 31). Its contents are private, and some of its
+ bytes are padding a constructor need not define: compare phases with
+ sk_phase_get_params, not memcmp.
+ */
+typedef struct {
+    /*
+     Private storage; do not read or write.
+     */
+    uint32_t opaque[64];
+} sk_phase;
+
+/*
  A phase function (double); see `sk_phase`. 512 bytes.
  */
 typedef struct {
@@ -492,199 +526,6 @@ typedef struct {
      */
     uint64_t opaque[64];
 } sk_phase_f64;
-
-/*
- The multiple-scattering albedo of a layer as a function of the
- single-scattering albedo omega, from sk_albedo_curve_new_f64: at
- omega_k = 1 - (k/64)^2, k = 0..64, the albedo `rho[k]` and its standard
- error `se[k]` (the functions below interpolate between them). A plain
- value: copy it, store it, read the nodes.
- */
-typedef struct {
-    /*
-     The albedo at omega_k.
-     */
-    double rho[SK_ALBEDO_NODES];
-    /*
-     Its standard error.
-     */
-    double se[SK_ALBEDO_NODES];
-    /*
-     Paths traced.
-     */
-    uint64_t paths;
-} sk_albedo_curve_f64;
-
-/*
- A 3-vector of floats (a unit propagation direction where one is expected).
- */
-typedef struct {
-    /*
-     x component.
-     */
-    float x;
-    /*
-     y component.
-     */
-    float y;
-    /*
-     z component.
-     */
-    float z;
-} sk_vec3;
-
-/*
- Equiangular sampling of one ray segment toward one point (a light):
- distances with density proportional to 1/r^2, r the distance to the
- point (Kulla & Fajardo 2012, section 3). Filled by sk_equiangular_new;
- treat the fields as opaque (sample and pdf check them and answer NaN
- for values sk_equiangular_new would not have written).
- */
-typedef struct {
-    /*
-     t0, delta, theta_b - theta_a, t_min, t_max.
-     */
-    float state[5];
-} sk_equiangular;
-
-/*
- A 3-vector of doubles.
- */
-typedef struct {
-    /*
-     x component.
-     */
-    double x;
-    /*
-     y component.
-     */
-    double y;
-    /*
-     z component.
-     */
-    double z;
-} sk_vec3_f64;
-
-/*
- Equiangular sampling (double); see `sk_equiangular`.
- */
-typedef struct {
-    /*
-     t0, delta, theta_b - theta_a, t_min, t_max.
-     */
-    double state[5];
-} sk_equiangular_f64;
-
-/*
- A phase function given by its Legendre moments chi_0 .. chi_{n-1}
- (p = sum (2l + 1) chi_l P_l / 4 pi; DISORT's and libRadtran's form),
- borrowing the caller's array, which must outlive it. Build it with
- sk_legendre_new, which checks every moment and the sign of the density
- once; a call loads it in constant time. A plain value: copy it freely;
- its contents are private (a zeroed or never-built series gives NaN or
- SK_ERR_DOMAIN). Moments changed after building are read as they are
- (NaN in, NaN out), never out of bounds.
- */
-typedef struct {
-    /*
-     Private storage; do not read or write.
-     */
-    uint64_t opaque[8];
-} sk_legendre;
-
-/*
- Legendre moments (double); see `sk_legendre`.
- */
-typedef struct {
-    /*
-     Private storage; do not read or write.
-     */
-    uint64_t opaque[8];
-} sk_legendre_f64;
-
-/*
- A density grid over a world box (float; the unit cube unless
- sk_grid_set_box moves it), borrowing the caller's buffer of nx*ny*nz
- values (x fastest), which must outlive it. Build it with sk_grid_new,
- which checks every value once; a call loads it in constant time. A
- plain value: copy it freely; its contents are private (a zeroed or
- never-built grid gives NaN or SK_ERR_DOMAIN). The values stay yours:
- one changed afterwards is read as it is, and tracking reports one
- above its majorant as SK_ERR_DOMAIN.
- */
-typedef struct {
-    /*
-     Private storage; do not read or write.
-     */
-    uint64_t opaque[32];
-} sk_grid;
-
-/*
- Per-cell bounds of a medium over a world box, one value per cell of an
- mx*my*mz division of it (x fastest, per length unit, >= 0): majorants
- (sigma_maj >= sigma_t), and optionally minorants (<= sigma_t, the
- control of residual ratio tracking). The arrays stay the caller's and
- must outlive it. Built by sk_majorants_new_from_grid (from a grid) or
- sk_majorants_new (your own values), which check every value once; a
- call loads it in constant time, whatever the number of cells, and a
- walk reports a value changed since (negative, NaN, infinite, or a
- minorant above its majorant) as SK_ERR_DOMAIN when it reaches its cell.
- A plain value: copy it freely; its contents are private.
- */
-typedef struct {
-    /*
-     Private storage; do not read or write.
-     */
-    uint64_t opaque[32];
-} sk_majorants;
-
-/*
- A density grid (double); see `sk_grid`.
- */
-typedef struct {
-    /*
-     Private storage; do not read or write.
-     */
-    uint64_t opaque[32];
-} sk_grid_f64;
-
-/*
- Per-cell bounds (double); see `sk_majorants`.
- */
-typedef struct {
-    /*
-     Private storage; do not read or write.
-     */
-    uint64_t opaque[32];
-} sk_majorants_f64;
-
-/*
- Absorption and scattering coefficients at a point (per length unit).
- */
-typedef struct {
-    /*
-     sigma_a >= 0.
-     */
-    float sigma_a;
-    /*
-     sigma_s >= 0.
-     */
-    float sigma_s;
-} sk_coefficients;
-
-/*
- Absorption and scattering coefficients (double).
- */
-typedef struct {
-    /*
-     sigma_a >= 0.
-     */
-    double sigma_a;
-    /*
-     sigma_s >= 0.
-     */
-    double sigma_s;
-} sk_coefficients_f64;
 
 /*
  A complex number: the relative refractive index m = re + i im (im >= 0
@@ -701,167 +542,6 @@ typedef struct {
      */
     double im;
 } sk_complex_f64;
-
-/*
- Efficiencies (cross sections over pi r^2) and asymmetry of a sphere.
- */
-typedef struct {
-    /*
-     Extinction efficiency Q_ext.
-     */
-    double q_ext;
-    /*
-     Scattering efficiency Q_sca.
-     */
-    double q_sca;
-    /*
-     Backscattering efficiency Q_back = 4 |S1(180 deg)|^2 / x^2.
-     */
-    double q_back;
-    /*
-     Asymmetry parameter g, the mean of cos theta.
-     */
-    double g;
-} sk_mie_efficiencies_f64;
-
-/*
- A solved sphere: its size parameter, efficiencies, and the series
- coefficients a_1, b_1, ..., a_terms, b_terms in the caller's buffer,
- which must outlive it. Build it with sk_mie_new_f64.
- */
-typedef struct {
-    /*
-     Size parameter x.
-     */
-    double x;
-    /*
-     2 terms coefficients in the caller's buffer.
-     */
-    const sk_complex_f64 *ab;
-    /*
-     Number of series terms.
-     */
-    size_t terms;
-    /*
-     The efficiencies and g.
-     */
-    sk_mie_efficiencies_f64 efficiencies;
-} sk_mie_f64;
-
-/*
- A phase function (float). A plain value with no pointers inside: build it
- with sk_phase_new or an sk_phase_new_<model> constructor, then copy it and
- share it freely across threads. 256 bytes: a tag and room for 63 floats
- (the largest model takes 31). Its contents are private, and some of its
- bytes are padding a constructor need not define: compare phases with
- sk_phase_get_params, not memcmp.
- */
-typedef struct {
-    /*
-     Private storage; do not read or write.
-     */
-    uint32_t opaque[64];
-} sk_phase;
-
-/*
- A table sampler (float) over the caller's memory, which must outlive it.
- */
-typedef struct {
-    /*
-     The caller's buffer, filled by the constructor.
-     */
-    const float *data;
-    /*
-     Resolution the table was built with.
-     */
-    size_t n;
-    /*
-     An sk_table_kind.
-     */
-    sk_table_kind kind;
-} sk_table;
-
-/*
- One component for sk_mixture_new: exactly one of phase and table
- non-NULL, and its weight (finite, >= 0; the weights are normalised).
- */
-typedef struct {
-    /*
-     A phase function, or NULL.
-     */
-    const sk_phase *phase;
-    /*
-     A table, or NULL.
-     */
-    const sk_table *table;
-    /*
-     The component's weight: its share of the scattering coefficient.
-     */
-    float weight;
-} sk_mixture_part;
-
-/*
- A mixture of up to 8 phase functions and tables (sum of w_i p_i), as
- sk_mixture_new built it: the components, their weights and what the
- exact inverse needs, checked and prepared once, so that every call
- loads it in constant time. A plain value: copy it freely; a table
- component's data stays borrowed and must outlive it. Its contents are
- private (a zeroed or never-built mixture gives NaN or SK_ERR_DOMAIN).
- 4 KiB; the value it holds takes 2.4 KiB (f32) or 2.6 KiB (double), and
- the rest is room for later releases.
- */
-typedef struct {
-    /*
-     Private storage; do not read or write.
-     */
-    uint64_t opaque[512];
-} sk_mixture;
-
-/*
- A table sampler (double); see `sk_table`.
- */
-typedef struct {
-    /*
-     The caller's buffer, filled by the constructor.
-     */
-    const double *data;
-    /*
-     Resolution the table was built with.
-     */
-    size_t n;
-    /*
-     An sk_table_kind.
-     */
-    sk_table_kind kind;
-} sk_table_f64;
-
-/*
- One component for sk_mixture_new_f64; see `sk_mixture_part`.
- */
-typedef struct {
-    /*
-     A phase function, or NULL.
-     */
-    const sk_phase_f64 *phase;
-    /*
-     A table, or NULL.
-     */
-    const sk_table_f64 *table;
-    /*
-     The component's weight.
-     */
-    double weight;
-} sk_mixture_part_f64;
-
-/*
- A mixture (double); see `sk_mixture`.
- */
-typedef struct {
-    /*
-     Private storage; do not read or write.
-     */
-    uint64_t opaque[512];
-} sk_mixture_f64;
 
 /*
  What sk_phase_new_particle_mie_f64 found.
@@ -935,6 +615,42 @@ typedef struct {
 } sk_phase_cos_inline;
 
 /*
+ A 3-vector of floats (a unit propagation direction where one is expected).
+ */
+typedef struct {
+    /*
+     x component.
+     */
+    float x;
+    /*
+     y component.
+     */
+    float y;
+    /*
+     z component.
+     */
+    float z;
+} sk_vec3;
+
+/*
+ A 3-vector of doubles.
+ */
+typedef struct {
+    /*
+     x component.
+     */
+    double x;
+    /*
+     y component.
+     */
+    double y;
+    /*
+     z component.
+     */
+    double z;
+} sk_vec3_f64;
+
+/*
  What an sk_phase holds, for a host to hand to a device: the model (an
  sk_phase_model) and its parameters (`count` of them, the rest 0).
  */
@@ -970,6 +686,33 @@ typedef struct {
      */
     double params[4];
 } sk_phase_params_f64;
+
+/*
+ A mixture of up to 8 phase functions and tables (sum of w_i p_i), as
+ sk_mixture_new built it: the components, their weights and what the
+ exact inverse needs, checked and prepared once, so that every call
+ loads it in constant time. A plain value: copy it freely; a table
+ component's data stays borrowed and must outlive it. Its contents are
+ private (a zeroed or never-built mixture gives NaN or SK_ERR_DOMAIN).
+ 4 KiB; the value it holds takes 2.4 KiB (f32) or 2.6 KiB (double), and
+ the rest is room for later releases.
+ */
+typedef struct {
+    /*
+     Private storage; do not read or write.
+     */
+    uint64_t opaque[512];
+} sk_mixture;
+
+/*
+ A mixture (double); see `sk_mixture`.
+ */
+typedef struct {
+    /*
+     Private storage; do not read or write.
+     */
+    uint64_t opaque[512];
+} sk_mixture_f64;
 
 /*
  Polarised Rayleigh scattering with depolarisation rho, built by
@@ -1143,173 +886,40 @@ typedef struct {
 } sk_stokes_sample_f64;
 
 /*
- A number distribution of sphere radii (unnormalised; radii in the
- wavelength's unit).
+ A table sampler (float) over the caller's memory, which must outlive it.
  */
 typedef struct {
     /*
-     An sk_size_kind.
+     The caller's buffer, filled by the constructor.
      */
-    sk_size_kind kind;
+    const float *data;
     /*
-     The parameters, as sk_size_kind describes.
+     Resolution the table was built with.
      */
-    double params[3];
-} sk_size_distribution_f64;
+    size_t n;
+    /*
+     An sk_table_kind.
+     */
+    sk_table_kind kind;
+} sk_table;
 
 /*
- Spheres with sizes from a distribution, lit at one wavelength: the
- input of sk_polydisperse_average_f64.
+ A table sampler (double); see `sk_table`.
  */
 typedef struct {
     /*
-     The number distribution of radii.
+     The caller's buffer, filled by the constructor.
      */
-    sk_size_distribution_f64 distribution;
+    const double *data;
     /*
-     Smallest radius (> 0, the wavelength's unit).
+     Resolution the table was built with.
      */
-    double r_min;
+    size_t n;
     /*
-     Largest radius (> r_min).
+     An sk_table_kind.
      */
-    double r_max;
-    /*
-     Vacuum wavelength (> 0).
-     */
-    double wavelength;
-    /*
-     Refractive index of the medium around the spheres (> 0).
-     */
-    double n_medium;
-    /*
-     Relative refractive index of the spheres (as sk_mie_new_f64).
-     */
-    sk_complex_f64 m;
-    /*
-     Simpson intervals in ln r: a multiple of 4, from 4 to 2^20.
-     */
-    size_t intervals;
-} sk_polydisperse_f64;
-
-/*
- The averages sk_polydisperse_average_f64 returns.
- */
-typedef struct {
-    /*
-     Mean extinction cross section per particle (radius unit squared).
-     */
-    double c_ext;
-    /*
-     Mean scattering cross section per particle.
-     */
-    double c_sca;
-    /*
-     Mean backscattering cross section per particle.
-     */
-    double c_back;
-    /*
-     Asymmetry parameter of the mixture.
-     */
-    double g;
-    /*
-     Mean geometric cross section pi <r^2>.
-     */
-    double area;
-    /*
-     Estimated relative errors of c_ext, c_sca, c_back and the absolute
-     error of g: the difference between Simpson's rule on all nodes and
-     on every other node, an estimate rather than a bound (within 2.6x of
-     the actual error in docs/measured/polydisperse.md).
-     */
-    double errors[4];
-    /*
-     Estimated largest relative error of the phase function.
-     */
-    double phase_error;
-} sk_mie_averages_f64;
-
-/*
- One channel's phase function: exactly one of phase and table non-NULL.
- */
-typedef struct {
-    /*
-     A phase function, or NULL.
-     */
-    const sk_phase *phase;
-    /*
-     A table, or NULL.
-     */
-    const sk_table *table;
-} sk_channel_phase;
-
-/*
- One channel's phase function (double); see `sk_channel_phase`.
- */
-typedef struct {
-    /*
-     A phase function, or NULL.
-     */
-    const sk_phase_f64 *phase;
-    /*
-     A table, or NULL.
-     */
-    const sk_table_f64 *table;
-} sk_channel_phase_f64;
-
-/*
- A surface's scattering behaviour (float). Build it with sk_surface_new;
- every call checks its fields again, so a value not built that way gives
- an error rather than undefined behaviour.
- */
-typedef struct {
-    /*
-     An sk_surface_model.
-     */
-    sk_surface_model model;
-    /*
-     An sk_fraction_model.
-     */
-    sk_fraction_model fraction_model;
-    /*
-     An sk_crossing_policy.
-     */
-    sk_crossing_policy policy;
-    /*
-     Phong exponent.
-     */
-    float phong_alpha;
-    /*
-     Constant share, or RMS roughness for the scalar model.
-     */
-    float fraction;
-} sk_surface;
-
-/*
- A surface's scattering behaviour (double); see `sk_surface`.
- */
-typedef struct {
-    /*
-     An sk_surface_model.
-     */
-    sk_surface_model model;
-    /*
-     An sk_fraction_model.
-     */
-    sk_fraction_model fraction_model;
-    /*
-     An sk_crossing_policy.
-     */
-    sk_crossing_policy policy;
-    /*
-     Phong exponent.
-     */
-    double phong_alpha;
-    /*
-     Constant share, or RMS roughness for the scalar model.
-     */
-    double fraction;
-} sk_surface_f64;
+    sk_table_kind kind;
+} sk_table_f64;
 
 /*
  A 2-D table (float) over the caller's memory, which must outlive it: k
@@ -1364,6 +974,182 @@ typedef struct {
      */
     double dx;
 } sk_table2d_f64;
+
+/*
+ One component for sk_mixture_new: exactly one of phase and table
+ non-NULL, and its weight (finite, >= 0; the weights are normalised).
+ */
+typedef struct {
+    /*
+     A phase function, or NULL.
+     */
+    const sk_phase *phase;
+    /*
+     A table, or NULL.
+     */
+    const sk_table *table;
+    /*
+     The component's weight: its share of the scattering coefficient.
+     */
+    float weight;
+} sk_mixture_part;
+
+/*
+ One component for sk_mixture_new_f64; see `sk_mixture_part`.
+ */
+typedef struct {
+    /*
+     A phase function, or NULL.
+     */
+    const sk_phase_f64 *phase;
+    /*
+     A table, or NULL.
+     */
+    const sk_table_f64 *table;
+    /*
+     The component's weight.
+     */
+    double weight;
+} sk_mixture_part_f64;
+
+/*
+ One channel's phase function: exactly one of phase and table non-NULL.
+ */
+typedef struct {
+    /*
+     A phase function, or NULL.
+     */
+    const sk_phase *phase;
+    /*
+     A table, or NULL.
+     */
+    const sk_table *table;
+} sk_channel_phase;
+
+/*
+ One channel's phase function (double); see `sk_channel_phase`.
+ */
+typedef struct {
+    /*
+     A phase function, or NULL.
+     */
+    const sk_phase_f64 *phase;
+    /*
+     A table, or NULL.
+     */
+    const sk_table_f64 *table;
+} sk_channel_phase_f64;
+
+/*
+ A phase function given by its Legendre moments chi_0 .. chi_{n-1}
+ (p = sum (2l + 1) chi_l P_l / 4 pi; DISORT's and libRadtran's form),
+ borrowing the caller's array, which must outlive it. Build it with
+ sk_legendre_new, which checks every moment and the sign of the density
+ once; a call loads it in constant time. A plain value: copy it freely;
+ its contents are private (a zeroed or never-built series gives NaN or
+ SK_ERR_DOMAIN). Moments changed after building are read as they are
+ (NaN in, NaN out), never out of bounds.
+ */
+typedef struct {
+    /*
+     Private storage; do not read or write.
+     */
+    uint64_t opaque[8];
+} sk_legendre;
+
+/*
+ Legendre moments (double); see `sk_legendre`.
+ */
+typedef struct {
+    /*
+     Private storage; do not read or write.
+     */
+    uint64_t opaque[8];
+} sk_legendre_f64;
+
+/*
+ A density grid over a world box (float; the unit cube unless
+ sk_grid_set_box moves it), borrowing the caller's buffer of nx*ny*nz
+ values (x fastest), which must outlive it. Build it with sk_grid_new,
+ which checks every value once; a call loads it in constant time. A
+ plain value: copy it freely; its contents are private (a zeroed or
+ never-built grid gives NaN or SK_ERR_DOMAIN). The values stay yours:
+ one changed afterwards is read as it is, and tracking reports one
+ above its majorant as SK_ERR_DOMAIN.
+ */
+typedef struct {
+    /*
+     Private storage; do not read or write.
+     */
+    uint64_t opaque[32];
+} sk_grid;
+
+/*
+ A density grid (double); see `sk_grid`.
+ */
+typedef struct {
+    /*
+     Private storage; do not read or write.
+     */
+    uint64_t opaque[32];
+} sk_grid_f64;
+
+/*
+ Absorption and scattering coefficients at a point (per length unit).
+ */
+typedef struct {
+    /*
+     sigma_a >= 0.
+     */
+    float sigma_a;
+    /*
+     sigma_s >= 0.
+     */
+    float sigma_s;
+} sk_coefficients;
+
+/*
+ Absorption and scattering coefficients (double).
+ */
+typedef struct {
+    /*
+     sigma_a >= 0.
+     */
+    double sigma_a;
+    /*
+     sigma_s >= 0.
+     */
+    double sigma_s;
+} sk_coefficients_f64;
+
+/*
+ Per-cell bounds of a medium over a world box, one value per cell of an
+ mx*my*mz division of it (x fastest, per length unit, >= 0): majorants
+ (sigma_maj >= sigma_t), and optionally minorants (<= sigma_t, the
+ control of residual ratio tracking). The arrays stay the caller's and
+ must outlive it. Built by sk_majorants_new_from_grid (from a grid) or
+ sk_majorants_new (your own values), which check every value once; a
+ call loads it in constant time, whatever the number of cells, and a
+ walk reports a value changed since (negative, NaN, infinite, or a
+ minorant above its majorant) as SK_ERR_DOMAIN when it reaches its cell.
+ A plain value: copy it freely; its contents are private.
+ */
+typedef struct {
+    /*
+     Private storage; do not read or write.
+     */
+    uint64_t opaque[32];
+} sk_majorants;
+
+/*
+ Per-cell bounds (double); see `sk_majorants`.
+ */
+typedef struct {
+    /*
+     Private storage; do not read or write.
+     */
+    uint64_t opaque[32];
+} sk_majorants_f64;
 
 /*
  The caller's medium: sigma_a and sigma_s at point p, both >= 0 with a
@@ -1728,6 +1514,239 @@ typedef struct {
     uint32_t cell[3];
 } sk_track_result_f64;
 
+/*
+ Equiangular sampling of one ray segment toward one point (a light):
+ distances with density proportional to 1/r^2, r the distance to the
+ point (Kulla & Fajardo 2012, section 3). Filled by sk_equiangular_new;
+ treat the fields as opaque (sample and pdf check them and answer NaN
+ for values sk_equiangular_new would not have written).
+ */
+typedef struct {
+    /*
+     t0, delta, theta_b - theta_a, t_min, t_max.
+     */
+    float state[5];
+} sk_equiangular;
+
+/*
+ Equiangular sampling (double); see `sk_equiangular`.
+ */
+typedef struct {
+    /*
+     t0, delta, theta_b - theta_a, t_min, t_max.
+     */
+    double state[5];
+} sk_equiangular_f64;
+
+/*
+ The multiple-scattering albedo of a layer as a function of the
+ single-scattering albedo omega, from sk_albedo_curve_new_f64: at
+ omega_k = 1 - (k/64)^2, k = 0..64, the albedo `rho[k]` and its standard
+ error `se[k]` (the functions below interpolate between them). A plain
+ value: copy it, store it, read the nodes.
+ */
+typedef struct {
+    /*
+     The albedo at omega_k.
+     */
+    double rho[SK_ALBEDO_NODES];
+    /*
+     Its standard error.
+     */
+    double se[SK_ALBEDO_NODES];
+    /*
+     Paths traced.
+     */
+    uint64_t paths;
+} sk_albedo_curve_f64;
+
+/*
+ A surface's scattering behaviour (float). Build it with sk_surface_new;
+ every call checks its fields again, so a value not built that way gives
+ an error rather than undefined behaviour.
+ */
+typedef struct {
+    /*
+     An sk_surface_model.
+     */
+    sk_surface_model model;
+    /*
+     An sk_fraction_model.
+     */
+    sk_fraction_model fraction_model;
+    /*
+     An sk_crossing_policy.
+     */
+    sk_crossing_policy policy;
+    /*
+     Phong exponent.
+     */
+    float phong_alpha;
+    /*
+     Constant share, or RMS roughness for the scalar model.
+     */
+    float fraction;
+} sk_surface;
+
+/*
+ A surface's scattering behaviour (double); see `sk_surface`.
+ */
+typedef struct {
+    /*
+     An sk_surface_model.
+     */
+    sk_surface_model model;
+    /*
+     An sk_fraction_model.
+     */
+    sk_fraction_model fraction_model;
+    /*
+     An sk_crossing_policy.
+     */
+    sk_crossing_policy policy;
+    /*
+     Phong exponent.
+     */
+    double phong_alpha;
+    /*
+     Constant share, or RMS roughness for the scalar model.
+     */
+    double fraction;
+} sk_surface_f64;
+
+/*
+ Efficiencies (cross sections over pi r^2) and asymmetry of a sphere.
+ */
+typedef struct {
+    /*
+     Extinction efficiency Q_ext.
+     */
+    double q_ext;
+    /*
+     Scattering efficiency Q_sca.
+     */
+    double q_sca;
+    /*
+     Backscattering efficiency Q_back = 4 |S1(180 deg)|^2 / x^2.
+     */
+    double q_back;
+    /*
+     Asymmetry parameter g, the mean of cos theta.
+     */
+    double g;
+} sk_mie_efficiencies_f64;
+
+/*
+ A solved sphere: its size parameter, efficiencies, and the series
+ coefficients a_1, b_1, ..., a_terms, b_terms in the caller's buffer,
+ which must outlive it. Build it with sk_mie_new_f64.
+ */
+typedef struct {
+    /*
+     Size parameter x.
+     */
+    double x;
+    /*
+     2 terms coefficients in the caller's buffer.
+     */
+    const sk_complex_f64 *ab;
+    /*
+     Number of series terms.
+     */
+    size_t terms;
+    /*
+     The efficiencies and g.
+     */
+    sk_mie_efficiencies_f64 efficiencies;
+} sk_mie_f64;
+
+/*
+ A number distribution of sphere radii (unnormalised; radii in the
+ wavelength's unit).
+ */
+typedef struct {
+    /*
+     An sk_size_kind.
+     */
+    sk_size_kind kind;
+    /*
+     The parameters, as sk_size_kind describes.
+     */
+    double params[3];
+} sk_size_distribution_f64;
+
+/*
+ Spheres with sizes from a distribution, lit at one wavelength: the
+ input of sk_polydisperse_average_f64.
+ */
+typedef struct {
+    /*
+     The number distribution of radii.
+     */
+    sk_size_distribution_f64 distribution;
+    /*
+     Smallest radius (> 0, the wavelength's unit).
+     */
+    double r_min;
+    /*
+     Largest radius (> r_min).
+     */
+    double r_max;
+    /*
+     Vacuum wavelength (> 0).
+     */
+    double wavelength;
+    /*
+     Refractive index of the medium around the spheres (> 0).
+     */
+    double n_medium;
+    /*
+     Relative refractive index of the spheres (as sk_mie_new_f64).
+     */
+    sk_complex_f64 m;
+    /*
+     Simpson intervals in ln r: a multiple of 4, from 4 to 2^20.
+     */
+    size_t intervals;
+} sk_polydisperse_f64;
+
+/*
+ The averages sk_polydisperse_average_f64 returns.
+ */
+typedef struct {
+    /*
+     Mean extinction cross section per particle (radius unit squared).
+     */
+    double c_ext;
+    /*
+     Mean scattering cross section per particle.
+     */
+    double c_sca;
+    /*
+     Mean backscattering cross section per particle.
+     */
+    double c_back;
+    /*
+     Asymmetry parameter of the mixture.
+     */
+    double g;
+    /*
+     Mean geometric cross section pi <r^2>.
+     */
+    double area;
+    /*
+     Estimated relative errors of c_ext, c_sca, c_back and the absolute
+     error of g: the difference between Simpson's rule on all nodes and
+     on every other node, an estimate rather than a bound (within 2.6x of
+     the actual error in docs/measured/polydisperse.md).
+     */
+    double errors[4];
+    /*
+     Estimated largest relative error of the phase function.
+     */
+    double phase_error;
+} sk_mie_averages_f64;
+
 #ifdef __cplusplus
 extern "C" {
 #endif /* __cplusplus */
@@ -1758,756 +1777,6 @@ double sk_uniform_f64(sk_rng *rng);
  string; it agrees with the `SK_VERSION_*` macros of the header.
  */
 const char *sk_version(void);
-
-/*
- Traces `paths` paths through a plane-parallel layer with index-matched
- faces, scattering by `phase` (double): semi-infinite for tau = +INFINITY,
- else a slab of optical thickness tau (finite, > 0); lit diffusely
- (uniform radiance: the spherical albedo the material standards fit) for
- mu0 = 0, else by a beam at cos theta_0 = mu0 in (0, 1]. One set of
- paths with omega = 1 gives the albedo at every omega (a path leaving the
- lit face after N scatterings counts omega^N). SK_ERR_NULL for NULL
- pointers or callback; SK_ERR_DOMAIN for an unconstructed phase,
- paths = 0, or a bad tau or mu0.
- */
-sk_status sk_albedo_curve_new_f64(const sk_phase_f64 *phase,
-                                  double tau,
-                                  double mu0,
-                                  uint64_t paths,
-                                  sk_rng *rng,
-                                  sk_albedo_curve_f64 *out);
-
-/*
- The multiple-scattering albedo at single-scattering albedo omega in
- [0, 1] (monotone cubic between the nodes); NaN outside, for NaN, or a
- NULL curve.
- */
-double sk_albedo_curve_albedo_f64(const sk_albedo_curve_f64 *c, double omega);
-
-/*
- The standard error of sk_albedo_curve_albedo_f64 at omega; NaN as there.
- */
-double sk_albedo_curve_std_error_f64(const sk_albedo_curve_f64 *c, double omega);
-
-/*
- The single-scattering albedo whose multiple-scattering albedo is
- `albedo`, written to omega_out. SK_ERR_NULL for NULL pointers;
- SK_ERR_DOMAIN for NaN or an albedo outside `[0, rho[0]]` (`rho[0]` = 1 for a
- semi-infinite layer; less for a slab).
- */
-sk_status sk_albedo_curve_single_scattering_albedo_f64(const sk_albedo_curve_f64 *c,
-                                                       double albedo,
-                                                       double *omega_out);
-
-/*
- Cube root: Kahan seed + two Lancaster steps; within 1 ULP of the correctly
- rounded result on every float. +-0, +-inf and NaN are returned as they are.
- */
-float sk_cbrt(float x);
-
-/*
- Cube root with one Lancaster step: relative error about 2e-5.
- */
-float sk_cbrt_fast(float x);
-
-/*
- Cube root of a double: Kahan seed + three Lancaster steps; about 1 ULP on
- every double. +-0, +-inf and NaN are returned as they are.
- */
-double sk_cbrt_f64(double x);
-
-/*
- Cube root of a double with two Lancaster steps: relative error about 1e-14.
- */
-double sk_cbrt_fast_f64(double x);
-
-/*
- Equiangular sampling over [t_min, t_max] of the ray from o along d
- (distances along d/|d|; t_max may be INFINITY) toward point, into *out.
- SK_ERR_NULL for a NULL out; SK_ERR_DOMAIN for a zero or non-finite d, a
- non-finite o or point, t_min negative or NaN, an empty segment, or a
- point on the ray's line or so near it or far from it that the squared
- distance underflows or overflows.
- */
-sk_status sk_equiangular_new(sk_vec3 o,
-                             sk_vec3 d,
-                             float t_min,
-                             float t_max,
-                             sk_vec3 point,
-                             sk_equiangular *out);
-
-/*
- Double twin of `sk_equiangular_new`.
- */
-sk_status sk_equiangular_new_f64(sk_vec3_f64 o,
-                                 sk_vec3_f64 d,
-                                 double t_min,
-                                 double t_max,
-                                 sk_vec3_f64 point,
-                                 sk_equiangular_f64 *out);
-
-/*
- The distance for a uniform u (clamped to [0, 1]), within the segment
- and monotone in u. NaN for NULL, a NaN u, or a state sk_equiangular_new
- would not have written.
- */
-float sk_equiangular_sample(const sk_equiangular *e, float u);
-
-/*
- Double twin of `sk_equiangular_sample`.
- */
-double sk_equiangular_sample_f64(const sk_equiangular_f64 *e, double u);
-
-/*
- The density of distance t per unit length: 0 outside the segment (and
- for a NaN t), NaN for NULL or a state sk_equiangular_new would not have
- written. For multiple importance sampling with free-flight sampling.
- */
-float sk_equiangular_pdf(const sk_equiangular *e, float t);
-
-/*
- Double twin of `sk_equiangular_pdf`.
- */
-double sk_equiangular_pdf_f64(const sk_equiangular_f64 *e, double t);
-
-/*
- Completes the unit vector `n` to a right-handed orthonormal basis
- `(b1, b2, n)` (Duff et al. 2017: no singularity, exact for n = +-z). Writes
- nothing if either out-pointer is NULL.
- */
-void sk_onb(sk_vec3 n, sk_vec3 *b1, sk_vec3 *b2);
-
-/*
- Double twin of `sk_onb`.
- */
-void sk_onb_f64(sk_vec3_f64 n, sk_vec3_f64 *b1, sk_vec3_f64 *b2);
-
-/*
- Builds *out over chi[0 .. n]. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE
- for n = 0 or n > 1024; SK_ERR_DOMAIN unless chi_0 = 1 (to 1e-6), every
- chi_l is finite in [-1, 1], and the density is non-negative at
- 64 n + 1 evenly spaced cosines (sk_legendre_check says where not).
- */
-sk_status sk_legendre_new(const float *chi, size_t n, sk_legendre *out);
-
-/*
- Double twin of `sk_legendre_new`.
- */
-sk_status sk_legendre_new_f64(const double *chi, size_t n, sk_legendre_f64 *out);
-
-/*
- Where the expansion chi[0 .. n] goes negative: SK_OK if nowhere among
- the 64 n + 1 cosines checked, SK_ERR_DOMAIN with the first such cosine
- in *cos_out; other errors as sk_legendre_new.
- */
-sk_status sk_legendre_check(const float *chi, size_t n, float *cos_out);
-
-/*
- Double twin of `sk_legendre_check`.
- */
-sk_status sk_legendre_check_f64(const double *chi, size_t n, double *cos_out);
-
-/*
- The density per steradian at cos_theta. NaN for NULL or a malformed
- series.
- */
-float sk_legendre_pdf(const sk_legendre *s, float cos_theta);
-
-/*
- Double twin of `sk_legendre_pdf`.
- */
-double sk_legendre_pdf_f64(const sk_legendre_f64 *s, double cos_theta);
-
-/*
- The CDF at cos_theta, exact term by term (NaN as sk_legendre_pdf).
- */
-float sk_legendre_cdf(const sk_legendre *s, float cos_theta);
-
-/*
- Double twin of `sk_legendre_cdf`.
- */
-double sk_legendre_cdf_f64(const sk_legendre_f64 *s, double cos_theta);
-
-/*
- cos theta by the exact inverse of the CDF (safeguarded Newton in
- double; monotone in u). NaN for a NaN u and as sk_legendre_pdf.
- */
-float sk_legendre_sample_cos(const sk_legendre *s, float u);
-
-/*
- Double twin of `sk_legendre_sample_cos`.
- */
-double sk_legendre_sample_cos_f64(const sk_legendre_f64 *s, double u);
-
-/*
- A direction about w_in (unit): cos theta from sk_legendre_sample_cos(s,
- u1), the azimuth 2 pi u2 (clamped); writes its density (sk_legendre_pdf)
- to pdf_out unless NULL. NaN (direction and pdf) for a NULL or never-built
- series.
- */
-sk_vec3 sk_legendre_sample_dir(const sk_legendre *s,
-                               sk_vec3 w_in,
-                               float u1,
-                               float u2,
-                               float *pdf_out);
-
-/*
- Double twin of `sk_legendre_sample_dir`.
- */
-sk_vec3_f64 sk_legendre_sample_dir_f64(const sk_legendre_f64 *s,
-                                       sk_vec3_f64 w_in,
-                                       double u1,
-                                       double u2,
-                                       double *pdf_out);
-
-/*
- The mean cosine, chi_1 (0 for a series of one moment). NaN as
- sk_legendre_pdf.
- */
-float sk_legendre_mean_cosine(const sk_legendre *s);
-
-/*
- Double twin of `sk_legendre_mean_cosine`.
- */
-double sk_legendre_mean_cosine_f64(const sk_legendre_f64 *s);
-
-/*
- `cos_out[i] = sk_legendre_sample_cos(s, u[i])` for `i < n`, bit for bit;
- arrays, overlaps and statuses as sk_phase_sample_cos_n (SK_ERR_DOMAIN
- also for a never-built series).
- */
-sk_status sk_legendre_sample_cos_n(const sk_legendre *s, const float *u, float *cos_out, size_t n);
-
-/*
- Double twin of `sk_legendre_sample_cos_n`.
- */
-sk_status sk_legendre_sample_cos_n_f64(const sk_legendre_f64 *s,
-                                       const double *u,
-                                       double *cos_out,
-                                       size_t n);
-
-/*
- Directions for n rays, structure of arrays, each bit for bit
- sk_legendre_sample_dir's; arrays, overlaps and statuses as
- sk_phase_sample_dir_n.
- */
-sk_status sk_legendre_sample_dir_n(const sk_legendre *s,
-                                   const float *w_x,
-                                   const float *w_y,
-                                   const float *w_z,
-                                   const float *u1,
-                                   const float *u2,
-                                   float *out_x,
-                                   float *out_y,
-                                   float *out_z,
-                                   float *pdf_out,
-                                   size_t n);
-
-/*
- Double twin of `sk_legendre_sample_dir_n`.
- */
-sk_status sk_legendre_sample_dir_n_f64(const sk_legendre_f64 *s,
-                                       const double *w_x,
-                                       const double *w_y,
-                                       const double *w_z,
-                                       const double *u1,
-                                       const double *u2,
-                                       double *out_x,
-                                       double *out_y,
-                                       double *out_z,
-                                       double *pdf_out,
-                                       size_t n);
-
-/*
- The Legendre moments chi_0 .. chi_{n-1} of the series: its own, and 0
- past the last it holds. SK_ERR_NULL for NULL s or a NULL out with
- n > 0; SK_ERR_DOMAIN for a never-built series; SK_ERR_SIZE if n values
- cannot exist.
- */
-sk_status sk_legendre_legendre_moments(const sk_legendre *s, float *out, size_t n);
-
-/*
- Double twin of `sk_legendre_legendre_moments`.
- */
-sk_status sk_legendre_legendre_moments_f64(const sk_legendre_f64 *s, double *out, size_t n);
-
-/*
- The number of cells of an mx*my*mz grid (pbrt-v4 uses 16*16*16); 0 for
- a zero dimension or a count that overflows size_t.
- */
-size_t sk_majorant_len(uint32_t mx, uint32_t my, uint32_t mz);
-
-/*
- Fills max_out[0 .. mx*my*mz - 1] with the majorants of grid g on an
- mx*my*mz division of its box, in one pass over the grid: each cell gets
- (sigma_a + sigma_s) times the largest grid value whose interpolation
- reaches into it, so the majorants bound the density everywhere. With a
- non-NULL min_out, also the minorants (the smallest such value, so they
- bound it from below), for residual ratio tracking. Writes *out
- borrowing the arrays. SK_ERR_NULL for NULL g, max_out or out;
- SK_ERR_DOMAIN for a never-built grid; SK_ERR_SIZE for a zero dimension
- or len < sk_majorant_len(mx, my, mz); SK_ERR_OVERLAP if the two arrays
- overlap.
- */
-sk_status sk_majorants_new_from_grid(const sk_grid *g,
-                                     uint32_t mx,
-                                     uint32_t my,
-                                     uint32_t mz,
-                                     float *max_out,
-                                     float *min_out,
-                                     size_t len,
-                                     sk_majorants *out);
-
-/*
- Double twin of `sk_majorants_new_from_grid`.
- */
-sk_status sk_majorants_new_from_grid_f64(const sk_grid_f64 *g,
-                                         uint32_t mx,
-                                         uint32_t my,
-                                         uint32_t mz,
-                                         double *max_out,
-                                         double *min_out,
-                                         size_t len,
-                                         sk_majorants_f64 *out);
-
-/*
- Your own bounds over the box [lo, hi]: max holds mx*my*mz majorants (x
- fastest), each finite and >= 0 and bounding sigma_t over its closed
- cell (tracking reports SK_ERR_DOMAIN where it meets one that does not);
- min, if not NULL, as many minorants, each at most its cell's majorant.
- SK_ERR_NULL for NULL max or out; SK_ERR_SIZE for a zero dimension;
- SK_ERR_DOMAIN for a bad value or box (see sk_grid_set_box).
- */
-sk_status sk_majorants_new(const float *max,
-                           const float *min,
-                           uint32_t mx,
-                           uint32_t my,
-                           uint32_t mz,
-                           sk_vec3 lo,
-                           sk_vec3 hi,
-                           sk_majorants *out);
-
-/*
- Double twin of `sk_majorants_new`.
- */
-sk_status sk_majorants_new_f64(const double *max,
-                               const double *min,
-                               uint32_t mx,
-                               uint32_t my,
-                               uint32_t mz,
-                               sk_vec3_f64 lo,
-                               sk_vec3_f64 hi,
-                               sk_majorants_f64 *out);
-
-/*
- The majorant optical depth (the integral of sigma_maj) along the ray
- from o along d over [t_min, t_max] (distances along d/|d|), cell by
- cell; not rounded. Its ceiling is the step count sk_ray_march takes by
- default. NaN for NULL or never-built majorants, a bad value on the
- ray, a zero or non-finite vector, or t_min, t_max out of order.
- */
-float sk_majorants_optical_depth(const sk_majorants *m,
-                                 sk_vec3 o,
-                                 sk_vec3 d,
-                                 float t_min,
-                                 float t_max);
-
-/*
- Double twin of `sk_majorants_optical_depth`.
- */
-double sk_majorants_optical_depth_f64(const sk_majorants_f64 *m,
-                                      sk_vec3_f64 o,
-                                      sk_vec3_f64 d,
-                                      double t_min,
-                                      double t_max);
-
-/*
- Distance to the next interaction in a homogeneous medium:
- -ln(1 - u)/sigma_t (u clamped to [0, 1]; u = 1 or sigma_t = 0 gives +inf).
- NaN for a negative or non-finite sigma_t or NaN u.
- */
-float sk_free_path(float sigma_t, float u);
-
-/*
- Double twin of `sk_free_path`.
- */
-double sk_free_path_f64(double sigma_t, double u);
-
-/*
- Beer-Lambert transmittance exp(-sigma_t distance) for sigma_t >= 0 and
- distance >= 0 (+inf allowed; a vacuum transmits 1 over any distance).
- NaN for negative or NaN arguments.
- */
-float sk_transmittance(float sigma_t, float distance);
-
-/*
- Double twin of `sk_transmittance`.
- */
-double sk_transmittance_f64(double sigma_t, double distance);
-
-/*
- pbrt's spectral homogeneous sampling: a channel chosen by u_channel, its
- free path by u_dist; *t_out is the distance (t_max for the surface
- event), *scattered_out 1 for a medium event and 0 for the surface, and
- `weight_out[c]` the weight per channel (sigma_s Tr / mean(sigma_t Tr) or
- Tr / mean(Tr)). sigma_t, sigma_s and weight_out hold `channels` values;
- weight_out must not overlap the inputs (SK_ERR_OVERLAP).
- SK_ERR_SIZE for channels = 0; SK_ERR_NULL for NULL pointers;
- SK_ERR_DOMAIN for negative or non-finite coefficients, sigma_s > sigma_t
- or t_max negative or NaN. Nothing is written on error.
- */
-sk_status sk_homogeneous_sample(const float *sigma_t,
-                                const float *sigma_s,
-                                size_t channels,
-                                float t_max,
-                                float u_channel,
-                                float u_dist,
-                                float *t_out,
-                                uint32_t *scattered_out,
-                                float *weight_out);
-
-/*
- Double twin of `sk_homogeneous_sample`.
- */
-sk_status sk_homogeneous_sample_f64(const double *sigma_t,
-                                    const double *sigma_s,
-                                    size_t channels,
-                                    double t_max,
-                                    double u_channel,
-                                    double u_dist,
-                                    double *t_out,
-                                    uint32_t *scattered_out,
-                                    double *weight_out);
-
-/*
- A density grid over the unit cube (sk_grid_set_box and
- sk_grid_set_sampling change that) from the caller's nx*ny*nz values (x
- fastest; borrowed, not copied), sampled at the grid nodes and
- interpolated trilinearly; sigma_t(p) = (sigma_a + sigma_s) density(p).
- Checks every value once, here. SK_ERR_NULL for NULL density or out; SK_ERR_SIZE
- for a zero dimension or a product that overflows; SK_ERR_DOMAIN for a
- negative or non-finite value or coefficient, or a majorant
- (sigma_a + sigma_s) * max(density) that overflows.
- */
-sk_status sk_grid_new(const float *density,
-                      uint32_t nx,
-                      uint32_t ny,
-                      uint32_t nz,
-                      float sigma_a,
-                      float sigma_s,
-                      sk_grid *out);
-
-/*
- Double twin of `sk_grid_new`.
- */
-sk_status sk_grid_new_f64(const double *density,
-                          uint32_t nx,
-                          uint32_t ny,
-                          uint32_t nz,
-                          double sigma_a,
-                          double sigma_s,
-                          sk_grid_f64 *out);
-
-/*
- Places the grid in the world box [lo, hi] (from the unit cube). On
- failure the grid is unchanged: SK_ERR_NULL for NULL g; SK_ERR_DOMAIN
- for a never-built grid, or unless every coordinate is finite and lo < hi
- on every axis with a finite extent whose reciprocal is finite.
- */
-sk_status sk_grid_set_box(sk_grid *g, sk_vec3 lo, sk_vec3 hi);
-
-/*
- Double twin of `sk_grid_set_box`.
- */
-sk_status sk_grid_set_box_f64(sk_grid_f64 *g, sk_vec3_f64 lo, sk_vec3_f64 hi);
-
-/*
- Sets where the values sit (an sk_sampling). SK_ERR_NULL for NULL g;
- SK_ERR_METHOD for an unknown value; SK_ERR_DOMAIN for a never-built
- grid (the grid is then unchanged).
- */
-sk_status sk_grid_set_sampling(sk_grid *g, sk_sampling sampling);
-
-/*
- Double twin of `sk_grid_set_sampling`.
- */
-sk_status sk_grid_set_sampling_f64(sk_grid_f64 *g, sk_sampling sampling);
-
-/*
- The interpolated density at p (0 outside the grid's box); NaN for a
- NULL or never-built grid.
- */
-float sk_grid_density(const sk_grid *g, sk_vec3 p);
-
-/*
- Double twin of `sk_grid_density`.
- */
-double sk_grid_density_f64(const sk_grid_f64 *g, sk_vec3_f64 p);
-
-/*
- (sigma_a, sigma_s) of the grid at p: its coefficients times the
- interpolated density (0 outside its box), what an sk_medium_fn over the
- grid returns. Both NaN for a NULL or never-built grid.
- */
-sk_coefficients sk_grid_coefficients(const sk_grid *g, sk_vec3 p);
-
-/*
- Double twin of `sk_grid_coefficients`.
- */
-sk_coefficients_f64 sk_grid_coefficients_f64(const sk_grid_f64 *g, sk_vec3_f64 p);
-
-/*
- The size parameter pi d n_medium / lambda of a sphere of diameter d in a
- medium of index n_medium at vacuum wavelength lambda (same unit as d).
- */
-double sk_mie_size_parameter_f64(double diameter, double wavelength, double n_medium);
-
-/*
- The number of sk_complex_f64 values sk_mie_new_f64 needs for (x, m); 0 for input
- it rejects: x outside [1e-20, 1e5], re outside (0, 1000], im outside
- [0, 1000], |m| x above 2e6, or NaN.
- */
-size_t sk_mie_len_f64(double x, sk_complex_f64 m);
-
-/*
- Solves the sphere of size parameter x and relative index m into buf (len
- values, at least sk_mie_len_f64(x, m)) and writes *out, which borrows
- buf. Wiscombe's term count (two more below x = 8), the logarithmic
- derivative by downward
- recurrence. SK_ERR_NULL for NULL buf or out; SK_ERR_DOMAIN for input
- sk_mie_len_f64 rejects; SK_ERR_SIZE for a short buffer.
- */
-sk_status sk_mie_new_f64(double x,
-                         sk_complex_f64 m,
-                         sk_complex_f64 *buf,
-                         size_t len,
-                         sk_mie_f64 *out);
-
-/*
- The amplitude functions S1(mu), S2(mu) of a solved sphere at mu = cos
- theta (clamped to [-1, 1]; NaN gives NaN). SK_ERR_NULL for NULL
- pointers; SK_ERR_SIZE for a malformed sphere.
- */
-sk_status sk_mie_amplitudes_f64(const sk_mie_f64 *m,
-                                double mu,
-                                sk_complex_f64 *s1_out,
-                                sk_complex_f64 *s2_out);
-
-/*
- The unpolarised phase function per steradian of a solved sphere at mu,
- normalised over the sphere; NaN for a NULL or malformed sphere or NaN mu.
- */
-double sk_mie_pdf_f64(const sk_mie_f64 *m, double mu);
-
-/*
- Table sizes for a sphere of size parameter x in [1e-20, 1e5]:
- *angles = max(4000, 16 x) for sk_mie_tabulate_f64 and *intervals = max(16384,
- 64 x) for sk_table_new_measured_f64 (docs/measured/mie_table.md measures them:
- total-variation distance 2.8e-6 at x = 10, 2.5e-4 at 100, 1.2e-3 at
- 1000).
- SK_ERR_NULL for NULL pointers, SK_ERR_DOMAIN for other x; nothing is
- written on error.
- */
-sk_status sk_mie_table_len_f64(double x, size_t *angles, size_t *intervals);
-
-/*
- Tabulates a solved sphere's phase function for sk_table_new_measured_f64:
- `cos_theta[j]` (decreasing from 1 to -1, the angles crowded into the
- forward peak, which is about 1/x radians wide) and `pdf[j]`, the phase
- function per steradian there, for j < count. SK_ERR_NULL for NULL
- pointers; SK_ERR_OVERLAP for overlapping arrays; SK_ERR_SIZE for count <
- 2, a malformed sphere, or too many angles to give distinct cosines.
- */
-sk_status sk_mie_tabulate_f64(const sk_mie_f64 *m, double *cos_theta, double *pdf, size_t count);
-
-/*
- Builds the mixture of parts[0 .. n] into *out (weights normalised;
- phases copied, tables borrowed). SK_ERR_NULL for NULL parts or out, or
- a part with neither phase nor table; SK_ERR_SIZE for n = 0, n > 8 or a
- malformed table; SK_ERR_DOMAIN for a part with both, an unconstructed
- phase, or a weight negative or not finite, or all weights 0.
- */
-sk_status sk_mixture_new(const sk_mixture_part *parts, size_t n, sk_mixture *out);
-
-/*
- Double twin of `sk_mixture_new`.
- */
-sk_status sk_mixture_new_f64(const sk_mixture_part_f64 *parts, size_t n, sk_mixture_f64 *out);
-
-/*
- The mixture's density per steradian at cos_theta: sum of w_i p_i. NaN
- for NULL or a mixture sk_mixture_new did not build.
- */
-float sk_mixture_pdf(const sk_mixture *m, float cos_theta);
-
-/*
- Double twin of `sk_mixture_pdf`.
- */
-double sk_mixture_pdf_f64(const sk_mixture_f64 *m, double cos_theta);
-
-/*
- The mixture's CDF at cos_theta, sum of w_i F_i (NaN as sk_mixture_pdf).
- */
-float sk_mixture_cdf(const sk_mixture *m, float cos_theta);
-
-/*
- Double twin of `sk_mixture_cdf`.
- */
-double sk_mixture_cdf_f64(const sk_mixture_f64 *m, double cos_theta);
-
-/*
- The mixture's mean cosine, sum of w_i g_i (NaN as sk_mixture_pdf).
- */
-float sk_mixture_mean_cosine(const sk_mixture *m);
-
-/*
- Double twin of `sk_mixture_mean_cosine`.
- */
-double sk_mixture_mean_cosine_f64(const sk_mixture_f64 *m);
-
-/*
- cos theta by lobe choice: u (clamped to [0, 1]) picks the component by
- weight and, rescaled into its share, samples it. Exact in distribution,
- fast, not monotone in u. NaN for NaN u, NULL or a bad mixture.
- */
-float sk_mixture_sample_cos_by_lobe(const sk_mixture *m, float u);
-
-/*
- Double twin of `sk_mixture_sample_cos_by_lobe`.
- */
-double sk_mixture_sample_cos_by_lobe_f64(const sk_mixture_f64 *m, double u);
-
-/*
- cos theta by the exact inverse of the mixture's CDF: monotone in u (for
- stratified or quasi-random uniforms), a safeguarded Newton solve in
- double on the components' CDFs (about 1 us). NaN as
- sk_mixture_sample_cos_by_lobe.
- */
-float sk_mixture_sample_cos(const sk_mixture *m, float u);
-
-/*
- Double twin of `sk_mixture_sample_cos`.
- */
-double sk_mixture_sample_cos_f64(const sk_mixture_f64 *m, double u);
-
-/*
- `cos_out[i] = sk_mixture_sample_cos(m, u[i])` for `i < n`. `u`
- and `cos_out` may be the same array; other overlaps give
- SK_ERR_OVERLAP. SK_ERR_DOMAIN if any `u[i]` is NaN or outside `[0, 1]`,
- or the mixture is malformed; SK_ERR_NULL for NULL m, or NULL arrays
- with n > 0; SK_ERR_SIZE if n floats cannot exist. On error nothing is
- written; n = 0 is SK_OK.
- */
-sk_status sk_mixture_sample_cos_n(const sk_mixture *m, const float *u, float *cos_out, size_t n);
-
-/*
- Double twin of `sk_mixture_sample_cos_n`.
- */
-sk_status sk_mixture_sample_cos_n_f64(const sk_mixture_f64 *m,
-                                      const double *u,
-                                      double *cos_out,
-                                      size_t n);
-
-/*
- `cos_out[i] = sk_mixture_sample_cos_by_lobe(m, u[i])` for `i < n`;
- statuses and overlaps as sk_mixture_sample_cos_n.
- */
-sk_status sk_mixture_sample_cos_by_lobe_n(const sk_mixture *m,
-                                          const float *u,
-                                          float *cos_out,
-                                          size_t n);
-
-/*
- Double twin of `sk_mixture_sample_cos_by_lobe_n`.
- */
-sk_status sk_mixture_sample_cos_by_lobe_n_f64(const sk_mixture_f64 *m,
-                                              const double *u,
-                                              double *cos_out,
-                                              size_t n);
-
-/*
- A scattered direction about the unit vector w_in: cos theta by lobe
- choice from u1, azimuth 2 pi u2; writes the mixture's density per
- steradian there to pdf_out unless it is NULL. NaN (direction and pdf)
- for NULL or a bad mixture.
- */
-sk_vec3 sk_mixture_sample_dir(const sk_mixture *m,
-                              sk_vec3 w_in,
-                              float u1,
-                              float u2,
-                              float *pdf_out);
-
-/*
- Double twin of `sk_mixture_sample_dir`.
- */
-sk_vec3_f64 sk_mixture_sample_dir_f64(const sk_mixture_f64 *m,
-                                      sk_vec3_f64 w_in,
-                                      double u1,
-                                      double u2,
-                                      double *pdf_out);
-
-/*
- Directions for n rays, structure of arrays, each bit for bit
- sk_mixture_sample_dir's (cos theta by lobe choice); arrays, overlaps and
- statuses as sk_phase_sample_dir_n (SK_ERR_DOMAIN also for a mixture
- sk_mixture_new did not build).
- */
-sk_status sk_mixture_sample_dir_n(const sk_mixture *m,
-                                  const float *w_x,
-                                  const float *w_y,
-                                  const float *w_z,
-                                  const float *u1,
-                                  const float *u2,
-                                  float *out_x,
-                                  float *out_y,
-                                  float *out_z,
-                                  float *pdf_out,
-                                  size_t n);
-
-/*
- Double twin of `sk_mixture_sample_dir_n`.
- */
-sk_status sk_mixture_sample_dir_n_f64(const sk_mixture_f64 *m,
-                                      const double *w_x,
-                                      const double *w_y,
-                                      const double *w_z,
-                                      const double *u1,
-                                      const double *u2,
-                                      double *out_x,
-                                      double *out_y,
-                                      double *out_z,
-                                      double *pdf_out,
-                                      size_t n);
-
-/*
- The Legendre moments chi_0 .. chi_{n-1} of p into out: chi_l = <P_l(cos
- theta)>, chi_0 = 1, chi_1 = g (the form DISORT and libRadtran take,
- p = sum (2l + 1) chi_l P_l / 4 pi). Closed forms for isotropic,
- Rayleigh, depolarised Rayleigh, HG, Draine, the fog and two-lobe HG;
- quadrature over the inverse CDF for Gegenbauer and Fournier-Forand
- (within 1e-10; its cost grows as n^2/32 passes of 20 992 samples).
- SK_ERR_NULL for NULL pointers; SK_ERR_DOMAIN for an unconstructed
- phase; SK_ERR_SIZE if out cannot hold n values.
- */
-sk_status sk_phase_legendre_moments(const sk_phase *p, float *out, size_t n);
-
-/*
- Double twin of `sk_phase_legendre_moments`.
- */
-sk_status sk_phase_legendre_moments_f64(const sk_phase_f64 *p, double *out, size_t n);
-
-/*
- The Legendre moments of a mixture, sum of w_i chi_{l,i} (each
- component's as sk_phase_legendre_moments; tables by quadrature), into
- out[0 .. n]. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE or
- SK_ERR_DOMAIN for a mixture sk_mixture_new did not build.
- */
-sk_status sk_mixture_legendre_moments(const sk_mixture *m, float *out, size_t n);
-
-/*
- Double twin of `sk_mixture_legendre_moments`.
- */
-sk_status sk_mixture_legendre_moments_f64(const sk_mixture_f64 *m, double *out, size_t n);
 
 /*
  Isotropic scattering, p = 1/(4 pi).
@@ -2985,6 +2254,124 @@ sk_status sk_phase_get_params(const sk_phase *p, sk_phase_params *out);
 sk_status sk_phase_get_params_f64(const sk_phase_f64 *p, sk_phase_params_f64 *out);
 
 /*
+ The Legendre moments chi_0 .. chi_{n-1} of p into out: chi_l = <P_l(cos
+ theta)>, chi_0 = 1, chi_1 = g (the form DISORT and libRadtran take,
+ p = sum (2l + 1) chi_l P_l / 4 pi). Closed forms for isotropic,
+ Rayleigh, depolarised Rayleigh, HG, Draine, the fog and two-lobe HG;
+ quadrature over the inverse CDF for Gegenbauer and Fournier-Forand
+ (within 1e-10; its cost grows as n^2/32 passes of 20 992 samples).
+ SK_ERR_NULL for NULL pointers; SK_ERR_DOMAIN for an unconstructed
+ phase; SK_ERR_SIZE if out cannot hold n values.
+ */
+sk_status sk_phase_legendre_moments(const sk_phase *p, float *out, size_t n);
+
+/*
+ Double twin of `sk_phase_legendre_moments`.
+ */
+sk_status sk_phase_legendre_moments_f64(const sk_phase_f64 *p, double *out, size_t n);
+
+/*
+ The Legendre moments of a mixture, sum of w_i chi_{l,i} (each
+ component's as sk_phase_legendre_moments; tables by quadrature), into
+ out[0 .. n]. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE or
+ SK_ERR_DOMAIN for a mixture sk_mixture_new did not build.
+ */
+sk_status sk_mixture_legendre_moments(const sk_mixture *m, float *out, size_t n);
+
+/*
+ Double twin of `sk_mixture_legendre_moments`.
+ */
+sk_status sk_mixture_legendre_moments_f64(const sk_mixture_f64 *m, double *out, size_t n);
+
+/*
+ A Rayleigh-distributed propagation direction about the unit vector w_in,
+ by `method` (sk_rayleigh_method), with uniforms from `rng`.
+ SK_ERR_METHOD for an unknown method; SK_ERR_NULL for a NULL rng, NULL
+ rng->next_u64 or NULL dir_out.
+ */
+sk_status sk_rayleigh_sample_dir(sk_rayleigh_method method,
+                                 sk_vec3 w_in,
+                                 sk_rng *rng,
+                                 sk_vec3 *dir_out);
+
+/*
+ Double twin of `sk_rayleigh_sample_dir`.
+ */
+sk_status sk_rayleigh_sample_dir_f64(sk_rayleigh_method method,
+                                     sk_vec3_f64 w_in,
+                                     sk_rng *rng,
+                                     sk_vec3_f64 *dir_out);
+
+/*
+ n Rayleigh-distributed cosines by `method`, with uniforms from `rng`.
+ SK_ERR_METHOD for an unknown method; SK_ERR_NULL for a NULL rng or
+ callback, or NULL cos_out with n > 0; n = 0 is SK_OK.
+ */
+sk_status sk_rayleigh_sample_cos_n(sk_rayleigh_method method,
+                                   sk_rng *rng,
+                                   float *cos_out,
+                                   size_t n);
+
+/*
+ Double twin of `sk_rayleigh_sample_cos_n`.
+ */
+sk_status sk_rayleigh_sample_cos_n_f64(sk_rayleigh_method method,
+                                       sk_rng *rng,
+                                       double *cos_out,
+                                       size_t n);
+
+/*
+ Rayleigh scattering cross section of a small sphere, 128 pi^5 a^2 /
+ (3 lambda^4) with polarizability a = r^3 (n^2 - 1)/(n^2 + 2). Wavelength
+ and radius in one length unit L (result in L^2); rel_index is the
+ particle's refractive index over the medium's. NaN unless all three are
+ finite and positive.
+ */
+double sk_rayleigh_cross_section_f64(double wavelength, double radius, double rel_index);
+
+/*
+ Rayleigh scattering coefficient N * cross section (per L) for
+ number_density N per L^3 (finite, >= 0). NaN on invalid arguments.
+ */
+double sk_rayleigh_scattering_coeff_f64(double number_density,
+                                        double wavelength,
+                                        double radius,
+                                        double rel_index);
+
+/*
+ Rayleigh directions for n rays, structure of arrays: for each `i < n` in
+ order, `(out_x[i], out_y[i], out_z[i])` is what sk_rayleigh_sample_dir
+ would give for `(w_x[i], w_y[i], w_z[i])` with the same rng, bit for bit
+ (the generator is advanced exactly as by n scalar calls). An output may be
+ the same array as an input (in place); other overlaps are SK_ERR_OVERLAP.
+ SK_ERR_METHOD for an unknown method; SK_ERR_NULL for a NULL rng, NULL
+ rng->next_u64 or a NULL array with n > 0; SK_ERR_SIZE if n floats cannot
+ exist. On error nothing is written; n = 0 is SK_OK.
+ */
+sk_status sk_rayleigh_sample_dir_n(sk_rayleigh_method method,
+                                   const float *w_x,
+                                   const float *w_y,
+                                   const float *w_z,
+                                   sk_rng *rng,
+                                   float *out_x,
+                                   float *out_y,
+                                   float *out_z,
+                                   size_t n);
+
+/*
+ Double twin of `sk_rayleigh_sample_dir_n`.
+ */
+sk_status sk_rayleigh_sample_dir_n_f64(sk_rayleigh_method method,
+                                       const double *w_x,
+                                       const double *w_y,
+                                       const double *w_z,
+                                       sk_rng *rng,
+                                       double *out_x,
+                                       double *out_y,
+                                       double *out_z,
+                                       size_t n);
+
+/*
  Builds polarised Rayleigh scattering with depolarisation factor 0 <=
  rho < 1 (air: about 0.028). SK_ERR_NULL for a NULL out, SK_ERR_DOMAIN
  otherwise (NaN fails); *out is written only on success.
@@ -3144,348 +2531,6 @@ sk_vec3 sk_implicit_reference(sk_vec3 k);
  Double twin of `sk_implicit_reference`.
  */
 sk_vec3_f64 sk_implicit_reference_f64(sk_vec3_f64 k);
-
-/*
- A radius range outside which r^3 n(r), the geometric cross section per
- ln r, is below 1e-12 of its peak. SK_ERR_NULL for NULL pointers;
- SK_ERR_DOMAIN for an unknown kind, invalid parameters or a power law
- (SK_SIZE_JUNGE has no peak to measure from). Nothing is written on
- error.
- */
-sk_status sk_size_distribution_range_f64(const sk_size_distribution_f64 *d,
-                                         double *r_min,
-                                         double *r_max);
-
-/*
- The number of sk_complex_f64 values sk_polydisperse_average_f64 needs in its
- buffer (that of the largest sphere); 0 for NULL or input it rejects.
- */
-size_t sk_polydisperse_len_f64(const sk_polydisperse_f64 *p);
-
-/*
- Averages Mie scattering over the distribution (composite Simpson in ln
- r, one sphere per node): writes the mean cross sections, g and the error
- estimates to *out, and the phase function per steradian at `mu[i]` to
- `phase[i]` for i < count. scratch holds count values (the coarser rule's
- phase function); buf holds len >= sk_polydisperse_len_f64(p) values.
- SK_ERR_NULL for NULL p, out or buf, or NULL arrays with count > 0;
- SK_ERR_DOMAIN for invalid input (see sk_polydisperse_f64, a mu outside [-1,
- 1]) or overlapping phase and scratch; SK_ERR_SIZE for a short buffer or
- an impossible count. *out is written only on success.
- */
-sk_status sk_polydisperse_average_f64(const sk_polydisperse_f64 *p,
-                                      const double *mu,
-                                      size_t count,
-                                      double *phase,
-                                      double *scratch,
-                                      sk_complex_f64 *buf,
-                                      size_t len,
-                                      sk_mie_averages_f64 *out);
-
-/*
- A Rayleigh-distributed propagation direction about the unit vector w_in,
- by `method` (sk_rayleigh_method), with uniforms from `rng`.
- SK_ERR_METHOD for an unknown method; SK_ERR_NULL for a NULL rng, NULL
- rng->next_u64 or NULL dir_out.
- */
-sk_status sk_rayleigh_sample_dir(sk_rayleigh_method method,
-                                 sk_vec3 w_in,
-                                 sk_rng *rng,
-                                 sk_vec3 *dir_out);
-
-/*
- Double twin of `sk_rayleigh_sample_dir`.
- */
-sk_status sk_rayleigh_sample_dir_f64(sk_rayleigh_method method,
-                                     sk_vec3_f64 w_in,
-                                     sk_rng *rng,
-                                     sk_vec3_f64 *dir_out);
-
-/*
- n Rayleigh-distributed cosines by `method`, with uniforms from `rng`.
- SK_ERR_METHOD for an unknown method; SK_ERR_NULL for a NULL rng or
- callback, or NULL cos_out with n > 0; n = 0 is SK_OK.
- */
-sk_status sk_rayleigh_sample_cos_n(sk_rayleigh_method method,
-                                   sk_rng *rng,
-                                   float *cos_out,
-                                   size_t n);
-
-/*
- Double twin of `sk_rayleigh_sample_cos_n`.
- */
-sk_status sk_rayleigh_sample_cos_n_f64(sk_rayleigh_method method,
-                                       sk_rng *rng,
-                                       double *cos_out,
-                                       size_t n);
-
-/*
- Rayleigh scattering cross section of a small sphere, 128 pi^5 a^2 /
- (3 lambda^4) with polarizability a = r^3 (n^2 - 1)/(n^2 + 2). Wavelength
- and radius in one length unit L (result in L^2); rel_index is the
- particle's refractive index over the medium's. NaN unless all three are
- finite and positive.
- */
-double sk_rayleigh_cross_section_f64(double wavelength, double radius, double rel_index);
-
-/*
- Rayleigh scattering coefficient N * cross section (per L) for
- number_density N per L^3 (finite, >= 0). NaN on invalid arguments.
- */
-double sk_rayleigh_scattering_coeff_f64(double number_density,
-                                        double wavelength,
-                                        double radius,
-                                        double rel_index);
-
-/*
- Rayleigh directions for n rays, structure of arrays: for each `i < n` in
- order, `(out_x[i], out_y[i], out_z[i])` is what sk_rayleigh_sample_dir
- would give for `(w_x[i], w_y[i], w_z[i])` with the same rng, bit for bit
- (the generator is advanced exactly as by n scalar calls). An output may be
- the same array as an input (in place); other overlaps are SK_ERR_OVERLAP.
- SK_ERR_METHOD for an unknown method; SK_ERR_NULL for a NULL rng, NULL
- rng->next_u64 or a NULL array with n > 0; SK_ERR_SIZE if n floats cannot
- exist. On error nothing is written; n = 0 is SK_OK.
- */
-sk_status sk_rayleigh_sample_dir_n(sk_rayleigh_method method,
-                                   const float *w_x,
-                                   const float *w_y,
-                                   const float *w_z,
-                                   sk_rng *rng,
-                                   float *out_x,
-                                   float *out_y,
-                                   float *out_z,
-                                   size_t n);
-
-/*
- Double twin of `sk_rayleigh_sample_dir_n`.
- */
-sk_status sk_rayleigh_sample_dir_n_f64(sk_rayleigh_method method,
-                                       const double *w_x,
-                                       const double *w_y,
-                                       const double *w_z,
-                                       sk_rng *rng,
-                                       double *out_x,
-                                       double *out_y,
-                                       double *out_z,
-                                       size_t n);
-
-/*
- cos theta drawn from channel hero's phase function at u (its own
- sampler), and every channel's ratio p_c(cos theta) / p_hero(cos theta)
- into ratio_out[0 .. k] (1 for the hero): the channel's throughput
- factor. With the hero drawn uniformly, ratio_c / mean(ratio) is the
- one-sample balance heuristic over the hero: unbiased and at most k.
- SK_ERR_NULL for NULL pointers or a channel with neither phase nor
- table; SK_ERR_SIZE for k = 0, k > 16, hero >= k or a malformed table;
- SK_ERR_DOMAIN for a channel with both, an unconstructed phase, a NaN u
- or a cos theta where the hero's density is 0. Nothing written on error.
- */
-sk_status sk_spectral_phase_sample(const sk_channel_phase *ch,
-                                   size_t k,
-                                   size_t hero,
-                                   float u,
-                                   float *cos_out,
-                                   float *ratio_out);
-
-/*
- Double twin of `sk_spectral_phase_sample`.
- */
-sk_status sk_spectral_phase_sample_f64(const sk_channel_phase_f64 *ch,
-                                       size_t k,
-                                       size_t hero,
-                                       double u,
-                                       double *cos_out,
-                                       double *ratio_out);
-
-/*
- Every channel's density per steradian at cos_theta into pdf_out[0 ..
- k], for light-sampled directions. Errors as sk_spectral_phase_sample.
- */
-sk_status sk_spectral_phase_pdf(const sk_channel_phase *ch,
-                                size_t k,
-                                float cos_theta,
-                                float *pdf_out);
-
-/*
- Double twin of `sk_spectral_phase_pdf`.
- */
-sk_status sk_spectral_phase_pdf_f64(const sk_channel_phase_f64 *ch,
-                                    size_t k,
-                                    double cos_theta,
-                                    double *pdf_out);
-
-/*
- Mirror reflection of direction d at a surface of normal n (either side,
- any length): d - 2 (d.n) n with both made unit first. NaN for zero or
- non-finite vectors.
- */
-sk_vec3 sk_reflect(sk_vec3 d, sk_vec3 n);
-
-/*
- Double twin of `sk_reflect`.
- */
-sk_vec3_f64 sk_reflect_f64(sk_vec3_f64 d, sk_vec3_f64 n);
-
-/*
- Snell refraction of direction d through a surface of normal n (either
- side, any length; both made unit) from index n_i into n_t. SK_ERR_DOMAIN
- on total internal reflection, for zero or non-finite vectors, or indices
- that are not finite and positive; SK_ERR_NULL for a NULL out.
- */
-sk_status sk_refract(sk_vec3 d, sk_vec3 n, float n_i, float n_t, sk_vec3 *out);
-
-/*
- Double twin of `sk_refract`.
- */
-sk_status sk_refract_f64(sk_vec3_f64 d, sk_vec3_f64 n, double n_i, double n_t, sk_vec3_f64 *out);
-
-/*
- Unpolarised Fresnel reflectance (R_s + R_p)/2 of a dielectric interface
- for light at |cos_i| (either direction of travel) from n_i into n_t; 1 on
- total internal reflection; NaN for invalid indices or |cos_i| > 1.
- */
-float sk_fresnel_dielectric(float cos_i, float n_i, float n_t);
-
-/*
- Double twin of `sk_fresnel_dielectric`.
- */
-double sk_fresnel_dielectric_f64(double cos_i, double n_i, double n_t);
-
-/*
- Lambertian direction in the hemisphere of `normal` (the side the ray
- leaves to; any length): theta = arccos(sqrt(u1)), phi = 2 pi u2. NaN for
- a zero or non-finite normal.
- */
-sk_vec3 sk_lambert_sample(sk_vec3 normal, float u1, float u2);
-
-/*
- Double twin of `sk_lambert_sample`.
- */
-sk_vec3_f64 sk_lambert_sample_f64(sk_vec3_f64 normal, double u1, double u2);
-
-/*
- Phong direction: cos(dtheta) = u1^(1/(alpha+1)) about the specular
- direction `axis`, phi = 2 pi u2, kept on the side of `normal` (the side
- the ray leaves to) by `policy` (sk_crossing_policy; RESAMPLE derives its
- further uniforms from u1, u2 by a hash). 1 <= alpha <= 1e6. NaN for an
- invalid alpha or policy, or zero or non-finite vectors.
- */
-sk_vec3 sk_phong_sample(sk_vec3 axis,
-                        sk_vec3 normal,
-                        float alpha,
-                        sk_crossing_policy policy,
-                        float u1,
-                        float u2);
-
-/*
- Double twin of `sk_phong_sample`.
- */
-sk_vec3_f64 sk_phong_sample_f64(sk_vec3_f64 axis,
-                                sk_vec3_f64 normal,
-                                double alpha,
-                                sk_crossing_policy policy,
-                                double u1,
-                                double u2);
-
-/*
- Scalar-scattering share on reflection:
- 1 - exp(-((2 pi/wavelength) sigma_rms 2 n_i cos_i)^2). Wavelength and
- sigma_rms in one length unit; NaN unless wavelength > 0, sigma_rms >= 0,
- n_i > 0 (all finite) and |cos_i| <= 1.
- */
-float sk_scatter_fraction_reflect(float wavelength, float sigma_rms, float n_i, float cos_i);
-
-/*
- Double twin of `sk_scatter_fraction_reflect`.
- */
-double sk_scatter_fraction_reflect_f64(double wavelength,
-                                       double sigma_rms,
-                                       double n_i,
-                                       double cos_i);
-
-/*
- Scalar-scattering share on transmission:
- 1 - exp(-((2 pi/wavelength) sigma_rms |n_i cos_i - n_t cos_t|)^2); NaN on
- invalid arguments (as sk_scatter_fraction_reflect, and n_t > 0, |cos_t| <= 1).
- */
-float sk_scatter_fraction_transmit(float wavelength,
-                                   float sigma_rms,
-                                   float n_i,
-                                   float cos_i,
-                                   float n_t,
-                                   float cos_t);
-
-/*
- Double twin of `sk_scatter_fraction_transmit`.
- */
-double sk_scatter_fraction_transmit_f64(double wavelength,
-                                        double sigma_rms,
-                                        double n_i,
-                                        double cos_i,
-                                        double n_t,
-                                        double cos_t);
-
-/*
- A surface: `model` (sk_surface_model), Phong exponent in [1, 1e6]
- (checked for SK_SURFACE_PHONG only), `fraction_model`
- (sk_fraction_model) with a constant `fraction` in [0, 1] or the RMS
- roughness `sigma_rms` >= 0 (same length unit as the wavelength given to
- sk_surface_interact), and the crossing `policy` (sk_crossing_policy).
- SK_ERR_METHOD for unknown enum values, SK_ERR_DOMAIN for values out of
- range, SK_ERR_NULL for a NULL out.
- */
-sk_status sk_surface_new(sk_surface_model model,
-                         float phong_alpha,
-                         sk_fraction_model fraction_model,
-                         float fraction,
-                         float sigma_rms,
-                         sk_crossing_policy policy,
-                         sk_surface *out);
-
-/*
- Double twin of `sk_surface_new`.
- */
-sk_status sk_surface_new_f64(sk_surface_model model,
-                             double phong_alpha,
-                             sk_fraction_model fraction_model,
-                             double fraction,
-                             double sigma_rms,
-                             sk_crossing_policy policy,
-                             sk_surface_f64 *out);
-
-/*
- One interaction of a ray along `d` with the surface of geometric normal
- `normal` (either side; any length), from index n_i into n_t, at
- `wavelength` (scalar model only). Fresnel picks reflection or
- transmission, the scattering share picks scattered or specular, the model
- picks the direction (unit, written to dir_out); event_out gets
- SK_EVENT_TRANSMITTED and SK_EVENT_SCATTERED bits. SK_ERR_NULL for NULL s,
- rng, rng->next_u64 or outputs; SK_ERR_DOMAIN for zero or non-finite
- vectors, invalid indices or wavelength; SK_ERR_METHOD for a corrupted s.
- */
-sk_status sk_surface_interact(const sk_surface *s,
-                              sk_vec3 d,
-                              sk_vec3 normal,
-                              float n_i,
-                              float n_t,
-                              float wavelength,
-                              sk_rng *rng,
-                              sk_vec3 *dir_out,
-                              uint32_t *event_out);
-
-/*
- Double twin of `sk_surface_interact`.
- */
-sk_status sk_surface_interact_f64(const sk_surface_f64 *s,
-                                  sk_vec3_f64 d,
-                                  sk_vec3_f64 normal,
-                                  double n_i,
-                                  double n_t,
-                                  double wavelength,
-                                  sk_rng *rng,
-                                  sk_vec3_f64 *dir_out,
-                                  uint32_t *event_out);
 
 /*
  Number of floats (or doubles) a table of `kind` and resolution n needs;
@@ -3888,6 +2933,584 @@ sk_status sk_table2d_legendre_moments(const sk_table2d *t, float x, float *out, 
 sk_status sk_table2d_legendre_moments_f64(const sk_table2d_f64 *t, double x, double *out, size_t n);
 
 /*
+ Builds the mixture of parts[0 .. n] into *out (weights normalised;
+ phases copied, tables borrowed). SK_ERR_NULL for NULL parts or out, or
+ a part with neither phase nor table; SK_ERR_SIZE for n = 0, n > 8 or a
+ malformed table; SK_ERR_DOMAIN for a part with both, an unconstructed
+ phase, or a weight negative or not finite, or all weights 0.
+ */
+sk_status sk_mixture_new(const sk_mixture_part *parts, size_t n, sk_mixture *out);
+
+/*
+ Double twin of `sk_mixture_new`.
+ */
+sk_status sk_mixture_new_f64(const sk_mixture_part_f64 *parts, size_t n, sk_mixture_f64 *out);
+
+/*
+ The mixture's density per steradian at cos_theta: sum of w_i p_i. NaN
+ for NULL or a mixture sk_mixture_new did not build.
+ */
+float sk_mixture_pdf(const sk_mixture *m, float cos_theta);
+
+/*
+ Double twin of `sk_mixture_pdf`.
+ */
+double sk_mixture_pdf_f64(const sk_mixture_f64 *m, double cos_theta);
+
+/*
+ The mixture's CDF at cos_theta, sum of w_i F_i (NaN as sk_mixture_pdf).
+ */
+float sk_mixture_cdf(const sk_mixture *m, float cos_theta);
+
+/*
+ Double twin of `sk_mixture_cdf`.
+ */
+double sk_mixture_cdf_f64(const sk_mixture_f64 *m, double cos_theta);
+
+/*
+ The mixture's mean cosine, sum of w_i g_i (NaN as sk_mixture_pdf).
+ */
+float sk_mixture_mean_cosine(const sk_mixture *m);
+
+/*
+ Double twin of `sk_mixture_mean_cosine`.
+ */
+double sk_mixture_mean_cosine_f64(const sk_mixture_f64 *m);
+
+/*
+ cos theta by lobe choice: u (clamped to [0, 1]) picks the component by
+ weight and, rescaled into its share, samples it. Exact in distribution,
+ fast, not monotone in u. NaN for NaN u, NULL or a bad mixture.
+ */
+float sk_mixture_sample_cos_by_lobe(const sk_mixture *m, float u);
+
+/*
+ Double twin of `sk_mixture_sample_cos_by_lobe`.
+ */
+double sk_mixture_sample_cos_by_lobe_f64(const sk_mixture_f64 *m, double u);
+
+/*
+ cos theta by the exact inverse of the mixture's CDF: monotone in u (for
+ stratified or quasi-random uniforms), a safeguarded Newton solve in
+ double on the components' CDFs (about 1 us). NaN as
+ sk_mixture_sample_cos_by_lobe.
+ */
+float sk_mixture_sample_cos(const sk_mixture *m, float u);
+
+/*
+ Double twin of `sk_mixture_sample_cos`.
+ */
+double sk_mixture_sample_cos_f64(const sk_mixture_f64 *m, double u);
+
+/*
+ `cos_out[i] = sk_mixture_sample_cos(m, u[i])` for `i < n`. `u`
+ and `cos_out` may be the same array; other overlaps give
+ SK_ERR_OVERLAP. SK_ERR_DOMAIN if any `u[i]` is NaN or outside `[0, 1]`,
+ or the mixture is malformed; SK_ERR_NULL for NULL m, or NULL arrays
+ with n > 0; SK_ERR_SIZE if n floats cannot exist. On error nothing is
+ written; n = 0 is SK_OK.
+ */
+sk_status sk_mixture_sample_cos_n(const sk_mixture *m, const float *u, float *cos_out, size_t n);
+
+/*
+ Double twin of `sk_mixture_sample_cos_n`.
+ */
+sk_status sk_mixture_sample_cos_n_f64(const sk_mixture_f64 *m,
+                                      const double *u,
+                                      double *cos_out,
+                                      size_t n);
+
+/*
+ `cos_out[i] = sk_mixture_sample_cos_by_lobe(m, u[i])` for `i < n`;
+ statuses and overlaps as sk_mixture_sample_cos_n.
+ */
+sk_status sk_mixture_sample_cos_by_lobe_n(const sk_mixture *m,
+                                          const float *u,
+                                          float *cos_out,
+                                          size_t n);
+
+/*
+ Double twin of `sk_mixture_sample_cos_by_lobe_n`.
+ */
+sk_status sk_mixture_sample_cos_by_lobe_n_f64(const sk_mixture_f64 *m,
+                                              const double *u,
+                                              double *cos_out,
+                                              size_t n);
+
+/*
+ A scattered direction about the unit vector w_in: cos theta by lobe
+ choice from u1, azimuth 2 pi u2; writes the mixture's density per
+ steradian there to pdf_out unless it is NULL. NaN (direction and pdf)
+ for NULL or a bad mixture.
+ */
+sk_vec3 sk_mixture_sample_dir(const sk_mixture *m,
+                              sk_vec3 w_in,
+                              float u1,
+                              float u2,
+                              float *pdf_out);
+
+/*
+ Double twin of `sk_mixture_sample_dir`.
+ */
+sk_vec3_f64 sk_mixture_sample_dir_f64(const sk_mixture_f64 *m,
+                                      sk_vec3_f64 w_in,
+                                      double u1,
+                                      double u2,
+                                      double *pdf_out);
+
+/*
+ Directions for n rays, structure of arrays, each bit for bit
+ sk_mixture_sample_dir's (cos theta by lobe choice); arrays, overlaps and
+ statuses as sk_phase_sample_dir_n (SK_ERR_DOMAIN also for a mixture
+ sk_mixture_new did not build).
+ */
+sk_status sk_mixture_sample_dir_n(const sk_mixture *m,
+                                  const float *w_x,
+                                  const float *w_y,
+                                  const float *w_z,
+                                  const float *u1,
+                                  const float *u2,
+                                  float *out_x,
+                                  float *out_y,
+                                  float *out_z,
+                                  float *pdf_out,
+                                  size_t n);
+
+/*
+ Double twin of `sk_mixture_sample_dir_n`.
+ */
+sk_status sk_mixture_sample_dir_n_f64(const sk_mixture_f64 *m,
+                                      const double *w_x,
+                                      const double *w_y,
+                                      const double *w_z,
+                                      const double *u1,
+                                      const double *u2,
+                                      double *out_x,
+                                      double *out_y,
+                                      double *out_z,
+                                      double *pdf_out,
+                                      size_t n);
+
+/*
+ cos theta drawn from channel hero's phase function at u (its own
+ sampler), and every channel's ratio p_c(cos theta) / p_hero(cos theta)
+ into ratio_out[0 .. k] (1 for the hero): the channel's throughput
+ factor. With the hero drawn uniformly, ratio_c / mean(ratio) is the
+ one-sample balance heuristic over the hero: unbiased and at most k.
+ SK_ERR_NULL for NULL pointers or a channel with neither phase nor
+ table; SK_ERR_SIZE for k = 0, k > 16, hero >= k or a malformed table;
+ SK_ERR_DOMAIN for a channel with both, an unconstructed phase, a NaN u
+ or a cos theta where the hero's density is 0. Nothing written on error.
+ */
+sk_status sk_spectral_phase_sample(const sk_channel_phase *ch,
+                                   size_t k,
+                                   size_t hero,
+                                   float u,
+                                   float *cos_out,
+                                   float *ratio_out);
+
+/*
+ Double twin of `sk_spectral_phase_sample`.
+ */
+sk_status sk_spectral_phase_sample_f64(const sk_channel_phase_f64 *ch,
+                                       size_t k,
+                                       size_t hero,
+                                       double u,
+                                       double *cos_out,
+                                       double *ratio_out);
+
+/*
+ Every channel's density per steradian at cos_theta into pdf_out[0 ..
+ k], for light-sampled directions. Errors as sk_spectral_phase_sample.
+ */
+sk_status sk_spectral_phase_pdf(const sk_channel_phase *ch,
+                                size_t k,
+                                float cos_theta,
+                                float *pdf_out);
+
+/*
+ Double twin of `sk_spectral_phase_pdf`.
+ */
+sk_status sk_spectral_phase_pdf_f64(const sk_channel_phase_f64 *ch,
+                                    size_t k,
+                                    double cos_theta,
+                                    double *pdf_out);
+
+/*
+ Builds *out over chi[0 .. n]. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE
+ for n = 0 or n > 1024; SK_ERR_DOMAIN unless chi_0 = 1 (to 1e-6), every
+ chi_l is finite in [-1, 1], and the density is non-negative at
+ 64 n + 1 evenly spaced cosines (sk_legendre_check says where not).
+ */
+sk_status sk_legendre_new(const float *chi, size_t n, sk_legendre *out);
+
+/*
+ Double twin of `sk_legendre_new`.
+ */
+sk_status sk_legendre_new_f64(const double *chi, size_t n, sk_legendre_f64 *out);
+
+/*
+ Where the expansion chi[0 .. n] goes negative: SK_OK if nowhere among
+ the 64 n + 1 cosines checked, SK_ERR_DOMAIN with the first such cosine
+ in *cos_out; other errors as sk_legendre_new.
+ */
+sk_status sk_legendre_check(const float *chi, size_t n, float *cos_out);
+
+/*
+ Double twin of `sk_legendre_check`.
+ */
+sk_status sk_legendre_check_f64(const double *chi, size_t n, double *cos_out);
+
+/*
+ The density per steradian at cos_theta. NaN for NULL or a malformed
+ series.
+ */
+float sk_legendre_pdf(const sk_legendre *s, float cos_theta);
+
+/*
+ Double twin of `sk_legendre_pdf`.
+ */
+double sk_legendre_pdf_f64(const sk_legendre_f64 *s, double cos_theta);
+
+/*
+ The CDF at cos_theta, exact term by term (NaN as sk_legendre_pdf).
+ */
+float sk_legendre_cdf(const sk_legendre *s, float cos_theta);
+
+/*
+ Double twin of `sk_legendre_cdf`.
+ */
+double sk_legendre_cdf_f64(const sk_legendre_f64 *s, double cos_theta);
+
+/*
+ cos theta by the exact inverse of the CDF (safeguarded Newton in
+ double; monotone in u). NaN for a NaN u and as sk_legendre_pdf.
+ */
+float sk_legendre_sample_cos(const sk_legendre *s, float u);
+
+/*
+ Double twin of `sk_legendre_sample_cos`.
+ */
+double sk_legendre_sample_cos_f64(const sk_legendre_f64 *s, double u);
+
+/*
+ A direction about w_in (unit): cos theta from sk_legendre_sample_cos(s,
+ u1), the azimuth 2 pi u2 (clamped); writes its density (sk_legendre_pdf)
+ to pdf_out unless NULL. NaN (direction and pdf) for a NULL or never-built
+ series.
+ */
+sk_vec3 sk_legendre_sample_dir(const sk_legendre *s,
+                               sk_vec3 w_in,
+                               float u1,
+                               float u2,
+                               float *pdf_out);
+
+/*
+ Double twin of `sk_legendre_sample_dir`.
+ */
+sk_vec3_f64 sk_legendre_sample_dir_f64(const sk_legendre_f64 *s,
+                                       sk_vec3_f64 w_in,
+                                       double u1,
+                                       double u2,
+                                       double *pdf_out);
+
+/*
+ The mean cosine, chi_1 (0 for a series of one moment). NaN as
+ sk_legendre_pdf.
+ */
+float sk_legendre_mean_cosine(const sk_legendre *s);
+
+/*
+ Double twin of `sk_legendre_mean_cosine`.
+ */
+double sk_legendre_mean_cosine_f64(const sk_legendre_f64 *s);
+
+/*
+ `cos_out[i] = sk_legendre_sample_cos(s, u[i])` for `i < n`, bit for bit;
+ arrays, overlaps and statuses as sk_phase_sample_cos_n (SK_ERR_DOMAIN
+ also for a never-built series).
+ */
+sk_status sk_legendre_sample_cos_n(const sk_legendre *s, const float *u, float *cos_out, size_t n);
+
+/*
+ Double twin of `sk_legendre_sample_cos_n`.
+ */
+sk_status sk_legendre_sample_cos_n_f64(const sk_legendre_f64 *s,
+                                       const double *u,
+                                       double *cos_out,
+                                       size_t n);
+
+/*
+ Directions for n rays, structure of arrays, each bit for bit
+ sk_legendre_sample_dir's; arrays, overlaps and statuses as
+ sk_phase_sample_dir_n.
+ */
+sk_status sk_legendre_sample_dir_n(const sk_legendre *s,
+                                   const float *w_x,
+                                   const float *w_y,
+                                   const float *w_z,
+                                   const float *u1,
+                                   const float *u2,
+                                   float *out_x,
+                                   float *out_y,
+                                   float *out_z,
+                                   float *pdf_out,
+                                   size_t n);
+
+/*
+ Double twin of `sk_legendre_sample_dir_n`.
+ */
+sk_status sk_legendre_sample_dir_n_f64(const sk_legendre_f64 *s,
+                                       const double *w_x,
+                                       const double *w_y,
+                                       const double *w_z,
+                                       const double *u1,
+                                       const double *u2,
+                                       double *out_x,
+                                       double *out_y,
+                                       double *out_z,
+                                       double *pdf_out,
+                                       size_t n);
+
+/*
+ The Legendre moments chi_0 .. chi_{n-1} of the series: its own, and 0
+ past the last it holds. SK_ERR_NULL for NULL s or a NULL out with
+ n > 0; SK_ERR_DOMAIN for a never-built series; SK_ERR_SIZE if n values
+ cannot exist.
+ */
+sk_status sk_legendre_legendre_moments(const sk_legendre *s, float *out, size_t n);
+
+/*
+ Double twin of `sk_legendre_legendre_moments`.
+ */
+sk_status sk_legendre_legendre_moments_f64(const sk_legendre_f64 *s, double *out, size_t n);
+
+/*
+ Distance to the next interaction in a homogeneous medium:
+ -ln(1 - u)/sigma_t (u clamped to [0, 1]; u = 1 or sigma_t = 0 gives +inf).
+ NaN for a negative or non-finite sigma_t or NaN u.
+ */
+float sk_free_path(float sigma_t, float u);
+
+/*
+ Double twin of `sk_free_path`.
+ */
+double sk_free_path_f64(double sigma_t, double u);
+
+/*
+ Beer-Lambert transmittance exp(-sigma_t distance) for sigma_t >= 0 and
+ distance >= 0 (+inf allowed; a vacuum transmits 1 over any distance).
+ NaN for negative or NaN arguments.
+ */
+float sk_transmittance(float sigma_t, float distance);
+
+/*
+ Double twin of `sk_transmittance`.
+ */
+double sk_transmittance_f64(double sigma_t, double distance);
+
+/*
+ pbrt's spectral homogeneous sampling: a channel chosen by u_channel, its
+ free path by u_dist; *t_out is the distance (t_max for the surface
+ event), *scattered_out 1 for a medium event and 0 for the surface, and
+ `weight_out[c]` the weight per channel (sigma_s Tr / mean(sigma_t Tr) or
+ Tr / mean(Tr)). sigma_t, sigma_s and weight_out hold `channels` values;
+ weight_out must not overlap the inputs (SK_ERR_OVERLAP).
+ SK_ERR_SIZE for channels = 0; SK_ERR_NULL for NULL pointers;
+ SK_ERR_DOMAIN for negative or non-finite coefficients, sigma_s > sigma_t
+ or t_max negative or NaN. Nothing is written on error.
+ */
+sk_status sk_homogeneous_sample(const float *sigma_t,
+                                const float *sigma_s,
+                                size_t channels,
+                                float t_max,
+                                float u_channel,
+                                float u_dist,
+                                float *t_out,
+                                uint32_t *scattered_out,
+                                float *weight_out);
+
+/*
+ Double twin of `sk_homogeneous_sample`.
+ */
+sk_status sk_homogeneous_sample_f64(const double *sigma_t,
+                                    const double *sigma_s,
+                                    size_t channels,
+                                    double t_max,
+                                    double u_channel,
+                                    double u_dist,
+                                    double *t_out,
+                                    uint32_t *scattered_out,
+                                    double *weight_out);
+
+/*
+ A density grid over the unit cube (sk_grid_set_box and
+ sk_grid_set_sampling change that) from the caller's nx*ny*nz values (x
+ fastest; borrowed, not copied), sampled at the grid nodes and
+ interpolated trilinearly; sigma_t(p) = (sigma_a + sigma_s) density(p).
+ Checks every value once, here. SK_ERR_NULL for NULL density or out; SK_ERR_SIZE
+ for a zero dimension or a product that overflows; SK_ERR_DOMAIN for a
+ negative or non-finite value or coefficient, or a majorant
+ (sigma_a + sigma_s) * max(density) that overflows.
+ */
+sk_status sk_grid_new(const float *density,
+                      uint32_t nx,
+                      uint32_t ny,
+                      uint32_t nz,
+                      float sigma_a,
+                      float sigma_s,
+                      sk_grid *out);
+
+/*
+ Double twin of `sk_grid_new`.
+ */
+sk_status sk_grid_new_f64(const double *density,
+                          uint32_t nx,
+                          uint32_t ny,
+                          uint32_t nz,
+                          double sigma_a,
+                          double sigma_s,
+                          sk_grid_f64 *out);
+
+/*
+ Places the grid in the world box [lo, hi] (from the unit cube). On
+ failure the grid is unchanged: SK_ERR_NULL for NULL g; SK_ERR_DOMAIN
+ for a never-built grid, or unless every coordinate is finite and lo < hi
+ on every axis with a finite extent whose reciprocal is finite.
+ */
+sk_status sk_grid_set_box(sk_grid *g, sk_vec3 lo, sk_vec3 hi);
+
+/*
+ Double twin of `sk_grid_set_box`.
+ */
+sk_status sk_grid_set_box_f64(sk_grid_f64 *g, sk_vec3_f64 lo, sk_vec3_f64 hi);
+
+/*
+ Sets where the values sit (an sk_sampling). SK_ERR_NULL for NULL g;
+ SK_ERR_METHOD for an unknown value; SK_ERR_DOMAIN for a never-built
+ grid (the grid is then unchanged).
+ */
+sk_status sk_grid_set_sampling(sk_grid *g, sk_sampling sampling);
+
+/*
+ Double twin of `sk_grid_set_sampling`.
+ */
+sk_status sk_grid_set_sampling_f64(sk_grid_f64 *g, sk_sampling sampling);
+
+/*
+ The interpolated density at p (0 outside the grid's box); NaN for a
+ NULL or never-built grid.
+ */
+float sk_grid_density(const sk_grid *g, sk_vec3 p);
+
+/*
+ Double twin of `sk_grid_density`.
+ */
+double sk_grid_density_f64(const sk_grid_f64 *g, sk_vec3_f64 p);
+
+/*
+ (sigma_a, sigma_s) of the grid at p: its coefficients times the
+ interpolated density (0 outside its box), what an sk_medium_fn over the
+ grid returns. Both NaN for a NULL or never-built grid.
+ */
+sk_coefficients sk_grid_coefficients(const sk_grid *g, sk_vec3 p);
+
+/*
+ Double twin of `sk_grid_coefficients`.
+ */
+sk_coefficients_f64 sk_grid_coefficients_f64(const sk_grid_f64 *g, sk_vec3_f64 p);
+
+/*
+ The number of cells of an mx*my*mz grid (pbrt-v4 uses 16*16*16); 0 for
+ a zero dimension or a count that overflows size_t.
+ */
+size_t sk_majorant_len(uint32_t mx, uint32_t my, uint32_t mz);
+
+/*
+ Fills max_out[0 .. mx*my*mz - 1] with the majorants of grid g on an
+ mx*my*mz division of its box, in one pass over the grid: each cell gets
+ (sigma_a + sigma_s) times the largest grid value whose interpolation
+ reaches into it, so the majorants bound the density everywhere. With a
+ non-NULL min_out, also the minorants (the smallest such value, so they
+ bound it from below), for residual ratio tracking. Writes *out
+ borrowing the arrays. SK_ERR_NULL for NULL g, max_out or out;
+ SK_ERR_DOMAIN for a never-built grid; SK_ERR_SIZE for a zero dimension
+ or len < sk_majorant_len(mx, my, mz); SK_ERR_OVERLAP if the two arrays
+ overlap.
+ */
+sk_status sk_majorants_new_from_grid(const sk_grid *g,
+                                     uint32_t mx,
+                                     uint32_t my,
+                                     uint32_t mz,
+                                     float *max_out,
+                                     float *min_out,
+                                     size_t len,
+                                     sk_majorants *out);
+
+/*
+ Double twin of `sk_majorants_new_from_grid`.
+ */
+sk_status sk_majorants_new_from_grid_f64(const sk_grid_f64 *g,
+                                         uint32_t mx,
+                                         uint32_t my,
+                                         uint32_t mz,
+                                         double *max_out,
+                                         double *min_out,
+                                         size_t len,
+                                         sk_majorants_f64 *out);
+
+/*
+ Your own bounds over the box [lo, hi]: max holds mx*my*mz majorants (x
+ fastest), each finite and >= 0 and bounding sigma_t over its closed
+ cell (tracking reports SK_ERR_DOMAIN where it meets one that does not);
+ min, if not NULL, as many minorants, each at most its cell's majorant.
+ SK_ERR_NULL for NULL max or out; SK_ERR_SIZE for a zero dimension;
+ SK_ERR_DOMAIN for a bad value or box (see sk_grid_set_box).
+ */
+sk_status sk_majorants_new(const float *max,
+                           const float *min,
+                           uint32_t mx,
+                           uint32_t my,
+                           uint32_t mz,
+                           sk_vec3 lo,
+                           sk_vec3 hi,
+                           sk_majorants *out);
+
+/*
+ Double twin of `sk_majorants_new`.
+ */
+sk_status sk_majorants_new_f64(const double *max,
+                               const double *min,
+                               uint32_t mx,
+                               uint32_t my,
+                               uint32_t mz,
+                               sk_vec3_f64 lo,
+                               sk_vec3_f64 hi,
+                               sk_majorants_f64 *out);
+
+/*
+ The majorant optical depth (the integral of sigma_maj) along the ray
+ from o along d over [t_min, t_max] (distances along d/|d|), cell by
+ cell; not rounded. Its ceiling is the step count sk_ray_march takes by
+ default. NaN for NULL or never-built majorants, a bad value on the
+ ray, a zero or non-finite vector, or t_min, t_max out of order.
+ */
+float sk_majorants_optical_depth(const sk_majorants *m,
+                                 sk_vec3 o,
+                                 sk_vec3 d,
+                                 float t_min,
+                                 float t_max);
+
+/*
+ Double twin of `sk_majorants_optical_depth`.
+ */
+double sk_majorants_optical_depth_f64(const sk_majorants_f64 *m,
+                                      sk_vec3_f64 o,
+                                      sk_vec3_f64 d,
+                                      double t_min,
+                                      double t_max);
+
+/*
  Delta (Woodcock) tracking: a free-flight distance through the medium.
  At each tentative collision one uniform xi decides absorption
  (xi sigma_maj < sigma_a), scattering (< sigma_a + sigma_s) or a null
@@ -3991,6 +3614,402 @@ sk_status sk_emission_track(const sk_track_args *args, sk_track_result *out);
  Double twin of `sk_emission_track`.
  */
 sk_status sk_emission_track_f64(const sk_track_args_f64 *args, sk_track_result_f64 *out);
+
+/*
+ Equiangular sampling over [t_min, t_max] of the ray from o along d
+ (distances along d/|d|; t_max may be INFINITY) toward point, into *out.
+ SK_ERR_NULL for a NULL out; SK_ERR_DOMAIN for a zero or non-finite d, a
+ non-finite o or point, t_min negative or NaN, an empty segment, or a
+ point on the ray's line or so near it or far from it that the squared
+ distance underflows or overflows.
+ */
+sk_status sk_equiangular_new(sk_vec3 o,
+                             sk_vec3 d,
+                             float t_min,
+                             float t_max,
+                             sk_vec3 point,
+                             sk_equiangular *out);
+
+/*
+ Double twin of `sk_equiangular_new`.
+ */
+sk_status sk_equiangular_new_f64(sk_vec3_f64 o,
+                                 sk_vec3_f64 d,
+                                 double t_min,
+                                 double t_max,
+                                 sk_vec3_f64 point,
+                                 sk_equiangular_f64 *out);
+
+/*
+ The distance for a uniform u (clamped to [0, 1]), within the segment
+ and monotone in u. NaN for NULL, a NaN u, or a state sk_equiangular_new
+ would not have written.
+ */
+float sk_equiangular_sample(const sk_equiangular *e, float u);
+
+/*
+ Double twin of `sk_equiangular_sample`.
+ */
+double sk_equiangular_sample_f64(const sk_equiangular_f64 *e, double u);
+
+/*
+ The density of distance t per unit length: 0 outside the segment (and
+ for a NaN t), NaN for NULL or a state sk_equiangular_new would not have
+ written. For multiple importance sampling with free-flight sampling.
+ */
+float sk_equiangular_pdf(const sk_equiangular *e, float t);
+
+/*
+ Double twin of `sk_equiangular_pdf`.
+ */
+double sk_equiangular_pdf_f64(const sk_equiangular_f64 *e, double t);
+
+/*
+ Traces `paths` paths through a plane-parallel layer with index-matched
+ faces, scattering by `phase` (double): semi-infinite for tau = +INFINITY,
+ else a slab of optical thickness tau (finite, > 0); lit diffusely
+ (uniform radiance: the spherical albedo the material standards fit) for
+ mu0 = 0, else by a beam at cos theta_0 = mu0 in (0, 1]. One set of
+ paths with omega = 1 gives the albedo at every omega (a path leaving the
+ lit face after N scatterings counts omega^N). SK_ERR_NULL for NULL
+ pointers or callback; SK_ERR_DOMAIN for an unconstructed phase,
+ paths = 0, or a bad tau or mu0.
+ */
+sk_status sk_albedo_curve_new_f64(const sk_phase_f64 *phase,
+                                  double tau,
+                                  double mu0,
+                                  uint64_t paths,
+                                  sk_rng *rng,
+                                  sk_albedo_curve_f64 *out);
+
+/*
+ The multiple-scattering albedo at single-scattering albedo omega in
+ [0, 1] (monotone cubic between the nodes); NaN outside, for NaN, or a
+ NULL curve.
+ */
+double sk_albedo_curve_albedo_f64(const sk_albedo_curve_f64 *c, double omega);
+
+/*
+ The standard error of sk_albedo_curve_albedo_f64 at omega; NaN as there.
+ */
+double sk_albedo_curve_std_error_f64(const sk_albedo_curve_f64 *c, double omega);
+
+/*
+ The single-scattering albedo whose multiple-scattering albedo is
+ `albedo`, written to omega_out. SK_ERR_NULL for NULL pointers;
+ SK_ERR_DOMAIN for NaN or an albedo outside `[0, rho[0]]` (`rho[0]` = 1 for a
+ semi-infinite layer; less for a slab).
+ */
+sk_status sk_albedo_curve_single_scattering_albedo_f64(const sk_albedo_curve_f64 *c,
+                                                       double albedo,
+                                                       double *omega_out);
+
+/*
+ Mirror reflection of direction d at a surface of normal n (either side,
+ any length): d - 2 (d.n) n with both made unit first. NaN for zero or
+ non-finite vectors.
+ */
+sk_vec3 sk_reflect(sk_vec3 d, sk_vec3 n);
+
+/*
+ Double twin of `sk_reflect`.
+ */
+sk_vec3_f64 sk_reflect_f64(sk_vec3_f64 d, sk_vec3_f64 n);
+
+/*
+ Snell refraction of direction d through a surface of normal n (either
+ side, any length; both made unit) from index n_i into n_t. SK_ERR_DOMAIN
+ on total internal reflection, for zero or non-finite vectors, or indices
+ that are not finite and positive; SK_ERR_NULL for a NULL out.
+ */
+sk_status sk_refract(sk_vec3 d, sk_vec3 n, float n_i, float n_t, sk_vec3 *out);
+
+/*
+ Double twin of `sk_refract`.
+ */
+sk_status sk_refract_f64(sk_vec3_f64 d, sk_vec3_f64 n, double n_i, double n_t, sk_vec3_f64 *out);
+
+/*
+ Unpolarised Fresnel reflectance (R_s + R_p)/2 of a dielectric interface
+ for light at |cos_i| (either direction of travel) from n_i into n_t; 1 on
+ total internal reflection; NaN for invalid indices or |cos_i| > 1.
+ */
+float sk_fresnel_dielectric(float cos_i, float n_i, float n_t);
+
+/*
+ Double twin of `sk_fresnel_dielectric`.
+ */
+double sk_fresnel_dielectric_f64(double cos_i, double n_i, double n_t);
+
+/*
+ Lambertian direction in the hemisphere of `normal` (the side the ray
+ leaves to; any length): theta = arccos(sqrt(u1)), phi = 2 pi u2. NaN for
+ a zero or non-finite normal.
+ */
+sk_vec3 sk_lambert_sample(sk_vec3 normal, float u1, float u2);
+
+/*
+ Double twin of `sk_lambert_sample`.
+ */
+sk_vec3_f64 sk_lambert_sample_f64(sk_vec3_f64 normal, double u1, double u2);
+
+/*
+ Phong direction: cos(dtheta) = u1^(1/(alpha+1)) about the specular
+ direction `axis`, phi = 2 pi u2, kept on the side of `normal` (the side
+ the ray leaves to) by `policy` (sk_crossing_policy; RESAMPLE derives its
+ further uniforms from u1, u2 by a hash). 1 <= alpha <= 1e6. NaN for an
+ invalid alpha or policy, or zero or non-finite vectors.
+ */
+sk_vec3 sk_phong_sample(sk_vec3 axis,
+                        sk_vec3 normal,
+                        float alpha,
+                        sk_crossing_policy policy,
+                        float u1,
+                        float u2);
+
+/*
+ Double twin of `sk_phong_sample`.
+ */
+sk_vec3_f64 sk_phong_sample_f64(sk_vec3_f64 axis,
+                                sk_vec3_f64 normal,
+                                double alpha,
+                                sk_crossing_policy policy,
+                                double u1,
+                                double u2);
+
+/*
+ Scalar-scattering share on reflection:
+ 1 - exp(-((2 pi/wavelength) sigma_rms 2 n_i cos_i)^2). Wavelength and
+ sigma_rms in one length unit; NaN unless wavelength > 0, sigma_rms >= 0,
+ n_i > 0 (all finite) and |cos_i| <= 1.
+ */
+float sk_scatter_fraction_reflect(float wavelength, float sigma_rms, float n_i, float cos_i);
+
+/*
+ Double twin of `sk_scatter_fraction_reflect`.
+ */
+double sk_scatter_fraction_reflect_f64(double wavelength,
+                                       double sigma_rms,
+                                       double n_i,
+                                       double cos_i);
+
+/*
+ Scalar-scattering share on transmission:
+ 1 - exp(-((2 pi/wavelength) sigma_rms |n_i cos_i - n_t cos_t|)^2); NaN on
+ invalid arguments (as sk_scatter_fraction_reflect, and n_t > 0, |cos_t| <= 1).
+ */
+float sk_scatter_fraction_transmit(float wavelength,
+                                   float sigma_rms,
+                                   float n_i,
+                                   float cos_i,
+                                   float n_t,
+                                   float cos_t);
+
+/*
+ Double twin of `sk_scatter_fraction_transmit`.
+ */
+double sk_scatter_fraction_transmit_f64(double wavelength,
+                                        double sigma_rms,
+                                        double n_i,
+                                        double cos_i,
+                                        double n_t,
+                                        double cos_t);
+
+/*
+ A surface: `model` (sk_surface_model), Phong exponent in [1, 1e6]
+ (checked for SK_SURFACE_PHONG only), `fraction_model`
+ (sk_fraction_model) with a constant `fraction` in [0, 1] or the RMS
+ roughness `sigma_rms` >= 0 (same length unit as the wavelength given to
+ sk_surface_interact), and the crossing `policy` (sk_crossing_policy).
+ SK_ERR_METHOD for unknown enum values, SK_ERR_DOMAIN for values out of
+ range, SK_ERR_NULL for a NULL out.
+ */
+sk_status sk_surface_new(sk_surface_model model,
+                         float phong_alpha,
+                         sk_fraction_model fraction_model,
+                         float fraction,
+                         float sigma_rms,
+                         sk_crossing_policy policy,
+                         sk_surface *out);
+
+/*
+ Double twin of `sk_surface_new`.
+ */
+sk_status sk_surface_new_f64(sk_surface_model model,
+                             double phong_alpha,
+                             sk_fraction_model fraction_model,
+                             double fraction,
+                             double sigma_rms,
+                             sk_crossing_policy policy,
+                             sk_surface_f64 *out);
+
+/*
+ One interaction of a ray along `d` with the surface of geometric normal
+ `normal` (either side; any length), from index n_i into n_t, at
+ `wavelength` (scalar model only). Fresnel picks reflection or
+ transmission, the scattering share picks scattered or specular, the model
+ picks the direction (unit, written to dir_out); event_out gets
+ SK_EVENT_TRANSMITTED and SK_EVENT_SCATTERED bits. SK_ERR_NULL for NULL s,
+ rng, rng->next_u64 or outputs; SK_ERR_DOMAIN for zero or non-finite
+ vectors, invalid indices or wavelength; SK_ERR_METHOD for a corrupted s.
+ */
+sk_status sk_surface_interact(const sk_surface *s,
+                              sk_vec3 d,
+                              sk_vec3 normal,
+                              float n_i,
+                              float n_t,
+                              float wavelength,
+                              sk_rng *rng,
+                              sk_vec3 *dir_out,
+                              uint32_t *event_out);
+
+/*
+ Double twin of `sk_surface_interact`.
+ */
+sk_status sk_surface_interact_f64(const sk_surface_f64 *s,
+                                  sk_vec3_f64 d,
+                                  sk_vec3_f64 normal,
+                                  double n_i,
+                                  double n_t,
+                                  double wavelength,
+                                  sk_rng *rng,
+                                  sk_vec3_f64 *dir_out,
+                                  uint32_t *event_out);
+
+/*
+ The size parameter pi d n_medium / lambda of a sphere of diameter d in a
+ medium of index n_medium at vacuum wavelength lambda (same unit as d).
+ */
+double sk_mie_size_parameter_f64(double diameter, double wavelength, double n_medium);
+
+/*
+ The number of sk_complex_f64 values sk_mie_new_f64 needs for (x, m); 0 for input
+ it rejects: x outside [1e-20, 1e5], re outside (0, 1000], im outside
+ [0, 1000], |m| x above 2e6, or NaN.
+ */
+size_t sk_mie_len_f64(double x, sk_complex_f64 m);
+
+/*
+ Solves the sphere of size parameter x and relative index m into buf (len
+ values, at least sk_mie_len_f64(x, m)) and writes *out, which borrows
+ buf. Wiscombe's term count (two more below x = 8), the logarithmic
+ derivative by downward
+ recurrence. SK_ERR_NULL for NULL buf or out; SK_ERR_DOMAIN for input
+ sk_mie_len_f64 rejects; SK_ERR_SIZE for a short buffer.
+ */
+sk_status sk_mie_new_f64(double x,
+                         sk_complex_f64 m,
+                         sk_complex_f64 *buf,
+                         size_t len,
+                         sk_mie_f64 *out);
+
+/*
+ The amplitude functions S1(mu), S2(mu) of a solved sphere at mu = cos
+ theta (clamped to [-1, 1]; NaN gives NaN). SK_ERR_NULL for NULL
+ pointers; SK_ERR_SIZE for a malformed sphere.
+ */
+sk_status sk_mie_amplitudes_f64(const sk_mie_f64 *m,
+                                double mu,
+                                sk_complex_f64 *s1_out,
+                                sk_complex_f64 *s2_out);
+
+/*
+ The unpolarised phase function per steradian of a solved sphere at mu,
+ normalised over the sphere; NaN for a NULL or malformed sphere or NaN mu.
+ */
+double sk_mie_pdf_f64(const sk_mie_f64 *m, double mu);
+
+/*
+ Table sizes for a sphere of size parameter x in [1e-20, 1e5]:
+ *angles = max(4000, 16 x) for sk_mie_tabulate_f64 and *intervals = max(16384,
+ 64 x) for sk_table_new_measured_f64 (docs/measured/mie_table.md measures them:
+ total-variation distance 2.8e-6 at x = 10, 2.5e-4 at 100, 1.2e-3 at
+ 1000).
+ SK_ERR_NULL for NULL pointers, SK_ERR_DOMAIN for other x; nothing is
+ written on error.
+ */
+sk_status sk_mie_table_len_f64(double x, size_t *angles, size_t *intervals);
+
+/*
+ Tabulates a solved sphere's phase function for sk_table_new_measured_f64:
+ `cos_theta[j]` (decreasing from 1 to -1, the angles crowded into the
+ forward peak, which is about 1/x radians wide) and `pdf[j]`, the phase
+ function per steradian there, for j < count. SK_ERR_NULL for NULL
+ pointers; SK_ERR_OVERLAP for overlapping arrays; SK_ERR_SIZE for count <
+ 2, a malformed sphere, or too many angles to give distinct cosines.
+ */
+sk_status sk_mie_tabulate_f64(const sk_mie_f64 *m, double *cos_theta, double *pdf, size_t count);
+
+/*
+ A radius range outside which r^3 n(r), the geometric cross section per
+ ln r, is below 1e-12 of its peak. SK_ERR_NULL for NULL pointers;
+ SK_ERR_DOMAIN for an unknown kind, invalid parameters or a power law
+ (SK_SIZE_JUNGE has no peak to measure from). Nothing is written on
+ error.
+ */
+sk_status sk_size_distribution_range_f64(const sk_size_distribution_f64 *d,
+                                         double *r_min,
+                                         double *r_max);
+
+/*
+ The number of sk_complex_f64 values sk_polydisperse_average_f64 needs in its
+ buffer (that of the largest sphere); 0 for NULL or input it rejects.
+ */
+size_t sk_polydisperse_len_f64(const sk_polydisperse_f64 *p);
+
+/*
+ Averages Mie scattering over the distribution (composite Simpson in ln
+ r, one sphere per node): writes the mean cross sections, g and the error
+ estimates to *out, and the phase function per steradian at `mu[i]` to
+ `phase[i]` for i < count. scratch holds count values (the coarser rule's
+ phase function); buf holds len >= sk_polydisperse_len_f64(p) values.
+ SK_ERR_NULL for NULL p, out or buf, or NULL arrays with count > 0;
+ SK_ERR_DOMAIN for invalid input (see sk_polydisperse_f64, a mu outside [-1,
+ 1]) or overlapping phase and scratch; SK_ERR_SIZE for a short buffer or
+ an impossible count. *out is written only on success.
+ */
+sk_status sk_polydisperse_average_f64(const sk_polydisperse_f64 *p,
+                                      const double *mu,
+                                      size_t count,
+                                      double *phase,
+                                      double *scratch,
+                                      sk_complex_f64 *buf,
+                                      size_t len,
+                                      sk_mie_averages_f64 *out);
+
+/*
+ Cube root: Kahan seed + two Lancaster steps; within 1 ULP of the correctly
+ rounded result on every float. +-0, +-inf and NaN are returned as they are.
+ */
+float sk_cbrt(float x);
+
+/*
+ Cube root with one Lancaster step: relative error about 2e-5.
+ */
+float sk_cbrt_fast(float x);
+
+/*
+ Cube root of a double: Kahan seed + three Lancaster steps; about 1 ULP on
+ every double. +-0, +-inf and NaN are returned as they are.
+ */
+double sk_cbrt_f64(double x);
+
+/*
+ Cube root of a double with two Lancaster steps: relative error about 1e-14.
+ */
+double sk_cbrt_fast_f64(double x);
+
+/*
+ Completes the unit vector `n` to a right-handed orthonormal basis
+ `(b1, b2, n)` (Duff et al. 2017: no singularity, exact for n = +-z). Writes
+ nothing if either out-pointer is NULL.
+ */
+void sk_onb(sk_vec3 n, sk_vec3 *b1, sk_vec3 *b2);
+
+/*
+ Double twin of `sk_onb`.
+ */
+void sk_onb_f64(sk_vec3_f64 n, sk_vec3_f64 *b1, sk_vec3_f64 *b2);
 
 #ifdef __cplusplus
 } /* extern "C" */

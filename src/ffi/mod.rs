@@ -57,28 +57,32 @@ pub mod enum_arg {
     );
 }
 
-mod albedo;
-mod cbrt;
-mod equiangular;
-mod geometry;
-mod legendre;
-mod majorant;
-mod medium;
-mod mie;
-mod mixture;
-mod moments;
+// The families in the order the header presents them (cbindgen writes
+// the functions in the order it meets them): phase functions, tables,
+// mixtures and expansions, media, surfaces, particles, utilities. Status,
+// vectors and the generator, in this file, come first.
 mod phase;
-mod polarization;
-mod polydisperse;
+mod moments;
 mod rayleigh;
-mod slot;
-mod spectral_phase;
-mod surface;
+mod polarization;
 mod table;
 mod table2d;
-mod verbs;
-// Declared last: its entry points follow the others in the header.
+mod mixture;
+mod spectral_phase;
+mod legendre;
+mod medium;
+mod majorant;
 mod track;
+mod equiangular;
+mod albedo;
+mod surface;
+mod mie;
+mod polydisperse;
+mod cbrt;
+mod geometry;
+// Internal: no entry points.
+mod slot;
+mod verbs;
 
 pub use albedo::*;
 pub use cbrt::*;

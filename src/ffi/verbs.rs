@@ -28,15 +28,17 @@ pub(crate) unsafe fn cos_n<T: Real>(
     }
 }
 
-/// Directions for `n` rays, structure of arrays: `f(w_in, u1, u2)` gives
-/// each direction and its density; `pdf_out` may be NULL; outputs may be
-/// the same array as an input, other overlaps are `SK_ERR_OVERLAP`; bad
-/// uniforms `SK_ERR_DOMAIN` with nothing written.
-pub(crate) unsafe fn dir_n<T: Real>(
+/// Directions for `n` rays, structure of arrays, block by block: the
+/// arrays checked (`pdf_out` may be NULL; an output may be the same array
+/// as an input, other overlaps are `SK_ERR_OVERLAP`; NULLs, sizes), the
+/// uniforms checked in `[0, 1]` (`SK_ERR_DOMAIN`), nothing written unless
+/// all pass; then `run(inputs, outputs, len)` fills each block of 64 (the
+/// inputs w_x, w_y, w_z, u1, u2; the outputs x, y, z, pdf).
+pub(crate) unsafe fn dir_blocks<T: Real>(
     (w, u1, u2): ([*const T; 3], *const T, *const T),
     (out, pdf_out): ([*mut T; 3], *mut T),
     n: usize,
-    f: impl Fn(Vec3<T>, T, T) -> (Vec3<T>, T),
+    run: impl FnMut(&[[T; SOA_BLOCK]; 5], &mut [[T; SOA_BLOCK]; 4], usize),
 ) -> sk_status {
     let [ox, oy, oz] = out;
     let inputs = [w[0], w[1], w[2], u1, u2];
@@ -57,6 +59,18 @@ pub(crate) unsafe fn dir_n<T: Real>(
     if let Err(e) = check_uniforms(a).and_then(|()| check_uniforms(b)) {
         return e.into();
     }
+    unsafe { soa_blocks(inputs, [ox, oy, oz, pdf_out], n, run) };
+    sk_status::SK_OK
+}
+
+/// [`dir_blocks`] with `f(w_in, u1, u2)` giving each direction and its
+/// density.
+pub(crate) unsafe fn dir_n<T: Real>(
+    ins: ([*const T; 3], *const T, *const T),
+    outs: ([*mut T; 3], *mut T),
+    n: usize,
+    f: impl Fn(Vec3<T>, T, T) -> (Vec3<T>, T),
+) -> sk_status {
     let run = |i: &[[T; SOA_BLOCK]; 5], o: &mut [[T; SOA_BLOCK]; 4], len: usize| {
         for k in 0..len.min(SOA_BLOCK) {
             let w_in = Vec3::new(i[0][k], i[1][k], i[2][k]);
@@ -64,8 +78,7 @@ pub(crate) unsafe fn dir_n<T: Real>(
             (o[0][k], o[1][k], o[2][k], o[3][k]) = (d.x, d.y, d.z, pdf);
         }
     };
-    unsafe { soa_blocks(inputs, [ox, oy, oz, pdf_out], n, run) };
-    sk_status::SK_OK
+    unsafe { dir_blocks(ins, outs, n, run) }
 }
 
 /// One direction about `w_in` from `f` (NaN for `None`: a NULL or bad

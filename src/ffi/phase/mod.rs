@@ -5,10 +5,7 @@
 //! value, so a NULL, zeroed or never-constructed phase gives NaN or an error
 //! rather than undefined behaviour.
 
-use super::{
-    CVec, SOA_BLOCK, check_soa, map_arrays, sk_status, sk_vec3, sk_vec3_f64, soa_blocks,
-    write_result,
-};
+use super::{CVec, SOA_BLOCK, map_arrays, sk_status, sk_vec3, sk_vec3_f64, write_result};
 use crate::error::Error;
 use crate::math::real::Real;
 use crate::phase::{Phase, PhaseFunction, PhaseVisitor, check_uniforms};
@@ -249,32 +246,13 @@ unsafe fn sample_dir_n<S: PhaseStore>(
         Ok(ph) => ph,
         Err(e) => return e,
     };
-    let [ox, oy, oz] = out;
-    let inputs = [w[0], w[1], w[2], u1, u2];
-    let outputs = [(ox, false), (oy, false), (oz, false), (pdf_out, true)];
-    if let Err(e) = check_soa(&inputs, &outputs, n) {
-        return e;
-    }
-    if n == 0 {
-        return sk_status::SK_OK;
-    }
-    // SAFETY: checked above: u1 and u2 hold n elements.
-    let (u1_s, u2_s) = unsafe {
-        (
-            core::slice::from_raw_parts(u1, n),
-            core::slice::from_raw_parts(u2, n),
-        )
-    };
-    if let Err(e) = check_uniforms(u1_s).and_then(|()| check_uniforms(u2_s)) {
-        return e.into();
-    }
+    // The model's own loop per block (it vectorises for the closed forms).
     let run = |i: &[[S::T; SOA_BLOCK]; 5], o: &mut [[S::T; SOA_BLOCK]; 4], len: usize| {
         let [ix, iy, iz, a, b] = i.each_ref().map(|x| x.get(..len).unwrap_or(&[]));
         let [ox, oy, oz, pdf] = o.each_mut().map(|x| x.get_mut(..len).unwrap_or(&mut []));
         ph.sample_dir_each([ix, iy, iz], a, b, [ox, oy, oz], pdf);
     };
-    unsafe { soa_blocks(inputs, [ox, oy, oz, pdf_out], n, run) };
-    sk_status::SK_OK
+    unsafe { super::verbs::dir_blocks((w, u1, u2), (out, pdf_out), n, run) }
 }
 
 #[cfg(test)]

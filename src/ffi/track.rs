@@ -461,11 +461,15 @@ fn one_cell<T: Real>(sigma: &[T; 1], ray: Ray<T>) -> Result<Majorants<'_, T>, Er
 
 /// Strata for ray marching when the caller leaves the choice: `⌈τ_maj⌉`
 /// of the segment (at least 1), times `scale`.
-fn strata<T: Real>(given: u32, tau: Result<T, Error>, scale: u32) -> Result<u32, Error> {
+fn strata<T: Real>(
+    given: u32,
+    tau: impl FnOnce() -> Result<T, Error>,
+    scale: u32,
+) -> Result<u32, Error> {
     if given > 0 {
         return Ok(given);
     }
-    let tau = tau?.to_f64();
+    let tau = tau()?.to_f64();
     if !tau.is_finite() {
         return Err(Error::Domain);
     }
@@ -668,7 +672,9 @@ fn estimate<P: Prec>(
             Ok(Found::transmittance(x.tr, x.steps))
         }
         (Estimator::RayMarch | Estimator::Telescoping, own, _) => {
-            let tau = match (own, grid) {
+            // The majorant optical depth is walked only when the caller
+            // leaves the strata to the library.
+            let tau = || match (own, grid) {
                 (Some(m), _) => m.optical_depth(ray),
                 (None, Some(g)) => grid_depth(g, ray),
                 (None, None) => Err(Error::Domain),

@@ -58,28 +58,55 @@ pub mod enum_arg {
 }
 
 // The families in the order the header presents them (cbindgen writes
-// the functions in the order it meets them): phase functions, tables,
-// mixtures and expansions, media, surfaces, particles, utilities. Status,
-// vectors and the generator, in this file, come first.
+// the functions in the order it meets them); status, vectors and the
+// generator, in this file, come first. Each group is its own block, so
+// that rustfmt keeps the order.
+
+// Phase functions.
 mod phase;
+
 mod moments;
+
 mod rayleigh;
+
 mod polarization;
+
+// Tables.
 mod table;
+
 mod table2d;
+
+// Mixtures and expansions.
 mod mixture;
+
 mod spectral_phase;
+
 mod legendre;
+
+// Media.
 mod medium;
+
 mod majorant;
+
 mod track;
+
 mod equiangular;
+
 mod albedo;
+
+// Surfaces.
 mod surface;
+
+// Particles.
 mod mie;
+
 mod polydisperse;
+
+// Utilities.
 mod cbrt;
+
 mod geometry;
+
 // Internal: no entry points.
 mod slot;
 mod verbs;

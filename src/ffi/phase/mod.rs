@@ -11,7 +11,7 @@ use crate::math::real::Real;
 use crate::phase::{Phase, PhaseFunction, PhaseVisitor, check_uniforms};
 
 /// A phase function (float). A plain value with no pointers inside: build it
-/// with sk_phase_new or an sk_phase_new_<model> constructor, then copy it and
+/// with sk_phase_new or a named constructor (sk_phase_new_hg, ...), then copy it and
 /// share it freely across threads. 256 bytes: a tag and room for 63 floats
 /// (the largest model takes 31). Its contents are private, and some of its
 /// bytes are padding a constructor need not define: compare phases with

@@ -90,7 +90,7 @@ fuzz_target!(|data: &[u8]| {
         state: &mut state as *mut u64 as *mut _,
         next_u64: Some(next),
     };
-    let mut p = sk_phase { opaque: [0; 32] };
+    let mut p = sk_phase { opaque: [0; 64] };
     let n = f.len();
     let mut out = vec![0.0f32; n];
     // Any value has a status string, never NULL.
@@ -115,6 +115,23 @@ fuzz_target!(|data: &[u8]| {
         for s in statuses {
             assert!(matches!(s, sk_status::SK_OK | sk_status::SK_ERR_DOMAIN));
         }
+        // Any model from fuzzed parameters: built, or refused with the
+        // status that says why; a built one reports what it was given.
+        let model = enum_arg::sk_phase_model(word(3) % 12);
+        let count = (word(4) as usize % 6).min(n);
+        let mut q = sk_phase { opaque: [0; 64] };
+        match sk_phase_new(model, f.as_ptr(), count, &mut q) {
+            sk_status::SK_OK => {
+                let mut back = core::mem::MaybeUninit::<sk_phase_params>::uninit();
+                assert_eq!(sk_phase_get_params(&q, back.as_mut_ptr()), sk_status::SK_OK);
+                let back = back.assume_init();
+                assert_eq!((back.model.0, back.count as usize), (model.0, count));
+            }
+            s => assert!(matches!(
+                s,
+                sk_status::SK_ERR_DOMAIN | sk_status::SK_ERR_SIZE | sk_status::SK_ERR_METHOD
+            )),
+        }
         // Batch with arbitrary uniforms: OK with every cosine in range, or DOMAIN.
         match sk_phase_sample_cos_n(&p, f.as_ptr(), out.as_mut_ptr(), n) {
             sk_status::SK_OK => assert!(out.iter().all(|c| c.abs() <= 1.0)),
@@ -125,7 +142,7 @@ fuzz_target!(|data: &[u8]| {
         // A mixture of the fuzzed phase (which may be unconstructed) and
         // Rayleigh with fuzzed weights: OK or an error; once built, every
         // sample in [-1, 1] (NaN only for a NaN u) and the density >= 0.
-        let mut ray = sk_phase { opaque: [0; 32] };
+        let mut ray = sk_phase { opaque: [0; 64] };
         let _ = sk_phase_new_rayleigh(&mut ray);
         let parts = [
             sk_mixture_part {

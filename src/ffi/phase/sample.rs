@@ -81,7 +81,10 @@ pub struct sk_phase_cos_inline {
 
 /// Fills *out for sk_phase_cos_inline_sample from the phase *p (any model;
 /// see sk_phase_cos_inline). SK_ERR_NULL for a NULL pointer; SK_ERR_DOMAIN
-/// for an unconstructed phase. *out is written only on SK_OK.
+/// for an unconstructed phase. *out is written only on SK_OK. Float only,
+/// with no double twin: the inline sampler exists to reproduce the float
+/// sk_phase_sample_cos without a call (double callers call
+/// sk_phase_sample_cos_f64).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_phase_cos_inline_new(
     p: *const sk_phase,

@@ -2743,7 +2743,9 @@ size_t sk_table2d_len(size_t n, size_t k);
  SK_ERR_NULL for NULL data or out; SK_ERR_SIZE for n = 0, k = 0 or len
  below sk_table2d_len(n, k); SK_ERR_DOMAIN for a non-finite x0, a dx
  not finite and positive, or a slice whose nodes are not non-decreasing
- within [-1, 1] with finite non-negative slopes. Lookup at (x, u):
+ within [-1, 1] with finite non-negative slopes at most 3 times each
+ neighbouring secant (as sk_table_new_measured limits them: the spline
+ then stays monotone and within its nodes). Lookup at (x, u):
  s = (x - x0)/dx clamped to [0, k - 1], j = floor(s), w = s - j, and
  mu = mu_j(u) + w (mu_{j+1}(u) - mu_j(u)) where w > 0: the neighbouring
  slices' inverse CDFs blended at the same u (monotone in u; exactly a

@@ -115,15 +115,18 @@ pub(crate) fn performance(
 /// the threads the process may use, as the operating system reports them.
 pub(crate) fn machine() -> String {
     let info = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
+    // The first line whose key is `name` exactly ("model" is not "model
+    // name").
     let field = |name: &str| {
         info.lines()
-            .find(|l| l.starts_with(name))
-            .and_then(|l| l.split_once(':'))
+            .filter_map(|l| l.split_once(':'))
+            .find(|(k, _)| k.trim() == name)
             .map(|(_, m)| m.trim().to_string())
     };
     let model = field("model name").unwrap_or_else(|| std::env::consts::ARCH.to_string());
     let vendor = field("vendor_id").unwrap_or_default();
     let family = field("cpu family").map_or(String::new(), |f| format!(", family {f}"));
+    let number = field("model").map_or(String::new(), |m| format!(" model {m}"));
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    format!("{model} ({vendor}{family}), {threads} hardware threads")
+    format!("{model} ({vendor}{family}{number}), {threads} hardware threads")
 }

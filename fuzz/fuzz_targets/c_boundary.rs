@@ -208,6 +208,15 @@ fuzz_target!(|data: &[u8]| {
                 sk_legendre_legendre_moments(&lg, chi4.as_mut_ptr(), 6),
                 sk_status::SK_OK
             );
+            assert_eq!(sk_legendre_mean_cosine(&lg), chi[1]);
+            let mut pdf = 0.0f32;
+            let up = sk_vec3 {
+                x: 0.0,
+                y: 0.0,
+                z: 1.0,
+            };
+            let d = sk_legendre_sample_dir(&lg, up, x(13), x(14), &mut pdf);
+            assert!(d.x.is_nan() || (d.x * d.x + d.y * d.y + d.z * d.z - 1.0).abs() < 1e-4);
         }
         // The fuzzed floats as a 2-D table's data: refused, or a cosine in
         // [-1, 1] (NaN only for NaN x or u) and a density >= 0 (or NaN).
@@ -226,6 +235,15 @@ fuzz_target!(|data: &[u8]| {
             assert!(d.is_nan() || d >= 0.0, "{d}");
             let c = sk_table2d_cdf(&t2, x(2), x(4));
             assert!(c.is_nan() || (0.0..=1.0).contains(&c), "{c}");
+            let g = sk_table2d_mean_cosine(&t2, x(2));
+            assert!(g.is_nan() || g.abs() <= 1.0 + 1e-5, "{g}");
+            let mut chi = [0.0f32; 4];
+            if sk_table2d_legendre_moments(&t2, x(2), chi.as_mut_ptr(), 4) == sk_status::SK_OK {
+                assert!(
+                    chi.iter().all(|c| c.is_nan() || c.abs() <= 1.0 + 1e-3),
+                    "{chi:?}"
+                );
+            }
             let mut outs = vec![0.0f32; n];
             let s = sk_table2d_sample_cos_n(&t2, x(2), f.as_ptr(), outs.as_mut_ptr(), n);
             if !x(2).is_nan() {
@@ -416,6 +434,8 @@ fuzz_target!(|data: &[u8]| {
             assert!(c.is_nan() || c.abs() <= 1.0);
             let c = sk_table_cdf(&t, x(4));
             assert!(c.is_nan() || (0.0..=1.0).contains(&c), "{c}");
+            let g = sk_table_mean_cosine(&t);
+            assert!(g.abs() <= 1.0 + 1e-5, "{g}");
             let mut outs = vec![0.0f32; n];
             batch(
                 sk_table_sample_cos_n(&t, f.as_ptr(), outs.as_mut_ptr(), n),
@@ -497,6 +517,8 @@ fuzz_target!(|data: &[u8]| {
                 a.medium.majorants = &maj;
                 a.budget = budget;
                 let cap = if budget == 0 { 1 << 20 } else { budget };
+                let tau = sk_majorants_optical_depth(&maj, a.o, a.d, 0.0, x(32));
+                assert!(tau.is_nan() || tau >= 0.0, "{tau}");
                 if sk_ratio_track(&a, r.as_mut_ptr()) == sk_status::SK_OK {
                     let r = r.assume_init();
                     assert!((0.0..=1.0).contains(&r.tr) && r.steps <= cap, "{r:?}");

@@ -206,3 +206,36 @@ fn bad_input_is_an_error() {
         );
     }
 }
+
+#[test]
+fn slices_must_stay_monotone_within_their_nodes() {
+    // The library's own slices pass the check of caller data; a slope
+    // above 3 times a neighbouring secant (a spline that overshoots its
+    // nodes, whose mean cosine and density would not be those sampled) is
+    // refused, and so is a negative or non-finite one.
+    let mut buf = Vec::new();
+    let t = hg_table::<f64>(&mut buf, 16, 3);
+    let (n, k, x0, dx) = (t.n(), t.k(), t.x0(), t.dx());
+    let data = t.data().to_vec();
+    assert!(Table2d::from_data(&data, n, k, x0, dx).is_ok());
+    for (i, bad) in [(3usize, 1e30), (5, -1.0), (7, f64::NAN)] {
+        let mut d = data.clone();
+        // Node 1's slope, then later ones (odd entries are slopes).
+        d[i] = if bad == 1e30 {
+            3.0 * (d[i + 1] - d[i - 1]) * 1.0001 + 1e-12
+        } else {
+            bad
+        };
+        assert_eq!(
+            Table2d::from_data(&d, n, k, x0, dx).err(),
+            Some(Error::Domain),
+            "{i}"
+        );
+    }
+    // Every mean cosine a valid table reports is that of what it samples:
+    // within [-1, 1].
+    for j in 0..=40 {
+        let x = x0 + dx * (k - 1) as f64 * j as f64 / 40.0;
+        assert!(t.mean_cosine(x).abs() <= 1.0);
+    }
+}

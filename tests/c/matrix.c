@@ -1173,6 +1173,24 @@ static void majorants(void) {
             CHECK(DS[i] >= 0.0 && DS[i] < 1e300 ? s == SK_OK : s == SK_ERR_DOMAIN || s == SK_ERR_BUDGET);
         }
         i = 0;
+        {
+            /* The optical depth is not rounded (0.3 over the unit path);
+             * strata 0 marches a ray through empty cells once: exactly 1. */
+            const float tenths[8] = {0.3f, 0.3f, 0.3f, 0.3f, 0.3f, 0.3f, 0.3f, 0.3f}, none[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+            float mzs[8];
+            sk_majorants m3, mz;
+            sk_grid gz;
+            CHECK(sk_majorants_new(tenths, NULL, 2, 2, 2, zero, one, &m3) == SK_OK);
+            CHECK(fabsf(sk_majorants_optical_depth(&m3, o, d, 0, 3) - 0.3f) < 1e-6f);
+            CHECK(sk_grid_new(none, 2, 2, 2, 0.5f, 0.5f, &gz) == SK_OK);
+            CHECK(sk_majorants_new_from_grid(&gz, 2, 2, 2, mzs, NULL, 8, &mz) == SK_OK);
+            CHECK(sk_majorants_optical_depth(&mz, o, d, 0, 3) == 0.0f);
+            a = targs(&gz, NULL, NULL, &mz, o, d, 0, 3, 1000, &rng);
+            CHECK(sk_ray_march(&a, &tr) == SK_OK && tr.tr == 1.0f && tr.steps > 0);
+            CHECK(sk_telescoping_march(&a, &tr) == SK_OK && tr.tr == 1.0f);
+            a.medium.majorants = NULL;
+            CHECK(sk_ray_march(&a, &tr) == SK_OK && tr.tr == 1.0f);
+        }
         /* A callback needs a finite segment; strata 0 takes sigma_maj. */
         a = targs(NULL, coeff32, NULL, NULL, o, d, 0, INFINITY, 1000, &rng);
         a.strata = 4;

@@ -125,7 +125,7 @@ fn mie_at(d: f64, lam: f64, buf: &mut Vec<Complex>) -> Mie<'_> {
 ///   ≤ 2.5·10⁻³ at every midpoint, ≤ 10⁻⁶ at a slice;
 /// * Mie, water droplets of 0.2 µm and 1 µm over 380–780 nm in slices
 ///   0.1 in size parameter or closer (17 and 65 slices), the tables of
-///   `mie::table_sizes`: ≤ 2.5·10⁻³ and ≤ 5·10⁻³ at eight midpoints.
+///   `mie::table_sizes`: ≤ 2.5·10⁻³ and ≤ 10⁻² at every midpoint.
 #[test]
 fn total_variation_at_the_recommended_sizes() {
     let mut buf = Vec::new();
@@ -139,7 +139,7 @@ fn total_variation_at_the_recommended_sizes() {
     assert!(worst <= 2.5e-3, "HG between slices: {worst:.2e}");
     let at_slice = tv(|mu| t.pdf(0.5, mu), |mu| hg_at(0.5).pdf(mu));
     assert!(at_slice <= 1e-6, "HG at a slice: {at_slice:.2e}");
-    for (d, k, limit) in [(0.2, 17, 2.5e-3), (1.0, 65, 5e-3)] {
+    for (d, k, limit) in [(0.2, 17, 2.5e-3), (1.0, 65, 1e-2)] {
         let (count, n) = mie::table_sizes(mie::size_parameter(d, 0.38, 1.0));
         let mut buf = vec![0.0f64; Table2d::<f64>::len(n, k).unwrap()];
         let dx = 0.4 / (k - 1) as f64;
@@ -150,13 +150,13 @@ fn total_variation_at_the_recommended_sizes() {
         })
         .unwrap();
         let worst = (0..k - 1)
-            .step_by((k - 1) / 8)
             .map(|j| {
                 let lam = 0.38 + (j as f64 + 0.5) * dx;
                 let exact = mie_at(d, lam, &mut mb);
                 tv(|mu| t.pdf(lam, mu), |mu| exact.phase(mu))
             })
             .fold(0.0, f64::max);
+        eprintln!("Mie d = {d} µm, {k} slices: worst TV over every midpoint {worst:.2e}");
         assert!(worst <= limit, "Mie d = {d} µm, {k} slices: {worst:.2e}");
     }
 }

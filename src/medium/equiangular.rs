@@ -13,9 +13,11 @@
 //! segment seen from afar (where `θ_a` and `θ_b` round to the same angle)
 //! keeps its full precision: with `x_a = a − t₀`,
 //! `θ_b − θ_a = atan2(Δ(b − a), Δ² + x_a x_b)`, and for `φ = θ − θ_a`,
-//! `t = a + (Δ² + x_a²) sin φ / (Δ cos φ − x_a sin φ)` (the tangent's
-//! addition formula), neither of which subtracts two angles or two
-//! distances near each other.
+//! `t = a + (Δ² + x_a²) / (Δ cot φ − x_a)` (the tangent's addition
+//! formula divided by `sin φ`), neither of which subtracts two angles or
+//! two distances near each other. In that form every operation after
+//! `cot φ` is monotone, so the distance is monotone in `u` (tested over
+//! every f32 `u` for nine segments).
 
 use crate::error::Error;
 use crate::math::geometry::Vec3;
@@ -74,15 +76,26 @@ impl<T: Real> Equiangular<T> {
     /// NaN), within the segment; monotone in `u`.
     pub fn sample(&self, u: T) -> T {
         let (a, b) = self.ends;
-        let (s, c) = (u.clamp01() * self.span).sin_cos();
+        let phi = u.clamp01() * self.span;
+        if phi == T::ZERO {
+            return a;
+        }
+        let (s, c) = phi.sin_cos();
         let xa = a - self.t0;
-        let den = self.delta * c - xa * s;
+        // t − a = (Δ² + x_a²) / (Δ cot φ − x_a): the addition formula
+        // divided by sin φ. Every step after cot φ is a correctly rounded
+        // operation with a constant, each monotone in its argument, and
+        // cot φ = cos φ / sin φ is monotone wherever sin and cos are, so
+        // the distance cannot step back with u. (The undivided
+        // `K sin φ/(Δ cos φ − x_a sin φ)` mixes two rounded terms that
+        // move in opposite directions and stepped back by 1–3 ULP.)
+        let den = self.delta * (c / s) - xa;
         // den ≤ 0 only where θ rounds onto π/2: the end of an infinite
         // segment.
         let t = if den <= T::ZERO {
             b
         } else {
-            a + (self.delta * self.delta + xa * xa) * s / den
+            a + (self.delta * self.delta + xa * xa) / den
         };
         // Written so that a NaN passes through both bounds.
         b.min_of(a.max_of(t))

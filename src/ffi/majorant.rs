@@ -88,12 +88,6 @@ fn dims(m: [u32; 3]) -> [usize; 3] {
     m.map(|x| x as usize)
 }
 
-/// A 'static view of the caller's array of `n` values (the handle's
-/// contract: it outlives the handle).
-unsafe fn held<T>(p: *const T, n: usize) -> Result<&'static [T], sk_status> {
-    unsafe { slice_in(p, n) }
-}
-
 unsafe fn build<G: GridStore, S: MajStore<T = G::T>>(
     g: *const G,
     m: [u32; 3],
@@ -151,7 +145,9 @@ unsafe fn new_maj<S: MajStore>(
     };
     let (lo, hi) = (lo.to_vec(), hi.to_vec());
     let checked = |p: *const S::T| -> Result<Majorants<'static, S::T>, sk_status> {
-        let values = unsafe { held(p, count) }?;
+        // 'static: the handle's contract is that the caller's array
+        // outlives the handle.
+        let values = unsafe { slice_in(p, count) }?;
         Majorants::new(values, dims(m), lo, hi).map_err(Into::into)
     };
     let bounds = checked(max).and_then(|max| {

@@ -13,7 +13,7 @@ use super::{
 use crate::error::Error;
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
-use crate::medium::emission::emission_cells;
+use crate::medium::emission::{Emission, emission_cells};
 use crate::medium::majorant::{Majorants, grid_coefficients};
 use crate::medium::nonbounding::Exceeded;
 use crate::medium::ray_march::{
@@ -273,6 +273,12 @@ impl<T: Real> Found<T> {
             tr,
             steps,
             ..Self::nothing()
+        }
+    }
+    fn emission(x: Emission<T>) -> Self {
+        Found {
+            radiance: x.radiance,
+            ..Self::transmittance(x.tr, x.steps)
         }
     }
     fn track(t: T, event: Event, steps: u32) -> Self {
@@ -535,6 +541,12 @@ unsafe fn found<P: Prec>(e: Estimator, a: Parts<P>) -> Result<Found<P::T>, sk_st
         budget,
         rng: &mut rng,
     };
+    let em = Emitted::<P> {
+        grid: a.emission,
+        f: a.emission_fn,
+        ctx: a.ctx,
+        cells: a.emission_cells,
+    };
     let r = match source {
         Source::Grid(g) => {
             let coef = |p: Vec3<P::T>| grid_coefficients(g, p);
@@ -546,12 +558,6 @@ unsafe fn found<P: Prec>(e: Estimator, a: Parts<P>) -> Result<Found<P::T>, sk_st
                 (_, _, Some(_)) => return Err(sk_status::SK_ERR_DOMAIN),
                 _ => {}
             }
-            let em = Emitted::<P> {
-                grid: a.emission,
-                f: a.emission_fn,
-                ctx: a.ctx,
-                cells: a.emission_cells,
-            };
             estimate(
                 e,
                 coef,
@@ -567,22 +573,13 @@ unsafe fn found<P: Prec>(e: Estimator, a: Parts<P>) -> Result<Found<P::T>, sk_st
             if a.spectrum.is_some() {
                 return Err(sk_status::SK_ERR_DOMAIN);
             }
-            let em = Emitted::<P> {
-                grid: a.emission,
-                f: a.emission_fn,
-                ctx: a.ctx,
-                cells: a.emission_cells,
-            };
             let one = Some(a.sigma_maj);
             estimate(e, f, None, bounds, one, nonbounding, em, (a.strata, w))
         }
         Source::Cells => {
             let cells = unsafe { bounds_at(a.emission_cells) }?;
             let b = bounds.ok_or(sk_status::SK_ERR_NULL)?;
-            emission_cells(&b.max, &cells.max, a.ray).map(|x| Found {
-                radiance: x.radiance,
-                ..Found::transmittance(x.tr, x.steps)
-            })
+            emission_cells(&b.max, &cells.max, a.ray).map(Found::emission)
         }
     };
     r.map_err(Into::into)
@@ -692,10 +689,7 @@ fn estimate<P: Prec>(
         (Estimator::Emission, own, _) => {
             let m = bounds.map(|b| b.max).or(own).ok_or(Error::Domain)?;
             let x = unsafe { emit(&m, coef, emitted, (ray, budget), rng) }?;
-            Ok(Found {
-                radiance: x.radiance,
-                ..Found::transmittance(x.tr, x.steps)
-            })
+            Ok(Found::emission(x))
         }
         (Estimator::Delta | Estimator::Ratio, None, None) => Err(Error::Domain),
     }
@@ -709,7 +703,7 @@ unsafe fn emit<P: Prec>(
     src: Emitted<P>,
     (ray, budget): (Ray<P::T>, u32),
     rng: &mut CRng,
-) -> Result<crate::medium::emission::Emission<P::T>, Error> {
+) -> Result<Emission<P::T>, Error> {
     let f = bind(src.f, src.ctx);
     if !src.cells.is_null() {
         return Err(Error::Domain);

@@ -36,7 +36,6 @@ static double now_ns(void) {
 static sk_grid grid;
 static sk_majorants ext; /* majorants with minorants */
 static sk_vec3 *orig, *dir;
-static uint32_t *strata;
 static uint32_t n_rays;
 static volatile float sink;
 
@@ -44,7 +43,7 @@ enum estimator { DELTA, RATIO, RESIDUAL, MARCH };
 static const char *NAMES[] = {"delta", "ratio", "residual", "march"};
 
 /* One estimate along ray i; its t or transmittance. */
-static float estimate(enum estimator e, sk_vec3 o, sk_vec3 d, uint32_t n, sk_rng *rng) {
+static float estimate(enum estimator e, sk_vec3 o, sk_vec3 d, sk_rng *rng) {
     sk_track_args a;
     sk_track_result r;
     memset(&a, 0, sizeof a);
@@ -52,7 +51,7 @@ static float estimate(enum estimator e, sk_vec3 o, sk_vec3 d, uint32_t n, sk_rng
     a.medium.majorants = &ext;
     a.o = o, a.d = d, a.t_min = 0.0f, a.t_max = INFINITY;
     a.budget = BUDGET;
-    a.strata = n;
+    a.strata = 0; /* the library's choice */
     a.rng = rng;
     switch (e) {
     case DELTA:
@@ -82,7 +81,7 @@ static void per_ray(double best[4]) {
             float acc = 0.0f;
             double t0 = now_ns();
             for (i = 0; i < n_rays; i++) {
-                acc += estimate((enum estimator)e, orig[i], dir[i], strata[i], &rng);
+                acc += estimate((enum estimator)e, orig[i], dir[i], &rng);
             }
             t0 = now_ns() - t0;
             sink = acc;
@@ -107,7 +106,7 @@ static double miss(enum estimator e) {
         float acc = 0.0f;
         double t0 = now_ns();
         for (i = 0; i < calls; i++) {
-            acc += estimate(e, o, d, 1, &rng);
+            acc += estimate(e, o, d, &rng);
         }
         t0 = now_ns() - t0;
         sink = acc;
@@ -165,8 +164,7 @@ int main(void) {
     rays = malloc(sizeof(float) * 6 * n_rays);
     orig = malloc(sizeof(sk_vec3) * n_rays);
     dir = malloc(sizeof(sk_vec3) * n_rays);
-    strata = malloc(sizeof(uint32_t) * n_rays);
-    if (!density || !rays || !orig || !dir || !strata || fread(density, 4, cells, f) != cells ||
+    if (!density || !rays || !orig || !dir || fread(density, 4, cells, f) != cells ||
         fread(rays, 4, 6 * n_rays, f) != 6 * n_rays) {
         fprintf(stderr, "c_media: short SK_MEDIA_DATA\n");
         return 1;
@@ -192,11 +190,6 @@ int main(void) {
         if (!max || !min || sk_majorants_new_from_grid(&grid, m, m, m, max, min, len, &ext) != SK_OK) {
             fprintf(stderr, "c_media: extrema at %u failed\n", m);
             return 1;
-        }
-        /* The ray marcher's strata: the majorant optical depth, rounded up. */
-        for (i = 0; i < n_rays; i++) {
-            float tau = sk_majorants_optical_depth(&ext, orig[i], dir[i], 0.0f, INFINITY);
-            strata[i] = tau >= 1.0f ? (uint32_t)ceilf(tau) : 1u;
         }
         {
             double best[4];

@@ -15,7 +15,7 @@ use scatterkit::{Grid, Ray, Real, Vec3};
 pub const SIGMA: (f32, f32) = (0.2, 0.8);
 
 /// The `n³` values of `f(x, y, z)` at the nodes of `[−1, 1]³` (x fastest).
-fn sample(n: usize, f: impl Fn(f32, f32, f32) -> f32) -> Vec<f32> {
+pub fn sample(n: usize, f: impl Fn(f32, f32, f32) -> f32) -> Vec<f32> {
     let c = |i: usize| 2.0 * i as f32 / (n - 1) as f32 - 1.0;
     let mut v = Vec::with_capacity(n * n * n);
     for k in 0..n {

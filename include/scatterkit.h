@@ -1283,9 +1283,12 @@ typedef struct {
      */
     uint32_t budget;
     /*
-     Ray marching: strata per march; 0 lets the library choose (the
-     majorant optical depth of the segment rounded up, at least 1; 4
-     times that for the telescoping estimator). Otherwise unused.
+     Ray marching: strata per march; 0 lets the library choose
+     ceil(4 tau), at least 1 (16 ceil(tau), at least 16, for the
+     telescoping estimator), where tau is the optical depth that places the strata: with
+     `majorants`, the integral of sigma_maj - sigma_min along the
+     segment (sigma_min 0 without minorants); without, that of the one
+     majorant. Otherwise unused.
      */
     uint32_t strata;
     /*
@@ -3496,8 +3499,8 @@ sk_status sk_majorants_new_f64(const double *max,
 /*
  The majorant optical depth (the integral of sigma_maj) along the ray
  from o along d over [t_min, t_max] (distances along d/|d|), cell by
- cell; not rounded. Its ceiling is the step count sk_ray_march takes by
- default. NaN for NULL or never-built majorants, a bad value on the
+ cell; not rounded. Without minorants its ceiling is the step count
+ sk_ray_march takes by default. NaN for NULL or never-built majorants, a bad value on the
  ray, a zero or non-finite vector, or t_min, t_max out of order.
  */
 float sk_majorants_optical_depth(const sk_majorants *m,
@@ -3570,11 +3573,15 @@ sk_status sk_residual_ratio_track_f64(const sk_track_args_f64 *args, sk_track_re
 
 /*
  The unbiased ray-marching transmittance estimator (Kettunen et al.
- 2021, power series): jittered marches of `strata` strata (0: the
- segment's majorant optical depth rounded up, at least 1), a power
- series in independent marches (at least 3, on average 4.8) cut at a
- random order and reweighted; exact for a constant medium. One estimate
- may leave [0, 1]. Statuses as sk_ratio_track; also SK_ERR_DOMAIN when
+ 2021, power series): marches of `strata` strata (0: the library's
+ choice, see sk_track_args), a power series in independent marches (at
+ least 3, on average 4.8) cut at a random order and reweighted. With
+ `majorants` the strata are placed by them: each holds an equal share of
+ the integral of sigma_maj - sigma_min along the segment, so cells with
+ no residual (empty, or constant with minorants) take no evaluation and
+ the minorants' part is exact; with one majorant they are equal lengths.
+ Exact for a medium constant along the ray. One estimate may leave
+ [0, 1]. Statuses as sk_ratio_track; also SK_ERR_DOMAIN when
  the series overflows (strata far too coarse for the medium), and
  SK_ERR_BUDGET when more than `budget` density evaluations would be
  needed.
@@ -3588,12 +3595,12 @@ sk_status sk_ray_march_f64(const sk_track_args_f64 *args, sk_track_result_f64 *o
 
 /*
  The telescoping ray-marching estimator (Rhee & Glynn 2015 as Misso et
- al. 2022 apply it): exp(-X_0) of a stratified march of n strata (0: 4
- times the segment's majorant optical depth rounded up), plus
- corrections between marches of n 2^k and n 2^(k-1) strata that share
- their points, each further level taken with probability 1/3 and
- reweighted; unbiased, exact for a constant medium, 3n evaluations on
- average. Statuses as sk_ray_march.
+ al. 2022 apply it): exp(-X_0) of a stratified march of n strata (0: the
+ library's choice, see sk_track_args), plus corrections between marches
+ of n 2^k and n 2^(k-1) strata that share their points, each further
+ level taken with probability 1/3 and reweighted; strata placed as
+ sk_ray_march places them; unbiased, exact for a constant medium, 3n
+ evaluations on average. Statuses as sk_ray_march.
  */
 sk_status sk_telescoping_march(const sk_track_args *args, sk_track_result *out);
 

@@ -24,11 +24,16 @@
 //!
 //! Layout: `measure` (timing and accuracy), `entries` (the measured
 //! points), `c_view` (the C benchmarks), `chart` (CSV and SVG), `report`
-//! (PERFORMANCE.md), `media` (majorant grids), `mie` (Mie tables against
-//! the cheap models, and the solver against BHMIE).
+//! (PERFORMANCE.md), `media` (majorant grids), `transmittance` and `suite`
+//! (the transmittance estimators, and the suite of media kinds, from Rust
+//! and from C), `mie` (Mie tables against the cheap models, and the solver
+//! against BHMIE). With `SK_MEDIA_ONLY=1` the run prints the two
+//! transmittance sections alone (about a minute) and writes nothing.
 
 #[path = "../../benches/cloud.rs"]
 mod cloud;
+#[path = "../../benches/media_suite.rs"]
+mod media_suite;
 #[path = "../../benches/peers.rs"]
 mod peers;
 
@@ -41,6 +46,7 @@ mod media;
 mod mie;
 mod polarization;
 mod report;
+mod suite;
 mod transmittance;
 
 pub(crate) use c_media::*;
@@ -52,6 +58,7 @@ pub(crate) use media::*;
 pub(crate) use mie::*;
 pub(crate) use polarization::*;
 pub(crate) use report::*;
+pub(crate) use suite::*;
 pub(crate) use transmittance::*;
 
 pub(crate) use rand_xoshiro::Xoshiro256PlusPlus;
@@ -66,6 +73,10 @@ pub(crate) use std::time::Instant;
 
 fn main() -> std::io::Result<()> {
     let start = Instant::now();
+    if std::env::var_os("SK_MEDIA_ONLY").is_some() {
+        print!("{}{}", transmittance_report(), suite_report());
+        return Ok(());
+    }
     println!("Measured on {}.\n", machine());
     let mut es = Vec::new();
     rayleigh_entries(&mut es);
@@ -201,7 +212,7 @@ fn main() -> std::io::Result<()> {
     print!("{native_md}");
     let media_md = media_report() + &c_media_report();
     print!("{media_md}");
-    let transmittance_md = transmittance_report();
+    let transmittance_md = transmittance_report() + &suite_report();
     print!("{transmittance_md}");
     let (mie_md, _) = mie_report(&es);
     print!("{mie_md}");

@@ -262,8 +262,8 @@ pub unsafe extern "C" fn sk_majorants_new_f64(
 
 /// The majorant optical depth (the integral of sigma_maj) along the ray
 /// from o along d over [t_min, t_max] (distances along d/|d|), cell by
-/// cell; not rounded. Its ceiling is the step count sk_ray_march takes by
-/// default. NaN for NULL or never-built majorants, a bad value on the
+/// cell; not rounded. Without minorants its ceiling is the step count
+/// sk_ray_march takes by default. NaN for NULL or never-built majorants, a bad value on the
 /// ray, a zero or non-finite vector, or t_min, t_max out of order.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_majorants_optical_depth(

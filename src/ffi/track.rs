@@ -17,8 +17,8 @@ use crate::medium::emission::{Emission, emission_cells};
 use crate::medium::majorant::{Majorants, grid_coefficients};
 use crate::medium::nonbounding::Exceeded;
 use crate::medium::ray_march::{
-    ray_march_transmittance, ray_march_transmittance_fn, telescoping_transmittance,
-    telescoping_transmittance_fn,
+    Placement, Series, march_within, ray_march_transmittance, ray_march_transmittance_fn,
+    telescoping_transmittance, telescoping_transmittance_fn,
 };
 use crate::medium::residual::Extrema;
 use crate::medium::spectral::{MAX_CHANNELS, Ratios, Spectrum};
@@ -155,9 +155,12 @@ pub struct sk_track_args {
     /// At most this many tentative collisions (density evaluations for ray
     /// marching) before SK_ERR_BUDGET; 0 means SK_TRACK_BUDGET.
     pub budget: u32,
-    /// Ray marching: strata per march; 0 lets the library choose (the
-    /// majorant optical depth of the segment rounded up, at least 1; 4
-    /// times that for the telescoping estimator). Otherwise unused.
+    /// Ray marching: strata per march; 0 lets the library choose
+    /// ceil(4 tau), at least 1 (16 ceil(tau), at least 16, for the
+    /// telescoping estimator), where tau is the optical depth that places the strata: with
+    /// `majorants`, the integral of sigma_maj - sigma_min along the
+    /// segment (sigma_min 0 without minorants); without, that of the one
+    /// majorant. Otherwise unused.
     pub strata: u32,
     /// SK_TRACK_NONBOUNDING or 0; other bits are SK_ERR_METHOD.
     pub flags: u32,
@@ -465,27 +468,6 @@ fn one_cell<T: Real>(sigma: &[T; 1], ray: Ray<T>) -> Result<Majorants<'_, T>, Er
     Majorants::from_parts(sigma, [1; 3], lo, hi)
 }
 
-/// Strata for ray marching when the caller leaves the choice: `⌈τ_maj⌉`
-/// of the segment (at least 1), times `scale`.
-fn strata<T: Real>(
-    given: u32,
-    tau: impl FnOnce() -> Result<T, Error>,
-    scale: u32,
-) -> Result<u32, Error> {
-    if given > 0 {
-        return Ok(given);
-    }
-    let tau = tau()?.to_f64();
-    if !tau.is_finite() {
-        return Err(Error::Domain);
-    }
-    let n = libm::ceil(tau).max(1.0) * f64::from(scale);
-    if n > f64::from(u32::MAX) {
-        return Err(Error::Domain);
-    }
-    Ok(n as u32)
-}
-
 /// The majorant optical depth of the segment through the grid's one
 /// majorant (the segment clipped to its box).
 fn grid_depth<T: Real>(grid: &Grid<'_, T>, ray: Ray<T>) -> Result<T, Error> {
@@ -669,20 +651,39 @@ fn estimate<P: Prec>(
             Ok(Found::transmittance(x.tr, x.steps))
         }
         (Estimator::RayMarch | Estimator::Telescoping, own, _) => {
+            let series = if e == Estimator::RayMarch {
+                Series::Power
+            } else {
+                Series::Telescoping
+            };
+            // With a majorant grid the strata follow it (and its
+            // minorants); with one majorant they are even.
+            if let Some(b) = bounds {
+                let place = Placement {
+                    max: b.max,
+                    min: b.min,
+                };
+                let x = march_within(series, place, coef, ray, given, budget, rng)?;
+                return Ok(Found::transmittance(x.tr, x.steps));
+            }
             // The majorant optical depth is walked only when the caller
             // leaves the strata to the library.
-            let tau = || match (own, grid) {
-                (Some(m), _) => m.optical_depth(ray),
-                (None, Some(g)) => grid_depth(g, ray),
-                (None, None) => Err(Error::Domain),
+            let n = match given {
+                0 => {
+                    let tau = match (own, grid) {
+                        (Some(m), _) => m.optical_depth(ray),
+                        (None, Some(g)) => grid_depth(g, ray),
+                        (None, None) => Err(Error::Domain),
+                    }?;
+                    series.default_strata(tau.to_f64())?
+                }
+                n => n,
             };
-            let power = e == Estimator::RayMarch;
-            let n = strata(given, tau, if power { 1 } else { 4 })?;
-            let x = match (grid, power) {
-                (Some(g), true) => ray_march_transmittance(g, ray, n, budget, rng),
-                (Some(g), false) => telescoping_transmittance(g, ray, n, budget, rng),
-                (None, true) => ray_march_transmittance_fn(coef, ray, n, budget, rng),
-                (None, false) => telescoping_transmittance_fn(coef, ray, n, budget, rng),
+            let x = match (grid, series) {
+                (Some(g), Series::Power) => ray_march_transmittance(g, ray, n, budget, rng),
+                (Some(g), _) => telescoping_transmittance(g, ray, n, budget, rng),
+                (None, Series::Power) => ray_march_transmittance_fn(coef, ray, n, budget, rng),
+                (None, _) => telescoping_transmittance_fn(coef, ray, n, budget, rng),
             }?;
             Ok(Found::transmittance(x.tr, x.steps))
         }
@@ -845,11 +846,15 @@ pub unsafe extern "C" fn sk_residual_ratio_track_f64(
 }
 
 /// The unbiased ray-marching transmittance estimator (Kettunen et al.
-/// 2021, power series): jittered marches of `strata` strata (0: the
-/// segment's majorant optical depth rounded up, at least 1), a power
-/// series in independent marches (at least 3, on average 4.8) cut at a
-/// random order and reweighted; exact for a constant medium. One estimate
-/// may leave [0, 1]. Statuses as sk_ratio_track; also SK_ERR_DOMAIN when
+/// 2021, power series): marches of `strata` strata (0: the library's
+/// choice, see sk_track_args), a power series in independent marches (at
+/// least 3, on average 4.8) cut at a random order and reweighted. With
+/// `majorants` the strata are placed by them: each holds an equal share of
+/// the integral of sigma_maj - sigma_min along the segment, so cells with
+/// no residual (empty, or constant with minorants) take no evaluation and
+/// the minorants' part is exact; with one majorant they are equal lengths.
+/// Exact for a medium constant along the ray. One estimate may leave
+/// [0, 1]. Statuses as sk_ratio_track; also SK_ERR_DOMAIN when
 /// the series overflows (strata far too coarse for the medium), and
 /// SK_ERR_BUDGET when more than `budget` density evaluations would be
 /// needed.
@@ -871,12 +876,12 @@ pub unsafe extern "C" fn sk_ray_march_f64(
 }
 
 /// The telescoping ray-marching estimator (Rhee & Glynn 2015 as Misso et
-/// al. 2022 apply it): exp(-X_0) of a stratified march of n strata (0: 4
-/// times the segment's majorant optical depth rounded up), plus
-/// corrections between marches of n 2^k and n 2^(k-1) strata that share
-/// their points, each further level taken with probability 1/3 and
-/// reweighted; unbiased, exact for a constant medium, 3n evaluations on
-/// average. Statuses as sk_ray_march.
+/// al. 2022 apply it): exp(-X_0) of a stratified march of n strata (0: the
+/// library's choice, see sk_track_args), plus corrections between marches
+/// of n 2^k and n 2^(k-1) strata that share their points, each further
+/// level taken with probability 1/3 and reweighted; strata placed as
+/// sk_ray_march places them; unbiased, exact for a constant medium, 3n
+/// evaluations on average. Statuses as sk_ray_march.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_telescoping_march(
     args: *const sk_track_args,

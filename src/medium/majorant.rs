@@ -218,6 +218,22 @@ impl<'a, T: Real> Majorants<'a, T> {
         self.get(c[0], c[1], c[2])
     }
 
+    /// The index of cell `c` in the array (`None` outside the grid): the
+    /// same for every grid of these dimensions.
+    #[inline(always)]
+    pub(crate) fn index(&self, c: [usize; 3]) -> Option<usize> {
+        let [mx, my, mz] = self.m;
+        (c[0] < mx && c[1] < my && c[2] < mz).then(|| c[0] + mx * (c[1] + my * c[2]))
+    }
+
+    /// The value at array index `i` (0 past the end).
+    #[inline(always)]
+    pub(crate) fn at_index(&self, i: Option<usize>) -> T {
+        i.and_then(|i| self.sigma.get(i))
+            .copied()
+            .unwrap_or(T::ZERO)
+    }
+
     /// The majorant of cell `(i, j, k)` (0 outside the grid).
     pub fn get(&self, i: usize, j: usize, k: usize) -> T {
         let [mx, my, mz] = self.m;
@@ -230,10 +246,10 @@ impl<'a, T: Real> Majorants<'a, T> {
             .unwrap_or(T::ZERO)
     }
 
-    /// `∫ σ_maj` along `ray` (the majorant optical depth), cell by cell:
-    /// [`Error::Domain`] for a ray [`Ray`] does not accept. Rounded up, a
-    /// step count for [`ray_march`](super::ray_march) that gives each
-    /// stratum about one majorant mean free path.
+    /// `∫ σ_maj` along `ray` (the majorant optical depth), cell by cell,
+    /// not rounded: [`Error::Domain`] for a ray [`Ray`] does not accept.
+    /// Rounded up, the strata [`ray_march`](super::ray_march) takes by
+    /// default without minorants: about one majorant mean free path each.
     pub fn optical_depth(&self, ray: Ray<T>) -> Result<T, Error> {
         // At rate 0 the walk draws nothing (its generator is never called)
         // and its tail is the integral of the cell values along the ray.
@@ -380,33 +396,15 @@ impl<'a, T: Real> Majorants<'a, T> {
         mut visit: impl FnMut(Tentative<T>, &mut R) -> Result<Option<X>, Error>,
     ) -> Result<Walk<T, X>, Error> {
         let (o, d) = ray.checked()?;
-        let (t_min, t_max) = (ray.t_min, ray.t_max);
         let mut walk = Walk {
             found: None,
-            exit: t_min,
+            exit: ray.t_min,
             steps: 0,
             tail: T::ZERO,
         };
-        // In box coordinates the box is [0, 1]³ and t is unchanged.
-        let ol = to_local(o, self.lo, self.hi);
-        let (lo, hi) = (self.lo, self.hi);
-        let dl = Vec3::new(
-            d.x / (hi.x - lo.x),
-            d.y / (hi.y - lo.y),
-            d.z / (hi.z - lo.z),
-        );
-        let unit = Vec3::new(T::ZERO, T::ZERO, T::ZERO);
-        let one = Vec3::new(T::ONE, T::ONE, T::ONE);
-        let Some((ta, tb)) = clip_box(ol, dl, unit, one, t_min, t_max) else {
-            return Ok(walk);
-        };
-        walk.exit = tb;
-        let mut dda = Dda::new(ol, dl, ta, self.m);
-        let mut t_cell = ta;
         let mut since = T::ZERO;
-        for _ in 0..=(self.m[0] + self.m[1] + self.m[2]) {
-            let t_end = dda.next_face().min_of(tb).max_of(t_cell);
-            let value = value_of(dda.cell, t_end - t_cell);
+        let cell = |cell: [usize; 3], t_cell: T, t_end: T| {
+            let value = value_of(cell, t_end - t_cell);
             // Values are checked here, per cell crossed, not when the
             // caller's array is loaded (`from_parts`): the cost of a call
             // does not grow with the grid.
@@ -429,24 +427,60 @@ impl<'a, T: Real> Majorants<'a, T> {
                 t = next;
                 let c = Tentative {
                     p: o + d * t,
-                    cell: dda.cell,
+                    cell,
                     value,
                     since,
                 };
                 since = T::ZERO;
                 if let Some(x) = visit(c, rng)? {
                     walk.found = Some((t, x));
-                    return Ok(walk);
+                    return Ok(true);
                 }
             }
             since += value * (t_end - t);
-            if t_end >= tb || !dda.step() {
+            Ok(false)
+        };
+        if let Some((_, tb)) = self.cells(ray, cell)? {
+            walk.exit = tb;
+        }
+        if walk.found.is_none() {
+            walk.tail = since;
+        }
+        Ok(walk)
+    }
+
+    /// Visits the cells `ray` crosses over `[t_min, t_max]` ∩ box, in
+    /// order, as `cell(index, t_enter, t_leave)` until it returns `true`;
+    /// returns the clipped segment, `None` for a ray that misses the box.
+    pub(crate) fn cells(
+        &self,
+        ray: Ray<T>,
+        mut cell: impl FnMut([usize; 3], T, T) -> Result<bool, Error>,
+    ) -> Result<Option<(T, T)>, Error> {
+        let (o, d) = ray.checked()?;
+        // In box coordinates the box is [0, 1]³ and t is unchanged.
+        let ol = to_local(o, self.lo, self.hi);
+        let (lo, hi) = (self.lo, self.hi);
+        let dl = Vec3::new(
+            d.x / (hi.x - lo.x),
+            d.y / (hi.y - lo.y),
+            d.z / (hi.z - lo.z),
+        );
+        let unit = Vec3::new(T::ZERO, T::ZERO, T::ZERO);
+        let one = Vec3::new(T::ONE, T::ONE, T::ONE);
+        let Some((ta, tb)) = clip_box(ol, dl, unit, one, ray.t_min, ray.t_max) else {
+            return Ok(None);
+        };
+        let mut dda = Dda::new(ol, dl, ta, self.m);
+        let mut t_cell = ta;
+        for _ in 0..=(self.m[0] + self.m[1] + self.m[2]) {
+            let t_end = dda.next_face().min_of(tb).max_of(t_cell);
+            if cell(dda.cell, t_cell, t_end)? || t_end >= tb || !dda.step() {
                 break;
             }
             t_cell = t_end;
         }
-        walk.tail = since;
-        Ok(walk)
+        Ok(Some((ta, tb)))
     }
 }
 

@@ -18,6 +18,7 @@ use crate::math::geometry::Vec3;
 use crate::math::real::Real;
 use crate::medium::majorant::{Majorants, Tentative, Transmittance, grid_coefficients};
 use crate::medium::{Grid, Ray, roulette};
+use core::cell::Cell;
 use rand_core::Rng;
 
 /// Majorants and minorants (per length unit) over the same cells of the
@@ -121,9 +122,12 @@ impl<'a, T: Real> Extrema<'a, T> {
         rng: &mut R,
     ) -> Result<Transmittance<T>, Error> {
         let mut tr = T::ONE;
+        // The rates (σ_c, σ_maj) of the cell being crossed, set by
+        // `residual` as the walk enters it, read at its collisions.
+        let rates = Cell::new((T::ZERO, T::ZERO));
         let visit = |c: Tentative<T>, r: &mut R| {
             let (sa, ss) = coefficients(c.p);
-            let (sigma_c, sigma_maj) = (self.min.at(c.cell), self.max.at(c.cell));
+            let (sigma_c, sigma_maj) = rates.get();
             if !(sa >= T::ZERO && ss >= T::ZERO && sa + ss <= sigma_maj) {
                 return Err(Error::Domain);
             }
@@ -136,7 +140,10 @@ impl<'a, T: Real> Extrema<'a, T> {
         // (values a caller stored) would bias it: the walk notes it.
         let (mut control, mut inverted) = (T::ZERO, false);
         let residual = |cell: [usize; 3], length: T| {
-            let (lo, hi) = (self.min.at(cell), self.max.at(cell));
+            // The two grids share their dimensions (`paired`): one index.
+            let i = self.max.index(cell);
+            let (lo, hi) = (self.min.at_index(i), self.max.at_index(i));
+            rates.set((lo, hi));
             control += lo * length;
             inverted |= !(lo >= T::ZERO && hi >= lo);
             hi - lo
@@ -148,8 +155,15 @@ impl<'a, T: Real> Extrema<'a, T> {
             return Err(Error::Domain);
         }
         let tr = if walk.found.is_some() { T::ZERO } else { tr };
+        // Where the control is 0 along the ray (a sparse medium) this is
+        // ratio tracking, and costs no more than it.
+        let tr = if control > T::ZERO {
+            tr * (-control).exp()
+        } else {
+            tr
+        };
         Ok(Transmittance {
-            tr: tr * (-control).exp(),
+            tr,
             steps: walk.steps,
         })
     }

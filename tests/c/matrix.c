@@ -1174,7 +1174,8 @@ static void majorants(void) {
         i = 0;
         {
             /* The optical depth is not rounded (0.3 over the unit path);
-             * strata 0 marches a ray through empty cells once: exactly 1. */
+             * with majorants, a ray through empty cells has no residual to
+             * march: exactly 1, with no evaluation (strata 0 or not). */
             const float tenths[8] = {0.3f, 0.3f, 0.3f, 0.3f, 0.3f, 0.3f, 0.3f, 0.3f}, none[8] = {0, 0, 0, 0, 0, 0, 0, 0};
             float mzs[8];
             sk_majorants m3, mz;
@@ -1185,10 +1186,31 @@ static void majorants(void) {
             CHECK(sk_majorants_new_from_grid(&gz, 2, 2, 2, mzs, NULL, 8, &mz) == SK_OK);
             CHECK(sk_majorants_optical_depth(&mz, o, d, 0, 3) == 0.0f);
             a = targs(&gz, NULL, NULL, &mz, o, d, 0, 3, 1000, &rng);
-            CHECK(sk_ray_march(&a, &tr) == SK_OK && tr.tr == 1.0f && tr.steps > 0);
-            CHECK(sk_telescoping_march(&a, &tr) == SK_OK && tr.tr == 1.0f);
+            CHECK(sk_ray_march(&a, &tr) == SK_OK && tr.tr == 1.0f && tr.steps == 0);
+            CHECK(sk_telescoping_march(&a, &tr) == SK_OK && tr.tr == 1.0f && tr.steps == 0);
+            a.strata = 5;
+            CHECK(sk_ray_march(&a, &tr) == SK_OK && tr.tr == 1.0f && tr.steps == 0);
+            a.strata = 0;
             a.medium.majorants = NULL;
             CHECK(sk_ray_march(&a, &tr) == SK_OK && tr.tr == 1.0f);
+        }
+        {
+            /* With majorants the strata follow the residual sigma_maj -
+             * sigma_min: a grid constant in each cell, minorants equal to
+             * majorants, is exact with no evaluation (sigma_t 2 over the
+             * unit path); a majorant below the density is refused. */
+            const float twos[8] = {2, 2, 2, 2, 2, 2, 2, 2}, ones[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+            sk_grid gc;
+            sk_majorants exact, low;
+            CHECK(sk_grid_new(ones, 2, 2, 2, 0.5f, 1.5f, &gc) == SK_OK);
+            CHECK(sk_majorants_new(twos, twos, 2, 2, 2, zero, one, &exact) == SK_OK);
+            CHECK(sk_majorants_new(ones, NULL, 2, 2, 2, zero, one, &low) == SK_OK);
+            a = targs(&gc, NULL, NULL, &exact, o, d, 0, 3, 1000, &rng);
+            CHECK(sk_ray_march(&a, &tr) == SK_OK && tr.steps == 0 && fabsf(tr.tr - expf(-2.0f)) < 1e-6f);
+            CHECK(sk_telescoping_march(&a, &tr) == SK_OK && tr.steps == 0 && fabsf(tr.tr - expf(-2.0f)) < 1e-6f);
+            a.medium.majorants = &low;
+            CHECK(sk_ray_march(&a, &tr) == SK_ERR_DOMAIN);
+            CHECK(sk_telescoping_march(&a, &tr) == SK_ERR_DOMAIN);
         }
         /* A callback needs a finite segment; strata 0 takes sigma_maj. */
         a = targs(NULL, coeff32, NULL, NULL, o, d, 0, INFINITY, 1000, &rng);

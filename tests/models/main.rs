@@ -20,6 +20,7 @@ mod gegenbauer;
 mod hg_and_depolarised;
 mod legendre;
 mod majorant;
+mod media_suite;
 mod medium;
 mod mie;
 mod mie_table;

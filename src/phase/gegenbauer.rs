@@ -35,11 +35,11 @@ use crate::math::real::{PackedF64, Real};
 pub struct Gegenbauer<T> {
     alpha: T,
     g: T,
-    /// `L_1`, `e^{∓αL_1}` and `expm1(∓αL_1)` (upper sign for `αL_1 > 0`),
-    /// computed once in f64 and kept as 32-bit halves (the f32 model stays
-    /// 4-byte aligned): each sample then costs two transcendentals, not
-    /// five.
-    k: PackedF64<3>,
+    /// `L_1`, `e^{∓αL_1}`, `expm1(∓αL_1)` (upper sign for `αL_1 > 0`) and
+    /// `F(0)`, computed once in f64 and kept as 32-bit halves (the f32
+    /// model stays 4-byte aligned): each sample then costs two
+    /// transcendentals, not five.
+    k: PackedF64<4>,
 }
 
 impl<T: Real> Gegenbauer<T> {
@@ -63,7 +63,7 @@ impl<T: Real> Gegenbauer<T> {
         Gegenbauer {
             alpha,
             g,
-            k: PackedF64::new([k.l1, k.e, k.m]),
+            k: PackedF64::new([k.l1, k.e, k.m, k.u0]),
         }
     }
     /// The constants, as [`K::new`] computed them.
@@ -77,6 +77,7 @@ impl<T: Real> Gegenbauer<T> {
             s: a * l1,
             e: at(1),
             m: at(2),
+            u0: at(3),
         }
     }
     /// `α`.
@@ -102,6 +103,8 @@ struct K {
     e: f64,
     /// `expm1(−s)` for `s > 0`, else `expm1(s)`.
     m: f64,
+    /// `F(0)`, where the inverse changes route for `α ≤ 0`.
+    u0: f64,
 }
 
 impl K {
@@ -109,14 +112,19 @@ impl K {
         let l1 = 2.0 * (libm::log1p(g) - libm::log1p(-g));
         let s = a * l1;
         let t = if s > 0.0 { -s } else { s };
-        K {
+        let mut k = K {
             a,
             g,
             l1,
             s,
             e: libm::exp(t),
             m: libm::expm1(t),
+            u0: 0.0,
+        };
+        if g != 0.0 {
+            k.u0 = k.cdf(0.0);
         }
+        k
     }
     /// `expm1(α L_1)/α`, `L_1` at `α = 0` (for `s ≤ 0`).
     fn em_l1(&self) -> f64 {
@@ -126,15 +134,41 @@ impl K {
             self.m / self.a
         }
     }
-    /// `L_y = −log1p(−2g(1+μ)/(1+g)²)`.
+    /// `y = 1 + g² − 2gμ` from the end nearer to its zero: a sum of
+    /// non-negative terms for either sign of `g`.
+    fn y(&self, mu: f64) -> f64 {
+        let g = self.g;
+        if g * mu >= 0.0 {
+            let (ag, am) = (g.abs(), mu.abs());
+            (1.0 - ag) * (1.0 - ag) + 2.0 * ag * (1.0 - am)
+        } else {
+            1.0 + g * g - 2.0 * g * mu
+        }
+    }
+    /// `L_y = ln((1+g)²/y) = −log1p(−x)`, `x = 2g(1+μ)/(1+g)²`. Where
+    /// `x > ½` (`μ` near 1 for `g → 1`) `1 − x` cancels, to nothing at
+    /// `μ = 1` once `1 − g < 10⁻⁸`; there it is `2 log1p(g) − ln y`, with
+    /// `y` from the near end, a difference of at least `ln 2`.
     fn l_y(&self, mu: f64) -> f64 {
         let g = self.g;
-        -libm::log1p(-2.0 * g * (1.0 + mu) / ((1.0 + g) * (1.0 + g)))
+        let x = 2.0 * g * (1.0 + mu) / ((1.0 + g) * (1.0 + g));
+        if x <= 0.5 {
+            -libm::log1p(-x)
+        } else {
+            2.0 * libm::log1p(g) - libm::log(self.y(mu))
+        }
     }
-    /// `D = log1p(2g(1−μ)/(1−g)²)`.
+    /// `D = ln(y/(1−g)²) = log1p(x)`, `x = 2g(1−μ)/(1−g)²`; where
+    /// `x < −½` (`μ` near −1 for `g → −1`), `ln y − 2 log1p(−g)`, as
+    /// [`l_y`](Self::l_y).
     fn d(&self, mu: f64) -> f64 {
         let g = self.g;
-        libm::log1p(2.0 * g * (1.0 - mu) / ((1.0 - g) * (1.0 - g)))
+        let x = 2.0 * g * (1.0 - mu) / ((1.0 - g) * (1.0 - g));
+        if x >= -0.5 {
+            libm::log1p(x)
+        } else {
+            libm::log(self.y(mu)) - 2.0 * libm::log1p(-g)
+        }
     }
     /// `expm1(α t) / α`, `t` at `α = 0`.
     fn em(&self, t: f64) -> f64 {
@@ -163,12 +197,7 @@ impl K {
         if g == 0.0 {
             return 0.5;
         }
-        // y without cancellation: from the nearer end.
-        let y = if mu >= 0.0 {
-            (1.0 - g) * (1.0 - g) + 2.0 * g * (1.0 - mu)
-        } else {
-            (1.0 + g) * (1.0 + g) - 2.0 * g * (1.0 + mu)
-        };
+        let y = self.y(mu);
         let factor = if self.s > 0.0 {
             libm::exp(-self.a * self.d(mu)) * self.a / -self.m
         } else {
@@ -176,40 +205,82 @@ impl K {
         };
         2.0 * g / y * factor
     }
-    /// The inverse of [`cdf`](Self::cdf) for `u ∈ [0, 1]`.
+    /// The inverse of [`cdf`](Self::cdf) for `u ∈ [0, 1]`: solved for `D`
+    /// (giving `1 − μ`) or for `L_y` (giving `1 + μ`). For `α > 0` the
+    /// sign of `s` picks the route whose exponents cannot overflow, which
+    /// is also the pole the kernel peaks at. For `α ≤ 0`, `|s| ≤ 38` and
+    /// either route is safe: the one toward the pole nearer the answer
+    /// (`u ≥ F(0)`: `D`), so that a kernel with `g → 1` and `α < 0` keeps
+    /// `1 − μ` where `1 + μ` would round it away.
     fn inverse(&self, u: f64) -> f64 {
-        let (a, g) = (self.a, self.g);
-        if g == 0.0 {
-            return 2.0 * u - 1.0;
+        self.inverse_cs(u).0
+    }
+    /// [`inverse`](Self::inverse) with `sin θ` from the `1 ∓ μ` the route
+    /// solved for, so that a forward lobe keeps the angle `μ` rounds away.
+    fn inverse_cs(&self, u: f64) -> (f64, f64) {
+        if self.g == 0.0 {
+            let mu = 2.0 * u - 1.0;
+            return (mu, libm::sqrt((1.0 - mu) * (1.0 + mu)));
         }
-        if self.s > 0.0 {
-            // e^{−αD} = u + (1 − u) e^{−αL_1}: D from the side that keeps
-            // the argument of the logarithm exact.
+        let by_d = if self.a <= 0.0 {
+            u >= self.u0
+        } else {
+            self.s > 0.0
+        };
+        // z = 1 − μ or 1 + μ, in [0, 2].
+        let z = if by_d {
+            self.from_d(u)
+        } else {
+            self.from_l_y(u)
+        }
+        .clamp(0.0, 2.0);
+        let mu = if by_d { 1.0 - z } else { z - 1.0 };
+        (mu, libm::sqrt(z * (2.0 - z)))
+    }
+    /// `(e^{s}, expm1(s))` from the stored `(e^{∓s}, expm1(∓s))`: the
+    /// mirrored pair is formed only where `|s|` is small (`α ≤ 0`).
+    fn exp_pair(&self, positive: bool) -> (f64, f64) {
+        if (self.s > 0.0) == !positive {
+            (self.e, self.m)
+        } else {
+            (1.0 / self.e, -self.m / self.e)
+        }
+    }
+    /// `1 − μ` from `e^{−αD} = u + (1 − u) e^{−s}`:
+    /// `1 − μ = (1 − g)² expm1(D)/(2g)`.
+    fn from_d(&self, u: f64) -> f64 {
+        let (a, g) = (self.a, self.g);
+        let d = if a == 0.0 {
+            (1.0 - u) * self.l1
+        } else {
+            let (e, m) = self.exp_pair(false);
             // The direct sum only where it is far from 1 (else its log
             // would cancel): there log1p of the small product is exact.
-            let direct = u + (1.0 - u) * self.e;
-            let d = if direct < 0.5 {
+            let direct = u + (1.0 - u) * e;
+            if direct < 0.5 {
                 -libm::log(direct) / a
             } else {
-                -libm::log1p((1.0 - u) * self.m) / a
-            };
-            // 1 − μ = (1 − g)² expm1(D)/(2g).
-            (1.0 - (1.0 - g) * (1.0 - g) * libm::expm1(d) / (2.0 * g)).clamp(-1.0, 1.0)
+                -libm::log1p((1.0 - u) * m) / a
+            }
+        };
+        (1.0 - g) * (1.0 - g) * libm::expm1(d) / (2.0 * g)
+    }
+    /// `1 + μ` from `e^{αL_y} = (1 − u) + u e^{s}`:
+    /// `1 + μ = −(1 + g)² expm1(−L_y)/(2g)`.
+    fn from_l_y(&self, u: f64) -> f64 {
+        let (a, g) = (self.a, self.g);
+        let ly = if a == 0.0 {
+            u * self.l1
         } else {
-            // expm1(α L_y) = u expm1(α L_1).
-            // 1 + u expm1(s) = (1 − u) + u e^{s}: the direct sum where it
-            // is far from 1, log1p of the small product elsewhere.
-            let direct = (1.0 - u) + u * self.e;
-            let ly = if a == 0.0 {
-                u * self.l1
-            } else if direct < 0.5 {
+            let (e, m) = self.exp_pair(true);
+            let direct = (1.0 - u) + u * e;
+            if direct < 0.5 {
                 libm::log(direct) / a
             } else {
-                libm::log1p(u * self.m) / a
-            };
-            // 1 + μ = −(1 + g)² expm1(−L_y)/(2g).
-            (-1.0 - (1.0 + g) * (1.0 + g) * libm::expm1(-ly) / (2.0 * g)).clamp(-1.0, 1.0)
-        }
+                libm::log1p(u * m) / a
+            }
+        };
+        -(1.0 + g) * (1.0 + g) * libm::expm1(-ly) / (2.0 * g)
     }
 }
 
@@ -234,6 +305,17 @@ impl<T: Real> PhaseFunction<T> for Gegenbauer<T> {
         }
         let k = self.constants();
         T::from_f64(k.inverse(u))
+    }
+    /// `sin θ` from the `1 ∓ μ` the inverse solved for, in f64: in f32 a
+    /// forward lobe with `1 − g ≲ 10⁻⁴` lies within a few spacings of
+    /// floats below 1, whose `sin θ` would be quantised.
+    fn sample_cos_sin(&self, u: T) -> (T, T) {
+        let u = u.clamp01().to_f64();
+        if u.is_nan() {
+            return (T::NAN, T::NAN);
+        }
+        let (mu, sin) = self.constants().inverse_cs(u);
+        (T::from_f64(mu), T::from_f64(sin))
     }
     /// `⟨μ⟩` in closed form (the module function `mean_cosine`).
     fn mean_cosine(&self) -> T {

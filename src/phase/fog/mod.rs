@@ -240,6 +240,18 @@ impl<T: Real> Fog<T> {
         (self.g_hg, self.g_d, self.alpha, self.w_d)
     }
 
+    /// The mixture at `μ` in the frame of the nearer pole: at `y = 1 + μ`
+    /// for `μ < 0`, else mirrored (`g → −g`) at `y = 1 − μ`, where the
+    /// tail is `P(cos θ ≥ μ)`; and whether it was mirrored.
+    fn near_pole(&self, mu: f64) -> (Eval, bool) {
+        let (h, d, w) = self.lobes();
+        if mu >= 0.0 {
+            (mixture(h.mirrored(), d.mirrored(), w, 1.0 - mu), true)
+        } else {
+            (mixture(h, d, w, 1.0 + mu), false)
+        }
+    }
+
     /// The lobes as f64 Draine parameters (HG is Draine with α = 0).
     fn lobes(&self) -> (Params, Params, f64) {
         (
@@ -301,7 +313,18 @@ impl<T: Real> Fog<T> {
             let g = (sign * self.g_hg.to_f64(), sign * self.g_d.to_f64());
             y = polish_two_hg(g, w, target, y, mixture(h, d, w, y).density);
         }
-        from_tail(y, mirrored)
+        // An answer at the far pole (a lobe whose mass lies within a few
+        // steps of it, as at u = ½ with 1 − g = 10⁻¹⁰): y near 2 has half
+        // the resolution μ has there, so it is snapped in the other frame.
+        if y > 2.0 - 64.0 * f64::EPSILON {
+            let (h, d) = (h.mirrored(), d.mirrored());
+            let y = snap_at_pole(|y| mixture(h, d, w, y).cdf, 1.0 - target, 2.0 - y);
+            return from_tail(y, !mirrored);
+        }
+        from_tail(
+            snap_at_pole(|y| mixture(h, d, w, y).cdf, target, y),
+            mirrored,
+        )
     }
 
     /// The tabulated seed of the tail solution at tail probability `target`
@@ -437,6 +460,30 @@ fn tail_by_lobes<T: Real>(h: Params, d: Params, w: f64, target: f64) -> f64 {
     solve_bracketed::<T>(|y| mixture(h, d, w, y), target, seed, lo, hi)
 }
 
+/// Within 64 ULP of a pole `μ` is resolved in steps of `h = 2⁻⁵³` of
+/// `y`, and a lobe with `1 − |g| < 10⁻¹⁰` puts most of its mass within
+/// one step, where the solver's tolerance (a few ε of `y`) is too coarse:
+/// it stopped at `1 − 4 ULP` where the answer rounds to 1. There `y` is
+/// moved to the step `k h` nearest the root of `tail(y) = target`, by the
+/// sign of the residual half a step either side (a few evaluations).
+fn snap_at_pole(tail: impl Fn(f64) -> f64, target: f64, y: f64) -> f64 {
+    const H: f64 = f64::EPSILON / 2.0;
+    if !(y < 64.0 * H) {
+        return y;
+    }
+    let mut k = libm::round(y / H);
+    for _ in 0..256 {
+        if k > 0.0 && tail((k - 0.5) * H) > target {
+            k -= 1.0;
+        } else if tail((k + 0.5) * H) < target {
+            k += 1.0;
+        } else {
+            break;
+        }
+    }
+    k * H
+}
+
 /// One Newton step for two HG lobes (`g = (g_hg, g_d)`, `α = 0`) with the
 /// residual `target − F(y)` formed in double-double. Where the lobes point
 /// apart the density between them is small and `y(u)` amplifies the f64
@@ -475,19 +522,22 @@ fn mixture(h: Params, d: Params, w: f64, y: f64) -> Eval {
 }
 
 impl<T: Real> PhaseFunction<T> for Fog<T> {
+    /// Evaluated in the frame of the nearer pole (`y = 1 − μ` for
+    /// `μ ≥ 0`, the lobes mirrored): `1 + μ` near 2 would round away the
+    /// `1 − μ` on which a forward lobe with `g → 1` depends (a relative
+    /// error of 10⁻⁸ in the density at `μ = 1 − 10⁻⁸`, `g = 0.9999`).
     #[inline]
     fn pdf(&self, cos_theta: T) -> T {
-        let (h, d, w) = self.lobes();
-        T::from_f64(mixture(h, d, w, 1.0 + cos_theta.to_f64()).density / core::f64::consts::TAU)
+        let (eval, _) = self.near_pole(cos_theta.to_f64());
+        T::from_f64(eval.density / core::f64::consts::TAU)
     }
+    /// In the frame of the nearer pole, as [`pdf`](Self::pdf): for
+    /// `μ ≥ 0`, one minus the mirrored tail.
     #[inline]
     fn cdf(&self, cos_theta: T) -> T {
-        let (h, d, w) = self.lobes();
-        T::from_f64(
-            mixture(h, d, w, 1.0 + cos_theta.to_f64().clamp(-1.0, 1.0))
-                .cdf
-                .clamp(0.0, 1.0),
-        )
+        let (eval, mirrored) = self.near_pole(cos_theta.to_f64().clamp(-1.0, 1.0));
+        let f = if mirrored { 1.0 - eval.cdf } else { eval.cdf };
+        T::from_f64(f.clamp(0.0, 1.0))
     }
     fn sample_cos(&self, u: T) -> T {
         T::from_f64(self.inverse(u).0)

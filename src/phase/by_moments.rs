@@ -188,7 +188,7 @@ impl<T: Real> Phase<T> {
         // not reproduced (in f64 as in f32): refused, not returned off.
         let (a_t, gk_t) = (T::from_f64(a), T::from_f64(gk));
         let (a_t64, gk_t64) = (a_t.to_f64(), gk_t.to_f64());
-        if !(gk_t64 < 1.0) {
+        if gk_t64.is_nan() || gk_t64 >= 1.0 {
             return Err(Error::Domain);
         }
         let chi = low_moments(a_t64, gk_t64);

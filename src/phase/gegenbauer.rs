@@ -229,18 +229,19 @@ impl K {
         };
         // z = 1 − μ or 1 + μ, in [0, 2].
         let z = if by_d {
-            self.from_d(u)
+            self.one_minus_mu(u)
         } else {
-            self.from_l_y(u)
+            self.one_plus_mu(u)
         }
         .clamp(0.0, 2.0);
         let mu = if by_d { 1.0 - z } else { z - 1.0 };
         (mu, libm::sqrt(z * (2.0 - z)))
     }
-    /// `(e^{s}, expm1(s))` from the stored `(e^{∓s}, expm1(∓s))`: the
-    /// mirrored pair is formed only where `|s|` is small (`α ≤ 0`).
+    /// `(e^{±s}, expm1(±s))` (upper sign for `positive`) from the stored
+    /// `(e^{∓s}, expm1(∓s))`: the mirrored pair is formed only where `|s|`
+    /// is small (`α ≤ 0`).
     fn exp_pair(&self, positive: bool) -> (f64, f64) {
-        if (self.s > 0.0) == !positive {
+        if (self.s > 0.0) != positive {
             (self.e, self.m)
         } else {
             (1.0 / self.e, -self.m / self.e)
@@ -248,7 +249,7 @@ impl K {
     }
     /// `1 − μ` from `e^{−αD} = u + (1 − u) e^{−s}`:
     /// `1 − μ = (1 − g)² expm1(D)/(2g)`.
-    fn from_d(&self, u: f64) -> f64 {
+    fn one_minus_mu(&self, u: f64) -> f64 {
         let (a, g) = (self.a, self.g);
         let d = if a == 0.0 {
             (1.0 - u) * self.l1
@@ -267,7 +268,7 @@ impl K {
     }
     /// `1 + μ` from `e^{αL_y} = (1 − u) + u e^{s}`:
     /// `1 + μ = −(1 + g)² expm1(−L_y)/(2g)`.
-    fn from_l_y(&self, u: f64) -> f64 {
+    fn one_plus_mu(&self, u: f64) -> f64 {
         let (a, g) = (self.a, self.g);
         let ly = if a == 0.0 {
             u * self.l1

@@ -468,7 +468,7 @@ fn tail_by_lobes<T: Real>(h: Params, d: Params, w: f64, target: f64) -> f64 {
 /// sign of the residual half a step either side (a few evaluations).
 fn snap_at_pole(tail: impl Fn(f64) -> f64, target: f64, y: f64) -> f64 {
     const H: f64 = f64::EPSILON / 2.0;
-    if !(y < 64.0 * H) {
+    if y.is_nan() || y >= 64.0 * H {
         return y;
     }
     let mut k = libm::round(y / H);

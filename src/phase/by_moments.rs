@@ -35,7 +35,13 @@ impl<T: Real> Phase<T> {
     /// `χ_2 = β g_HG² + (1 − β) 2/5`, so `g_HG = x` solves
     /// `g x² + (γ(1 − g) − 3/5) x − 2g/5 = 0` (the positive root) and
     /// `β = g/x`. It reaches `0.6 < γ ≤ 1 + g` for `0 < g < 1`
-    /// (`γ = 1 + g` is HG itself); other `(g, γ)` are [`Error::Domain`].
+    /// (`γ = 1 + g` is HG itself), less the values so close to 0.6 that
+    /// `g_HG` rounds to 1 in `T` (γ − 0.6 below about 10⁻¹⁵ in f64, 10⁻⁶
+    /// in f32 at g = 0.95); other `(g, γ)` are [`Error::Domain`]. As
+    /// `γ → 0.6` the HG lobe narrows below the spacing of floats near
+    /// `μ = 1`; densities, CDF and the exact inverse stay accurate there
+    /// (`tests/models/edges.rs`: within 10⁻⁹ of 50-digit values down to
+    /// `γ = 0.6 + 10⁻⁹`).
     ///
     /// The `cos²θ` lobe is the Draine function with `g = 0` and `α = 2⁷⁰`
     /// (within 10⁻²¹ of it), so the value is a fog mixture
@@ -109,9 +115,15 @@ impl<T: Real> Phase<T> {
     /// `g_GK < 0.1`); construction takes about 0.3 ms (0.27–0.30 ms on an
     /// AMD EPYC), so build the value once. The
     /// reach: `γ` between its value as `α → −½` (or where `g` is no longer
-    /// reachable, `g_GK → 1`) and at `α = 1000`; for example
-    /// `1.0922 < γ < 1.1044` at `g = 0.1`, `1.334 < γ < 1.874` at `g = 0.6`,
-    /// `1.50 < γ < 2.699` at `g = 0.9`. Outside it: [`Error::Domain`].
+    /// reachable, `g_GK → 1`) and at `α = 1000`, less a sliver at the
+    /// lower end where `g_GK` is so close to 1 that the kernel as stored
+    /// (`α` and `g_GK` rounded to `T`) does not reproduce `g` and `γ` to
+    /// 10⁻¹¹ in f64 (16 ULP in f32): one ULP of `g_GK` there moves the mean
+    /// cosine by up to 10⁻⁴. Accepted, measured: `1.0912 ≤ γ ≤ 1.1044` at
+    /// `g = 0.1`; `1.33334 ≤ γ ≤ 1.8742` at `g = 0.6` (f32 from 1.33353);
+    /// `1.47464 ≤ γ ≤ 2.6997` at `g = 0.9` (f32 from 1.49889);
+    /// `1.50668 ≤ γ ≤ 2.8498` at `g = 0.95` (f32 from 1.54968). Outside
+    /// it: [`Error::Domain`].
     ///
     /// ```
     /// use scatterkit::Phase;
@@ -130,9 +142,11 @@ impl<T: Real> Phase<T> {
     /// The Gegenbauer kernel with mean cosine `g` and
     /// `δ = (1 − χ_3)/(1 − χ_1)`, `0 < g < 1`, found as in
     /// [`gegenbauer_gamma`](Self::gegenbauer_gamma) (`δ` also rises with
-    /// `α` at fixed `g`); for example `1.1074 < δ < 1.1108` at `g = 0.1`,
-    /// `1.513 < δ < 2.302` at `g = 0.6`. Outside the reach:
-    /// [`Error::Domain`].
+    /// `α` at fixed `g`), with the same check of the stored kernel.
+    /// Accepted, measured: `1.10683 ≤ δ ≤ 1.11082` at `g = 0.1`;
+    /// `1.51283 ≤ δ ≤ 2.3022` at `g = 0.6` (f32 from 1.51356);
+    /// `1.77109 ≤ δ ≤ 4.6489` at `g = 0.9` (f32 from 1.83830). Outside the
+    /// reach: [`Error::Domain`].
     pub fn gegenbauer_delta(g: T, delta: T) -> Result<Self, Error> {
         Self::gegenbauer_by(g, delta, 2)
     }

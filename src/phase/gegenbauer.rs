@@ -36,7 +36,7 @@ pub struct Gegenbauer<T> {
     alpha: T,
     g: T,
     /// `L_1`, `e^{∓αL_1}`, `expm1(∓αL_1)` (upper sign for `αL_1 > 0`) and
-    /// `F(0)`, computed once in f64 and kept as 32-bit halves (the f32
+    /// where the inverse changes route, computed once in f64 and kept as 32-bit halves (the f32
     /// model stays 4-byte aligned): each sample then costs two
     /// transcendentals, not five.
     k: PackedF64<4>,
@@ -103,7 +103,8 @@ struct K {
     e: f64,
     /// `expm1(−s)` for `s > 0`, else `expm1(s)`.
     m: f64,
-    /// `F(0)`, where the inverse changes route for `α ≤ 0`.
+    /// Where the inverse changes route for `α ≤ 0`: `F` at
+    /// [`switch`](Self::switch).
     u0: f64,
 }
 
@@ -121,10 +122,28 @@ impl K {
             m: libm::expm1(t),
             u0: 0.0,
         };
-        if g != 0.0 {
-            k.u0 = k.cdf(0.0);
+        if g != 0.0 && a <= 0.0 {
+            k.u0 = k.cdf(k.switch());
         }
         k
+    }
+    /// Where the two routes of the inverse are equally accurate: `1 − μ`
+    /// from `D` carries an error of about `|D| ε (1 − μ)`, `1 + μ` from
+    /// `L_y` one of `|L_y| ε (1 + μ)`; the first falls from `2|L_1| ε` at
+    /// `μ = −1` to 0 at 1, the second rises from 0. Bisection to a few
+    /// parts in 10⁴ (the two errors are comparable over a wide stretch).
+    fn switch(&self) -> f64 {
+        let excess = |mu: f64| self.d(mu).abs() * (1.0 - mu) - self.l_y(mu).abs() * (1.0 + mu);
+        let (mut lo, mut hi) = (-1.0, 1.0);
+        for _ in 0..14 {
+            let mid = 0.5 * (lo + hi);
+            if excess(mid) > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
     }
     /// `expm1(α L_1)/α`, `L_1` at `α = 0` (for `s ≤ 0`).
     fn em_l1(&self) -> f64 {
@@ -209,9 +228,10 @@ impl K {
     /// (giving `1 − μ`) or for `L_y` (giving `1 + μ`). For `α > 0` the
     /// sign of `s` picks the route whose exponents cannot overflow, which
     /// is also the pole the kernel peaks at. For `α ≤ 0`, `|s| ≤ 38` and
-    /// either route is safe: the one toward the pole nearer the answer
-    /// (`u ≥ F(0)`: `D`), so that a kernel with `g → 1` and `α < 0` keeps
-    /// `1 − μ` where `1 + μ` would round it away.
+    /// either route is safe: the more accurate one at the answer (`D` for
+    /// `u` at or above `F` at [`switch`](Self::switch)), so that a kernel
+    /// with `g → 1` and `α < 0` keeps `1 − μ` where `1 + μ` would round it
+    /// away, and `μ` near 0 is not taken from a `D` of 40.
     fn inverse(&self, u: f64) -> f64 {
         self.inverse_cs(u).0
     }

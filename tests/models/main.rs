@@ -13,6 +13,7 @@ mod choose_fog;
 mod choose_measured;
 mod choose_mie;
 mod draine;
+mod edges;
 mod emission;
 mod equiangular;
 mod fournier_forand;

@@ -3702,7 +3702,8 @@ sk_status sk_albedo_curve_new_f64(const sk_phase_f64 *phase,
 double sk_albedo_curve_albedo_f64(const sk_albedo_curve_f64 *c, double omega);
 
 /*
- The standard error of sk_albedo_curve_albedo_f64 at omega; NaN as there.
+ The error (one standard deviation) of sk_albedo_curve_albedo_f64 at
+ omega, Monte Carlo and interpolation together; NaN as there.
  */
 double sk_albedo_curve_std_error_f64(const sk_albedo_curve_f64 *c, double omega);
 

@@ -89,7 +89,8 @@ pub unsafe extern "C" fn sk_albedo_curve_albedo_f64(
     unsafe { c.as_ref() }.map_or(f64::NAN, |c| curve(c).albedo(omega))
 }
 
-/// The standard error of sk_albedo_curve_albedo_f64 at omega; NaN as there.
+/// The error (one standard deviation) of sk_albedo_curve_albedo_f64 at
+/// omega, Monte Carlo and interpolation together; NaN as there.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_albedo_curve_std_error_f64(
     c: *const sk_albedo_curve_f64,

@@ -8,10 +8,13 @@ Models, with the parameters as the library stores them (exact doubles):
       F = [y^-a - (1+g)^-2a] / [(1-g)^-2a - (1+g)^-2a]   (a != 0),
       F = ln((1+g)^2 / y) / ln((1+g)^2 / (1-g)^2)           (a = 0),
       dF/dmu = 2 g a y^(-a-1) / [(1-g)^-2a - (1+g)^-2a]    (a != 0).
-  fog g_hg g_d alpha w_d  -- (1 - w_d) HG(g_hg) + w_d Draine(g_d, alpha); the
-      cases have either alpha = 0 (a second HG lobe, g_d) or g_d = 0 (an
-      even lobe, density (1 + alpha mu^2) / (2 + 2 alpha / 3), CDF
-      (mu + 1 + alpha (mu^3 + 1) / 3) / (2 + 2 alpha / 3)).
+  hg g  -- Henyey-Greenstein.
+  fog g_hg g_d alpha w_d  -- (1 - w_d) HG(g_hg) + w_d Draine(g_d, alpha):
+      alpha = 0 is a second HG lobe; g_d = 0 an even lobe, density
+      (1 + alpha mu^2) / (2 + 2 alpha / 3), CDF
+      (mu + 1 + alpha (mu^3 + 1) / 3) / (2 + 2 alpha / 3); otherwise
+      Draine's density (1 - g^2)(1 + alpha mu^2) / (2 (1 + alpha (1 + 2 g^2)/3)
+      y^(3/2)), its CDF by quadrature split where it bends.
       HG: density (1 - g^2) / (2 y^(3/2)), CDF (1 - g^2)/(2g) (1/sqrt(y) - 1/(1+g)).
 The pdf written is per steradian (the density of mu over 2 pi), as the
 library's pdf.
@@ -38,6 +41,15 @@ def hg(g, mu):
     return (1 - g * g) / (2 * y ** mp.mpf(1.5)), (1 - g * g) / (2 * g) * (1 / mp.sqrt(y) - 1 / (1 + g))
 
 
+def draine(g, alpha, mu):
+    """Draine's density of mu and, by quadrature split where it bends, its CDF."""
+    def dens(m):
+        return (1 - g * g) * (1 + alpha * m * m) / (2 * (1 + alpha * (1 + 2 * g * g) / 3) * (1 + g * g - 2 * g * m) ** mp.mpf(1.5))
+    pts = sorted(set([mp.mpf(-1)] + [x for x in (-1 + mp.mpf(10) ** -k for k in (12, 9, 6, 3)) if x < mu]
+                     + [x for x in (1 - mp.mpf(10) ** -k for k in (3, 6, 9, 12)) if x < mu] + [mu]))
+    return dens(mu), mp.quad(dens, pts)
+
+
 def even_lobe(alpha, mu):
     k = 2 + 2 * alpha / 3
     return (1 + alpha * mu * mu) / k, (mu + 1 + alpha * (mu ** 3 + 1) / 3) / k
@@ -48,12 +60,15 @@ def model(words, mu):
     mu = mp.mpf(mu)
     if words[0] == "gegenbauer":
         return gegenbauer(v[0], v[1], mu)
+    if words[0] == "hg":
+        return hg(v[0], mu)
     g_hg, g_d, alpha, w = v
     if alpha == 0:  # two HG lobes
         second = hg(g_d, mu)
-    else:  # the cos^2 lobe (Draine with g = 0)
-        assert g_d == 0
+    elif g_d == 0:  # the cos^2 lobe (Draine with g = 0)
         second = even_lobe(alpha, mu)
+    else:  # a Draine lobe
+        second = draine(g_d, alpha, mu)
     (p1, f1), (p2, f2) = hg(g_hg, mu), second
     return (1 - w) * p1 + w * p2, (1 - w) * f1 + w * f2
 

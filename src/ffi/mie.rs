@@ -67,6 +67,30 @@ unsafe fn load<'a>(m: *const sk_mie_f64) -> Option<Mie<'a>> {
     Some(Mie::from_parts(m.x, ab, eff))
 }
 
+/// The refractive index of liquid water at vacuum wavelength_um in
+/// [0.182, 1.129] micrometres into *out: Daimon & Masumura's four-term
+/// Sellmeier fit at 21.5 C (Appl. Opt. 46, 3811, 2007; 1.3345 at 0.55),
+/// the imaginary part 0 (below 1.13 micrometres it stays under 3e-6, Hale
+/// & Querry 1973). SK_ERR_NULL for NULL out; SK_ERR_DOMAIN outside the
+/// range or NaN (nothing written).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sk_mie_water_index_f64(
+    wavelength_um: f64,
+    out: *mut sk_complex_f64,
+) -> sk_status {
+    if out.is_null() {
+        return sk_status::SK_ERR_NULL;
+    }
+    match mie::water(wavelength_um) {
+        // SAFETY: out checked non-NULL above.
+        Some(m) => unsafe {
+            out.write(to_c(m));
+            sk_status::SK_OK
+        },
+        None => sk_status::SK_ERR_DOMAIN,
+    }
+}
+
 /// The size parameter pi d n_medium / lambda of a sphere of diameter d in a
 /// medium of index n_medium at vacuum wavelength lambda (same unit as d).
 #[unsafe(no_mangle)]
@@ -158,7 +182,8 @@ pub unsafe extern "C" fn sk_mie_pdf_f64(m: *const sk_mie_f64, mu: f64) -> f64 {
 /// total-variation distance 2.8e-6 at x = 10, 2.5e-4 at 100, 1.2e-3 at
 /// 1000).
 /// SK_ERR_NULL for NULL pointers, SK_ERR_DOMAIN for other x; nothing is
-/// written on error.
+/// written on error. For a 2-D table over wavelengths or sizes (one n for
+/// every slice), use the sizes of the largest x.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_mie_table_len_f64(
     x: f64,

@@ -54,7 +54,7 @@ type T<C> = <<C as ChannelStore>::P as PhaseStore>::T;
 /// The channels and the caller's output slice.
 type Loaded<'a, C> = (SpectralPhase<'a, T<C>>, &'a mut [T<C>]);
 
-/// The Rust channels behind `ch[0 .. k]` and the output slice of `k`
+/// The Rust channels behind `ch[0]` to `ch[k - 1]` and the output slice of `k`
 /// values at `out`.
 unsafe fn channels<'a, C: ChannelStore>(
     ch: *const C,
@@ -119,7 +119,7 @@ unsafe fn pdf<C: ChannelStore>(
 
 /// cos theta drawn from channel hero's phase function at u (its own
 /// sampler), and every channel's ratio p_c(cos theta) / p_hero(cos theta)
-/// into ratio_out[0 .. k] (1 for the hero): the channel's throughput
+/// into ratio_out[0] to ratio_out[k - 1] (1 for the hero): the channel's throughput
 /// factor. With the hero drawn uniformly, ratio_c / mean(ratio) is the
 /// one-sample balance heuristic over the hero: unbiased and at most k.
 /// SK_ERR_NULL for NULL pointers or a channel with neither phase nor

@@ -165,7 +165,10 @@ pub extern "C" fn sk_table2d_len(n: usize, k: usize) -> usize {
 
 /// A 2-D table over data the caller filled slice by slice: slice j at
 /// data + j 2(n + 1), written by sk_table_new_inverse or sk_table_new_measured
-/// (for instance Mie at wavelength x0 + j dx) with the same n. Checked:
+/// (for instance Mie at wavelength x0 + j dx) with the same n (for Mie,
+/// size every slice for the largest size parameter among them, the
+/// shortest wavelength or the largest sphere: sk_mie_table_len_f64 grows
+/// with x, and a smaller n under-resolves the larger spheres). Checked:
 /// SK_ERR_NULL for NULL data or out; SK_ERR_SIZE for n = 0, k = 0 or len
 /// below sk_table2d_len(n, k); SK_ERR_DOMAIN for a non-finite x0, a dx
 /// not finite and positive, or a slice whose nodes are not non-decreasing

@@ -306,7 +306,17 @@ impl AlbedoCurve {
         if slope(0.0) > 0.0 || slope(1.0) > 0.0 {
             return None;
         }
-        Some(p(t).clamp(y1, y0))
+        // Held between its ends as the Hermite cubic is (by comparisons:
+        // `clamp` would panic on ends out of order, and the C layer's
+        // entry points must not).
+        let v = p(t);
+        Some(if v > y0 {
+            y0
+        } else if v < y1 {
+            y1
+        } else {
+            v
+        })
     }
 
     /// The monotone cubic Hermite interpolant on interval `i` at `t`.

@@ -1506,6 +1506,17 @@ static void mie(void) {
     i = 0;
     CHECK(len > 0 && len <= 4096);
     CHECK(sk_mie_new_f64(x, m, buf, len, &sphere) == SK_OK);
+    /* Water's index: 1.3345 at 0.55 um (Daimon & Masumura), refused
+     * outside [0.182, 1.129] um and for NULL. */
+    {
+        sk_complex_f64 w = {-1.0, -1.0};
+        CHECK(sk_mie_water_index_f64(0.55, &w) == SK_OK && fabs(w.re - 1.3345) < 1e-4 && w.im == 0.0);
+        w.re = -1.0;
+        CHECK(sk_mie_water_index_f64(0.1, &w) == SK_ERR_DOMAIN && w.re == -1.0);
+        CHECK(sk_mie_water_index_f64(NAN, &w) == SK_ERR_DOMAIN);
+        CHECK(sk_mie_water_index_f64(2.0, &w) == SK_ERR_DOMAIN);
+        CHECK(sk_mie_water_index_f64(0.55, NULL) == SK_ERR_NULL);
+    }
     CHECK(fabs(sphere.efficiencies.q_ext - 3.10543) < 5e-6 && fabs(sphere.efficiencies.g - 0.63314) < 5e-6);
     CHECK(sk_mie_amplitudes_f64(&sphere, -1.0, &s1, &s2) == SK_OK);
     CHECK(fabs(4.0 * (s1.re * s1.re + s1.im * s1.im) / (x * x) - sphere.efficiencies.q_back) < 1e-12);

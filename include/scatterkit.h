@@ -2279,7 +2279,7 @@ sk_status sk_phase_legendre_moments_f64(const sk_phase_f64 *p, double *out, size
 /*
  The Legendre moments of a mixture, sum of w_i chi_{l,i} (each
  component's as sk_phase_legendre_moments; tables by quadrature), into
- out[0] to out[n - 1]. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE or
+ `out[0]` to `out[n - 1]`. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE or
  SK_ERR_DOMAIN for a mixture sk_mixture_new did not build.
  */
 sk_status sk_mixture_legendre_moments(const sk_mixture *m, float *out, size_t n);
@@ -2944,7 +2944,7 @@ sk_status sk_table2d_legendre_moments(const sk_table2d *t, float x, float *out, 
 sk_status sk_table2d_legendre_moments_f64(const sk_table2d_f64 *t, double x, double *out, size_t n);
 
 /*
- Builds the mixture of parts[0] to parts[n - 1] into *out (weights normalised;
+ Builds the mixture of `parts[0]` to `parts[n - 1]` into *out (weights normalised;
  phases copied, tables borrowed). SK_ERR_NULL for NULL parts or out, or
  a part with neither phase nor table; SK_ERR_SIZE for n = 0, n > 8 or a
  malformed table; SK_ERR_DOMAIN for a part with both, an unconstructed
@@ -3105,7 +3105,7 @@ sk_status sk_mixture_sample_dir_n_f64(const sk_mixture_f64 *m,
 /*
  cos theta drawn from channel hero's phase function at u (its own
  sampler), and every channel's ratio p_c(cos theta) / p_hero(cos theta)
- into ratio_out[0] to ratio_out[k - 1] (1 for the hero): the channel's throughput
+ into `ratio_out[0]` to `ratio_out[k - 1]` (1 for the hero): the channel's throughput
  factor. With the hero drawn uniformly, ratio_c / mean(ratio) is the
  one-sample balance heuristic over the hero: unbiased and at most k.
  SK_ERR_NULL for NULL pointers or a channel with neither phase nor
@@ -3148,7 +3148,7 @@ sk_status sk_spectral_phase_pdf_f64(const sk_channel_phase_f64 *ch,
                                     double *pdf_out);
 
 /*
- Builds *out over chi[0] to chi[n - 1]. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE
+ Builds *out over `chi[0]` to `chi[n - 1]`. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE
  for n = 0 or n > 1024; SK_ERR_DOMAIN unless chi_0 = 1 (to 1e-6), every
  chi_l is finite in [-1, 1], and the density is non-negative at
  64 n + 1 evenly spaced cosines (sk_legendre_check says where not).
@@ -3161,7 +3161,7 @@ sk_status sk_legendre_new(const float *chi, size_t n, sk_legendre *out);
 sk_status sk_legendre_new_f64(const double *chi, size_t n, sk_legendre_f64 *out);
 
 /*
- Where the expansion chi[0] to chi[n - 1] goes negative: SK_OK if nowhere among
+ Where the expansion `chi[0]` to `chi[n - 1]` goes negative: SK_OK if nowhere among
  the 64 n + 1 cosines checked, SK_ERR_DOMAIN with the first such cosine
  in *cos_out; other errors as sk_legendre_new.
  */
@@ -3438,7 +3438,7 @@ sk_coefficients_f64 sk_grid_coefficients_f64(const sk_grid_f64 *g, sk_vec3_f64 p
 size_t sk_majorant_len(uint32_t mx, uint32_t my, uint32_t mz);
 
 /*
- Fills max_out[0] to max_out[mx*my*mz - 1] with the majorants of grid g on an
+ Fills `max_out[0]` to `max_out[mx*my*mz - 1]` with the majorants of grid g on an
  mx*my*mz division of its box, in one pass over the grid: each cell gets
  (sigma_a + sigma_s) times the largest grid value whose interpolation
  reaches into it, so the majorants bound the density everywhere. With a

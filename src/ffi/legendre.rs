@@ -111,7 +111,7 @@ unsafe fn with<S: LegStore>(s: *const S, f: impl Fn(&LegendreSeries<'_, S::T>) -
     unsafe { series_at(s) }.map_or(S::T::NAN, f)
 }
 
-/// Builds *out over chi[0] to chi[n - 1]. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE
+/// Builds *out over `chi[0]` to `chi[n - 1]`. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE
 /// for n = 0 or n > 1024; SK_ERR_DOMAIN unless chi_0 = 1 (to 1e-6), every
 /// chi_l is finite in [-1, 1], and the density is non-negative at
 /// 64 n + 1 evenly spaced cosines (sk_legendre_check says where not).
@@ -134,7 +134,7 @@ pub unsafe extern "C" fn sk_legendre_new_f64(
     unsafe { new_series(chi, n, out) }
 }
 
-/// Where the expansion chi[0] to chi[n - 1] goes negative: SK_OK if nowhere among
+/// Where the expansion `chi[0]` to `chi[n - 1]` goes negative: SK_OK if nowhere among
 /// the 64 n + 1 cosines checked, SK_ERR_DOMAIN with the first such cosine
 /// in *cos_out; other errors as sk_legendre_new.
 #[unsafe(no_mangle)]

@@ -182,7 +182,7 @@ pub extern "C" fn sk_majorant_len(mx: u32, my: u32, mz: u32) -> usize {
     majorant_len(dims([mx, my, mz])).unwrap_or(0)
 }
 
-/// Fills max_out[0] to max_out[mx*my*mz - 1] with the majorants of grid g on an
+/// Fills `max_out[0]` to `max_out[mx*my*mz - 1]` with the majorants of grid g on an
 /// mx*my*mz division of its box, in one pass over the grid: each cell gets
 /// (sigma_a + sigma_s) times the largest grid value whose interpolation
 /// reaches into it, so the majorants bound the density everywhere. With a

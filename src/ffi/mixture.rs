@@ -231,7 +231,7 @@ unsafe fn sample_cos_n<S: MixStore>(
     }
 }
 
-/// Builds the mixture of parts[0] to parts[n - 1] into *out (weights normalised;
+/// Builds the mixture of `parts[0]` to `parts[n - 1]` into *out (weights normalised;
 /// phases copied, tables borrowed). SK_ERR_NULL for NULL parts or out, or
 /// a part with neither phase nor table; SK_ERR_SIZE for n = 0, n > 8 or a
 /// malformed table; SK_ERR_DOMAIN for a part with both, an unconstructed

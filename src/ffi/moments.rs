@@ -71,7 +71,7 @@ pub unsafe extern "C" fn sk_phase_legendre_moments_f64(
 
 /// The Legendre moments of a mixture, sum of w_i chi_{l,i} (each
 /// component's as sk_phase_legendre_moments; tables by quadrature), into
-/// out[0] to out[n - 1]. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE or
+/// `out[0]` to `out[n - 1]`. SK_ERR_NULL for NULL pointers; SK_ERR_SIZE or
 /// SK_ERR_DOMAIN for a mixture sk_mixture_new did not build.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_mixture_legendre_moments(

@@ -119,7 +119,7 @@ unsafe fn pdf<C: ChannelStore>(
 
 /// cos theta drawn from channel hero's phase function at u (its own
 /// sampler), and every channel's ratio p_c(cos theta) / p_hero(cos theta)
-/// into ratio_out[0] to ratio_out[k - 1] (1 for the hero): the channel's throughput
+/// into `ratio_out[0]` to `ratio_out[k - 1]` (1 for the hero): the channel's throughput
 /// factor. With the hero drawn uniformly, ratio_c / mean(ratio) is the
 /// one-sample balance heuristic over the hero: unbiased and at most k.
 /// SK_ERR_NULL for NULL pointers or a channel with neither phase nor

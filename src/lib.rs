@@ -12,7 +12,9 @@
 //! * Phase functions are densities **per steradian**, `2π ∫ p(μ) dμ = 1`.
 //! * Inverse-CDF samplers map `u ∈ [0, 1]` monotonically to `cos θ ∈ [−1, 1]`
 //!   with `u = 0 → −1`; `u` outside `[0, 1]` is clamped, NaN propagates.
-//! * Randomness is the caller's: any [`rand_core::Rng`]; one `next_u64` per
+//! * Randomness is the caller's: any
+//!   [`rand_core::Rng`](https://docs.rs/rand_core/0.10/rand_core/trait.Rng.html);
+//!   one `next_u64` per
 //!   uniform (f32 `(x >> 40)·2⁻²⁴`, f64 `(x >> 11)·2⁻⁵³`).
 //! * Constructors validate; built objects are valid, and their hot paths do
 //!   not re-check.

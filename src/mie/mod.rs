@@ -17,10 +17,10 @@
 //!   in `Q_ext` (MIEV0 cases 5 and 12, against the series summed in 40
 //!   digits); with the two terms the truncation is below 10⁻¹⁵;
 //! * the logarithmic derivative `D_n(mx)` by downward recurrence
-//!   `D_{n−1} = n/(mx) − 1/(D_n + n/(mx))` from `max(N, |mx|) + 8 (|mx|/2)^{1/3}
-//!   + 16` (eight Airy widths past the turning point), which
-//!   is stable for every `m` (the upward recurrence is not when `|mx|` is
-//!   large or `k` is);
+//!   `D_{n−1} = n/(mx) − 1/(D_n + n/(mx))` from
+//!   `max(N, |mx|) + 8 (|mx|/2)^{1/3} + 16` (eight Airy widths past the
+//!   turning point), which is stable for every `m` (the upward recurrence
+//!   is not when `|mx|` is large or `k` is);
 //! * the Riccati–Bessel functions `χ_n` by upward recurrence (the growing
 //!   solution: stable), `ψ_n` upward while `n < x`, where it
 //!   oscillates, and from `n ≥ x` by ratios, `ψ_n = ψ_{n−1} / (D_n(x) +

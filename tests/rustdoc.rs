@@ -68,5 +68,9 @@ fn no_code_span_is_cut_by_a_list_item() {
             ticks += doc.matches('`').count();
         }
     }
-    assert!(bad.is_empty(), "code spans cut by list items:\n{}", bad.join("\n"));
+    assert!(
+        bad.is_empty(),
+        "code spans cut by list items:\n{}",
+        bad.join("\n")
+    );
 }

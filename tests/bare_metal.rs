@@ -146,6 +146,9 @@ fn text_and_symbols(elf: &Path) -> (u64, Vec<String>) {
 
 #[test]
 fn bare_metal_library_and_its_code_size() {
+    if !crate::common::repository("bare_metal_library_and_its_code_size") {
+        return;
+    }
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bare_metal");
     let mut report = String::from(

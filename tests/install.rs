@@ -3,6 +3,8 @@
 //! with `pkg-config --cflags --libs scatterkit`, against the shared library
 //! and (with `--static`) the static one, and run.
 
+mod common;
+
 use std::path::Path;
 use std::process::Command;
 
@@ -49,6 +51,9 @@ fn install_and_build(mode: &str, pc_static: bool) -> (String, String) {
 
 #[test]
 fn shared_library_through_pkg_config() {
+    if !crate::common::repository("shared_library_through_pkg_config") {
+        return;
+    }
     let (run, ldd) = install_and_build("--shared-only", false);
     assert!(run.contains("sorted: yes"), "{run}");
     // The program records the SONAME (as cargo-c installs it), and the
@@ -61,6 +66,9 @@ fn shared_library_through_pkg_config() {
 
 #[test]
 fn static_library_through_pkg_config() {
+    if !crate::common::repository("static_library_through_pkg_config") {
+        return;
+    }
     let (run, ldd) = install_and_build("--static-only", true);
     assert!(run.contains("sorted: yes"), "{run}");
     assert!(

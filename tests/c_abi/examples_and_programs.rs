@@ -9,6 +9,9 @@ use common::cbuild::{root, run, run_source};
 
 #[test]
 fn example_rayleigh_histogram() {
+    if !crate::common::repository("example_rayleigh_histogram") {
+        return;
+    }
     let out = run_source("c_examples/rayleigh_histogram.c", false);
     assert!(out.contains("SK_RAYLEIGH_DIRECT"), "{out}");
     assert_eq!(
@@ -22,6 +25,9 @@ fn example_rayleigh_histogram() {
 
 #[test]
 fn example_hg_stratified() {
+    if !crate::common::repository("example_hg_stratified") {
+        return;
+    }
     let out = run_source("c_examples/hg_stratified.c", false);
     assert!(out.contains("sorted: yes"), "{out}");
     let err: f64 = out
@@ -35,6 +41,9 @@ fn example_hg_stratified() {
 
 #[test]
 fn example_fog_histogram() {
+    if !crate::common::repository("example_fog_histogram") {
+        return;
+    }
     let out = run_source("c_examples/fog_histogram.c", false);
     assert!(out.starts_with("fog, 2 um droplets"), "{out}");
     assert_eq!(
@@ -46,6 +55,9 @@ fn example_fog_histogram() {
 
 #[test]
 fn example_mie_cloud() {
+    if !crate::common::repository("example_mie_cloud") {
+        return;
+    }
     // The example exits non-zero (and run_source fails) on chi² ≥ 42.31.
     let out = run_source("c_examples/mie_cloud.c", false);
     assert!(out.starts_with("Mie, 10 um water droplet"), "{out}");
@@ -59,6 +71,9 @@ fn example_mie_cloud() {
 
 #[test]
 fn example_rayleigh_sky() {
+    if !crate::common::repository("example_rayleigh_sky") {
+        return;
+    }
     // The example exits non-zero (and run_source fails) when a value is more
     // than 5 standard errors from Natraj, Li & Yung's table.
     let out = run_source("c_examples/rayleigh_sky.c", false);
@@ -72,6 +87,9 @@ fn example_rayleigh_sky() {
 
 #[test]
 fn example_surface_shares() {
+    if !crate::common::repository("example_surface_shares") {
+        return;
+    }
     let out = run_source("c_examples/surface_shares.c", false);
     assert!(
         out.contains("shares within 4 sigma of the closed forms, deviation within 1%: yes"),
@@ -82,6 +100,9 @@ fn example_surface_shares() {
 
 #[test]
 fn example_fog_slab() {
+    if !crate::common::repository("example_fog_slab") {
+        return;
+    }
     let out = run_source("c_examples/fog_slab.c", false);
     assert!(out.contains("absorbing only: transmitted"), "{out}");
     assert!(out.trim_end().ends_with("ok"), "{out}");
@@ -89,6 +110,9 @@ fn example_fog_slab() {
 
 #[test]
 fn example_cloud_majorants() {
+    if !crate::common::repository("example_cloud_majorants") {
+        return;
+    }
     let out = run_source("c_examples/cloud_majorants.c", false);
     assert!(out.contains("fewer density evaluations"), "{out}");
     assert!(out.trim_end().ends_with("ok"), "{out}");
@@ -96,6 +120,9 @@ fn example_cloud_majorants() {
 
 #[test]
 fn bad_input_from_c() {
+    if !crate::common::repository("bad_input_from_c") {
+        return;
+    }
     let exe = common::cbuild::build_program(&root().join("tests/c/bad_input.c"), false);
     let (code, out) = run(&exe);
     assert_eq!(code, 0, "{out}");
@@ -104,6 +131,9 @@ fn bad_input_from_c() {
 
 #[test]
 fn direction_batches_agree_with_scalar_calls() {
+    if !crate::common::repository("direction_batches_agree_with_scalar_calls") {
+        return;
+    }
     let exe = common::cbuild::build_program(&root().join("tests/c/batch.c"), false);
     let (code, out) = run(&exe);
     assert!(code == 0 && out.contains(" 0 failed"), "{out}");
@@ -111,6 +141,9 @@ fn direction_batches_agree_with_scalar_calls() {
 
 #[test]
 fn header_compiles_and_runs_as_cpp() {
+    if !crate::common::repository("header_compiles_and_runs_as_cpp") {
+        return;
+    }
     let out = run_source("tests/c/header.cpp", true);
     assert!(out.starts_with("C++: HG(0.5)"), "{out}");
     // And under the later standards, with the same warnings as errors.
@@ -128,6 +161,9 @@ fn header_compiles_and_runs_as_cpp() {
 /// C89; both signs of g, a g below the inline path, other models.
 #[test]
 fn inline_cos_sampler_agrees_bit_for_bit() {
+    if !crate::common::repository("inline_cos_sampler_agrees_bit_for_bit") {
+        return;
+    }
     let src = root().join("tests/c/inline.c");
     for (flags, suffix) in [
         (vec![], ""),

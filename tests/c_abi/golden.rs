@@ -255,6 +255,9 @@ fn rust_lines() -> String {
 
 #[test]
 fn golden_values_through_rust_and_c() {
+    if !crate::common::repository("golden_values_through_rust_and_c") {
+        return;
+    }
     let path = root().join("tests/golden/golden.txt");
     let rust = rust_lines();
     if std::env::var_os("SK_BLESS").is_some() {

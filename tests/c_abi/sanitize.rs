@@ -25,6 +25,9 @@ const PROGRAMS: [&str; 12] = [
 
 #[test]
 fn programs_are_clean_under_asan_and_ubsan() {
+    if !crate::common::repository("programs_are_clean_under_asan_and_ubsan") {
+        return;
+    }
     let flags = [
         "-fsanitize=address,undefined",
         "-fno-sanitize-recover=undefined",
@@ -57,6 +60,9 @@ fn programs_are_clean_under_asan_and_ubsan() {
 
 #[test]
 fn programs_are_clean_under_valgrind() {
+    if !crate::common::repository("programs_are_clean_under_valgrind") {
+        return;
+    }
     let have = Command::new("valgrind")
         .arg("--version")
         .output()

@@ -23,10 +23,16 @@ fn check(cpp: bool) {
 
 #[test]
 fn header_lookup_is_bit_identical_as_c() {
+    if !crate::common::repository("header_lookup_is_bit_identical_as_c") {
+        return;
+    }
     check(false);
 }
 
 #[test]
 fn header_lookup_is_bit_identical_as_cpp() {
+    if !crate::common::repository("header_lookup_is_bit_identical_as_cpp") {
+        return;
+    }
     check(true);
 }

@@ -68,6 +68,21 @@ pub fn map_parallel<I: Sync, R: Send>(items: &[I], f: impl Fn(&I) -> R + Sync) -
         .collect()
 }
 
+/// Whether this is the repository (with the C library crate, `capi/`, and
+/// the install script), not the crate as `cargo package` makes it; a test
+/// that needs it and runs outside it says `SKIPPED` (see [`skip`]).
+#[allow(dead_code)]
+pub fn repository(test: &str) -> bool {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let here = root.join("capi/Cargo.toml").exists() && root.join("scripts/install.sh").exists();
+    if !here {
+        skip(&format!(
+            "{test}: needs the repository (capi/, scripts/install.sh), not the packaged crate"
+        ));
+    }
+    here
+}
+
 /// A test that cannot run here says so on standard error, past the test
 /// harness's capture (which takes only `print!`/`eprint!`), so that cargo
 /// shows the line; with `SK_REQUIRE_ALL` set (as `.ci/run` sets it) a skip

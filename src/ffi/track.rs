@@ -157,10 +157,10 @@ pub struct sk_track_args {
     pub budget: u32,
     /// Ray marching: strata per march; 0 lets the library choose
     /// ceil(4 tau), at least 1 (16 ceil(tau), at least 16, for the
-    /// telescoping estimator), where tau is the optical depth that places the strata: with
-    /// `majorants`, the integral of sigma_maj - sigma_min along the
-    /// segment (sigma_min 0 without minorants); without, that of the one
-    /// majorant. Otherwise unused.
+    /// telescoping estimator), where tau is the optical depth that places
+    /// the strata: with `majorants`, the integral of sigma_maj - sigma_min
+    /// along the segment (sigma_min 0 without minorants); without, that of
+    /// the one majorant. Otherwise unused.
     pub strata: u32,
     /// SK_TRACK_NONBOUNDING or 0; other bits are SK_ERR_METHOD.
     pub flags: u32,

@@ -143,6 +143,9 @@ fn rust_round(
 /// from C, their ratio against the 1.2× target, the missing ray against
 /// 0.2 µs, and the exact mixture sample.
 pub(crate) fn c_media_report() -> String {
+    if !c_library_here() {
+        return format!("\n## Media and mixtures: from C against Rust\n\nSKIPPED: {C_SKIPPED}.\n");
+    }
     let n = 128;
     let values = cloud::cloud(n, 60.0);
     let grid = cloud::grid(&values, n);

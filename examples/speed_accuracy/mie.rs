@@ -115,6 +115,12 @@ pub(crate) fn mie_entries(out: &mut Vec<Entry>) {
 /// (within 1.5× of the faster port wherever that port is accurate to 10⁻⁶)
 /// held.
 pub(crate) fn mie_report(es: &[Entry]) -> (String, bool) {
+    if !c_library_here() {
+        return (
+            format!("\n## Mie against BHMIE\n\nSKIPPED: {C_SKIPPED}.\n"),
+            true,
+        );
+    }
     let plain = run_c("benches/mie_bhmie.c", &[]).expect("compiling benches/mie_bhmie.c failed");
     let fortran = run_c("benches/mie_bhmie.c", &["-fcx-fortran-rules"]);
     let mut s = String::from(

@@ -300,10 +300,13 @@ impl AlbedoCurve {
         let d2 = (y2 - 2.0 * y1 + y0) / 2.0;
         let d3 = (y3 - 3.0 * y2 + 3.0 * y1 - y0) / 6.0;
         let p = |t: f64| y0 + t * (d1 + (t - 1.0) * (d2 + (t - 2.0) * d3));
-        // p'(t) = d1 + d2 (2t − 1) + d3 (3t² − 6t + 2): a quadratic, checked
-        // at the ends of [0, 1] and at its vertex t = 1 (inside).
+        // p'(t) = d1 + d2 (2t − 1) + d3 (3t² − 6t + 2): a quadratic, whose
+        // largest value on [0, 1] is at an end or at its vertex
+        // t = 1 − d2/(3 d3) when that lies inside.
         let slope = |t: f64| d1 + d2 * (2.0 * t - 1.0) + d3 * (3.0 * t * t - 6.0 * t + 2.0);
-        if slope(0.0) > 0.0 || slope(1.0) > 0.0 {
+        let vertex = 1.0 - d2 / (3.0 * d3);
+        let inside = vertex > 0.0 && vertex < 1.0;
+        if slope(0.0) > 0.0 || slope(1.0) > 0.0 || (inside && slope(vertex) > 0.0) {
             return None;
         }
         // Held between its ends as the Hermite cubic is (by comparisons:

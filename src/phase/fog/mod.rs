@@ -244,12 +244,13 @@ impl<T: Real> Fog<T> {
     /// for `μ < 0`, else mirrored (`g → −g`) at `y = 1 − μ`, where the
     /// tail is `P(cos θ ≥ μ)`; and whether it was mirrored.
     fn near_pole(&self, mu: f64) -> (Eval, bool) {
-        let (h, d, w) = self.lobes();
-        if mu >= 0.0 {
-            (mixture(h.mirrored(), d.mirrored(), w, 1.0 - mu), true)
-        } else {
-            (mixture(h, d, w, 1.0 + mu), false)
-        }
+        let mirrored = mu >= 0.0;
+        let sign = if mirrored { -1.0 } else { 1.0 };
+        // The lobes built once, in the frame asked for.
+        let h = Params::new(sign * self.g_hg.to_f64(), 0.0);
+        let d = Params::new(sign * self.g_d.to_f64(), self.alpha.to_f64());
+        let y = if mirrored { 1.0 - mu } else { 1.0 + mu };
+        (mixture(h, d, self.w_d.to_f64(), y), mirrored)
     }
 
     /// The lobes as f64 Draine parameters (HG is Draine with α = 0).

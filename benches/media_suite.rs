@@ -6,10 +6,12 @@
 #![allow(dead_code)]
 
 use rand_xoshiro::Xoshiro256PlusPlus;
-use rand_xoshiro::rand_core::SeedableRng;
-use scatterkit::majorant::{DEFAULT_RES, Majorants};
+use rand_xoshiro::rand_core::{Rng, SeedableRng};
+use scatterkit::majorant::{DEFAULT_RES, Majorants, Transmittance};
+use scatterkit::medium::Event;
+use scatterkit::medium::ray_march::{Placement, Series, march_grid_within, march_within};
 use scatterkit::medium::residual::Extrema;
-use scatterkit::{Grid, Ray, Real, Sampling, Vec3};
+use scatterkit::{Error, Grid, Ray, Real, Sampling, Vec3};
 
 /// The kinds of medium.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -194,6 +196,71 @@ pub fn build<'a>(
         grid: Some(grid),
         extrema,
     }
+}
+
+/// The transmittance estimators, each at its default.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Estimator {
+    /// Delta tracking; its estimate is 1 for an escape, else 0.
+    Delta,
+    Ratio,
+    Residual,
+    /// Ray marching, the power series.
+    Power,
+    /// Ray marching, the telescoping sum.
+    Telescoping,
+}
+
+pub const ESTIMATORS: [Estimator; 5] = [
+    Estimator::Delta,
+    Estimator::Ratio,
+    Estimator::Residual,
+    Estimator::Power,
+    Estimator::Telescoping,
+];
+
+/// One estimate of `e` along `ray` through `m`, with its 16³ majorants
+/// (and minorants for residual tracking and the marchers' strata).
+pub fn estimate<R: Rng + ?Sized>(
+    m: &Medium<'_>,
+    e: Estimator,
+    ray: Ray<f32>,
+    r: &mut R,
+) -> Result<f32, Error> {
+    const BUDGET: u32 = 1 << 24;
+    let maj = m.extrema.majorants();
+    let place = Placement {
+        max: maj,
+        min: Some(m.extrema.minorants()),
+    };
+    let tr = |t: Transmittance<f32>| t.tr;
+    let blob = blob_coefficients;
+    Ok(match (e, &m.grid) {
+        (Estimator::Delta, g) => {
+            let t = match g {
+                Some(g) => maj.delta_track(g, ray, BUDGET, r)?,
+                None => maj.delta_track_fn(blob, ray, BUDGET, r)?,
+            };
+            f32::from(u8::from(t.event == Event::Escaped))
+        }
+        (Estimator::Ratio, Some(g)) => tr(maj.ratio_track(g, ray, BUDGET, r)?),
+        (Estimator::Ratio, None) => tr(maj.ratio_track_fn(blob, ray, BUDGET, r)?),
+        (Estimator::Residual, Some(g)) => tr(m.extrema.residual_ratio_track(g, ray, BUDGET, r)?),
+        (Estimator::Residual, None) => {
+            tr(m.extrema.residual_ratio_track_fn(blob, ray, BUDGET, r)?)
+        }
+        (Estimator::Power | Estimator::Telescoping, g) => {
+            let s = if e == Estimator::Power {
+                Series::Power
+            } else {
+                Series::Telescoping
+            };
+            tr(match g {
+                Some(g) => march_grid_within(s, place, g, ray, 0, BUDGET, r)?,
+                None => march_within(s, place, blob, ray, 0, BUDGET, r)?,
+            })
+        }
+    })
 }
 
 /// The blob's `σ_t` at `p`.

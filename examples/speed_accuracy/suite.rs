@@ -4,16 +4,13 @@
 //! the share of estimates outside [0, 1], from Rust and from C
 //! (`benches/c_suite.c`, through `sk_track_args` with `strata = 0`).
 
-use crate::media_suite::{CLASSES, Class, KINDS, Kind, Medium};
+use crate::media_suite::{CLASSES, Class, ESTIMATORS, KINDS, Kind, Medium};
 use crate::*;
-use scatterkit::medium::Event;
-use scatterkit::medium::ray_march::{Placement, Series, march_grid_within, march_within};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
 const RAYS: usize = 100;
 const PER_RAY: usize = 100;
-const BUDGET: u32 = 1 << 24;
 /// A variance that is f32 rounding alone.
 const FLOOR: f64 = 1e-13;
 
@@ -29,39 +26,10 @@ const LABELS: [&str; 5] = [
     "ray marching, telescoping",
 ];
 
-/// One estimate of estimator `e` (an index into [`NAMES`]) from Rust.
+/// One estimate of estimator `e` (an index into [`NAMES`]) from Rust; NaN
+/// for an error.
 fn estimate(m: &Medium<'_>, e: usize, ray: Ray<f32>, r: &mut SplitMix) -> f32 {
-    let maj = m.extrema.majorants();
-    let blob = crate::media_suite::blob_coefficients;
-    let place = Placement {
-        max: maj,
-        min: Some(m.extrema.minorants()),
-    };
-    let tr = |t: Result<scatterkit::majorant::Transmittance<f32>, _>| t.map_or(f32::NAN, |t| t.tr);
-    match (e, &m.grid) {
-        (0, g) => {
-            let t = match g {
-                Some(g) => maj.delta_track(g, ray, BUDGET, r),
-                None => maj.delta_track_fn(blob, ray, BUDGET, r),
-            };
-            t.map_or(f32::NAN, |t| f32::from(u8::from(t.event == Event::Escaped)))
-        }
-        (1, Some(g)) => tr(maj.ratio_track(g, ray, BUDGET, r)),
-        (1, None) => tr(maj.ratio_track_fn(blob, ray, BUDGET, r)),
-        (2, Some(g)) => tr(m.extrema.residual_ratio_track(g, ray, BUDGET, r)),
-        (2, None) => tr(m.extrema.residual_ratio_track_fn(blob, ray, BUDGET, r)),
-        (_, g) => {
-            let s = if e == 3 {
-                Series::Power
-            } else {
-                Series::Telescoping
-            };
-            tr(match g {
-                Some(g) => march_grid_within(s, place, g, ray, 0, BUDGET, r),
-                None => march_within(s, place, blob, ray, 0, BUDGET, r),
-            })
-        }
-    }
+    crate::media_suite::estimate(m, ESTIMATORS[e], ray, r).unwrap_or(f32::NAN)
 }
 
 /// Per (estimator, class): (ns per estimate, mean per-ray variance, share

@@ -233,29 +233,41 @@ impl K {
     /// with `g → 1` and `α < 0` keeps `1 − μ` where `1 + μ` would round it
     /// away, and `μ` near 0 is not taken from a `D` of 40.
     fn inverse(&self, u: f64) -> f64 {
-        self.inverse_cs(u).0
+        Self::mu_of(self.route(u), u)
     }
     /// [`inverse`](Self::inverse) with `sin θ` from the `1 ∓ μ` the route
     /// solved for, so that a forward lobe keeps the angle `μ` rounds away.
     fn inverse_cs(&self, u: f64) -> (f64, f64) {
+        let route = self.route(u);
+        let mu = Self::mu_of(route, u);
+        let z = route.map_or(1.0 - mu, |(z, _)| z);
+        (mu, libm::sqrt(z * (2.0 - z)))
+    }
+    /// `μ` from a [`route`](Self::route)'s answer (`g = 0`: `2u − 1`).
+    fn mu_of(route: Option<(f64, bool)>, u: f64) -> f64 {
+        match route {
+            Some((z, true)) => 1.0 - z,
+            Some((z, false)) => z - 1.0,
+            None => 2.0 * u - 1.0,
+        }
+    }
+    /// `(z, by_d)`: `z = 1 − μ` (`by_d`) or `1 + μ`, in `[0, 2]`, from the
+    /// route [`inverse`](Self::inverse) takes; `None` for `g = 0`.
+    fn route(&self, u: f64) -> Option<(f64, bool)> {
         if self.g == 0.0 {
-            let mu = 2.0 * u - 1.0;
-            return (mu, libm::sqrt((1.0 - mu) * (1.0 + mu)));
+            return None;
         }
         let by_d = if self.a <= 0.0 {
             u >= self.u0
         } else {
             self.s > 0.0
         };
-        // z = 1 − μ or 1 + μ, in [0, 2].
         let z = if by_d {
             self.one_minus_mu(u)
         } else {
             self.one_plus_mu(u)
-        }
-        .clamp(0.0, 2.0);
-        let mu = if by_d { 1.0 - z } else { z - 1.0 };
-        (mu, libm::sqrt(z * (2.0 - z)))
+        };
+        Some((z.clamp(0.0, 2.0), by_d))
     }
     /// `(e^{±s}, expm1(±s))` (upper sign for `positive`) from the stored
     /// `(e^{∓s}, expm1(∓s))`: the mirrored pair is formed only where `|s|`

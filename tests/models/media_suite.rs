@@ -16,74 +16,23 @@ mod suite;
 
 use crate::common::rng;
 use rand_xoshiro::Xoshiro256PlusPlus;
-use scatterkit::majorant::Transmittance;
-use scatterkit::medium::Event;
 use scatterkit::medium::clip_box;
-use scatterkit::medium::ray_march::{Placement, Series, march_grid_within, march_within};
+use scatterkit::medium::ray_march::{Placement, Series, march_grid_within};
 use scatterkit::{Error, Ray, Vec3};
-use suite::{CLASSES, Class, KINDS, Kind, Medium};
+use suite::{CLASSES, Class, ESTIMATORS, Estimator, KINDS, Kind, Medium};
 
 const PER_RAY: usize = 4000;
 const RAYS_PER_CLASS: usize = 2;
 const BUDGET: u32 = 1 << 24;
 
-/// The estimators at their defaults.
-#[derive(Clone, Copy, Debug)]
-enum Estimator {
-    Delta,
-    Ratio,
-    Residual,
-    Power,
-    Telescoping,
-}
-
-const ESTIMATORS: [Estimator; 5] = [
-    Estimator::Delta,
-    Estimator::Ratio,
-    Estimator::Residual,
-    Estimator::Power,
-    Estimator::Telescoping,
-];
-
-/// One estimate (delta tracking: 1 for an escape, else 0).
+/// One estimate, in f64.
 fn estimate(
     m: &Medium<'_>,
     e: Estimator,
     ray: Ray<f32>,
     r: &mut Xoshiro256PlusPlus,
 ) -> Result<f64, Error> {
-    let maj = m.extrema.majorants();
-    let place = Placement {
-        max: maj,
-        min: Some(m.extrema.minorants()),
-    };
-    let tr = |t: Transmittance<f32>| t.tr as f64;
-    let blob = suite::blob_coefficients;
-    Ok(match (e, &m.grid) {
-        (Estimator::Delta, g) => {
-            let t = match g {
-                Some(g) => maj.delta_track(g, ray, BUDGET, r)?,
-                None => maj.delta_track_fn(blob, ray, BUDGET, r)?,
-            };
-            f64::from(u8::from(t.event == Event::Escaped))
-        }
-        (Estimator::Ratio, Some(g)) => tr(maj.ratio_track(g, ray, BUDGET, r)?),
-        (Estimator::Ratio, None) => tr(maj.ratio_track_fn(blob, ray, BUDGET, r)?),
-        (Estimator::Residual, Some(g)) => tr(m.extrema.residual_ratio_track(g, ray, BUDGET, r)?),
-        (Estimator::Residual, None) => {
-            tr(m.extrema.residual_ratio_track_fn(blob, ray, BUDGET, r)?)
-        }
-        (Estimator::Power | Estimator::Telescoping, g) => {
-            let s = match e {
-                Estimator::Power => Series::Power,
-                _ => Series::Telescoping,
-            };
-            tr(match g {
-                Some(g) => march_grid_within(s, place, g, ray, 0, BUDGET, r)?,
-                None => march_within(s, place, blob, ray, 0, BUDGET, r)?,
-            })
-        }
-    })
+    suite::estimate(m, e, ray, r).map(f64::from)
 }
 
 /// The exact transmittance along `ray`: the blob's by erf; a grid's by

@@ -71,6 +71,7 @@ pub mod medium;
 pub mod mie;
 pub mod mixture;
 pub mod phase;
+pub mod portable;
 pub mod stokes;
 pub mod surface;
 pub mod table;

@@ -196,7 +196,7 @@ fn numerics_sit_below_the_models_and_tables_above_the_phases() {
 /// The folders of `src/` (and its two top-level model files) from the
 /// bottom up: a module may import from its own folder (without a circle) and
 /// from folders of a lower rank, never from a higher or an equal one.
-const LAYERS: [(&str, u32); 12] = [
+const LAYERS: [(&str, u32); 13] = [
     ("error", 0),
     ("math", 1),
     ("stokes", 2),
@@ -204,6 +204,7 @@ const LAYERS: [(&str, u32); 12] = [
     ("mie", 2),
     ("medium", 2),
     ("phase", 3),
+    ("portable", 2),
     ("table", 4),
     ("transport", 4),
     ("mixture", 5),

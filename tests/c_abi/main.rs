@@ -10,6 +10,7 @@ mod common;
 mod examples_and_programs;
 mod golden;
 mod matrix;
+mod portable;
 mod sanitize;
 mod symbols;
 mod table_header;

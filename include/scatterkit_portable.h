@@ -1,0 +1,457 @@
+/* scatterkit_portable.h: the portable f32 tier of scatterkit, header-only,
+ * for C, C++, CUDA, HIP and OpenCL C kernels alike.
+ *
+ * Written by hand (not generated), operation for operation the same as the
+ * Rust module scatterkit::portable: every function returns that module's bits
+ * wherever each operation below rounds correctly (IEEE-754 single precision,
+ * round to nearest). tests/c_abi/portable.rs checks it over 2^24 inputs per
+ * function, compiled as C89, C99, C11, C++11, C++17, C++20 and at
+ * -O3 -march=native -ffp-contract=fast, and as OpenCL C under pocl; CUDA
+ * (NVPTX) and HIP (amdgcn) device compiles are checked by clang.
+ * docs/guides/portable.md is the guide.
+ *
+ * What it needs: float arithmetic, a 32-bit unsigned integer and the bits of
+ * a float. No <math.h>, no double precision, no library call: sine, cosine
+ * and logarithm are the library's own polynomials; the square root is the
+ * compiler's correctly rounded one (__builtin_sqrtf, sqrt in OpenCL,
+ * __fsqrt_rn under nvcc).
+ *
+ * Contraction. A compiler that fuses a*b + c into one fused multiply-add
+ * rounds once where this tier rounds twice, and the bits differ. Here
+ * nothing is left to fuse: every product that feeds a sum goes through
+ * SKP_MUL: on CUDA and AMD GCN devices the multiply instruction in inline
+ * assembly (mul.rn.f32, v_mul_f32), and on a CPU with FMA enabled a product
+ * the optimiser cannot see through (an empty asm statement holding it in a
+ * register), because GCC ignores the FP_CONTRACT pragma and Clang's
+ * -ffp-contract=fast ignores its own. On the CPU it costs no instruction,
+ * but a loop around these functions is not vectorised by the compiler
+ * there. OpenCL C honours the pragma that opens each function body.
+ *
+ * OpenCL: build with -cl-fp32-correctly-rounded-divide-sqrt (OpenCL allows
+ * 2.5 ulp division and 3 ulp square roots without it) and without
+ * -cl-mad-enable or -cl-fast-relaxed-math. CUDA: the defaults (-prec-div=true,
+ * -prec-sqrt=true, no --use_fast_math).
+ *
+ * Conventions: u in [0, 1] is clamped, NaN gives NaN; cos theta = +1 is
+ * forward; densities are per steradian; directions are unit vectors.
+ */
+#ifndef SCATTERKIT_PORTABLE_H
+#define SCATTERKIT_PORTABLE_H
+
+/* ---- qualifiers --------------------------------------------------------- */
+#if defined(__CUDACC__) || defined(__CUDA__) || defined(__HIP__) || defined(__HIPCC__)
+#if defined(__clang__)
+#define SKP_QUAL __attribute__((host)) __attribute__((device))
+#else
+#define SKP_QUAL __host__ __device__
+#endif
+#define SKP_FN static inline SKP_QUAL
+#elif defined(__OPENCL_VERSION__)
+#define SKP_FN static inline
+#elif defined(__cplusplus) || (defined(__STDC_VERSION__) && __STDC_VERSION__ >= 199901L)
+#define SKP_FN static inline
+#elif defined(__GNUC__)
+#define SKP_FN static __inline__ __attribute__((unused))
+#else
+#define SKP_FN static
+#endif
+
+/* ---- no contraction ----------------------------------------------------- */
+#if defined(__clang__)
+#define SKP_BEGIN _Pragma("clang fp contract(off)")
+#elif defined(__OPENCL_VERSION__)
+#define SKP_BEGIN _Pragma("OPENCL FP_CONTRACT OFF")
+#else
+#define SKP_BEGIN
+#endif
+
+#if defined(__CUDA_ARCH__)
+/* PTX's own rounded multiply: opaque to the optimiser, so never fused. */
+SKP_FN float skp_mul_(float a, float b) {
+    float p;
+    asm("mul.rn.f32 %0, %1, %2;" : "=f"(p) : "f"(a), "f"(b));
+    return p;
+}
+#define SKP_MUL(a, b) skp_mul_((a), (b))
+#elif defined(__HIP_DEVICE_COMPILE__) && defined(__AMDGCN__)
+/* AMD GCN's IEEE multiply, opaque to the optimiser. */
+SKP_FN float skp_mul_(float a, float b) {
+    float p;
+    __asm__("v_mul_f32 %0, %1, %2" : "=v"(p) : "v"(a), "v"(b));
+    return p;
+}
+#define SKP_MUL(a, b) skp_mul_((a), (b))
+#elif defined(__OPENCL_VERSION__)
+#define SKP_MUL(a, b) ((a) * (b))
+#elif (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__)) && \
+    (defined(__FMA__) || defined(__FMA4__) || defined(__FP_FAST_FMAF))
+SKP_FN float skp_mul_(float a, float b) {
+    float p = a * b;
+    __asm__("" : "+x"(p));
+    return p;
+}
+#define SKP_MUL(a, b) skp_mul_((a), (b))
+#elif (defined(__GNUC__) || defined(__clang__)) && defined(__aarch64__)
+SKP_FN float skp_mul_(float a, float b) {
+    float p = a * b;
+    __asm__("" : "+w"(p));
+    return p;
+}
+#define SKP_MUL(a, b) skp_mul_((a), (b))
+#elif defined(__GNUC__) && defined(__FP_FAST_FMAF)
+SKP_FN float skp_mul_(float a, float b) {
+    volatile float p = a * b;
+    return p;
+}
+#define SKP_MUL(a, b) skp_mul_((a), (b))
+#else
+#define SKP_MUL(a, b) ((a) * (b))
+#endif
+
+/* ---- bits and the square root ------------------------------------------- */
+#if defined(__OPENCL_VERSION__)
+typedef uint skp_u32;
+#else
+typedef unsigned int skp_u32;
+/* skp_u32 must hold exactly 32 bits. */
+typedef char skp_u32_is_32_bits[(sizeof(skp_u32) == 4) ? 1 : -1];
+#endif
+
+SKP_FN skp_u32 skp_bits(float x) {
+#if defined(__OPENCL_VERSION__)
+    return as_uint(x);
+#elif defined(__CUDACC__) && !defined(__clang__)
+    return __float_as_uint(x);
+#else
+    union {
+        float f;
+        skp_u32 u;
+    } v;
+    v.f = x;
+    return v.u;
+#endif
+}
+
+SKP_FN float skp_from_bits(skp_u32 b) {
+#if defined(__OPENCL_VERSION__)
+    return as_float(b);
+#elif defined(__CUDACC__) && !defined(__clang__)
+    return __uint_as_float(b);
+#else
+    union {
+        skp_u32 u;
+        float f;
+    } v;
+    v.u = b;
+    return v.f;
+#endif
+}
+
+/* The correctly rounded square root; NaN for x < 0. */
+SKP_FN float skp_sqrt(float x) {
+#if defined(__OPENCL_VERSION__)
+    return sqrt(x);
+#elif defined(__CUDACC__) && !defined(__clang__)
+    return __fsqrt_rn(x);
+#elif defined(__GNUC__) || defined(__clang__)
+    return __builtin_sqrtf(x);
+#else
+#error "scatterkit_portable.h: define skp_sqrt for this compiler"
+#endif
+}
+
+/* u clamped to [0, 1], NaN kept. */
+SKP_FN float skp_clamp01(float u) {
+    float w = u > 1.0f ? 1.0f : u;
+    return w < 0.0f ? 0.0f : w;
+}
+
+/* ---- types --------------------------------------------------------------- */
+/* A vector (direction or point). */
+typedef struct skp_vec3 {
+    float x, y, z;
+} skp_vec3;
+
+/* Henyey-Greenstein's constants for one asymmetry g (fill with skp_hg_new):
+   the Rust scatterkit::portable::Hg, field for field. */
+typedef struct skp_hg {
+    float a;    /* |g| */
+    float sign; /* +1 for g > 0, -1 for g <= 0 */
+    float omg;  /* 1 - |g| */
+    float cp;   /* 2 (1 + |g|)^2 */
+    float cm;   /* 2 (1 - |g|)^2 */
+    float ks;   /* 2 (1 - g^2) */
+    float kd;   /* 1 / (4 pi (1 - g^2)^2) */
+    float k2;   /* (1 - |g|)^2 */
+} skp_hg;
+
+#define SKP_INV_4PI 0.07957747f
+#define SKP_RAYLEIGH_K 0.059683103f
+
+/* ---- azimuth and frame --------------------------------------------------- */
+/* (sin 2 pi u, cos 2 pi u) for u in [0, 1], reduced exactly in turns: within
+   1.65 ulp of each. */
+SKP_FN void skp_sin_cos_2pi(float u, float *s_out, float *c_out) {
+    SKP_BEGIN
+    const float magic = 12582912.0f; /* 1.5 * 2^23 */
+    float x = SKP_MUL(4.0f, u);
+    float shifted = x + magic;
+    skp_u32 q = skp_bits(shifted);
+    float r = x - (shifted - magic);
+    float t = r * r;
+    float t2 = t * t;
+    float s = SKP_MUL(r, 1.5707964f) +
+              SKP_MUL(r, (-4.8797943e-8f + SKP_MUL(t, -0.64596346f)) +
+                             SKP_MUL(t2, 0.07968003f + SKP_MUL(t, -0.004601658f)));
+    float c = 1.0f + SKP_MUL(t, (-1.2337005f + SKP_MUL(t, 0.25366918f)) +
+                                    SKP_MUL(t2, -0.020859936f + SKP_MUL(t, 0.000903363f)));
+    float sw = s;
+    if (q & 1u) {
+        s = c;
+        c = sw;
+    }
+    *s_out = skp_from_bits(skp_bits(s) ^ ((q & 2u) << 30));
+    *c_out = skp_from_bits(skp_bits(c) ^ (((q + 1u) & 2u) << 30));
+}
+
+/* (b1, b2) completing the unit n to a right-handed orthonormal basis (Duff et
+   al., JCGT 6(1), 2017; -0 in n.z counts as negative). */
+SKP_FN void skp_frame(skp_vec3 n, skp_vec3 *b1, skp_vec3 *b2) {
+    SKP_BEGIN
+    float sign = skp_from_bits(0x3f800000u | (skp_bits(n.z) & 0x80000000u));
+    float a = -1.0f / (sign + n.z);
+    float b = n.x * n.y * a;
+    b1->x = 1.0f + SKP_MUL(sign * n.x * n.x, a);
+    b1->y = sign * b;
+    b1->z = -(sign * n.x);
+    b2->x = b;
+    b2->y = sign + SKP_MUL(n.y * n.y, a);
+    b2->z = -n.y;
+}
+
+/* The unit direction at cos theta = mu, sin theta = sin_theta and azimuth
+   2 pi turns about the unit axis. */
+SKP_FN skp_vec3 skp_direction_about(skp_vec3 axis, float mu, float sin_theta, float turns) {
+    SKP_BEGIN
+    float sp, cp, lx, ly;
+    skp_vec3 b1, b2, o;
+    skp_sin_cos_2pi(turns, &sp, &cp);
+    skp_frame(axis, &b1, &b2);
+    lx = sin_theta * cp;
+    ly = sin_theta * sp;
+    o.x = SKP_MUL(b1.x, lx) + SKP_MUL(b2.x, ly) + SKP_MUL(axis.x, mu);
+    o.y = SKP_MUL(b1.y, lx) + SKP_MUL(b2.y, ly) + SKP_MUL(axis.y, mu);
+    o.z = SKP_MUL(b1.z, lx) + SKP_MUL(b2.z, ly) + SKP_MUL(axis.z, mu);
+    return o;
+}
+
+/* ---- isotropic ----------------------------------------------------------- */
+/* cos theta = 1 - 2u and sin theta = 2 sqrt(u (1 - u)). */
+SKP_FN float skp_isotropic_sample_cos_sin(float u, float *sin_out) {
+    SKP_BEGIN
+    float w = skp_clamp01(u);
+    *sin_out = 2.0f * skp_sqrt(w * (1.0f - w));
+    return 1.0f - SKP_MUL(2.0f, w);
+}
+
+/* An isotropic direction from two uniforms (cos theta from u1 about +z,
+   azimuth 2 pi u2); *pdf = 1/(4 pi). */
+SKP_FN skp_vec3 skp_isotropic_sample_dir(float u1, float u2, float *pdf) {
+    SKP_BEGIN
+    float s;
+    float mu = skp_isotropic_sample_cos_sin(u1, &s);
+    skp_vec3 z;
+    z.x = 0.0f;
+    z.y = 0.0f;
+    z.z = 1.0f;
+    *pdf = SKP_INV_4PI;
+    return skp_direction_about(z, mu, s, u2);
+}
+
+/* ---- Henyey-Greenstein --------------------------------------------------- */
+/* The constants for g: 1 for |g| < 1, else 0 with every field NaN (so a
+   sampler given them returns NaN). */
+SKP_FN int skp_hg_new(float g, skp_hg *p) {
+    SKP_BEGIN
+    float a, omg, opg, c;
+    a = skp_from_bits(skp_bits(g) & 0x7fffffffu); /* |g| */
+    if (!(a < 1.0f)) {
+        float nan = skp_from_bits(0x7fc00000u);
+        p->a = nan;
+        p->sign = nan;
+        p->omg = nan;
+        p->cp = nan;
+        p->cm = nan;
+        p->ks = nan;
+        p->kd = nan;
+        p->k2 = nan;
+        return 0;
+    }
+    omg = 1.0f - a;
+    opg = 1.0f + a;
+    c = omg * opg;
+    p->a = a;
+    p->sign = g > 0.0f ? 1.0f : -1.0f;
+    p->omg = omg;
+    p->cp = SKP_MUL(2.0f, SKP_MUL(opg, opg));
+    p->cm = SKP_MUL(2.0f, SKP_MUL(omg, omg));
+    p->ks = SKP_MUL(2.0f, c);
+    p->kd = SKP_INV_4PI / (c * c);
+    p->k2 = omg * omg;
+    return 1;
+}
+
+/* The inverse's factors at u in [0, 1] (the Rust module documents them):
+   1 + mu' = P/d^2, 1 - mu' = M/d^2, with u' = u (g > 0) or 1 - u. */
+SKP_FN float skp_hg_parts_(const skp_hg *p, float u, float *mm, float *d, float *uv, float *ab) {
+    SKP_BEGIN
+    float u1, v1, gu, a, b;
+    if (p->sign > 0.0f) {
+        u1 = u;
+        v1 = 1.0f - u;
+    } else {
+        u1 = 1.0f - u;
+        v1 = u;
+    }
+    gu = SKP_MUL(p->a, u1);
+    *d = p->omg + SKP_MUL(2.0f, gu); /* gu + gu, exactly */
+    a = p->omg + gu;
+    b = 1.0f + gu;
+    *mm = SKP_MUL(p->cm * v1, b);
+    *uv = u1 * v1;
+    *ab = a * b;
+    return SKP_MUL(p->cp * u1, a);
+}
+
+/* cos theta from P, M, d: P/d^2 - 1 below -1/2, 1 - M/d^2 above 1/2, and
+   (P - M)/(2 d^2) between. */
+SKP_FN float skp_hg_mu_(const skp_hg *p, float pp, float mm, float d) {
+    SKP_BEGIN
+    float d2 = d * d;
+    float n, c;
+    if (3.0f * pp < mm) {
+        n = pp;
+        c = -1.0f;
+    } else if (3.0f * mm < pp) {
+        n = -mm;
+        c = 1.0f;
+    } else {
+        n = 0.5f * (pp - mm);
+        c = 0.0f;
+    }
+    return p->sign * (n / d2 + c);
+}
+
+/* cos theta = F^-1(u) (u clamped to [0, 1], NaN gives NaN). */
+SKP_FN float skp_hg_sample_cos(const skp_hg *p, float u) {
+    float mm, d, uv, ab;
+    float pp = skp_hg_parts_(p, skp_clamp01(u), &mm, &d, &uv, &ab);
+    return skp_hg_mu_(p, pp, mm, d);
+}
+
+/* cos theta at u, with *sin_out = sin theta and *pdf the density there. */
+SKP_FN float skp_hg_sample_cos_sin(const skp_hg *p, float u, float *sin_out, float *pdf) {
+    SKP_BEGIN
+    float mm, d, uv, ab, d2;
+    float pp = skp_hg_parts_(p, skp_clamp01(u), &mm, &d, &uv, &ab);
+    d2 = d * d;
+    *sin_out = p->ks * skp_sqrt(uv * ab) / d2;
+    *pdf = p->kd * (d2 * d);
+    return skp_hg_mu_(p, pp, mm, d);
+}
+
+/* The scattered direction about the unit w_in (cos theta from u1, azimuth
+   2 pi u2), with *pdf its density per steradian. */
+SKP_FN skp_vec3 skp_hg_sample_dir(const skp_hg *p, skp_vec3 w_in, float u1, float u2, float *pdf) {
+    float s;
+    float mu = skp_hg_sample_cos_sin(p, u1, &s, pdf);
+    return skp_direction_about(w_in, mu, s, u2);
+}
+
+/* The density per steradian at cos theta = mu in [-1, 1]. */
+SKP_FN float skp_hg_pdf(const skp_hg *p, float mu) {
+    SKP_BEGIN
+    float q = p->k2 + SKP_MUL(2.0f * p->a, 1.0f - SKP_MUL(p->sign, mu));
+    return SKP_INV_4PI * (p->ks * 0.5f) / (q * skp_sqrt(q));
+}
+
+/* ---- Rayleigh ------------------------------------------------------------ */
+/* cos theta = F^-1(u): the root of mu^3 + 3 mu = 4 (2u - 1) in Cardano's
+   stable form, from a cubic seed and one Halley step. */
+SKP_FN float skp_rayleigh_sample_cos(float u) {
+    SKP_BEGIN
+    float s = 2.0f * (SKP_MUL(2.0f, skp_clamp01(u)) - 1.0f);
+    float a = skp_from_bits(skp_bits(s) & 0x7fffffffu); /* |s| */
+    float w, c, h, cma, w2, mu;
+    w = 0.9990013f +
+        SKP_MUL(a, 0.35323477f + SKP_MUL(a, -0.0013433853f + SKP_MUL(a, -0.010459901f)));
+    c = SKP_MUL(w * w, w);
+    h = SKP_MUL(c, c) - SKP_MUL(2.0f * a, c) - 1.0f;
+    cma = c - a;
+    w = w - 2.0f * w * h * cma /
+                (SKP_MUL(12.0f * c * cma, cma) - SKP_MUL(h, SKP_MUL(5.0f, c) - SKP_MUL(2.0f, a)));
+    w2 = SKP_MUL(w, w);
+    mu = SKP_MUL(2.0f, s) * w2 / (SKP_MUL(w2, w2) + w2 + 1.0f);
+    return mu > 1.0f ? 1.0f : (mu < -1.0f ? -1.0f : mu);
+}
+
+/* Rayleigh's density per steradian, 3 (1 + mu^2) / (16 pi). */
+SKP_FN float skp_rayleigh_pdf(float mu) {
+    SKP_BEGIN
+    return SKP_RAYLEIGH_K * (1.0f + SKP_MUL(mu, mu));
+}
+
+/* A Rayleigh direction about the unit w_in, with *pdf its density. */
+SKP_FN skp_vec3 skp_rayleigh_sample_dir(skp_vec3 w_in, float u1, float u2, float *pdf) {
+    SKP_BEGIN
+    float mu = skp_rayleigh_sample_cos(u1);
+    float s = skp_sqrt((1.0f - mu) * (1.0f + mu));
+    *pdf = skp_rayleigh_pdf(mu);
+    return skp_direction_about(w_in, mu, s, u2);
+}
+
+/* ---- free flight --------------------------------------------------------- */
+/* The natural logarithm, within an ulp: ln 0 = -inf, ln inf = inf, NaN for
+   negative x or NaN (the fdlibm logf scheme). */
+SKP_FN float skp_ln(float x) {
+    SKP_BEGIN
+    skp_u32 ix;
+    int k0 = 0, k;
+    float m, f, s, z, w, r, hfsq, dk;
+    if (!(x > 0.0f)) {
+        return x == 0.0f ? -skp_from_bits(0x7f800000u) : skp_from_bits(0x7fc00000u);
+    }
+    if (x == skp_from_bits(0x7f800000u)) {
+        return x;
+    }
+    if (x < 1.17549435e-38f) {
+        x = x * 33554432.0f;
+        k0 = -25;
+    }
+    ix = skp_bits(x) + (0x3f800000u - 0x3f3504f3u);
+    k = k0 + (int)(ix >> 23) - 127;
+    m = skp_from_bits((ix & 0x007fffffu) + 0x3f3504f3u);
+    f = m - 1.0f;
+    s = f / (2.0f + f);
+    z = s * s;
+    w = z * z;
+    r = SKP_MUL(z, 0.6666666f + SKP_MUL(w, 0.28498787f)) +
+        SKP_MUL(w, 0.40000972f + SKP_MUL(w, 0.24279079f));
+    hfsq = SKP_MUL(0.5f * f, f);
+    dk = (float)k;
+    return SKP_MUL(dk, 0.6931381f) -
+           ((hfsq - (SKP_MUL(s, hfsq + r) + SKP_MUL(dk, 9.058001e-06f))) - f);
+}
+
+/* A free-flight distance -ln(1 - u)/sigma_t in a homogeneous medium
+   (sigma_t > 0 per length unit; u clamped, u = 1 gives +inf), small u kept
+   to their relative precision. */
+SKP_FN float skp_free_path(float sigma_t, float u) {
+    SKP_BEGIN
+    float v = skp_clamp01(u);
+    float w = 1.0f - v;
+    float l = skp_ln(w) + ((1.0f - w) - v) / w;
+    return -l / sigma_t;
+}
+
+#endif /* SCATTERKIT_PORTABLE_H */

@@ -1,0 +1,38 @@
+//! The portable f32 tier: samplers written once in single precision, with
+//! every operation an IEEE-754 addition, subtraction, multiplication,
+//! division or square root in a stated order, and the library's own sine,
+//! cosine and logarithm (no libm, no double precision, no fused
+//! multiply-add). `include/scatterkit_portable.h` carries the same
+//! functions, operation for operation, for C, C++, CUDA, HIP and OpenCL C;
+//! compiled where each operation rounds correctly (C and C++ on any IEEE
+//! target; CUDA; OpenCL with correctly rounded division and square root)
+//! it returns these functions' bits (`tests/portable.rs` and
+//! `tests/c_abi/portable.rs` compare them over 2²⁴ inputs each).
+//!
+//! What the tier gives up against the rest of the library, which samples
+//! f32 through f64 arithmetic where that is as fast: a few ulp of 1 in
+//! `cos θ` (the stated bound of each function, measured against f64 in
+//! `tests/portable.rs`). What it gains: the same bits on every processor,
+//! GPU kernels included, and no call out of a kernel or loop.
+//!
+//! Conventions as everywhere in the crate: `u ∈ [0, 1]` is clamped, NaN
+//! propagates; `cos θ = +1` is forward; densities are per steradian.
+
+mod flight;
+mod phase;
+mod turns;
+
+pub use flight::{free_path, ln};
+pub use phase::{
+    Hg, hg_pdf, hg_sample_cos, hg_sample_cos_sin, hg_sample_dir, isotropic_sample_cos_sin,
+    isotropic_sample_dir, rayleigh_pdf, rayleigh_sample_cos, rayleigh_sample_dir,
+};
+pub use turns::{direction_about, frame, sin_cos_2pi};
+
+/// `u` clamped to `[0, 1]` with NaN kept: the header's
+/// `u > 1 ? 1 : u` then `< 0 ? 0`, in that order.
+#[inline(always)]
+pub(crate) fn clamp01(u: f32) -> f32 {
+    let w = if u > 1.0 { 1.0 } else { u };
+    if w < 0.0 { 0.0 } else { w }
+}

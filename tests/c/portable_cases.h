@@ -1,0 +1,129 @@
+/* The inputs and cases of the portable-tier test, shared by the C program
+ * (tests/c/portable.c), the OpenCL kernel (tests/c/portable_opencl.c) and,
+ * written again in Rust, tests/c_abi/portable.rs: case c at index k writes
+ * up to four floats to o (the rest 0). Index k < 2^24 - 16 gives
+ * u = k 2^-24; the last 16 indices give the special values below. */
+#ifndef PORTABLE_CASES_H
+#define PORTABLE_CASES_H
+
+#include "scatterkit_portable.h"
+
+#define PC_N 16777216u
+#define PC_CASES 16
+
+SKP_FN float pc_u(skp_u32 k) {
+    if (k >= PC_N - 16u) {
+        switch (k - (PC_N - 16u)) {
+        case 0: return 1.0f;
+        case 1: return 1.0000001f;
+        case 2: return -0.0f;
+        case 3: return -1e-30f;
+        case 4: return 2.0f;
+        case 5: return skp_from_bits(0x7fc00000u);
+        case 6: return skp_from_bits(0x7f800000u);
+        case 7: return -skp_from_bits(0x7f800000u);
+        case 8: return 0.99999994f;
+        case 9: return 5.9604645e-08f;
+        case 10: return 1e-45f;
+        case 11: return 0.5f;
+        case 12: return 0.25f;
+        case 13: return 0.75f;
+        case 14: return 0.49999997f;
+        default: return 0.50000006f;
+        }
+    }
+    return (float)k * 5.9604645e-08f;
+}
+
+/* A second uniform, scrambled from k. */
+SKP_FN float pc_u2(skp_u32 k) {
+    skp_u32 h = k * 2654435761u;
+    return (float)(h >> 8) * 5.9604645e-08f;
+}
+
+/* One of eight (nearly) unit vectors. */
+SKP_FN skp_vec3 pc_dir(skp_u32 k) {
+    skp_vec3 v;
+    switch (k & 7u) {
+    case 0: v.x = 0.0f; v.y = 0.0f; v.z = 1.0f; break;
+    case 1: v.x = 0.0f; v.y = 0.0f; v.z = -1.0f; break;
+    case 2: v.x = 1.0f; v.y = 0.0f; v.z = 0.0f; break;
+    case 3: v.x = 0.0f; v.y = -1.0f; v.z = 0.0f; break;
+    case 4: v.x = 0.6f; v.y = 0.0f; v.z = 0.8f; break;
+    case 5: v.x = 0.0f; v.y = 0.8f; v.z = -0.6f; break;
+    case 6: v.x = 0.48f; v.y = 0.6f; v.z = 0.64f; break;
+    default: v.x = -0.36f; v.y = 0.48f; v.z = -0.8f; break;
+    }
+    return v;
+}
+
+/* The asymmetries of cases 2 to 7. */
+SKP_FN float pc_g(int c) {
+    switch (c) {
+    case 2: return 0.0f;
+    case 3: return 0.3f;
+    case 4: return -0.7f;
+    case 5: return 0.9f;
+    case 6: return 0.999f;
+    default: return -0.999999f;
+    }
+}
+
+SKP_FN void pc_case(int c, skp_u32 k, float *o) {
+    float u = pc_u(k), u2 = pc_u2(k), s, pdf;
+    skp_vec3 v;
+    skp_hg hg;
+    o[0] = 0.0f;
+    o[1] = 0.0f;
+    o[2] = 0.0f;
+    o[3] = 0.0f;
+    switch (c) {
+    case 0:
+        skp_sin_cos_2pi(u, &o[0], &o[1]);
+        break;
+    case 1:
+        v = skp_isotropic_sample_dir(u, u2, &o[3]);
+        o[0] = v.x; o[1] = v.y; o[2] = v.z;
+        break;
+    case 2: case 3: case 4: case 5: case 6: case 7:
+        skp_hg_new(pc_g(c), &hg);
+        o[0] = skp_hg_sample_cos(&hg, u);
+        o[1] = skp_hg_sample_cos_sin(&hg, u, &s, &pdf);
+        o[2] = s;
+        o[3] = pdf;
+        break;
+    case 8: case 9:
+        skp_hg_new(c == 8 ? 0.7f : -0.2f, &hg);
+        v = skp_hg_sample_dir(&hg, pc_dir(k), u, u2, &o[3]);
+        o[0] = v.x; o[1] = v.y; o[2] = v.z;
+        break;
+    case 10:
+        skp_hg_new(0.9f, &hg);
+        o[0] = skp_hg_pdf(&hg, SKP_MUL(2.0f, u) - 1.0f);
+        skp_hg_new(-0.5f, &hg);
+        o[1] = skp_hg_pdf(&hg, SKP_MUL(2.0f, u) - 1.0f);
+        break;
+    case 11:
+        o[0] = skp_rayleigh_sample_cos(u);
+        o[1] = skp_rayleigh_pdf(o[0]);
+        break;
+    case 12:
+        v = skp_rayleigh_sample_dir(pc_dir(k), u, u2, &o[3]);
+        o[0] = v.x; o[1] = v.y; o[2] = v.z;
+        break;
+    case 13:
+        o[0] = skp_ln(skp_from_bits(k << 7));
+        o[1] = skp_ln(u);
+        break;
+    case 14:
+        o[0] = skp_free_path(2.5f, u);
+        o[1] = skp_free_path(1e-3f, u);
+        break;
+    default:
+        v = skp_direction_about(pc_dir(k), SKP_MUL(2.0f, u) - 1.0f, u2, u);
+        o[0] = v.x; o[1] = v.y; o[2] = v.z;
+        break;
+    }
+}
+
+#endif /* PORTABLE_CASES_H */

@@ -1,0 +1,391 @@
+//! `include/scatterkit_portable.h` against `scatterkit::portable`: the
+//! cases of `tests/c/portable_cases.h`, written again below in Rust, over
+//! their 2²⁴ indices each, hashed per block of 2¹⁶ (FNV-1a over the output
+//! bits, NaN canonical), compared block by block with
+//! - `tests/c/portable.c` built as C99 and at `-O3 -march=native
+//!   -ffp-contract=fast` (GCC, and Clang where present): every index;
+//! - the same built as C89, C11, C++11, C++17 and C++20 with `-pedantic
+//!   -Wall -Wextra -Werror`: every 257th index;
+//! - `tests/c/portable_opencl.c`, the cases compiled into an OpenCL kernel
+//!   and run by the platform's runtime (pocl in CI): every index;
+//!
+//! and the header compiled as CUDA device code to PTX and as HIP device
+//! code for amdgcn by Clang, so that a qualifier or syntax error fails.
+
+use crate::common;
+use common::cbuild::root;
+use scatterkit::portable as p;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const N: u32 = 1 << 24;
+const CASES: i32 = 16;
+const NAN: u32 = 0x7fc0_0000;
+
+fn u_of(k: u32) -> f32 {
+    if k >= N - 16 {
+        return [
+            1.0,
+            1.000_000_1,
+            -0.0,
+            -1e-30,
+            2.0,
+            f32::from_bits(NAN),
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            0.999_999_94,
+            5.960_464_5e-8,
+            1e-45,
+            0.5,
+            0.25,
+            0.75,
+            0.499_999_97,
+            0.500_000_06,
+        ][(k - (N - 16)) as usize];
+    }
+    k as f32 * 5.960_464_5e-8
+}
+
+fn u2_of(k: u32) -> f32 {
+    (k.wrapping_mul(2_654_435_761) >> 8) as f32 * 5.960_464_5e-8
+}
+
+fn dir_of(k: u32) -> [f32; 3] {
+    [
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+        [1.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.6, 0.0, 0.8],
+        [0.0, 0.8, -0.6],
+        [0.48, 0.6, 0.64],
+        [-0.36, 0.48, -0.8],
+    ][(k & 7) as usize]
+}
+
+fn g_of(c: i32) -> f32 {
+    match c {
+        2 => 0.0,
+        3 => 0.3,
+        4 => -0.7,
+        5 => 0.9,
+        6 => 0.999,
+        _ => -0.999_999,
+    }
+}
+
+fn hg(g: f32) -> p::Hg {
+    p::Hg::new(g).unwrap()
+}
+
+fn case(c: i32, k: u32) -> [f32; 4] {
+    let (u, u2) = (u_of(k), u2_of(k));
+    let with_pdf = |(v, pdf): ([f32; 3], f32)| [v[0], v[1], v[2], pdf];
+    match c {
+        0 => {
+            let (s, co) = p::sin_cos_2pi(u);
+            [s, co, 0.0, 0.0]
+        }
+        1 => with_pdf(p::isotropic_sample_dir(u, u2)),
+        2..=7 => {
+            let h = hg(g_of(c));
+            let (mu, s, pdf) = p::hg_sample_cos_sin(&h, u);
+            [p::hg_sample_cos(&h, u), mu, s, pdf]
+        }
+        8 | 9 => {
+            let h = hg(if c == 8 { 0.7 } else { -0.2 });
+            with_pdf(p::hg_sample_dir(&h, dir_of(k), u, u2))
+        }
+        10 => [
+            p::hg_pdf(&hg(0.9), 2.0 * u - 1.0),
+            p::hg_pdf(&hg(-0.5), 2.0 * u - 1.0),
+            0.0,
+            0.0,
+        ],
+        11 => {
+            let mu = p::rayleigh_sample_cos(u);
+            [mu, p::rayleigh_pdf(mu), 0.0, 0.0]
+        }
+        12 => with_pdf(p::rayleigh_sample_dir(dir_of(k), u, u2)),
+        13 => [p::ln(f32::from_bits(k << 7)), p::ln(u), 0.0, 0.0],
+        14 => [p::free_path(2.5, u), p::free_path(1e-3, u), 0.0, 0.0],
+        _ => {
+            let v = p::direction_about(dir_of(k), 2.0 * u - 1.0, u2, u);
+            [v[0], v[1], v[2], 0.0]
+        }
+    }
+}
+
+/// Block hashes: `(case, block) → hash`, every `stride`-th index.
+type Hashes = BTreeMap<(i32, u32), u32>;
+
+fn rust_hashes(stride: u32) -> Hashes {
+    let jobs: Vec<(i32, u32)> = (0..CASES)
+        .flat_map(|c| (0..N >> 16).map(move |b| (c, b)))
+        .collect();
+    let hashes = common::map_parallel(&jobs, |&(c, b)| {
+        let mut h: u32 = 2_166_136_261;
+        for k in ((b << 16)..((b + 1) << 16)).step_by(stride as usize) {
+            for x in case(c, k) {
+                let w = if x.is_nan() { NAN } else { x.to_bits() };
+                h = (h ^ w).wrapping_mul(16_777_619);
+            }
+        }
+        h
+    });
+    jobs.into_iter().zip(hashes).collect()
+}
+
+fn parse(out: &str) -> Hashes {
+    out.lines()
+        .filter_map(|l| {
+            let mut f = l.split_whitespace();
+            let c = f.next()?.parse().ok()?;
+            let b = f.next()?.parse().ok()?;
+            let h = u32::from_str_radix(f.next()?, 16).ok()?;
+            Some(((c, b), h))
+        })
+        .collect()
+}
+
+/// The blocks (of 256 per case) whose hashes differ, per case; fails
+/// unless none does.
+fn compare(what: &str, got: &Hashes, want: &Hashes) {
+    assert_eq!(
+        got.len(),
+        want.len(),
+        "{what}: {} blocks, not {}",
+        got.len(),
+        want.len()
+    );
+    let mut bad: BTreeMap<i32, usize> = BTreeMap::new();
+    for (key, h) in want {
+        if got.get(key) != Some(h) {
+            *bad.entry(key.0).or_default() += 1;
+        }
+    }
+    println!(
+        "{what}: {} cases × 2²⁴ inputs, mismatched blocks per case {bad:?}",
+        CASES
+    );
+    assert!(bad.is_empty(), "{what}: blocks differ {bad:?}");
+}
+
+fn out_dir() -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join("portable");
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Builds `tests/c/<src>` with `compiler` and `flags`; the executable.
+fn build(compiler: &str, src: &str, flags: &[&str], name: &str, libs: &[&str]) -> PathBuf {
+    let exe = out_dir().join(name);
+    let out = Command::new(compiler)
+        .args(flags)
+        .arg("-I")
+        .arg(root().join("include"))
+        .arg("-I")
+        .arg(root().join("tests/c"))
+        .arg(root().join("tests/c").join(src))
+        .arg("-o")
+        .arg(&exe)
+        .args(libs)
+        .output()
+        .unwrap_or_else(|e| panic!("{compiler} did not start: {e}"));
+    assert!(
+        out.status.success(),
+        "{compiler} {flags:?} {src} failed:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    exe
+}
+
+fn have(tool: &str) -> bool {
+    Command::new(tool)
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success())
+}
+
+fn run_hashes(exe: &Path, args: &[&str]) -> Hashes {
+    let out = Command::new(exe)
+        .args(args)
+        .output()
+        .expect("program did not start");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    parse(&String::from_utf8_lossy(&out.stdout))
+}
+
+const STRICT: [&str; 5] = ["-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"];
+
+#[test]
+fn the_header_returns_the_librarys_bits_on_the_cpu() {
+    if !common::repository("the_header_returns_the_librarys_bits_on_the_cpu") {
+        return;
+    }
+    let full = rust_hashes(1);
+    let exe = build(
+        "cc",
+        "portable.c",
+        &[&STRICT[..], &["-std=c99"]].concat(),
+        "c99",
+        &["-lm"],
+    );
+    compare("C99 -O2", &run_hashes(&exe, &[]), &full);
+    let native = ["-O3", "-march=native", "-ffp-contract=fast"];
+    let mut compilers = vec!["cc"];
+    if have("clang") {
+        compilers.push("clang");
+    } else {
+        common::skip("portable header under Clang -ffp-contract=fast: clang not found");
+    }
+    for cc in compilers {
+        let exe = build(cc, "portable.c", &native, &format!("native-{cc}"), &["-lm"]);
+        compare(
+            &format!("{cc} {}", native.join(" ")),
+            &run_hashes(&exe, &[]),
+            &full,
+        );
+    }
+    let sparse = rust_hashes(257);
+    for (cc, std) in [
+        ("cc", "-std=c89"),
+        ("cc", "-std=c11"),
+        ("c++", "-std=c++11"),
+        ("c++", "-std=c++17"),
+        ("c++", "-std=c++20"),
+    ] {
+        let lang: &[&str] = if cc == "c++" { &["-x", "c++"] } else { &[] };
+        let flags = [lang, &STRICT[..], &[std]].concat();
+        let exe = build(cc, "portable.c", &flags, &std[5..], &["-lm"]);
+        compare(
+            &format!("{std} (every 257th)"),
+            &run_hashes(&exe, &["257"]),
+            &sparse,
+        );
+    }
+}
+
+#[test]
+fn the_header_returns_the_librarys_bits_in_opencl() {
+    if !common::repository("the_header_returns_the_librarys_bits_in_opencl") {
+        return;
+    }
+    let exe = out_dir().join("opencl");
+    let out = Command::new("cc")
+        .args(["-std=c99", "-O2", "-I"])
+        .arg(root().join("include"))
+        .arg("-I")
+        .arg(root().join("tests/c"))
+        .arg(root().join("tests/c/portable_opencl.c"))
+        .arg("-o")
+        .arg(&exe)
+        .arg("-lOpenCL")
+        .output()
+        .expect("cc did not start");
+    if !out.status.success() {
+        common::skip(&format!(
+            "OpenCL (headers and libOpenCL: Debian's ocl-icd-opencl-dev, opencl-headers, pocl-opencl-icd): {}",
+            String::from_utf8_lossy(&out.stderr)
+                .lines()
+                .next()
+                .unwrap_or("")
+        ));
+        return;
+    }
+    let inc = root().join("include");
+    let cases = root().join("tests/c");
+    let (code, text) = {
+        let o = Command::new(&exe).arg(&inc).arg(&cases).output().unwrap();
+        (
+            o.status.code(),
+            String::from_utf8_lossy(&o.stdout).into_owned(),
+        )
+    };
+    if let Some(line) = text.lines().find(|l| l.starts_with("SKIPPED")) {
+        common::skip(&format!("OpenCL runtime: {line}"));
+        return;
+    }
+    assert_eq!(code, Some(0), "{text}");
+    println!("{}", text.lines().next().unwrap_or(""));
+    compare("OpenCL", &parse(&text), &rust_hashes(1));
+}
+
+#[test]
+fn the_header_compiles_as_cuda_and_hip_device_code() {
+    if !common::repository("the_header_compiles_as_cuda_and_hip_device_code") {
+        return;
+    }
+    if !have("clang") {
+        common::skip("CUDA and HIP device compiles: clang not found");
+        return;
+    }
+    let src = out_dir().join("portable_device.cu");
+    std::fs::write(
+        &src,
+        "#include \"portable_cases.h\"\n\
+         __attribute__((global)) void run(int c, unsigned k0, float *out) {\n\
+             float o[4];\n\
+             pc_case(c, k0, o);\n\
+             out[0] = o[0]; out[1] = o[1]; out[2] = o[2]; out[3] = o[3];\n\
+         }\n",
+    )
+    .unwrap();
+    // The instructions a contraction would leave: none may appear in the
+    // PTX, since the tier has no fused multiply-add. (On AMD GCN the
+    // correctly rounded division and square root are themselves sequences
+    // of fused multiply-adds, so there the compile alone is checked.)
+    let targets: [(&str, &[&str], &[&str]); 2] = [
+        (
+            "cuda",
+            &["--cuda-gpu-arch=sm_70", "-nocudainc", "-nocudalib"],
+            &["fma.rn.f32", "mad.f32"],
+        ),
+        (
+            "hip",
+            &["--cuda-gpu-arch=gfx90a", "-nogpuinc", "-nogpulib"],
+            &[],
+        ),
+    ];
+    for (lang, flags, fused) in targets {
+        let asm = out_dir().join(format!("portable.{lang}.s"));
+        let out = Command::new("clang")
+            .args([
+                "-x",
+                lang,
+                "--cuda-device-only",
+                "-S",
+                "-O2",
+                "-Wall",
+                "-Werror",
+            ])
+            .args(flags)
+            .arg("-I")
+            .arg(root().join("include"))
+            .arg("-I")
+            .arg(root().join("tests/c"))
+            .arg(&src)
+            .arg("-o")
+            .arg(&asm)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "clang -x {lang}:\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let code = std::fs::read_to_string(&asm).unwrap();
+        for f in fused {
+            assert!(!code.contains(f), "{lang}: the device code fuses ({f})");
+        }
+        println!(
+            "{lang}: device code compiled, {} lines",
+            code.lines().count()
+        );
+    }
+}

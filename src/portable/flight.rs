@@ -64,6 +64,10 @@ pub fn free_path(sigma_t: f32, u: f32) -> f32 {
     let w = 1.0 - u;
     // (1 − w) is exact (Sterbenz, w ≥ ½ whenever u ≤ ½) and so is its
     // difference from u; for u > ½, w is exact and the term is 0.
-    let l = ln(w) + ((1.0 - w) - u) / w;
+    let l = if w == 0.0 {
+        f32::NEG_INFINITY
+    } else {
+        ln(w) + ((1.0 - w) - u) / w
+    };
     -l / sigma_t
 }

@@ -18,6 +18,7 @@
 //! Conventions as everywhere in the crate: `u ∈ [0, 1]` is clamped, NaN
 //! propagates; `cos θ = +1` is forward; densities are per steradian.
 
+mod exact;
 mod flight;
 mod phase;
 mod turns;

@@ -4,6 +4,7 @@
 //! relative precision at both poles, and the direction about `w_in`.
 
 use super::clamp01;
+use super::exact::{mul, two_sum};
 use super::turns::direction_about;
 use crate::math::real::Real;
 
@@ -29,9 +30,10 @@ pub fn isotropic_sample_dir(u1: f32, u2: f32) -> ([f32; 3], f32) {
     (direction_about([0.0, 0.0, 1.0], mu, s, u2), INV_4PI)
 }
 
-/// Henyey–Greenstein's constants for one asymmetry `g`, each rounded
-/// from the f32 `g` in a stated order (the header's `skp_hg`, filled by
-/// `skp_hg_new`): `C` layout, 8 floats.
+/// Henyey–Greenstein's constants for one asymmetry `g` (the header's
+/// `skp_hg`, filled by `skp_hg_new`): `C` layout, 10 floats. `c1 … c4`
+/// are rounded once from their exact values at the f32 `g`
+/// (error-free transformations in f32, so any target computes the same).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hg {
@@ -42,16 +44,20 @@ pub struct Hg {
     pub sign: f32,
     /// `1 − g'`.
     pub omg: f32,
-    /// `2 (1 + g')²`, the factor of `1 + μ'`.
-    pub cp: f32,
-    /// `2 (1 − g')²`, the factor of `1 − μ'`.
-    pub cm: f32,
-    /// `2 (1 − g²)`, the factor of `sin θ`.
-    pub ks: f32,
+    /// `2 (1 + g')² (1 − g')`.
+    pub c1: f32,
+    /// `2 g' (1 + g')²`.
+    pub c2: f32,
+    /// `2 (1 − g')²`.
+    pub c3: f32,
+    /// `2 g' (1 − g')²`.
+    pub c4: f32,
     /// `1/(4π (1 − g²)²)`: the density at a sample is this times `d³`.
     pub kd: f32,
     /// `(1 − g')²`, for the density at any `μ`.
     pub k2: f32,
+    /// `(1 − g²)/(4π)`, the density's numerator.
+    pub kp: f32,
 }
 
 impl Hg {
@@ -61,17 +67,24 @@ impl Hg {
             return None;
         }
         let a = g.abs();
-        let (omg, opg) = (1.0 - a, 1.0 + a);
-        let c = omg * opg;
+        // 1 ± g' and their squares as exact pairs; each constant then
+        // rounds once.
+        let opg = two_sum(1.0, a);
+        let omg = two_sum(1.0, -a);
+        let (opg2, omg2) = (mul(opg, opg), mul(omg, omg));
+        let round = |x: (f32, f32)| 2.0 * (x.0 + x.1);
+        let c = omg.0 * opg.0;
         Some(Hg {
             a,
             sign: if g > 0.0 { 1.0 } else { -1.0 },
-            omg,
-            cp: 2.0 * (opg * opg),
-            cm: 2.0 * (omg * omg),
-            ks: 2.0 * c,
+            omg: omg.0,
+            c1: round(mul(opg2, omg)),
+            c2: round(mul(opg2, (a, 0.0))),
+            c3: round(omg2),
+            c4: round(mul(omg2, (a, 0.0))),
             kd: INV_4PI / (c * c),
-            k2: omg * omg,
+            k2: omg.0 * omg.0,
+            kp: INV_4PI * c,
         })
     }
 
@@ -81,64 +94,56 @@ impl Hg {
     }
 }
 
-/// The sampler's pieces at `u ∈ [0, 1]`, for `g' = |g|` and `u' = u`
-/// (`g > 0`) or `1 − u` (the mirror), `v' = 1 − u'` (each of the pair
-/// formed from `u` directly, so one of them is exact and the other
-/// rounded where the inverse is flat in it): `d = 1 − g' + 2g'u'`,
-/// `a = 1 − g' + g'u'`, `b = 1 + g'u'`. With them Henyey & Greenstein's
-/// inverse factors exactly as `1 + μ' = P/d²`, `1 − μ' = M/d²`,
-/// `P = 2u'(1 + g')² a`, `M = 2v'(1 − g')² b`; every factor is a sum of
-/// non-negative terms, so `P`, `M` and `d` keep their relative precision
-/// and nothing divides by `g`.
+/// `(P, M, g'u')` at `u ∈ [0, 1]`, for `g' = |g|` and `u' = u` (`g > 0`)
+/// or `1 − u` (the mirror), `v' = 1 − u'` (each of the pair formed from
+/// `u` directly: one is exact, the other rounded where the inverse is flat
+/// in it). Henyey & Greenstein's inverse factors exactly as
+/// `1 + μ' = P/d²`, `1 − μ' = M/d²` with `d = 1 − g' + 2g'u'`,
+/// `P = 2u'(1 + g')²(1 − g' + g'u') = u'(c1 + c2 u')` and
+/// `M = 2v'(1 − g')²(1 + g'u') = v'(c3 + c4 u')`: sums of non-negative
+/// terms, each within a few ulp in relative terms, and no division by `g`.
 #[inline(always)]
-fn hg_parts(p: &Hg, u: f32) -> (f32, f32, f32, f32, f32) {
-    let (u1, v1) = if p.sign > 0.0 {
-        (u, 1.0 - u)
-    } else {
-        (1.0 - u, u)
-    };
-    let gu = p.a * u1;
-    let (d, a, b) = (p.omg + (gu + gu), p.omg + gu, 1.0 + gu);
-    ((p.cp * u1) * a, (p.cm * v1) * b, d, u1 * v1, a * b)
+fn hg_pm(p: &Hg, u: f32) -> (f32, f32, f32) {
+    let (u1, v1) = if p.sign > 0.0 { (u, 1.0 - u) } else { (1.0 - u, u) };
+    (
+        u1 * (p.c1 + p.c2 * u1),
+        v1 * (p.c3 + p.c4 * u1),
+        p.a * u1,
+    )
 }
 
-/// `cos θ` from `P`, `M`, `d` (see `hg_parts`): `P/d² − 1` for
-/// `μ' < −½` (`P < M/3`), `1 − M/d²` for `μ' > ½`, and `(P − M)/(2d²)`
-/// between, where both factors are near 1 and the difference lets the
-/// rounding of `d²` scale with `|μ'|` instead of 1. One division either
-/// way; the absolute error stays a few ulp of 1.
+/// `cos θ = ±(P − M)/(P + M)`: since `P + M = 2d²`, the ratio is `μ'`
+/// exactly, and `d` (whose two roundings would count twice in `d²`)
+/// drops out. Its error is `2PM (δ_P − δ_M)/(P + M)²` (at most half the
+/// difference of the factors' relative errors) plus three roundings: a
+/// few ulp of 1, at both poles too (`P → 0` gives `−1` exactly).
 #[inline(always)]
-fn hg_mu(p: &Hg, pp: f32, mm: f32, d: f32) -> f32 {
-    let d2 = d * d;
-    let (n, c) = if 3.0 * pp < mm {
-        (pp, -1.0)
-    } else if 3.0 * mm < pp {
-        (-mm, 1.0)
-    } else {
-        (0.5 * (pp - mm), 0.0)
-    };
-    p.sign * (n / d2 + c)
+fn hg_mu(p: &Hg, pp: f32, mm: f32) -> f32 {
+    p.sign * ((pp - mm) / (pp + mm))
 }
 
 /// Henyey–Greenstein's `cos θ = F⁻¹(u)` for `u ∈ [0, 1]` (clamped; NaN
-/// gives NaN), within 2·10⁻⁷ of the exact value for every `|g| < 1`
-/// (`tests/portable.rs` gives the measured bound).
+/// gives NaN), within 1.6·10⁻⁷ of the exact value for every `|g| < 1`
+/// (`tests/models/portable.rs` gives the measured bound).
 #[inline(always)]
 pub fn hg_sample_cos(p: &Hg, u: f32) -> f32 {
-    let (pp, mm, d, _, _) = hg_parts(p, clamp01(u));
-    hg_mu(p, pp, mm, d)
+    let (pp, mm, _) = hg_pm(p, clamp01(u));
+    hg_mu(p, pp, mm)
 }
 
-/// `(cos θ, sin θ, density)` at `u`. `sin θ = sqrt((1 + μ')(1 − μ'))`
-/// from the factors, `2(1 − g²) sqrt(u'v' a b)/d²`, relative precision
-/// kept at both poles; the density `d³/(4π (1 − g²)²)` from the sampler's
-/// own `d`.
+/// `(cos θ, sin θ, density)` at `u`: `sin θ = sqrt((1 + μ)(1 − μ))
+/// = 2 sqrt(P M)/(P + M)`, relative precision kept at both poles; the
+/// density `d³/(4π (1 − g²)²)` from `d = 1 − g' + 2g'u'`.
 #[inline(always)]
 pub fn hg_sample_cos_sin(p: &Hg, u: f32) -> (f32, f32, f32) {
-    let (pp, mm, d, uv, ab) = hg_parts(p, clamp01(u));
-    let d2 = d * d;
-    let s = p.ks * Real::sqrt(uv * ab) / d2;
-    (hg_mu(p, pp, mm, d), s, p.kd * (d2 * d))
+    let (pp, mm, gu) = hg_pm(p, clamp01(u));
+    let sum = pp + mm;
+    let d = p.omg + (gu + gu);
+    (
+        p.sign * ((pp - mm) / sum),
+        2.0 * Real::sqrt(pp * mm) / sum,
+        p.kd * (d * d * d),
+    )
 }
 
 /// The scattered direction about the unit `w_in` (`cos θ` from `u1`,
@@ -156,7 +161,7 @@ pub fn hg_sample_dir(p: &Hg, w_in: [f32; 3], u1: f32, u2: f32) -> ([f32; 3], f32
 #[inline(always)]
 pub fn hg_pdf(p: &Hg, mu: f32) -> f32 {
     let q = p.k2 + 2.0 * p.a * (1.0 - p.sign * mu);
-    INV_4PI * (p.ks * 0.5) / (q * Real::sqrt(q))
+    p.kp / (q * Real::sqrt(q))
 }
 
 /// Rayleigh's `cos θ = F⁻¹(u)` for `u ∈ [0, 1]`, the root of

@@ -9,7 +9,7 @@
 #include "scatterkit_portable.h"
 
 #define PC_N 16777216u
-#define PC_CASES 16
+#define PC_CASES 18
 
 SKP_FN float pc_u(skp_u32 k) {
     if (k >= PC_N - 16u) {
@@ -118,6 +118,13 @@ SKP_FN void pc_case(int c, skp_u32 k, float *o) {
     case 14:
         o[0] = skp_free_path(2.5f, u);
         o[1] = skp_free_path(1e-3f, u);
+        break;
+    case 16: case 17:
+        skp_hg_new(SKP_MUL(2.0f, u) - 1.0f, &hg);
+        o[0] = c == 16 ? hg.c1 : hg.kd;
+        o[1] = c == 16 ? hg.c2 : hg.k2;
+        o[2] = c == 16 ? hg.c3 : hg.kp;
+        o[3] = c == 16 ? hg.c4 : hg.omg;
         break;
     default:
         v = skp_direction_about(pc_dir(k), SKP_MUL(2.0f, u) - 1.0f, u2, u);

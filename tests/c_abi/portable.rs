@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 const N: u32 = 1 << 24;
-const CASES: i32 = 16;
+const CASES: i32 = 18;
 const NAN: u32 = 0x7fc0_0000;
 
 fn u_of(k: u32) -> f32 {
@@ -110,10 +110,16 @@ fn case(c: i32, k: u32) -> [f32; 4] {
         12 => with_pdf(p::rayleigh_sample_dir(dir_of(k), u, u2)),
         13 => [p::ln(f32::from_bits(k << 7)), p::ln(u), 0.0, 0.0],
         14 => [p::free_path(2.5, u), p::free_path(1e-3, u), 0.0, 0.0],
-        _ => {
+        16 | 17 => match p::Hg::new(2.0 * u - 1.0) {
+            Some(h) if c == 16 => [h.c1, h.c2, h.c3, h.c4],
+            Some(h) => [h.kd, h.k2, h.kp, h.omg],
+            None => [f32::NAN; 4],
+        },
+        15 => {
             let v = p::direction_about(dir_of(k), 2.0 * u - 1.0, u2, u);
             [v[0], v[1], v[2], 0.0]
         }
+        _ => unreachable!("case {c}"),
     }
 }
 

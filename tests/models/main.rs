@@ -29,6 +29,7 @@ mod mixture;
 mod moments;
 mod nonbounding;
 mod polydisperse;
+mod portable;
 mod ray_march;
 mod rayleigh;
 mod rayleigh_polarized;

@@ -25,9 +25,13 @@
  * one). Accuracy: max |cos theta - reference| over N + 1 evenly spaced u
  * (for directions, |dot(w_in, w_out) - reference|), the reference being the
  * library's double-precision sampler; -1 where not measured (rejection).
+ * The portable f32 tier (scatterkit_portable.h) is measured inline, as a
+ * renderer or kernel compiles it, and through its library batch,
+ * sk_phase_sample_cos_n_portable.
  * Output: one line per measurement, "key<TAB>ns<TAB>max_error". */
 #include "scatterkit.h"
 #include "scatterkit_inline.h"
+#include "scatterkit_portable.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -199,6 +203,33 @@ static inline sk_vec3 isotropic_dir(sk_vec3 w, float u1, float u2, float *pdf) {
     return frame_dir(w, sqrtf(fmaxf(0.0f, (1.0f - c) * (1.0f + c))), c, 2.0f * PI_F * u2);
 }
 
+/* The portable header's samplers with this file's vector type. */
+static skp_hg php;
+static inline sk_vec3 from_skp(skp_vec3 v) {
+    sk_vec3 r = {v.x, v.y, v.z};
+    return r;
+}
+static inline skp_vec3 to_skp(sk_vec3 v) {
+    skp_vec3 r;
+    r.x = v.x;
+    r.y = v.y;
+    r.z = v.z;
+    return r;
+}
+static inline sk_vec3 header_hg_dir(sk_vec3 w, float u1, float u2, float *pdf) {
+    return from_skp(skp_hg_sample_dir(&php, to_skp(w), u1, u2, pdf));
+}
+static inline sk_vec3 header_rayleigh_dir(sk_vec3 w, float u1, float u2, float *pdf) {
+    return from_skp(skp_rayleigh_sample_dir(to_skp(w), u1, u2, pdf));
+}
+/* The isotropic direction about w (the header's own is about +z; this one
+   is for the accuracy check about W_IN). */
+static inline sk_vec3 header_iso_dir_about(sk_vec3 w, float u1, float u2, float *pdf) {
+    float s, mu = skp_isotropic_sample_cos_sin(u1, &s);
+    *pdf = SKP_INV_4PI;
+    return from_skp(skp_direction_about(to_skp(w), mu, s, u2));
+}
+
 /* Eq. 6 of Jendersie & d'Eon (2023), as published. */
 static inline float draine_eq6(float g, float a, float u) {
     float g2 = g * g, g4 = g2 * g2;
@@ -332,6 +363,24 @@ static void time_round(void) {
     TIME("hg_cos.sk", acc += sk_phase_sample_cos(&hg, xo_float(&rng)));
     TIME("hg_cos.pbrt", acc += pbrt_hg_cos(0.7f, xo_float(&rng)));
     TIME("hg_cos.inline", acc += sk_phase_cos_inline_sample(&hgi, xo_float(&rng)));
+    TIME("hg_cos.header", acc += skp_hg_sample_cos(&php, xo_float(&rng)));
+    TIME("hg_dir.header", {
+        sk_vec3 d = header_hg_dir(W_IN, xo_float(&rng), xo_float(&rng), &pdf);
+        acc += d.z + pdf;
+    });
+    TIME("iso_dir.header", {
+        skp_vec3 d = skp_isotropic_sample_dir(xo_float(&rng), xo_float(&rng), &pdf);
+        acc += d.z + pdf;
+    });
+    TIME("rayleigh_dir.header", {
+        sk_vec3 d = header_rayleigh_dir(W_IN, xo_float(&rng), xo_float(&rng), &pdf);
+        acc += d.z + pdf;
+    });
+    TIME_BATCH("hg_cos_n.portable", sk_phase_sample_cos_n_portable(&hg, bu1, bcos, BATCH));
+    TIME_BATCH("hg_cos_n.header", {
+        int i;
+        for (i = 0; i < BATCH; i++) bcos[i] = skp_hg_sample_cos(&php, bu1[i]);
+    });
     TIME_BATCH("hg_cos_n.sk", sk_phase_sample_cos_n(&hg, bu1, bcos, BATCH));
     TIME_BATCH("hg_cos_n.pbrt", {
         int i;
@@ -456,6 +505,13 @@ static void accuracy(void) {
     MAX_ERR("hg_cos.inline", &hg64, sk_phase_cos_inline_sample(&hgi, u));
     MAX_ERR("hg_cos_n.sk", &hg64, sk_phase_sample_cos(&hg, u));
     MAX_ERR("hg_cos_n.pbrt", &hg64, pbrt_hg_cos(0.7f, u));
+    /* The batch returns the header's bits (tests/c/portable_batch.c). */
+    MAX_ERR("hg_cos_n.portable", &hg64, skp_hg_sample_cos(&php, u));
+    MAX_ERR("hg_cos_n.header", &hg64, skp_hg_sample_cos(&php, u));
+    MAX_ERR("hg_cos.header", &hg64, skp_hg_sample_cos(&php, u));
+    MAX_DIR_ERR("hg_dir.header", &hg64, header_hg_dir(W_IN, u1, u2, &pdf));
+    MAX_DIR_ERR("iso_dir.header", &iso64, header_iso_dir_about(W_IN, u1, u2, &pdf));
+    MAX_DIR_ERR("rayleigh_dir.header", &ray64, header_rayleigh_dir(W_IN, u1, u2, &pdf));
     MAX_DIR_ERR("rayleigh_dir.sk", &ray64, sk_phase_sample_dir(&ray, W_IN, u1, u2, &pdf));
     MAX_DIR_ERR("rayleigh_dir.mitsuba", &ray64,
                 rayleigh_dir_from_cos(W_IN, mitsuba_rayleigh_cos(u1), u2, &pdf));
@@ -497,7 +553,7 @@ int main(void) {
         sk_phase_new_two_lobe_hg(0.8f, -0.3f, 0.9f, &two) || sk_phase_new_two_lobe_hg_f64(0.8, -0.3, 0.9, &two64) ||
         sk_phase_new_fournier_forand_backscatter(0.0183f, 1.1f, &ff) ||
         sk_phase_new_fournier_forand_backscatter_f64(0.0183, 1.1, &ff64) ||
-        sk_phase_cos_inline_new(&hg, &hgi)) {
+        sk_phase_cos_inline_new(&hg, &hgi) || !skp_hg_new(0.7f, &php)) {
         fprintf(stderr, "constructor failed\n");
         return 1;
     }

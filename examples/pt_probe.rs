@@ -1,5 +1,5 @@
-use scatterkit::phase::HenyeyGreenstein;
 use scatterkit::PhaseFunction;
+use scatterkit::phase::HenyeyGreenstein;
 use scatterkit::portable as p;
 fn main() {
     let mut worst_all = (0.0f64, 0.0f32, 0.0f32, 0.0f64);
@@ -12,11 +12,18 @@ fn main() {
             let u = k as f32 / 16777216.0;
             let want = h.sample_cos(u as f64);
             let e = (p::hg_sample_cos(&hp, u) as f64 - want).abs();
-            if e > worst_all.0 { worst_all = (e, g, u, want); }
+            if e > worst_all.0 {
+                worst_all = (e, g, u, want);
+            }
             let (_, s, _) = p::hg_sample_cos_sin(&hp, u);
             let sw = (1.0 - want * want).max(0.0).sqrt();
-            if sw > 1e-3 { ws = ws.max(((s as f64 - sw)/sw).abs()); }
+            if sw > 1e-3 {
+                ws = ws.max(((s as f64 - sw) / sw).abs());
+            }
         }
     }
-    println!("worst {:.3e} at g {} u {} mu {}; sin rel {ws:.3e}", worst_all.0, worst_all.1, worst_all.2, worst_all.3);
+    println!(
+        "worst {:.3e} at g {} u {} mu {}; sin rel {ws:.3e}",
+        worst_all.0, worst_all.1, worst_all.2, worst_all.3
+    );
 }

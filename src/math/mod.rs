@@ -10,6 +10,7 @@ pub mod cbrt;
 pub(crate) mod double_double;
 pub mod geometry;
 pub(crate) mod numeric;
+pub mod rayleigh_table;
 pub mod real;
 
 #[cfg(ifunc)]

@@ -18,17 +18,25 @@
 //! Conventions as everywhere in the crate: `u ∈ [0, 1]` is clamped, NaN
 //! propagates; `cos θ = +1` is forward; densities are per steradian.
 
+mod batch;
 mod exact;
 mod flight;
 mod phase;
 mod turns;
 
+pub use batch::{hg_sample_cos_n, isotropic_sample_cos_n, rayleigh_sample_cos_n};
 pub use flight::{free_path, ln};
 pub use phase::{
     Hg, hg_pdf, hg_sample_cos, hg_sample_cos_sin, hg_sample_dir, isotropic_sample_cos_sin,
     isotropic_sample_dir, rayleigh_pdf, rayleigh_sample_cos, rayleigh_sample_dir,
 };
 pub use turns::{direction_about, frame, sin_cos_2pi};
+
+/// The Rayleigh sampler's table: 128 intervals of `[μ_i, d_i, c2_i, c3_i]`,
+/// the cubic Hermite spline of the inverse CDF over `u ∈ [i/128, (i+1)/128]`
+/// (built in f64, rounded to f32). The header carries the same values
+/// (`skp_rayleigh_table_`), checked by a test.
+pub use crate::math::rayleigh_table::RAYLEIGH_TABLE_F32 as RAYLEIGH_TABLE;
 
 /// `u` clamped to `[0, 1]` with NaN kept: the header's
 /// `u > 1 ? 1 : u` then `< 0 ? 0`, in that order.

@@ -6,6 +6,7 @@
 use super::clamp01;
 use super::exact::{mul, two_sum};
 use super::turns::direction_about;
+use crate::math::rayleigh_table::{RAYLEIGH_TABLE_F32, TABLE_N};
 use crate::math::real::Real;
 
 /// `1/(4π)` rounded to f32.
@@ -14,11 +15,11 @@ const INV_4PI: f32 = 0.079_577_47;
 const RAYLEIGH_K: f32 = 0.059_683_103;
 
 /// `(cos θ, sin θ)` of the isotropic phase function for `u ∈ [0, 1]`:
-/// `cos θ = 1 − 2u` (one rounding), `sin θ = 2 sqrt(u (1 − u))`.
+/// `cos θ = 2u − 1` (one rounding; `u = 0` gives −1, as every sampler here), `sin θ = 2 sqrt(u (1 − u))`.
 #[inline(always)]
 pub fn isotropic_sample_cos_sin(u: f32) -> (f32, f32) {
     let u = clamp01(u);
-    (1.0 - 2.0 * u, 2.0 * Real::sqrt(u * (1.0 - u)))
+    (2.0 * u - 1.0, 2.0 * Real::sqrt(u * (1.0 - u)))
 }
 
 /// An isotropic direction (independent of any incoming one) and its
@@ -104,12 +105,12 @@ impl Hg {
 /// terms, each within a few ulp in relative terms, and no division by `g`.
 #[inline(always)]
 fn hg_pm(p: &Hg, u: f32) -> (f32, f32, f32) {
-    let (u1, v1) = if p.sign > 0.0 { (u, 1.0 - u) } else { (1.0 - u, u) };
-    (
-        u1 * (p.c1 + p.c2 * u1),
-        v1 * (p.c3 + p.c4 * u1),
-        p.a * u1,
-    )
+    let (u1, v1) = if p.sign > 0.0 {
+        (u, 1.0 - u)
+    } else {
+        (1.0 - u, u)
+    };
+    (u1 * (p.c1 + p.c2 * u1), v1 * (p.c3 + p.c4 * u1), p.a * u1)
 }
 
 /// `cos θ = ±(P − M)/(P + M)`: since `P + M = 2d²`, the ratio is `μ'`
@@ -164,24 +165,27 @@ pub fn hg_pdf(p: &Hg, mu: f32) -> f32 {
     p.kp / (q * Real::sqrt(q))
 }
 
-/// Rayleigh's `cos θ = F⁻¹(u)` for `u ∈ [0, 1]`, the root of
-/// `μ³ + 3μ = s`, `s = 4(2u − 1)`: Cardano's root in the stable form
-/// `μ = 2s w²/(w⁴ + w² + 1)` with `w = cbrt(a + sqrt(a² + 1))`,
-/// `a = |s|/2`, from a cubic seed in `a` and one Halley step on
-/// `w⁶ − 2a w³ − 1` (Frisvad 2011 §4 gives the closed form; the seed and
-/// step are the library's `RayleighMethod::DirectMinimax`). Branch-free.
+/// Rayleigh's `cos θ = F⁻¹(u)` for `u ∈ [0, 1]` (clamped; NaN gives
+/// NaN) from the built-in table ([`RAYLEIGH_TABLE`](super::RAYLEIGH_TABLE)):
+/// `x = 128u`, `i = min(⌊x⌋, 127)`, `t = x − i`, the interval's cubic
+/// `μ_i + t (d_i + t (c2_i + t c3_i))` by Horner, clamped to `[−1, 1]`.
+/// The same bits as the library's f32 `RayleighMethod::Table`, within
+/// 2·10⁻⁷ of the exact inverse; no division, no root.
 #[inline(always)]
 pub fn rayleigh_sample_cos(u: f32) -> f32 {
-    let s = 2.0 * (2.0 * clamp01(u) - 1.0);
-    let a = s.abs();
-    let mut w = 0.999_001_3 + a * (0.353_234_77 + a * (-0.001_343_385_3 + a * -0.010_459_901));
-    let c = w * w * w;
-    let h = c * c - 2.0 * a * c - 1.0;
-    let cma = c - a;
-    w -= 2.0 * w * h * cma / (12.0 * c * cma * cma - h * (5.0 * c - 2.0 * a));
-    let w2 = w * w;
-    let mu = 2.0 * s * w2 / (w2 * w2 + w2 + 1.0);
-    mu.clamp(-1.0, 1.0)
+    let x = clamp01(u) * TABLE_N as f32;
+    // x ≥ 1 excludes NaN; the conversion truncates, as C's does.
+    let i = if x >= 1.0 {
+        (x as usize).min(TABLE_N - 1)
+    } else {
+        0
+    };
+    let t = x - i as f32;
+    let [y0, d0, c2, c3] = match RAYLEIGH_TABLE_F32.get(4 * i..4 * i + 4) {
+        Some(&[a, b, c, d]) => [a, b, c, d],
+        _ => return f32::NAN,
+    };
+    (y0 + t * (d0 + t * (c2 + t * c3))).clamp(-1.0, 1.0)
 }
 
 /// Rayleigh's density per steradian, `3(1 + μ²)/(16π)`.

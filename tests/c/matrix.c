@@ -282,6 +282,11 @@ static void phase_queries(void) {
             CHECK(sk_phase_sample_cos_n(&ps[k], u, out, 3) == (f >= 0.0f && f <= 1.0f ? SK_OK : SK_ERR_DOMAIN));
             CHECK(sk_phase_sample_cos_n_f64(&qs[k], ud, outd, 3) == (d >= 0.0 && d <= 1.0 ? SK_OK : SK_ERR_DOMAIN));
             CHECK((f >= 0.0f && f <= 1.0f) || out[0] == 7.0f);
+            {
+                /* The portable tier: isotropic, HG and Rayleigh only. */
+                sk_status r = sk_phase_sample_cos_n_portable(&ps[k], u, out, 3);
+                CHECK(r == SK_ERR_METHOD || r == (f >= 0.0f && f <= 1.0f ? SK_OK : SK_ERR_DOMAIN));
+            }
         }
         i = 0;
         u[1] = 0.5f;
@@ -290,6 +295,17 @@ static void phase_queries(void) {
         CHECK(sk_phase_sample_cos_n(&ps[k], u, NULL, 3) == SK_ERR_NULL);
         CHECK(sk_phase_sample_cos_n(&ps[k], NULL, NULL, 0) == SK_OK);
         CHECK(sk_phase_sample_cos_n(&ps[k], u, out, SIZE_MAX) == SK_ERR_SIZE);
+        {
+            sk_status r = sk_phase_sample_cos_n_portable(&ps[k], u, out, 3);
+            CHECK(r == SK_OK || r == SK_ERR_METHOD);
+            if (r == SK_OK) {
+                CHECK(sk_phase_sample_cos_n_portable(&ps[k], NULL, out, 3) == SK_ERR_NULL);
+                CHECK(sk_phase_sample_cos_n_portable(&ps[k], u, NULL, 3) == SK_ERR_NULL);
+                CHECK(sk_phase_sample_cos_n_portable(&ps[k], NULL, NULL, 0) == SK_OK);
+                CHECK(sk_phase_sample_cos_n_portable(&ps[k], u, out, SIZE_MAX) == SK_ERR_SIZE);
+                CHECK(sk_phase_sample_cos_n_portable(&ps[k], u, u + 1, 2) == SK_ERR_OVERLAP);
+            }
+        }
         CHECK(sk_phase_sample_cos_n_f64(&qs[k], NULL, outd, 3) == SK_ERR_NULL);
         CHECK(sk_phase_sample_cos_n_f64(&qs[k], ud, outd, SIZE_MAX) == SK_ERR_SIZE);
         CHECK(sk_phase_sample_cos_n_f64(&qs[k], ud, outd, 0) == SK_OK);
@@ -310,6 +326,7 @@ static void phase_queries(void) {
             CHECK(vec_nan3(sk_phase_sample_dir(bad_p[k], w, 0.5f, 0.5f, NULL)));
             CHECK(vec_nan3d(sk_phase_sample_dir_f64(bad_q[k], wd, 0.5, 0.5, NULL)));
             CHECK(sk_phase_sample_cos_n(bad_p[k], u, out, 3) == (k ? SK_ERR_DOMAIN : SK_ERR_NULL));
+            CHECK(sk_phase_sample_cos_n_portable(bad_p[k], u, out, 3) == (k ? SK_ERR_DOMAIN : SK_ERR_NULL));
             CHECK(sk_phase_sample_cos_n_f64(bad_q[k], ud, outd, 3) == (k ? SK_ERR_DOMAIN : SK_ERR_NULL));
         }
     }

@@ -72,7 +72,9 @@ fn hg_cosine_sine_and_density() {
     );
     assert!(cos_err.0 <= 2e-7, "{cos_err:?}");
     assert!(sin_err <= 1e-6 && pdf_err <= 1e-6);
-    assert!(p::Hg::new(1.0).is_none() && p::Hg::new(-1.0).is_none() && p::Hg::new(f32::NAN).is_none());
+    assert!(
+        p::Hg::new(1.0).is_none() && p::Hg::new(-1.0).is_none() && p::Hg::new(f32::NAN).is_none()
+    );
     let h = p::Hg::new(0.5).unwrap();
     assert!(p::hg_sample_cos(&h, f32::NAN).is_nan());
     assert_eq!(p::hg_sample_cos(&h, 0.0), -1.0);
@@ -90,10 +92,13 @@ fn rayleigh_and_isotropic() {
             err = (e, u as f64);
         }
         let (mu, s) = p::isotropic_sample_cos_sin(u);
-        let iso = 1.0 - 2.0 * u as f64;
+        let iso = 2.0 * u as f64 - 1.0;
         assert!((mu as f64 - iso).abs() <= 6e-8, "u {u}");
         let s_want = 2.0 * (u as f64 * (1.0 - u as f64)).sqrt();
-        assert!((s as f64 - s_want).abs() <= 2.5e-7 * s_want.max(1e-30), "u {u}");
+        assert!(
+            (s as f64 - s_want).abs() <= 2.5e-7 * s_want.max(1e-30),
+            "u {u}"
+        );
     }
     println!("Rayleigh: cos θ within {:.3e} (at u = {})", err.0, err.1);
     assert!(err.0 <= 3e-7, "{err:?}");
@@ -109,7 +114,10 @@ fn directions_are_unit_and_at_the_sampled_angle() {
         let (mu, _, _) = p::hg_sample_cos_sin(&h, u);
         for (d, want) in [
             (p::hg_sample_dir(&h, w_in, u, u2).0, mu),
-            (p::rayleigh_sample_dir(w_in, u, u2).0, p::rayleigh_sample_cos(u)),
+            (
+                p::rayleigh_sample_dir(w_in, u, u2).0,
+                p::rayleigh_sample_cos(u),
+            ),
         ] {
             let len = d.iter().map(|&x| x as f64 * x as f64).sum::<f64>().sqrt();
             let dot: f64 = d.iter().zip(w_in).map(|(&a, b)| a as f64 * b as f64).sum();
@@ -117,7 +125,10 @@ fn directions_are_unit_and_at_the_sampled_angle() {
             worst.1 = worst.1.max((dot - want as f64).abs());
         }
     }
-    println!("directions: |length − 1| ≤ {:.2e}, |w·w_in − cos θ| ≤ {:.2e}", worst.0, worst.1);
+    println!(
+        "directions: |length − 1| ≤ {:.2e}, |w·w_in − cos θ| ≤ {:.2e}",
+        worst.0, worst.1
+    );
     assert!(worst.0 < 1e-6 && worst.1 < 1e-6, "{worst:?}");
 }
 
@@ -131,11 +142,15 @@ fn logarithm_and_free_flight() {
         }
         let want = (x as f64).ln();
         let got = p::ln(x) as f64;
-        let ulp = f32::from_bits((want as f32).abs().to_bits() + 1) as f64 - (want as f32).abs() as f64;
+        let ulp =
+            f32::from_bits((want as f32).abs().to_bits() + 1) as f64 - (want as f32).abs() as f64;
         ulps = ulps.max((got - want).abs() / ulp);
     }
     let mut rel = 0.0f64;
-    for u in uniforms().filter(|&u| u > 0.0 && u < 1.0).chain([1e-30, 1e-10, 0.999_999_9]) {
+    for u in uniforms()
+        .filter(|&u| u > 0.0 && u < 1.0)
+        .chain([1e-30, 1e-10, 0.999_999_9])
+    {
         let want = -(-(u as f64)).ln_1p() / 2.5;
         rel = rel.max((p::free_path(2.5, u) as f64 / want - 1.0).abs());
     }

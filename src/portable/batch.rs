@@ -5,11 +5,21 @@
 //! same IEEE operations in the same order (Rust contracts nothing), so the
 //! bits are the same in all of them, and the header's.
 
-use super::phase::{Hg, hg_sample_cos, isotropic_sample_cos_sin, rayleigh_sample_cos};
+use super::phase::{Hg, hg_pm_of, hg_sample_cos, isotropic_sample_cos_sin, rayleigh_sample_cos};
 
 /// `out[i] = hg_sample_cos(p, u[i])`.
 #[inline]
 pub fn hg_sample_cos_n(p: &Hg, u: &[f32], out: &mut [f32]) {
+    for (o, &x) in out.iter_mut().zip(u) {
+        *o = hg_sample_cos(p, x);
+    }
+}
+
+/// [`hg_sample_cos_n`] for `u` known to lie in `[0, 1]` (the C layer has
+/// checked it; clamping would change nothing), the loop specialised for
+/// the sign of `g`: the same bits with fewer operations per element.
+#[inline]
+pub(crate) fn hg_sample_cos_n_in_range(p: &Hg, u: &[f32], out: &mut [f32]) {
     #[cfg(ifunc)]
     {
         let n = u.len().min(out.len());
@@ -48,11 +58,24 @@ pub fn isotropic_sample_cos_n(u: &[f32], out: &mut [f32]) {
     }
 }
 
-/// The HG loop, written once for every build.
+/// The HG loop for `u ∈ [0, 1]`, written once for every build: the
+/// scalar sampler's operations (`phase::hg_pm_of`, `phase::hg_mu`) without
+/// the clamp, which leaves such `u` as they are, and with the sign of `g`
+/// taken out of the loop (`±1 · x` is `±x` exactly).
 #[inline(always)]
 fn hg_each(p: &Hg, u: &[f32], out: &mut [f32]) {
-    for (o, &x) in out.iter_mut().zip(u) {
-        *o = hg_sample_cos(p, x);
+    let mu = |u1: f32, v1: f32| {
+        let (pp, mm) = hg_pm_of(p, u1, v1);
+        (pp - mm) / (pp + mm)
+    };
+    if p.sign > 0.0 {
+        for (o, &x) in out.iter_mut().zip(u) {
+            *o = mu(x, 1.0 - x);
+        }
+    } else {
+        for (o, &x) in out.iter_mut().zip(u) {
+            *o = -mu(1.0 - x, x);
+        }
     }
 }
 
@@ -66,8 +89,8 @@ fn rayleigh_each(u: &[f32], out: &mut [f32]) {
 
 #[cfg(ifunc)]
 crate::math::arch::load_time_choice! {
-    /// [`hg_each`] from C: the constants at `p`, `n` uniforms at `u` to `n`
-    /// cosines at `out`, which must not overlap `u`.
+    /// [`hg_each`] from C: the constants at `p`, `n` uniforms in `[0, 1]`
+    /// at `u` to `n` cosines at `out`, which must not overlap `u`.
     portable_hg_cos_n: fn(p: *const Hg, u: *const f32, out: *mut f32, n: usize) {
         // SAFETY: the symbol's contract.
         let (p, u, out) = unsafe {
@@ -101,7 +124,7 @@ mod tests {
     #[test]
     fn all_builds_agree() {
         let u: std::vec::Vec<f32> = (0..=4099).map(|i| i as f32 / 4099.0).collect();
-        for g in [0.7f32, -0.3, 0.0, 0.999_999] {
+        for g in [0.7f32, -0.3, 0.0, 0.999_999, -0.999_999] {
             let p = Hg::new(g).unwrap();
             for (needs, build) in portable_hg_cos_n::BUILDS {
                 if needs > detected() {

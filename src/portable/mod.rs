@@ -24,6 +24,7 @@ mod flight;
 mod phase;
 mod turns;
 
+pub(crate) use batch::hg_sample_cos_n_in_range;
 pub use batch::{hg_sample_cos_n, isotropic_sample_cos_n, rayleigh_sample_cos_n};
 pub use flight::{free_path, ln};
 pub use phase::{

@@ -110,7 +110,15 @@ fn hg_pm(p: &Hg, u: f32) -> (f32, f32, f32) {
     } else {
         (1.0 - u, u)
     };
-    (u1 * (p.c1 + p.c2 * u1), v1 * (p.c3 + p.c4 * u1), p.a * u1)
+    let (pp, mm) = hg_pm_of(p, u1, v1);
+    (pp, mm, p.a * u1)
+}
+
+/// `(P, M)` at `(u', v')` (see `hg_pm`): the one place they are formed,
+/// for the scalar sampler and the batch alike.
+#[inline(always)]
+pub(super) fn hg_pm_of(p: &Hg, u1: f32, v1: f32) -> (f32, f32) {
+    (u1 * (p.c1 + p.c2 * u1), v1 * (p.c3 + p.c4 * u1))
 }
 
 /// `cos θ = ±(P − M)/(P + M)`: since `P + M = 2d²`, the ratio is `μ'`

@@ -178,3 +178,13 @@ fn inline_cos_sampler_agrees_bit_for_bit() {
         );
     }
 }
+
+#[test]
+fn example_portable_slab() {
+    if !crate::common::repository("example_portable_slab") {
+        return;
+    }
+    let out = run_source("c_examples/portable_slab.c", false);
+    assert!(out.contains("R + T = 1.0000"), "{out}");
+    assert!(out.contains("mean cosine of "), "{out}");
+}

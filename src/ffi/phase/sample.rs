@@ -194,7 +194,7 @@ pub unsafe extern "C" fn sk_phase_sample_cos_n_portable(
     unsafe {
         map_arrays(u, cos_out, n, check_uniforms, |u, out| {
             match (ph, &hg) {
-                (_, Some(h)) => portable::hg_sample_cos_n(h, u, out),
+                (_, Some(h)) => portable::hg_sample_cos_n_in_range(h, u, out),
                 (Phase::Rayleigh(_), None) => portable::rayleigh_sample_cos_n(u, out),
                 _ => portable::isotropic_sample_cos_n(u, out),
             }

@@ -639,4 +639,124 @@ SKP_FN float skp_free_path(float sigma_t, float u) {
     return -l / sigma_t;
 }
 
+/* ---- tables the library built ------------------------------------------ */
+/* The data of an sk_table or sk_table2d (layouts in scatterkit_table.h),
+   copied to the device as it is. SKP_GLOBAL is the address space the data
+   lives in: __global in OpenCL unless defined before this header (say
+   __constant), nothing elsewhere. cos theta is the library's lookup, bit for
+   bit; the density comes from the interval the sample fell in, so a kernel
+   needs no root-finding. n = 0 gives NaN. */
+#ifndef SKP_GLOBAL
+#if defined(__OPENCL_VERSION__)
+#define SKP_GLOBAL __global
+#else
+#define SKP_GLOBAL
+#endif
+#endif
+
+#define SKP_INV_2PI 0.15915494f
+
+/* The Hermite cubic at u in [0, 1] (not clamped here): cos theta, and the
+   cubic's slope in t at *dmu. */
+SKP_FN float skp_table_hermite_(const SKP_GLOBAL float *data, skp_u32 n, float u, float *dmu) {
+    SKP_BEGIN
+    float x, t, y0, d0, y1, d1, dy, c2, c3, mu;
+    skp_u32 i;
+    if (n == 0u) {
+        *dmu = skp_from_bits(0x7fc00000u);
+        return *dmu;
+    }
+    x = SKP_MUL(u, (float)n);
+    i = x >= 1.0f ? (skp_u32)x : 0u; /* x >= 1 excludes NaN */
+    i = i > n - 1u ? n - 1u : i;
+    t = x - (float)i;
+    y0 = data[2u * i];
+    d0 = data[2u * i + 1u];
+    y1 = data[2u * i + 2u];
+    d1 = data[2u * i + 3u];
+    dy = y1 - y0;
+    c2 = SKP_MUL(3.0f, dy) - SKP_MUL(2.0f, d0) - d1;
+    c3 = d0 + d1 - SKP_MUL(2.0f, dy);
+    mu = y0 + SKP_MUL(t, d0 + SKP_MUL(t, c2 + SKP_MUL(t, c3)));
+    *dmu = d0 + SKP_MUL(t, SKP_MUL(2.0f, c2) + SKP_MUL(SKP_MUL(3.0f, t), c3));
+    return mu > 1.0f ? 1.0f : (mu < -1.0f ? -1.0f : mu);
+}
+
+/* cos theta of a Hermite table (SK_TABLE_INVERSE or SK_TABLE_MEASURED, n
+   intervals, 2(n + 1) values) at u (clamped; NaN gives NaN). */
+SKP_FN float skp_table_sample_cos(const SKP_GLOBAL float *data, skp_u32 n, float u) {
+    float dmu;
+    return skp_table_hermite_(data, n, skp_clamp01(u), &dmu);
+}
+
+/* cos theta of a Hermite table at u, with *pdf the density per steradian
+   there: 1/(2 pi n mu'(t)) of the interval's cubic (+inf where flat). */
+SKP_FN float skp_table_sample_cos_pdf(const SKP_GLOBAL float *data, skp_u32 n, float u, float *pdf) {
+    SKP_BEGIN
+    float dmu;
+    float mu = skp_table_hermite_(data, n, skp_clamp01(u), &dmu);
+    *pdf = SKP_INV_2PI / ((float)n * dmu);
+    return mu;
+}
+
+/* cos theta of Frisvad's Rayleigh CDF table (SK_TABLE_RAYLEIGH_CDF, n + 1
+   values) at u (clamped; NaN gives NaN), with *pdf the interval's density,
+   (F[i+1] - F[i]) / (2 pi 2/n). */
+SKP_FN float skp_table_cdf_sample_cos_pdf(const SKP_GLOBAL float *data, skp_u32 n, float u, float *pdf) {
+    SKP_BEGIN
+    skp_u32 lo = 0u, hi = n, mid;
+    float w, step, t, dx, mu;
+    if (n == 0u) {
+        *pdf = skp_from_bits(0x7fc00000u);
+        return *pdf;
+    }
+    w = skp_clamp01(u);
+    while (hi - lo > 1u) {
+        mid = (lo + hi) / 2u;
+        if (data[mid] <= w)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    step = data[hi] - data[lo];
+    t = (w - data[lo]) / step;
+    dx = 2.0f / (float)n;
+    mu = SKP_MUL((float)lo + t, dx) - 1.0f;
+    *pdf = SKP_INV_2PI * step / dx;
+    return mu > 1.0f ? 1.0f : (mu < -1.0f ? -1.0f : mu);
+}
+
+/* A 2-D table (k Hermite slices of n intervals at x_j = x0 + j dx, one after
+   the other): cos theta at (x, u), with *pdf the blend's density. NaN x or u
+   gives NaN. */
+SKP_FN float skp_table2d_sample_cos_pdf(const SKP_GLOBAL float *data, skp_u32 n, skp_u32 k, float x0,
+                                        float dx, float x, float u, float *pdf) {
+    SKP_BEGIN
+    float top, s, w, a, da, mu, dmu, v;
+    skp_u32 j, per;
+    if (x != x || k == 0u) {
+        *pdf = skp_from_bits(0x7fc00000u);
+        return *pdf;
+    }
+    top = (float)(k - 1u);
+    s = (x - x0) / dx;
+    s = s > top ? top : s;
+    s = s < 0.0f ? 0.0f : s;
+    j = s >= 1.0f ? (skp_u32)s : 0u;
+    w = s - (float)j;
+    per = 2u * (n + 1u);
+    v = skp_clamp01(u);
+    a = skp_table_hermite_(data + j * per, n, v, &da);
+    if (w > 0.0f) {
+        float db, b = skp_table_hermite_(data + (j + 1u) * per, n, v, &db);
+        mu = a + SKP_MUL(w, b - a);
+        dmu = da + SKP_MUL(w, db - da);
+    } else {
+        mu = a;
+        dmu = da;
+    }
+    *pdf = SKP_INV_2PI / ((float)n * dmu);
+    return mu;
+}
+
 #endif /* SCATTERKIT_PORTABLE_H */

@@ -15,11 +15,12 @@ pub fn hg_sample_cos_n(p: &Hg, u: &[f32], out: &mut [f32]) {
     }
 }
 
-/// [`hg_sample_cos_n`] for `u` known to lie in `[0, 1]` (the C layer has
-/// checked it; clamping would change nothing), the loop specialised for
-/// the sign of `g`: the same bits with fewer operations per element.
+/// [`hg_sample_cos_n`] for `u` known to lie in `[0, 1]` (as the C layer
+/// checks them; clamping would change nothing), the loop specialised for
+/// the sign of `g`: the same bits with fewer operations per element. A `u`
+/// outside `[0, 1]` gets the formula's value there, unclamped.
 #[inline]
-pub(crate) fn hg_sample_cos_n_in_range(p: &Hg, u: &[f32], out: &mut [f32]) {
+pub fn hg_sample_cos_n_in_range(p: &Hg, u: &[f32], out: &mut [f32]) {
     #[cfg(ifunc)]
     {
         let n = u.len().min(out.len());

@@ -22,14 +22,19 @@ mod batch;
 mod exact;
 mod flight;
 mod phase;
+mod table;
 mod turns;
 
-pub(crate) use batch::hg_sample_cos_n_in_range;
-pub use batch::{hg_sample_cos_n, isotropic_sample_cos_n, rayleigh_sample_cos_n};
+pub use batch::{
+    hg_sample_cos_n, hg_sample_cos_n_in_range, isotropic_sample_cos_n, rayleigh_sample_cos_n,
+};
 pub use flight::{free_path, ln};
 pub use phase::{
     Hg, hg_pdf, hg_sample_cos, hg_sample_cos_sin, hg_sample_dir, isotropic_sample_cos_sin,
     isotropic_sample_dir, rayleigh_pdf, rayleigh_sample_cos, rayleigh_sample_dir,
+};
+pub use table::{
+    table_cdf_sample_cos_pdf, table_sample_cos, table_sample_cos_pdf, table2d_sample_cos_pdf,
 };
 pub use turns::{direction_about, frame, sin_cos_2pi};
 

@@ -452,3 +452,104 @@ fn the_headers_rayleigh_table_is_the_librarys() {
         "the header's Rayleigh table is stale: SK_BLESS=1 cargo test --release --test c_abi portable"
     );
 }
+
+/// The table lookups: `tests/c/portable_tables.c` builds tables of every
+/// kind with the library, looks them up with the header on the CPU and in
+/// an OpenCL kernel (data copied into device buffers) and compares: cos θ
+/// with the library's lookups, the kernel's cos θ and density with the
+/// CPU's, over 2²⁴ + 1 inputs per table. Here the Rust module looks up the
+/// same data (written by the program) and must hash to the header's bits.
+#[test]
+fn tables_built_on_the_host_are_looked_up_with_the_same_bits() {
+    if !common::repository("tables_built_on_the_host_are_looked_up_with_the_same_bits") {
+        return;
+    }
+    let exe = out_dir().join("tables");
+    let out = Command::new("cc")
+        .args([
+            "-std=c99",
+            "-O2",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-pedantic",
+            "-I",
+        ])
+        .arg(root().join("include"))
+        .arg(root().join("tests/c/portable_tables.c"))
+        .arg("-o")
+        .arg(&exe)
+        .arg(common::cbuild::static_lib())
+        .args(["-lOpenCL", "-lpthread", "-ldl", "-lm"])
+        .output()
+        .expect("cc did not start");
+    if !out.status.success() {
+        common::skip(&format!(
+            "table lookups in OpenCL (Debian's ocl-icd-opencl-dev, opencl-headers, pocl-opencl-icd): {}",
+            String::from_utf8_lossy(&out.stderr)
+                .lines()
+                .next()
+                .unwrap_or("")
+        ));
+        return;
+    }
+    let data = out_dir().join("tables.bin");
+    let run = Command::new(&exe)
+        .arg(root().join("include"))
+        .arg(&data)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&run.stdout).into_owned();
+    println!("{text}");
+    assert_eq!(run.status.code(), Some(0), "{text}");
+    let compared: Vec<&str> = text.lines().filter(|l| l.contains(" compared, ")).collect();
+    assert!(
+        compared.iter().all(|l| l.ends_with(" 0 mismatched")),
+        "{text}"
+    );
+    if let Some(line) = text.lines().find(|l| l.starts_with("SKIPPED")) {
+        common::skip(&format!("OpenCL runtime for the table lookups: {line}"));
+        assert_eq!(compared.len(), 5, "{text}");
+    } else {
+        assert_eq!(compared.len(), 10, "{text}");
+    }
+    // The Rust module on the same data and inputs.
+    let bytes = std::fs::read(&data).unwrap();
+    let word = |i: usize| u32::from_le_bytes(bytes[4 * i..4 * i + 4].try_into().unwrap());
+    let mut at = 0;
+    for kind in 0..5u32 {
+        let (n, k, len) = (
+            word(at) as usize,
+            word(at + 1) as usize,
+            word(at + 2) as usize,
+        );
+        let vals: Vec<f32> = (0..len).map(|i| f32::from_bits(word(at + 3 + i))).collect();
+        at += 3 + len;
+        let mut h: u32 = 2_166_136_261;
+        let mut mix = |(mu, pdf): (f32, f32)| {
+            h = (h ^ mu.to_bits()).wrapping_mul(16_777_619);
+            h = (h ^ pdf.to_bits()).wrapping_mul(16_777_619);
+        };
+        if kind == 4 {
+            for i in 0..4097u32 * 4097 {
+                let u = (i % 4097) as f32 / 4096.0;
+                let x = 0.35 + 0.4 * (i / 4097) as f32 / 4096.0;
+                mix(p::table2d_sample_cos_pdf(&vals, n, k, 0.4, 0.1, x, u));
+            }
+        } else {
+            for i in 0..(1u32 << 24) + 1 {
+                let u = i as f32 * 5.960_464_5e-8;
+                mix(if kind == 3 {
+                    p::table_cdf_sample_cos_pdf(&vals, n, u)
+                } else {
+                    p::table_sample_cos_pdf(&vals, n, u)
+                });
+            }
+        }
+        let want = format!("hash {kind} {h:08x}");
+        assert!(
+            text.lines().any(|l| l == want),
+            "table {kind}: Rust {want}\n{text}"
+        );
+    }
+}

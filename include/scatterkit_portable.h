@@ -39,6 +39,11 @@
 #define SCATTERKIT_PORTABLE_H
 
 /* ---- qualifiers --------------------------------------------------------- */
+/* OpenCL C: the runtimes define __OPENCL_VERSION__, Clang itself only
+   __OPENCL_C_VERSION__. */
+#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
+#define SKP_OPENCL_ 1
+#endif
 #if defined(__CUDACC__) || defined(__CUDA__) || defined(__HIP__) || defined(__HIPCC__)
 #if defined(__clang__)
 #define SKP_QUAL __attribute__((host)) __attribute__((device))
@@ -46,7 +51,7 @@
 #define SKP_QUAL __host__ __device__
 #endif
 #define SKP_FN static inline SKP_QUAL
-#elif defined(__OPENCL_VERSION__)
+#elif defined(SKP_OPENCL_)
 #define SKP_FN static inline
 #elif defined(__cplusplus) || (defined(__STDC_VERSION__) && __STDC_VERSION__ >= 199901L)
 #define SKP_FN static inline
@@ -59,7 +64,7 @@
 /* ---- no contraction ----------------------------------------------------- */
 #if defined(__clang__)
 #define SKP_BEGIN _Pragma("clang fp contract(off)")
-#elif defined(__OPENCL_VERSION__)
+#elif defined(SKP_OPENCL_)
 #define SKP_BEGIN _Pragma("OPENCL FP_CONTRACT OFF")
 #else
 #define SKP_BEGIN
@@ -81,7 +86,7 @@ SKP_FN float skp_mul_(float a, float b) {
     return p;
 }
 #define SKP_MUL(a, b) skp_mul_((a), (b))
-#elif defined(__OPENCL_VERSION__)
+#elif defined(SKP_OPENCL_)
 #define SKP_MUL(a, b) ((a) * (b))
 #elif (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__)) && \
     (defined(__FMA__) || defined(__FMA4__) || defined(__FP_FAST_FMAF))
@@ -109,7 +114,7 @@ SKP_FN float skp_mul_(float a, float b) {
 #endif
 
 /* ---- bits and the square root ------------------------------------------- */
-#if defined(__OPENCL_VERSION__)
+#if defined(SKP_OPENCL_)
 typedef uint skp_u32;
 #else
 typedef unsigned int skp_u32;
@@ -118,7 +123,7 @@ typedef char skp_u32_is_32_bits[(sizeof(skp_u32) == 4) ? 1 : -1];
 #endif
 
 SKP_FN skp_u32 skp_bits(float x) {
-#if defined(__OPENCL_VERSION__)
+#if defined(SKP_OPENCL_)
     return as_uint(x);
 #elif defined(__CUDACC__) && !defined(__clang__)
     return __float_as_uint(x);
@@ -133,7 +138,7 @@ SKP_FN skp_u32 skp_bits(float x) {
 }
 
 SKP_FN float skp_from_bits(skp_u32 b) {
-#if defined(__OPENCL_VERSION__)
+#if defined(SKP_OPENCL_)
     return as_float(b);
 #elif defined(__CUDACC__) && !defined(__clang__)
     return __uint_as_float(b);
@@ -149,7 +154,7 @@ SKP_FN float skp_from_bits(skp_u32 b) {
 
 /* The correctly rounded square root; NaN for x < 0. */
 SKP_FN float skp_sqrt(float x) {
-#if defined(__OPENCL_VERSION__)
+#if defined(SKP_OPENCL_)
     return sqrt(x);
 #elif defined(__CUDACC__) && !defined(__clang__)
     return __fsqrt_rn(x);
@@ -302,7 +307,7 @@ SKP_FN float skp_clamp01(float u) {
 
 /* Where the table lives: constant memory on GPUs (a CUDA or HIP device
    reads its own copy, the host its), read-only data on a CPU. */
-#if defined(__OPENCL_VERSION__)
+#if defined(SKP_OPENCL_)
 #define SKP_TABLE_SPACE __constant
 __constant float skp_rayleigh_table_[512] = {SKP_RAYLEIGH_TABLE_DATA};
 #define SKP_RAYLEIGH_TABLE skp_rayleigh_table_
@@ -647,7 +652,7 @@ SKP_FN float skp_free_path(float sigma_t, float u) {
    bit; the density comes from the interval the sample fell in, so a kernel
    needs no root-finding. n = 0 gives NaN. */
 #ifndef SKP_GLOBAL
-#if defined(__OPENCL_VERSION__)
+#if defined(SKP_OPENCL_)
 #define SKP_GLOBAL __global
 #else
 #define SKP_GLOBAL

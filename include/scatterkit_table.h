@@ -47,14 +47,18 @@
 #ifndef SCATTERKIT_TABLE_H
 #define SCATTERKIT_TABLE_H
 
-#if !defined(__OPENCL_VERSION__)
+#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
+#define SK_TABLE_OPENCL_ 1
+#endif
+
+#if !defined(SK_TABLE_OPENCL_)
 #include <stddef.h>
 #endif
 
 #ifndef SK_TABLE_FN
 #if defined(__CUDACC__)
 #define SK_TABLE_FN static inline __host__ __device__
-#elif defined(__OPENCL_VERSION__)
+#elif defined(SK_TABLE_OPENCL_)
 #define SK_TABLE_FN static inline
 #else
 #define SK_TABLE_FN static inline
@@ -126,7 +130,7 @@ SK_TABLE_FN float sk_table2d_lookup(const float *data, size_t n, size_t k, float
     return a;
 }
 
-#if !defined(__OPENCL_VERSION__) || defined(cl_khr_fp64)
+#if !defined(SK_TABLE_OPENCL_) || defined(cl_khr_fp64)
 /* The Hermite lookup, double. */
 SK_TABLE_FN double sk_table_hermite_lookup_f64(const double *data, size_t n, double u) {
     double x, t, y0, d0, y1, d1, dy, c2, c3, mu;

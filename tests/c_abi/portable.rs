@@ -553,3 +553,98 @@ fn tables_built_on_the_host_are_looked_up_with_the_same_bits() {
         );
     }
 }
+
+/// The guide's three code blocks (`docs/guides/portable.md`), compiled:
+/// the renderer's function as C99 (`-pedantic -Wall -Wextra -Werror`), the
+/// CUDA kernel as device code (with a two-line stand-in for the CUDA
+/// headers, which CI does not have), the OpenCL kernel as OpenCL C 1.2.
+#[test]
+fn the_guides_code_compiles() {
+    if !common::repository("the_guides_code_compiles") {
+        return;
+    }
+    let guide = std::fs::read_to_string(root().join("docs/guides/portable.md")).unwrap();
+    let blocks: Vec<&str> = guide
+        .split("```c\n")
+        .skip(1)
+        .map(|b| b.split("```").next().unwrap())
+        .collect();
+    assert_eq!(blocks.len(), 3, "the guide's C, CUDA and OpenCL blocks");
+    let dir = out_dir();
+    let compile = |tool: &str, name: &str, prelude: &str, code: &str, flags: &[&str]| {
+        let src = dir.join(name);
+        std::fs::write(&src, format!("{prelude}{code}")).unwrap();
+        let out = Command::new(tool)
+            .args(flags)
+            .arg("-I")
+            .arg(root().join("include"))
+            .arg(&src)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{name}:\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    let obj = dir.join("guide.o");
+    let obj = obj.to_str().unwrap();
+    compile(
+        "cc",
+        "guide_renderer.c",
+        "",
+        blocks[0],
+        &[
+            "-std=c99",
+            "-pedantic",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-c",
+            "-o",
+            obj,
+        ],
+    );
+    if !have("clang") {
+        common::skip("the guide's CUDA and OpenCL blocks: clang not found");
+        return;
+    }
+    let cuda_stand_in = "#define __global__ __attribute__((global))\n\
+        struct guide_dim { int x; };\n\
+        #define blockIdx (guide_dim{__nvvm_read_ptx_sreg_ctaid_x()})\n\
+        #define blockDim (guide_dim{__nvvm_read_ptx_sreg_ntid_x()})\n\
+        #define threadIdx (guide_dim{__nvvm_read_ptx_sreg_tid_x()})\n";
+    compile(
+        "clang",
+        "guide_kernel.cu",
+        cuda_stand_in,
+        blocks[1],
+        &[
+            "-x",
+            "cuda",
+            "--cuda-device-only",
+            "-nocudainc",
+            "-nocudalib",
+            "--cuda-gpu-arch=sm_70",
+            "-fsyntax-only",
+            "-Wall",
+            "-Werror",
+        ],
+    );
+    compile(
+        "clang",
+        "guide_kernel.cl",
+        "",
+        blocks[2],
+        &[
+            "-x",
+            "cl",
+            "-cl-std=CL1.2",
+            "-Xclang",
+            "-finclude-default-header",
+            "-fsyntax-only",
+            "-Wall",
+            "-Werror",
+        ],
+    );
+}

@@ -164,8 +164,8 @@ fn logarithm_and_free_flight() {
 
 #[test]
 fn table_lookups_are_the_librarys_and_their_density_agrees() {
-    use scatterkit::table::{Table, Table2d};
     use scatterkit::Phase;
+    use scatterkit::table::{Table, Table2d};
     let mut worst = 0.0f64;
     let hg = Phase::henyey_greenstein(0.7f32).unwrap();
     let fog = Phase::<f32>::fog_diameter(2.0).unwrap();

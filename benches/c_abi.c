@@ -335,6 +335,9 @@ static const float DRAINE_G[4] = {0.5f, 0.9f, 0.3f, 0.01f};
 static const float DRAINE_A[4] = {1.0f, 10.0f, 250.0f, 1000.0f};
 static const char *DRAINE_SK[4] = {"draine_0.5_1.sk", "draine_0.9_10.sk", "draine_0.3_250.sk",
                                    "draine_0.01_1000.sk"};
+static const char *DRAINE_HEADER[4] = {"draine_0.5_1.header", "draine_0.9_10.header",
+                                       "draine_0.3_250.header", "draine_0.01_1000.header"};
+static skp_draine draine_p[4];
 static const char *DRAINE_EQ6[4] = {"draine_0.5_1.eq6", "draine_0.9_10.eq6", "draine_0.3_250.eq6",
                                     "draine_0.01_1000.eq6"};
 
@@ -457,6 +460,7 @@ static void time_round(void) {
         float g = DRAINE_G[k], a = DRAINE_A[k];
         TIME(DRAINE_SK[k], acc += sk_phase_sample_cos(&draine[k], xo_float(&rng)));
         TIME(DRAINE_EQ6[k], acc += draine_eq6(g, a, xo_float(&rng)));
+        TIME(DRAINE_HEADER[k], acc += skp_draine_sample_cos(&draine_p[k], xo_float(&rng)));
     }
 }
 
@@ -526,6 +530,7 @@ static void accuracy(void) {
         float g = DRAINE_G[k], a = DRAINE_A[k];
         MAX_ERR(DRAINE_SK[k], &draine64[k], sk_phase_sample_cos(&draine[k], u));
         MAX_ERR(DRAINE_EQ6[k], &draine64[k], draine_eq6(g, a, u));
+        MAX_ERR(DRAINE_HEADER[k], &draine64[k], skp_draine_sample_cos(&draine_p[k], u));
     }
 }
 
@@ -559,7 +564,8 @@ int main(void) {
     }
     for (k = 0; k < 4; k++) {
         if (sk_phase_new_draine(DRAINE_G[k], DRAINE_A[k], &draine[k]) ||
-            sk_phase_new_draine_f64((double)DRAINE_G[k], (double)DRAINE_A[k], &draine64[k])) {
+            sk_phase_new_draine_f64((double)DRAINE_G[k], (double)DRAINE_A[k], &draine64[k]) ||
+            !skp_draine_new(DRAINE_G[k], DRAINE_A[k], &draine_p[k])) {
             fprintf(stderr, "constructor failed\n");
             return 1;
         }

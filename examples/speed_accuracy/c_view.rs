@@ -151,7 +151,7 @@ pub(crate) fn run_c_env(
 
 /// What each C measurement is, for the tables and the chart:
 /// `(key, family, label, is a cos θ sampler)`.
-pub(crate) const C_KEYS: [(&str, &str, &str, bool); 41] = [
+pub(crate) const C_KEYS: [(&str, &str, &str, bool); 45] = [
     (
         "iso_dir.sk",
         "isotropic",
@@ -358,6 +358,12 @@ pub(crate) const C_KEYS: [(&str, &str, &str, bool); 41] = [
         true,
     ),
     (
+        "draine_0.5_1.header",
+        "Draine",
+        "Draine g = 0.5, α = 1, skp_draine_sample_cos (f32 tier) inline",
+        true,
+    ),
+    (
         "draine_0.9_10.sk",
         "Draine",
         "Draine g = 0.9, α = 10, sk_phase_sample_cos",
@@ -367,6 +373,12 @@ pub(crate) const C_KEYS: [(&str, &str, &str, bool); 41] = [
         "draine_0.9_10.eq6",
         "Draine",
         "peer: eq. 6 g = 0.9, α = 10, inline C",
+        true,
+    ),
+    (
+        "draine_0.9_10.header",
+        "Draine",
+        "Draine g = 0.9, α = 10, skp_draine_sample_cos (f32 tier) inline",
         true,
     ),
     (
@@ -382,6 +394,12 @@ pub(crate) const C_KEYS: [(&str, &str, &str, bool); 41] = [
         true,
     ),
     (
+        "draine_0.3_250.header",
+        "Draine",
+        "Draine g = 0.3, α = 250, skp_draine_sample_cos (f32 tier) inline",
+        true,
+    ),
+    (
         "draine_0.01_1000.sk",
         "Draine",
         "Draine g = 0.01, α = 1000, sk_phase_sample_cos",
@@ -391,6 +409,12 @@ pub(crate) const C_KEYS: [(&str, &str, &str, bool); 41] = [
         "draine_0.01_1000.eq6",
         "Draine",
         "peer: eq. 6 g = 0.01, α = 1000, inline C",
+        true,
+    ),
+    (
+        "draine_0.01_1000.header",
+        "Draine",
+        "Draine g = 0.01, α = 1000, skp_draine_sample_cos (f32 tier) inline",
         true,
     ),
 ];
@@ -438,7 +462,11 @@ pub(crate) fn c_tables(c: &std::collections::BTreeMap<String, (f64, f64)>, p: &P
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .unwrap();
     let mix = ns("mix_lobe.sk") / slowest.1;
-    let rows: [TargetRow; 17] = [
+    let dh = |k: &str| r(&format!("draine_{k}.header"), &format!("draine_{k}.eq6"));
+    let rows: [TargetRow; 18] = [
+        ("f32 tier, `skp_draine_sample_cos` inline ≤ 1.0× eq. 6 inline C (α 1, 10, 250, 1000)".into(),
+         format!("{:.2}×, {:.2}×, {:.2}×, {:.2}× (max error {:.1e} vs {:.1e} at g 0.5, α 1)", dh("0.5_1"), dh("0.9_10"), dh("0.3_250"), dh("0.01_1000"), c["draine_0.5_1.header"].1, c["draine_0.5_1.eq6"].1),
+         vec![(dh("0.5_1"), 1.0), (dh("0.9_10"), 1.0), (dh("0.3_250"), 1.0), (dh("0.01_1000"), 1.0)]),
         ("f32 tier, `skp_hg_sample_dir` inline (direction and pdf) ≤ 1.0× pbrt-v4 inline C".into(),
          format!("{:.2}× ({:.1} vs {:.1} ns; max error {:.1e} vs {:.1e})", r("hg_dir.header", "hg_dir.pbrt"), ns("hg_dir.header"), ns("hg_dir.pbrt"), c["hg_dir.header"].1, c["hg_dir.pbrt"].1),
          vec![(r("hg_dir.header", "hg_dir.pbrt"), 1.0)]),
@@ -546,7 +574,24 @@ pub(crate) fn native_tables(c: &std::collections::BTreeMap<String, (f64, f64)>) 
     for (key, _, label, _) in C_KEYS {
         writeln!(s, "| {label} | {:.2} |", ns(key)).unwrap();
     }
-    let rows: [TargetRow; 6] = [
+    let dh = |k: &str| r(&format!("draine_{k}.header"), &format!("draine_{k}.eq6"));
+    let rows: [TargetRow; 7] = [
+        (
+            "f32 tier, `skp_draine_sample_cos` inline ≤ 1.0× eq. 6 (α 1, 10, 250, 1000)".into(),
+            format!(
+                "{:.2}×, {:.2}×, {:.2}×, {:.2}×",
+                dh("0.5_1"),
+                dh("0.9_10"),
+                dh("0.3_250"),
+                dh("0.01_1000")
+            ),
+            vec![
+                (dh("0.5_1"), 1.0),
+                (dh("0.9_10"), 1.0),
+                (dh("0.3_250"), 1.0),
+                (dh("0.01_1000"), 1.0),
+            ],
+        ),
         (
             "f32 tier, `sk_phase_sample_cos_n_portable` HG ≤ 0.8× the pbrt-v4 cosine loop".into(),
             format!(

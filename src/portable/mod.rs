@@ -19,6 +19,7 @@
 //! propagates; `cos θ = +1` is forward; densities are per steradian.
 
 mod batch;
+mod draine;
 mod exact;
 mod flight;
 mod phase;
@@ -28,6 +29,7 @@ mod turns;
 pub use batch::{
     hg_sample_cos_n, hg_sample_cos_n_in_range, isotropic_sample_cos_n, rayleigh_sample_cos_n,
 };
+pub use draine::{Draine, DraineSide, draine_pdf, draine_sample_cos};
 pub use flight::{free_path, ln};
 pub use phase::{
     Hg, hg_pdf, hg_sample_cos, hg_sample_cos_sin, hg_sample_dir, isotropic_sample_cos_sin,

@@ -9,7 +9,7 @@
 #include "scatterkit_portable.h"
 
 #define PC_N 16777216u
-#define PC_CASES 18
+#define PC_CASES 21
 
 SKP_FN float pc_u(skp_u32 k) {
     if (k >= PC_N - 16u) {
@@ -70,9 +70,11 @@ SKP_FN float pc_g(int c) {
 }
 
 SKP_FN void pc_case(int c, skp_u32 k, float *o) {
+    SKP_BEGIN /* the inputs below must not contract either (0.5 + 1e4 u2) */
     float u = pc_u(k), u2 = pc_u2(k), s, pdf;
     skp_vec3 v;
     skp_hg hg;
+    skp_draine dr;
     o[0] = 0.0f;
     o[1] = 0.0f;
     o[2] = 0.0f;
@@ -125,6 +127,21 @@ SKP_FN void pc_case(int c, skp_u32 k, float *o) {
         o[1] = c == 16 ? hg.c2 : hg.k2;
         o[2] = c == 16 ? hg.c3 : hg.kp;
         o[3] = c == 16 ? hg.c4 : hg.omg;
+        break;
+    case 18: case 19:
+        skp_draine_new(c == 18 ? 0.5f : -0.3f, c == 18 ? 1.0f : 250.0f, &dr);
+        o[0] = skp_draine_sample_cos(&dr, u);
+        o[1] = skp_draine_pdf(&dr, o[0]);
+        skp_draine_new(c == 18 ? 0.9f : 0.01f, c == 18 ? 10.0f : 1000.0f, &dr);
+        o[2] = skp_draine_sample_cos(&dr, u);
+        o[3] = skp_draine_pdf(&dr, o[2]);
+        break;
+    case 20:
+        skp_draine_new(SKP_MUL(2.0f, u) - 1.0f, 0.5f + SKP_MUL(1e4f, u2), &dr); /* alpha < 1: refused */
+        o[0] = dr.lower.d;
+        o[1] = dr.lower.r;
+        o[2] = dr.upper.d;
+        o[3] = dr.kp;
         break;
     default:
         v = skp_direction_about(pc_dir(k), SKP_MUL(2.0f, u) - 1.0f, u2, u);

@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 const N: u32 = 1 << 24;
-const CASES: i32 = 18;
+const CASES: i32 = 21;
 const NAN: u32 = 0x7fc0_0000;
 
 fn u_of(k: u32) -> f32 {
@@ -121,6 +121,24 @@ fn case(c: i32, k: u32) -> [f32; 4] {
             let v = p::direction_about(dir_of(k), 2.0 * u - 1.0, u2, u);
             [v[0], v[1], v[2], 0.0]
         }
+        18 | 19 => {
+            let d1 = p::Draine::new(
+                if c == 18 { 0.5 } else { -0.3 },
+                if c == 18 { 1.0 } else { 250.0 },
+            )
+            .unwrap();
+            let d2 = p::Draine::new(
+                if c == 18 { 0.9 } else { 0.01 },
+                if c == 18 { 10.0 } else { 1000.0 },
+            )
+            .unwrap();
+            let (m1, m2) = (p::draine_sample_cos(&d1, u), p::draine_sample_cos(&d2, u));
+            [m1, p::draine_pdf(&d1, m1), m2, p::draine_pdf(&d2, m2)]
+        }
+        20 => match p::Draine::new(2.0 * u - 1.0, 0.5 + 1e4 * u2) {
+            Some(d) => [d.lower.d, d.lower.r, d.upper.d, d.kp],
+            None => [f32::NAN; 4],
+        },
         _ => unreachable!("case {c}"),
     }
 }

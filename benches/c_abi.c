@@ -391,6 +391,8 @@ static void time_round(void) {
     });
     TIME_BATCH("hg_dir_n.sk", sk_phase_sample_dir_n(&hg, bwx, bwy, bwz, bu1, bu2, box, boy, boz,
                                                     bpdf, BATCH));
+    TIME_BATCH("hg_dir_n.portable", sk_phase_sample_dir_n_portable(&hg, bwx, bwy, bwz, bu1, bu2, box,
+                                                                   boy, boz, bpdf, BATCH));
     TIME_BATCH("hg_dir_n.pbrt", {
         int i;
         for (i = 0; i < BATCH; i++) {
@@ -514,6 +516,8 @@ static void accuracy(void) {
     MAX_ERR("hg_cos_n.header", &hg64, skp_hg_sample_cos(&php, u));
     MAX_ERR("hg_cos.header", &hg64, skp_hg_sample_cos(&php, u));
     MAX_DIR_ERR("hg_dir.header", &hg64, header_hg_dir(W_IN, u1, u2, &pdf));
+    /* The direction batch returns the header's bits (tests/c/portable_batch.c). */
+    MAX_DIR_ERR("hg_dir_n.portable", &hg64, header_hg_dir(W_IN, u1, u2, &pdf));
     MAX_DIR_ERR("iso_dir.header", &iso64, header_iso_dir_about(W_IN, u1, u2, &pdf));
     MAX_DIR_ERR("rayleigh_dir.header", &ray64, header_rayleigh_dir(W_IN, u1, u2, &pdf));
     MAX_DIR_ERR("rayleigh_dir.sk", &ray64, sk_phase_sample_dir(&ray, W_IN, u1, u2, &pdf));

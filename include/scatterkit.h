@@ -2232,6 +2232,28 @@ sk_status sk_phase_sample_dir_n(const sk_phase *p,
                                 size_t n);
 
 /*
+ The portable f32 tier's directions in bulk, structure of arrays, with
+ the arguments, checks and errors of `sk_phase_sample_dir_n`: for an
+ isotropic, Henyey-Greenstein or Rayleigh phase, direction `i` is
+ `skp_hg_sample_dir` (with the constants of `skp_hg_new(g)`) or
+ `skp_rayleigh_sample_dir` of include/scatterkit_portable.h at
+ `(w[i], u1[i], u2[i])`, bit for bit (isotropic: `skp_direction_about` at
+ `skp_isotropic_sample_cos_sin(u1[i])`, density 1/(4 pi)); float
+ arithmetic throughout, vectorised. SK_ERR_METHOD for any other model.
+ */
+sk_status sk_phase_sample_dir_n_portable(const sk_phase *p,
+                                         const float *w_x,
+                                         const float *w_y,
+                                         const float *w_z,
+                                         const float *u1,
+                                         const float *u2,
+                                         float *out_x,
+                                         float *out_y,
+                                         float *out_z,
+                                         float *pdf_out,
+                                         size_t n);
+
+/*
  Double twin of `sk_phase_sample_dir_n`.
  */
 sk_status sk_phase_sample_dir_n_f64(const sk_phase_f64 *p,

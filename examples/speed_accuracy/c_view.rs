@@ -151,7 +151,7 @@ pub(crate) fn run_c_env(
 
 /// What each C measurement is, for the tables and the chart:
 /// `(key, family, label, is a cos θ sampler)`.
-pub(crate) const C_KEYS: [(&str, &str, &str, bool); 45] = [
+pub(crate) const C_KEYS: [(&str, &str, &str, bool); 46] = [
     (
         "iso_dir.sk",
         "isotropic",
@@ -241,6 +241,12 @@ pub(crate) const C_KEYS: [(&str, &str, &str, bool); 45] = [
         "hg_dir_n.sk",
         "HG",
         "HG g = 0.7 directions, sk_phase_sample_dir_n (4096)",
+        false,
+    ),
+    (
+        "hg_dir_n.portable",
+        "HG",
+        "HG g = 0.7 directions, sk_phase_sample_dir_n_portable (4096, f32 tier)",
         false,
     ),
     (
@@ -463,7 +469,10 @@ pub(crate) fn c_tables(c: &std::collections::BTreeMap<String, (f64, f64)>, p: &P
         .unwrap();
     let mix = ns("mix_lobe.sk") / slowest.1;
     let dh = |k: &str| r(&format!("draine_{k}.header"), &format!("draine_{k}.eq6"));
-    let rows: [TargetRow; 18] = [
+    let rows: [TargetRow; 19] = [
+        ("f32 tier, `sk_phase_sample_dir_n_portable` HG ≤ 0.8× the pbrt-v4 inline-C direction loop".into(),
+         format!("{:.2}× ({:.2} vs {:.2} ns; max error {:.1e} vs {:.1e})", r("hg_dir_n.portable", "hg_dir_n.pbrt"), ns("hg_dir_n.portable"), ns("hg_dir_n.pbrt"), c["hg_dir_n.portable"].1, c["hg_dir.pbrt"].1),
+         vec![(r("hg_dir_n.portable", "hg_dir_n.pbrt"), 0.8)]),
         ("f32 tier, `skp_draine_sample_cos` inline ≤ 1.0× eq. 6 inline C (α 1, 10, 250, 1000)".into(),
          format!("{:.2}×, {:.2}×, {:.2}×, {:.2}× (max error {:.1e} vs {:.1e} at g 0.5, α 1)", dh("0.5_1"), dh("0.9_10"), dh("0.3_250"), dh("0.01_1000"), c["draine_0.5_1.header"].1, c["draine_0.5_1.eq6"].1),
          vec![(dh("0.5_1"), 1.0), (dh("0.9_10"), 1.0), (dh("0.3_250"), 1.0), (dh("0.01_1000"), 1.0)]),
@@ -575,7 +584,17 @@ pub(crate) fn native_tables(c: &std::collections::BTreeMap<String, (f64, f64)>) 
         writeln!(s, "| {label} | {:.2} |", ns(key)).unwrap();
     }
     let dh = |k: &str| r(&format!("draine_{k}.header"), &format!("draine_{k}.eq6"));
-    let rows: [TargetRow; 7] = [
+    let rows: [TargetRow; 8] = [
+        (
+            "f32 tier, `sk_phase_sample_dir_n_portable` HG ≤ 0.5× the pbrt-v4 direction loop".into(),
+            format!(
+                "{:.2}× ({:.2} vs {:.2} ns)",
+                r("hg_dir_n.portable", "hg_dir_n.pbrt"),
+                ns("hg_dir_n.portable"),
+                ns("hg_dir_n.pbrt")
+            ),
+            vec![(r("hg_dir_n.portable", "hg_dir_n.pbrt"), 0.5)],
+        ),
         (
             "f32 tier, `skp_draine_sample_cos` inline ≤ 1.0× eq. 6 (α 1, 10, 250, 1000)".into(),
             format!(

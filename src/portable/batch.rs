@@ -5,7 +5,135 @@
 //! same IEEE operations in the same order (Rust contracts nothing), so the
 //! bits are the same in all of them, and the header's.
 
-use super::phase::{Hg, hg_pm_of, hg_sample_cos, isotropic_sample_cos_sin, rayleigh_sample_cos};
+use super::phase::{
+    Hg, hg_pm_of, hg_sample_cos, hg_sample_cos_sin, isotropic_sample_cos_sin, rayleigh_pdf,
+    rayleigh_sample_cos,
+};
+use super::turns::direction_about;
+use crate::math::real::Real;
+
+/// The phase functions [`sample_dir_n`] runs.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum DirPhase {
+    /// Isotropic: `cos θ = 2u − 1`, about `w_in` like the others.
+    Isotropic,
+    /// Henyey–Greenstein with these constants.
+    Hg(Hg),
+    /// Rayleigh (the built-in table).
+    Rayleigh,
+}
+
+/// Directions in bulk, structure of arrays: for each `i`, the direction
+/// about the unit `(wx[i], wy[i], wz[i])` with `cos θ` from `u1[i]` and
+/// azimuth `2π u2[i]`, to `out[..][i]`, and its density to `pdf[i]`: the
+/// bits of [`hg_sample_dir`](super::hg_sample_dir),
+/// [`rayleigh_sample_dir`](super::rayleigh_sample_dir), or for isotropic
+/// [`direction_about`](super::direction_about) at
+/// [`isotropic_sample_cos_sin`](super::isotropic_sample_cos_sin) with
+/// density `1/(4π)`. The shortest slice bounds the loop. With the C layer
+/// on x86-64 Linux the loop is the widest build the processor runs.
+#[inline]
+pub fn sample_dir_n(
+    phase: &DirPhase,
+    w: [&[f32]; 3],
+    u: [&[f32]; 2],
+    out: [&mut [f32]; 3],
+    pdf: &mut [f32],
+) {
+    #[cfg(ifunc)]
+    {
+        let n = [w[0].len(), w[1].len(), w[2].len(), u[0].len(), u[1].len()]
+            .into_iter()
+            .chain([out[0].len(), out[1].len(), out[2].len(), pdf.len()])
+            .min()
+            .unwrap_or(0);
+        let [ox, oy, oz] = out;
+        let ins = [
+            w[0].as_ptr(),
+            w[1].as_ptr(),
+            w[2].as_ptr(),
+            u[0].as_ptr(),
+            u[1].as_ptr(),
+        ];
+        let outs = [
+            ox.as_mut_ptr(),
+            oy.as_mut_ptr(),
+            oz.as_mut_ptr(),
+            pdf.as_mut_ptr(),
+        ];
+        // SAFETY: every slice holds at least n elements; the outputs are
+        // exclusive borrows, distinct from the inputs and each other.
+        #[allow(unsafe_code)]
+        unsafe {
+            portable_dir_n(phase, &ins, &outs, n)
+        }
+    }
+    #[cfg(not(ifunc))]
+    dir_each(phase, w, u, out, pdf)
+}
+
+/// The direction loop, written once for every build (a loop per phase, so
+/// that each vectorises).
+#[inline(always)]
+fn dir_each(
+    phase: &DirPhase,
+    w: [&[f32]; 3],
+    u: [&[f32]; 2],
+    out: [&mut [f32]; 3],
+    pdf: &mut [f32],
+) {
+    match phase {
+        DirPhase::Hg(h) => dir_loop(|x| hg_sample_cos_sin(h, x), w, u, out, pdf),
+        DirPhase::Rayleigh => dir_loop(
+            |x| {
+                let mu = rayleigh_sample_cos(x);
+                (mu, Real::sqrt((1.0 - mu) * (1.0 + mu)), rayleigh_pdf(mu))
+            },
+            w,
+            u,
+            out,
+            pdf,
+        ),
+        DirPhase::Isotropic => dir_loop(
+            |x| {
+                let (mu, s) = isotropic_sample_cos_sin(x);
+                (mu, s, INV_4PI)
+            },
+            w,
+            u,
+            out,
+            pdf,
+        ),
+    }
+}
+
+/// One phase's loop: `(cos θ, sin θ, density)` from `f(u1)`, the direction
+/// about `w` at azimuth `2π u2`; the shortest slice bounds it.
+#[inline(always)]
+fn dir_loop(
+    f: impl Fn(f32) -> (f32, f32, f32),
+    w: [&[f32]; 3],
+    u: [&[f32]; 2],
+    out: [&mut [f32]; 3],
+    pdf: &mut [f32],
+) {
+    let [ox, oy, oz] = out;
+    let ins = w[0].iter().zip(w[1]).zip(w[2]).zip(u[0]).zip(u[1]);
+    let outs = ox
+        .iter_mut()
+        .zip(oy.iter_mut())
+        .zip(oz.iter_mut())
+        .zip(pdf.iter_mut());
+    for (((((&x, &y), &z), &a), &b), (((o1, o2), o3), o4)) in ins.zip(outs) {
+        let (mu, s, q) = f(a);
+        let d = direction_about([x, y, z], mu, s, b);
+        (*o1, *o2, *o3, *o4) = (d[0], d[1], d[2], q);
+    }
+}
+
+/// `1/(4π)` rounded to f32.
+const INV_4PI: f32 = 0.079_577_47;
 
 /// `out[i] = hg_sample_cos(p, u[i])`.
 #[inline]
@@ -111,6 +239,23 @@ crate::math::arch::load_time_choice! {
             (core::slice::from_raw_parts(u, n), core::slice::from_raw_parts_mut(out, n))
         };
         rayleigh_each(u, out)
+    }
+}
+
+#[cfg(ifunc)]
+crate::math::arch::load_time_choice! {
+    /// [`dir_each`] from C: the phase at `phase`, the five input arrays
+    /// (`w` x, y, z, `u1`, `u2`) and four output arrays (x, y, z, pdf) at
+    /// `ins` and `outs`, each valid for `n` elements, outputs distinct from
+    /// the inputs and each other.
+    portable_dir_n: fn(phase: *const DirPhase, ins: *const [*const f32; 5], outs: *const [*mut f32; 4], n: usize) {
+        // SAFETY: the symbol's contract.
+        unsafe {
+            let ([a, b, c, d, e], [f, g, h, k]) = (*ins, *outs);
+            let s = |p: *const f32| core::slice::from_raw_parts(p, n);
+            let m = |p: *mut f32| core::slice::from_raw_parts_mut(p, n);
+            dir_each(&*phase, [s(a), s(b), s(c)], [s(d), s(e)], [m(f), m(g), m(h)], m(k))
+        }
     }
 }
 

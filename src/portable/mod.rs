@@ -27,7 +27,8 @@ mod table;
 mod turns;
 
 pub use batch::{
-    hg_sample_cos_n, hg_sample_cos_n_in_range, isotropic_sample_cos_n, rayleigh_sample_cos_n,
+    DirPhase, hg_sample_cos_n, hg_sample_cos_n_in_range, isotropic_sample_cos_n,
+    rayleigh_sample_cos_n, sample_dir_n,
 };
 pub use draine::{Draine, DraineSide, draine_pdf, draine_sample_cos};
 pub use flight::{free_path, ln};

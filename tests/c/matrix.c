@@ -365,6 +365,8 @@ static void direction_batches(void) {
             px[0] = 7.0;
             CHECK(sk_phase_sample_dir_n(&p, wx, wy, wz, u1, u2, ox, oy, oz, pdf, 4) == (ok ? SK_OK : SK_ERR_DOMAIN));
             CHECK(ok || ox[0] == 7.0f);
+            CHECK(sk_phase_sample_dir_n_portable(&p, wx, wy, wz, u1, u2, ox, oy, oz, pdf, 4) == (ok ? SK_OK : SK_ERR_DOMAIN));
+            CHECK(ok || ox[0] == 7.0f);
             CHECK(sk_phase_sample_dir_n_f64(&q, dx, dy, dz, v1, v2, px, py, pz, pdfd, 4) == (okd ? SK_OK : SK_ERR_DOMAIN));
             CHECK(okd || px[0] == 7.0);
             uf[2] = keep;
@@ -384,6 +386,24 @@ static void direction_batches(void) {
     CHECK(sk_phase_sample_dir_n(&p, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0) == SK_OK);
     CHECK(sk_phase_sample_dir_n(&p, wx, wy, wz, u1, u2, ox, oy, oz, pdf, SIZE_MAX) == SK_ERR_SIZE);
     CHECK(sk_phase_sample_dir_n_f64(&q, dx, dy, dz, v1, v2, px, py, pz, pdfd, SIZE_MAX) == SK_ERR_SIZE);
+    /* The portable tier's batch: the same checks; isotropic, HG and
+       Rayleigh only. */
+    CHECK(sk_phase_sample_dir_n_portable(&p, wx, wy, wz, u1, u2, ox, oy, oz, NULL, 4) == SK_OK);
+    CHECK(sk_phase_sample_dir_n_portable(NULL, wx, wy, wz, u1, u2, ox, oy, oz, pdf, 4) == SK_ERR_NULL);
+    CHECK(sk_phase_sample_dir_n_portable(&zero, wx, wy, wz, u1, u2, ox, oy, oz, pdf, 4) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_sample_dir_n_portable(&p, wx, wy, wz, NULL, u2, ox, oy, oz, pdf, 4) == SK_ERR_NULL);
+    CHECK(sk_phase_sample_dir_n_portable(&p, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0) == SK_OK);
+    CHECK(sk_phase_sample_dir_n_portable(&p, wx, wy, wz, u1, u2, ox, oy, oz, pdf, SIZE_MAX) == SK_ERR_SIZE);
+    CHECK(sk_phase_sample_dir_n_portable(&p, wx, wy, wz, u1, u2, ox, ox, oz, pdf, 4) == SK_ERR_OVERLAP);
+    {
+        sk_phase iso, ray, fog;
+        sk_phase_new_isotropic(&iso);
+        sk_phase_new_rayleigh(&ray);
+        sk_phase_new_fog_diameter(2.0f, &fog);
+        CHECK(sk_phase_sample_dir_n_portable(&iso, wx, wy, wz, u1, u2, ox, oy, oz, pdf, 4) == SK_OK);
+        CHECK(sk_phase_sample_dir_n_portable(&ray, wx, wy, wz, u1, u2, ox, oy, oz, pdf, 4) == SK_OK);
+        CHECK(sk_phase_sample_dir_n_portable(&fog, wx, wy, wz, u1, u2, ox, oy, oz, pdf, 4) == SK_ERR_METHOD);
+    }
     /* In place is allowed; partial overlaps and shared outputs are not. */
     memcpy(big, wx, sizeof wx);
     CHECK(sk_phase_sample_dir_n(&p, wx, wy, wz, u1, u2, wx, wy, wz, pdf, 4) == SK_OK);

@@ -245,6 +245,52 @@ pub unsafe extern "C" fn sk_phase_sample_dir_n(
     unsafe { sample_dir_n(p, w, u1, u2, out, pdf_out, n) }
 }
 
+/// The portable f32 tier's directions in bulk, structure of arrays, with
+/// the arguments, checks and errors of `sk_phase_sample_dir_n`: for an
+/// isotropic, Henyey-Greenstein or Rayleigh phase, direction `i` is
+/// `skp_hg_sample_dir` (with the constants of `skp_hg_new(g)`) or
+/// `skp_rayleigh_sample_dir` of include/scatterkit_portable.h at
+/// `(w[i], u1[i], u2[i])`, bit for bit (isotropic: `skp_direction_about` at
+/// `skp_isotropic_sample_cos_sin(u1[i])`, density 1/(4 pi)); float
+/// arithmetic throughout, vectorised. SK_ERR_METHOD for any other model.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_phase_sample_dir_n_portable(
+    p: *const sk_phase,
+    w_x: *const f32,
+    w_y: *const f32,
+    w_z: *const f32,
+    u1: *const f32,
+    u2: *const f32,
+    out_x: *mut f32,
+    out_y: *mut f32,
+    out_z: *mut f32,
+    pdf_out: *mut f32,
+    n: usize,
+) -> sk_status {
+    use crate::portable::{DirPhase, Hg, sample_dir_n};
+    let ph = match unsafe { load_batch(p) } {
+        Ok(ph) => ph,
+        Err(e) => return e,
+    };
+    let phase = match ph {
+        Phase::HenyeyGreenstein(h) => match Hg::new(h.g()) {
+            Some(c) => DirPhase::Hg(c),
+            None => return sk_status::SK_ERR_DOMAIN,
+        },
+        Phase::Isotropic(_) => DirPhase::Isotropic,
+        Phase::Rayleigh(_) => DirPhase::Rayleigh,
+        _ => return sk_status::SK_ERR_METHOD,
+    };
+    let (w, out) = ([w_x, w_y, w_z], [out_x, out_y, out_z]);
+    let run = |i: &[[f32; SOA_BLOCK]; 5], o: &mut [[f32; SOA_BLOCK]; 4], len: usize| {
+        let [ix, iy, iz, a, b] = i.each_ref().map(|x| x.get(..len).unwrap_or(&[]));
+        let [ox, oy, oz, pdf] = o.each_mut().map(|x| x.get_mut(..len).unwrap_or(&mut []));
+        sample_dir_n(&phase, [ix, iy, iz], [a, b], [ox, oy, oz], pdf);
+    };
+    unsafe { crate::ffi::verbs::dir_blocks((w, u1, u2), (out, pdf_out), n, run) }
+}
+
 /// Double twin of `sk_phase_sample_dir_n`.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]

@@ -2188,8 +2188,8 @@ sk_status sk_phase_sample_cos_n(const sk_phase *p, const float *u, float *cos_ou
  cosine that header returns for `u[i]` (`2u - 1`, `skp_hg_sample_cos`
  with the constants of `skp_hg_new(g)`, `skp_rayleigh_sample_cos`), bit
  for bit, computed in float alone. Within 1.6e-7 of the exact cosine for
- HG and 2e-7 for Rayleigh, where `sk_phase_sample_cos_n` (double
- evaluation, one rounding) is within 6e-8: the fast end of the chart.
+ HG (`sk_phase_sample_cos_n`, evaluated in double and rounded once:
+ 6e-8) and 6e-8 for Rayleigh: the fast end of the chart.
  Errors as `sk_phase_sample_cos_n`; SK_ERR_METHOD for any other model.
  */
 sk_status sk_phase_sample_cos_n_portable(const sk_phase *p,

@@ -6,13 +6,13 @@
 //! functions, operation for operation, for C, C++, CUDA, HIP and OpenCL C;
 //! compiled where each operation rounds correctly (C and C++ on any IEEE
 //! target; CUDA; OpenCL with correctly rounded division and square root)
-//! it returns these functions' bits (`tests/portable.rs` and
-//! `tests/c_abi/portable.rs` compare them over 2²⁴ inputs each).
+//! it returns these functions' bits (`tests/c_abi/portable.rs` compares
+//! them over 2²⁴ inputs per case; `docs/guides/portable.md` is the guide).
 //!
 //! What the tier gives up against the rest of the library, which samples
 //! f32 through f64 arithmetic where that is as fast: a few ulp of 1 in
-//! `cos θ` (the stated bound of each function, measured against f64 in
-//! `tests/portable.rs`). What it gains: the same bits on every processor,
+//! `cos θ` (the stated bound of each function, measured against
+//! double-double and f64 references in `tests/models/portable.rs`). What it gains: the same bits on every processor,
 //! GPU kernels included, and no call out of a kernel or loop.
 //!
 //! Conventions as everywhere in the crate: `u ∈ [0, 1]` is clamped, NaN

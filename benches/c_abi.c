@@ -338,6 +338,7 @@ static const char *DRAINE_SK[4] = {"draine_0.5_1.sk", "draine_0.9_10.sk", "drain
 static const char *DRAINE_HEADER[4] = {"draine_0.5_1.header", "draine_0.9_10.header",
                                        "draine_0.3_250.header", "draine_0.01_1000.header"};
 static skp_draine draine_p[4];
+static skp_two_lobe two_p;
 static const char *DRAINE_EQ6[4] = {"draine_0.5_1.eq6", "draine_0.9_10.eq6", "draine_0.3_250.eq6",
                                     "draine_0.01_1000.eq6"};
 
@@ -456,6 +457,7 @@ static void time_round(void) {
     TIME("two_lobe_cos.sk", acc += sk_phase_sample_cos(&two, xo_float(&rng)));
     TIME("two_lobe_cos.sk_lobe", acc += sk_phase_sample_cos_by_lobe(&two, xo_float(&rng)));
     TIME("two_lobe_cos.c", acc += two_lobe_cos(0.8f, -0.3f, 0.9f, xo_float(&rng)));
+    TIME("two_lobe_cos.header", acc += skp_two_lobe_sample_cos(&two_p, xo_float(&rng)));
     TIME("ff_cos.sk", acc += sk_phase_sample_cos(&ff, xo_float(&rng)));
     TIME("ff_cos.cycles", acc += cycles_ff_cos(ffc, xo_float(&rng)));
     for (k = 0; k < 4; k++) {
@@ -562,7 +564,8 @@ int main(void) {
         sk_phase_new_two_lobe_hg(0.8f, -0.3f, 0.9f, &two) || sk_phase_new_two_lobe_hg_f64(0.8, -0.3, 0.9, &two64) ||
         sk_phase_new_fournier_forand_backscatter(0.0183f, 1.1f, &ff) ||
         sk_phase_new_fournier_forand_backscatter_f64(0.0183, 1.1, &ff64) ||
-        sk_phase_cos_inline_new(&hg, &hgi) || !skp_hg_new(0.7f, &php)) {
+        sk_phase_cos_inline_new(&hg, &hgi) || !skp_hg_new(0.7f, &php) ||
+        !skp_two_lobe_new(0.8f, -0.3f, 0.9f, &two_p)) {
         fprintf(stderr, "constructor failed\n");
         return 1;
     }

@@ -569,6 +569,68 @@ SKP_FN float skp_hg_pdf(const skp_hg *p, float mu) {
     return p->kp / (q * skp_sqrt(q));
 }
 
+/* ---- two-lobe Henyey-Greenstein ------------------------------------------ */
+/* Two HG lobes mixed with weight w on the first (fill with skp_two_lobe_new):
+   p = w p_1 + (1 - w) p_2. */
+typedef struct skp_two_lobe {
+    skp_hg first, second;
+    float w;
+} skp_two_lobe;
+
+/* The lobes g1, g2 (each in (-1, 1)) with weight w in [0, 1] on the first:
+   1, else 0 with every field NaN. */
+SKP_FN int skp_two_lobe_new(float g1, float g2, float w, skp_two_lobe *p) {
+    int ok = w >= 0.0f && w <= 1.0f;
+    ok = skp_hg_new(g1, &p->first) & ok;
+    ok = skp_hg_new(g2, &p->second) & ok;
+    p->w = w;
+    if (!ok) {
+        skp_hg_new(skp_from_bits(0x7fc00000u), &p->first);
+        p->second = p->first;
+        p->w = skp_from_bits(0x7fc00000u);
+    }
+    return ok;
+}
+
+/* The lobe one uniform picks and the uniform rescaled inside it. */
+SKP_FN const skp_hg *skp_two_lobe_pick_(const skp_two_lobe *p, float u, float *v) {
+    float w = skp_clamp01(u);
+    if (w < p->w) {
+        *v = w / p->w;
+        return &p->first;
+    }
+    if (p->w < 1.0f) {
+        *v = (w - p->w) / (1.0f - p->w);
+        return &p->second;
+    }
+    *v = 1.0f;
+    return &p->first;
+}
+
+/* cos theta for u (clamped; NaN gives NaN), the lobe chosen by u itself:
+   exact in distribution, not monotone across the lobes. */
+SKP_FN float skp_two_lobe_sample_cos(const skp_two_lobe *p, float u) {
+    float v;
+    const skp_hg *lobe = skp_two_lobe_pick_(p, u, &v);
+    return skp_hg_sample_cos(lobe, v);
+}
+
+/* The density per steradian at cos theta = mu, w p_1 + (1 - w) p_2. */
+SKP_FN float skp_two_lobe_pdf(const skp_two_lobe *p, float mu) {
+    SKP_BEGIN
+    return SKP_MUL(p->w, skp_hg_pdf(&p->first, mu)) + SKP_MUL(1.0f - p->w, skp_hg_pdf(&p->second, mu));
+}
+
+/* A direction about the unit w_in (cos theta and the lobe from u1, azimuth
+   2 pi u2), with *pdf the mixture's density there. */
+SKP_FN skp_vec3 skp_two_lobe_sample_dir(const skp_two_lobe *p, skp_vec3 w_in, float u1, float u2, float *pdf) {
+    float v, s, lobe_pdf, mu;
+    const skp_hg *lobe = skp_two_lobe_pick_(p, u1, &v);
+    mu = skp_hg_sample_cos_sin(lobe, v, &s, &lobe_pdf);
+    *pdf = skp_two_lobe_pdf(p, mu);
+    return skp_direction_about(w_in, mu, s, u2);
+}
+
 /* ---- Rayleigh ------------------------------------------------------------ */
 /* cos theta = F^-1(u) from the built-in table: x = 128 u, i = min(floor(x),
    127), t = x - i, the interval's cubic by Horner, clamped to [-1, 1]

@@ -151,7 +151,7 @@ pub(crate) fn run_c_env(
 
 /// What each C measurement is, for the tables and the chart:
 /// `(key, family, label, is a cos θ sampler)`.
-pub(crate) const C_KEYS: [(&str, &str, &str, bool); 46] = [
+pub(crate) const C_KEYS: [(&str, &str, &str, bool); 47] = [
     (
         "iso_dir.sk",
         "isotropic",
@@ -337,6 +337,12 @@ pub(crate) const C_KEYS: [(&str, &str, &str, bool); 46] = [
         "two_lobe_cos.c",
         "HG",
         "peer: two HG lobes chosen by one uniform, inline C",
+        true,
+    ),
+    (
+        "two_lobe_cos.header",
+        "HG",
+        "two-lobe HG (0.8, −0.3, w 0.9), skp_two_lobe_sample_cos (f32 tier, by lobe) inline",
         true,
     ),
     (

@@ -33,8 +33,9 @@ pub use batch::{
 pub use draine::{Draine, DraineSide, draine_pdf, draine_sample_cos};
 pub use flight::{free_path, ln};
 pub use phase::{
-    Hg, hg_pdf, hg_sample_cos, hg_sample_cos_sin, hg_sample_dir, isotropic_sample_cos_sin,
-    isotropic_sample_dir, rayleigh_pdf, rayleigh_sample_cos, rayleigh_sample_dir,
+    Hg, TwoLobe, hg_pdf, hg_sample_cos, hg_sample_cos_sin, hg_sample_dir, isotropic_sample_cos_sin,
+    isotropic_sample_dir, rayleigh_pdf, rayleigh_sample_cos, rayleigh_sample_dir, two_lobe_pdf,
+    two_lobe_sample_cos, two_lobe_sample_dir,
 };
 pub use table::{
     table_cdf_sample_cos_pdf, table_sample_cos, table_sample_cos_pdf, table2d_sample_cos_pdf,

@@ -210,3 +210,72 @@ pub fn rayleigh_sample_dir(w_in: [f32; 3], u1: f32, u2: f32) -> ([f32; 3], f32) 
     let s = Real::sqrt((1.0 - mu) * (1.0 + mu));
     (direction_about(w_in, mu, s, u2), rayleigh_pdf(mu))
 }
+
+/// Two Henyey–Greenstein lobes mixed with weight `w` on the first (the
+/// header's `skp_two_lobe`): `p = w p_1 + (1 − w) p_2`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TwoLobe {
+    /// The first lobe.
+    pub first: Hg,
+    /// The second lobe.
+    pub second: Hg,
+    /// The first lobe's weight, in `[0, 1]`.
+    pub w: f32,
+}
+
+impl TwoLobe {
+    /// The lobes `g1`, `g2` (each in `(−1, 1)`) with weight `w ∈ [0, 1]` on
+    /// the first; `None` otherwise (NaN included).
+    pub fn new(g1: f32, g2: f32, w: f32) -> Option<Self> {
+        if !(0.0..=1.0).contains(&w) {
+            return None;
+        }
+        Some(TwoLobe {
+            first: Hg::new(g1)?,
+            second: Hg::new(g2)?,
+            w,
+        })
+    }
+}
+
+/// `(lobe, u')`: the lobe one uniform picks (`u < w`: the first, with
+/// `u' = u/w`; else the second, with `u' = (u − w)/(1 − w)`), the uniform
+/// rescaled and reused inside it; `u = 1` with `w = 1` stays in the first
+/// lobe at `u' = 1`.
+#[inline(always)]
+fn two_lobe_pick(p: &TwoLobe, u: f32) -> (&Hg, f32) {
+    let u = clamp01(u);
+    if u < p.w {
+        (&p.first, u / p.w)
+    } else if p.w < 1.0 {
+        (&p.second, (u - p.w) / (1.0 - p.w))
+    } else {
+        (&p.first, 1.0)
+    }
+}
+
+/// Two-lobe HG's `cos θ` for `u ∈ [0, 1]` (clamped; NaN gives NaN), the
+/// lobe chosen by `u` itself (exact in distribution, not monotone in `u`
+/// across the lobes).
+#[inline(always)]
+pub fn two_lobe_sample_cos(p: &TwoLobe, u: f32) -> f32 {
+    let (lobe, v) = two_lobe_pick(p, u);
+    hg_sample_cos(lobe, v)
+}
+
+/// Two-lobe HG's density per steradian at `cos θ = mu`,
+/// `w p_1(μ) + (1 − w) p_2(μ)`.
+#[inline(always)]
+pub fn two_lobe_pdf(p: &TwoLobe, mu: f32) -> f32 {
+    p.w * hg_pdf(&p.first, mu) + (1.0 - p.w) * hg_pdf(&p.second, mu)
+}
+
+/// A two-lobe HG direction about the unit `w_in` (`cos θ` and the lobe
+/// from `u1`, azimuth `2π u2`) and the mixture's density there.
+#[inline(always)]
+pub fn two_lobe_sample_dir(p: &TwoLobe, w_in: [f32; 3], u1: f32, u2: f32) -> ([f32; 3], f32) {
+    let (lobe, v) = two_lobe_pick(p, u1);
+    let (mu, s, _) = hg_sample_cos_sin(lobe, v);
+    (direction_about(w_in, mu, s, u2), two_lobe_pdf(p, mu))
+}

@@ -9,7 +9,7 @@
 #include "scatterkit_portable.h"
 
 #define PC_N 16777216u
-#define PC_CASES 21
+#define PC_CASES 23
 
 SKP_FN float pc_u(skp_u32 k) {
     if (k >= PC_N - 16u) {
@@ -75,6 +75,7 @@ SKP_FN void pc_case(int c, skp_u32 k, float *o) {
     skp_vec3 v;
     skp_hg hg;
     skp_draine dr;
+    skp_two_lobe tl;
     o[0] = 0.0f;
     o[1] = 0.0f;
     o[2] = 0.0f;
@@ -142,6 +143,19 @@ SKP_FN void pc_case(int c, skp_u32 k, float *o) {
         o[1] = dr.lower.r;
         o[2] = dr.upper.d;
         o[3] = dr.kp;
+        break;
+    case 21:
+        skp_two_lobe_new(0.8f, -0.3f, 0.9f, &tl);
+        o[0] = skp_two_lobe_sample_cos(&tl, u);
+        o[1] = skp_two_lobe_pdf(&tl, o[0]);
+        skp_two_lobe_new(0.5f, 0.99f, u2, &tl);
+        o[2] = skp_two_lobe_sample_cos(&tl, u);
+        o[3] = skp_two_lobe_pdf(&tl, o[2]);
+        break;
+    case 22:
+        skp_two_lobe_new(0.8f, -0.3f, k & 8u ? 1.0f : 0.9f, &tl);
+        v = skp_two_lobe_sample_dir(&tl, pc_dir(k), u, u2, &o[3]);
+        o[0] = v.x; o[1] = v.y; o[2] = v.z;
         break;
     default:
         v = skp_direction_about(pc_dir(k), SKP_MUL(2.0f, u) - 1.0f, u2, u);

@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 const N: u32 = 1 << 24;
-const CASES: i32 = 21;
+const CASES: i32 = 23;
 const NAN: u32 = 0x7fc0_0000;
 
 fn u_of(k: u32) -> f32 {
@@ -139,6 +139,19 @@ fn case(c: i32, k: u32) -> [f32; 4] {
             Some(d) => [d.lower.d, d.lower.r, d.upper.d, d.kp],
             None => [f32::NAN; 4],
         },
+        21 => {
+            let t1 = p::TwoLobe::new(0.8, -0.3, 0.9).unwrap();
+            let t2 = p::TwoLobe::new(0.5, 0.99, u2).unwrap();
+            let (m1, m2) = (
+                p::two_lobe_sample_cos(&t1, u),
+                p::two_lobe_sample_cos(&t2, u),
+            );
+            [m1, p::two_lobe_pdf(&t1, m1), m2, p::two_lobe_pdf(&t2, m2)]
+        }
+        22 => {
+            let t = p::TwoLobe::new(0.8, -0.3, if k & 8 != 0 { 1.0 } else { 0.9 }).unwrap();
+            with_pdf(p::two_lobe_sample_dir(&t, dir_of(k), u, u2))
+        }
         _ => unreachable!("case {c}"),
     }
 }

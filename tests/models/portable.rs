@@ -260,3 +260,41 @@ fn draine_is_never_worse_than_eq6() {
         assert!(p::Draine::new(g, a).is_none(), "({g}, {a})");
     }
 }
+
+/// Two-lobe HG by lobe choice: stratified uniforms give the mixture's mean
+/// cosine `w g1 + (1 − w) g2` within 1e-4 (each lobe's map is monotone, so
+/// the strata stay strata), and the density is the weighted sum of the
+/// lobes' (to rounding); the constructor refuses a weight outside [0, 1].
+#[test]
+fn two_lobe_hg_has_the_mixtures_mean_and_density() {
+    for (g1, g2, w) in [
+        (0.8f32, -0.3f32, 0.9f32),
+        (0.5, 0.99, 0.25),
+        (0.7, -0.7, 0.0),
+        (0.7, -0.7, 1.0),
+    ] {
+        let t = p::TwoLobe::new(g1, g2, w).unwrap();
+        let n = 1u32 << 20;
+        let mean: f64 = (0..n)
+            .map(|k| p::two_lobe_sample_cos(&t, (k as f32 + 0.5) / n as f32) as f64)
+            .sum::<f64>()
+            / n as f64;
+        let want = w as f64 * g1 as f64 + (1.0 - w as f64) * g2 as f64;
+        assert!(
+            (mean - want).abs() < 1e-4,
+            "({g1}, {g2}, {w}): {mean} vs {want}"
+        );
+        for mu in [-1.0f32, -0.3, 0.0, 0.5, 0.99, 1.0] {
+            let (a, b) = (p::Hg::new(g1).unwrap(), p::Hg::new(g2).unwrap());
+            let want =
+                w as f64 * p::hg_pdf(&a, mu) as f64 + (1.0 - w as f64) * p::hg_pdf(&b, mu) as f64;
+            assert!((p::two_lobe_pdf(&t, mu) as f64 / want - 1.0).abs() < 1e-6);
+        }
+        assert!(
+            p::two_lobe_sample_cos(&t, 1.0).is_finite()
+                && p::two_lobe_sample_cos(&t, 0.0).is_finite()
+        );
+    }
+    assert!(p::TwoLobe::new(0.5, 0.5, 1.5).is_none() && p::TwoLobe::new(0.5, 1.0, 0.5).is_none());
+    assert!(p::TwoLobe::new(0.5, 0.5, f32::NAN).is_none());
+}

@@ -387,7 +387,7 @@ pub(crate) fn find(es: &[Entry], k: Key) -> &Entry {
 
 pub(crate) fn fmt_err(e: &Entry) -> String {
     if e.rejection {
-        "exact (rejection)".into()
+        "exact in distribution".into()
     } else if e.err.is_nan() {
         "—".into()
     } else {

@@ -154,7 +154,7 @@ fn main() -> std::io::Result<()> {
     writeln!(md, "|---|---|---:|---:|---:|").unwrap();
     for e in es.iter().filter(|e| e.family != "cbrt") {
         let cdf = if e.rejection {
-            "exact (rejection)".into()
+            "exact in distribution".into()
         } else if e.cdf_err.is_nan() {
             // Not measured (the C view times the call, its error is the
             // Rust sampler's).

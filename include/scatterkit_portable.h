@@ -773,6 +773,46 @@ SKP_FN float skp_draine_pdf(const skp_draine *p, float mu) {
     return p->kp * (1.0f + SKP_MUL(p->alpha * mu, mu)) / (q * skp_sqrt(q));
 }
 
+/* ---- the fog (Jendersie and d'Eon 2023) ---------------------------------- */
+/* A Henyey-Greenstein lobe and a Draine lobe, p = (1 - w_d) p_HG + w_d p_D
+   (fill with skp_fog_new from the fit's parameters, which the library's
+   sk_phase params give for a droplet diameter). */
+typedef struct skp_fog {
+    skp_hg hg;
+    skp_draine draine;
+    float w_d;
+} skp_fog;
+
+/* 1 for g_hg in (-1, 1), the Draine lobe within skp_draine_new's reach and
+   w_d in [0, 1]; else 0 with every field NaN. */
+SKP_FN int skp_fog_new(float g_hg, float g_d, float alpha, float w_d, skp_fog *p) {
+    int ok = w_d >= 0.0f && w_d <= 1.0f;
+    ok = skp_hg_new(g_hg, &p->hg) & ok;
+    ok = skp_draine_new(g_d, alpha, &p->draine) & ok;
+    p->w_d = w_d;
+    if (!ok) {
+        skp_hg_new(skp_from_bits(0x7fc00000u), &p->hg);
+        skp_draine_new(skp_from_bits(0x7fc00000u), 1.0f, &p->draine);
+        p->w_d = skp_from_bits(0x7fc00000u);
+    }
+    return ok;
+}
+
+/* cos theta for u (clamped; NaN gives NaN) by the paper's lobe choice: u <
+   w_d picks the Draine lobe with u / w_d, else HG with (u - w_d)/(1 - w_d). */
+SKP_FN float skp_fog_sample_cos(const skp_fog *p, float u) {
+    float w = skp_clamp01(u);
+    if (w < p->w_d) return skp_draine_sample_cos(&p->draine, w / p->w_d);
+    if (p->w_d < 1.0f) return skp_hg_sample_cos(&p->hg, (w - p->w_d) / (1.0f - p->w_d));
+    return skp_draine_sample_cos(&p->draine, 1.0f);
+}
+
+/* The fog's density per steradian at cos theta = mu. */
+SKP_FN float skp_fog_pdf(const skp_fog *p, float mu) {
+    SKP_BEGIN
+    return SKP_MUL(1.0f - p->w_d, skp_hg_pdf(&p->hg, mu)) + SKP_MUL(p->w_d, skp_draine_pdf(&p->draine, mu));
+}
+
 /* ---- free flight --------------------------------------------------------- */
 /* The natural logarithm, within an ulp: ln 0 = -inf, ln inf = inf, NaN for
    negative x or NaN (the fdlibm logf scheme). */

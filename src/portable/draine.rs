@@ -174,3 +174,55 @@ pub fn draine_pdf(p: &Draine, mu: f32) -> f32 {
     let q = 1.0 + g * g - 2.0 * g * mu;
     p.kp * (1.0 + p.alpha * mu * mu) / (q * Real::sqrt(q))
 }
+
+/// Jendersie & d'Eon's fog phase function (2023): a Henyey–Greenstein lobe
+/// and a Draine lobe, `p = (1 − w_D) p_HG + w_D p_D`, sampled by lobe (the
+/// paper's sampler: `u < w_D` picks the Draine lobe and `u/w_D` is reused
+/// inside it, else HG with `(u − w_D)/(1 − w_D)`): exact in distribution,
+/// not monotone in `u` across the lobes. The header's `skp_fog`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fog {
+    /// The Henyey–Greenstein lobe.
+    pub hg: super::phase::Hg,
+    /// The Draine lobe.
+    pub draine: Draine,
+    /// The Draine lobe's weight `w_D ∈ [0, 1]`.
+    pub w_d: f32,
+}
+
+impl Fog {
+    /// The lobes from the fit's parameters (the library's `fog_fit` gives
+    /// them for a droplet diameter): `g_hg ∈ (−1, 1)`, the Draine lobe
+    /// within [`Draine::new`]'s reach, `w_d ∈ [0, 1]`; `None` otherwise.
+    pub fn new(g_hg: f32, g_d: f32, alpha: f32, w_d: f32) -> Option<Self> {
+        if !(0.0..=1.0).contains(&w_d) {
+            return None;
+        }
+        Some(Fog {
+            hg: super::phase::Hg::new(g_hg)?,
+            draine: Draine::new(g_d, alpha)?,
+            w_d,
+        })
+    }
+}
+
+/// The fog's `cos θ` for `u ∈ [0, 1]` (clamped; NaN gives NaN), by lobe.
+#[inline(always)]
+pub fn fog_sample_cos(p: &Fog, u: f32) -> f32 {
+    let u = clamp01(u);
+    if u < p.w_d {
+        draine_sample_cos(&p.draine, u / p.w_d)
+    } else if p.w_d < 1.0 {
+        super::phase::hg_sample_cos(&p.hg, (u - p.w_d) / (1.0 - p.w_d))
+    } else {
+        draine_sample_cos(&p.draine, 1.0)
+    }
+}
+
+/// The fog's density per steradian at `cos θ = mu`,
+/// `(1 − w_D) p_HG(μ) + w_D p_D(μ)`.
+#[inline(always)]
+pub fn fog_pdf(p: &Fog, mu: f32) -> f32 {
+    (1.0 - p.w_d) * super::phase::hg_pdf(&p.hg, mu) + p.w_d * draine_pdf(&p.draine, mu)
+}

@@ -30,7 +30,7 @@ pub use batch::{
     DirPhase, hg_sample_cos_n, hg_sample_cos_n_in_range, isotropic_sample_cos_n,
     rayleigh_sample_cos_n, sample_dir_n,
 };
-pub use draine::{Draine, DraineSide, draine_pdf, draine_sample_cos};
+pub use draine::{Draine, DraineSide, Fog, draine_pdf, draine_sample_cos, fog_pdf, fog_sample_cos};
 pub use flight::{free_path, ln};
 pub use phase::{
     Hg, TwoLobe, hg_pdf, hg_sample_cos, hg_sample_cos_sin, hg_sample_dir, isotropic_sample_cos_sin,

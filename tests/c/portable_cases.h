@@ -9,7 +9,7 @@
 #include "scatterkit_portable.h"
 
 #define PC_N 16777216u
-#define PC_CASES 23
+#define PC_CASES 24
 
 SKP_FN float pc_u(skp_u32 k) {
     if (k >= PC_N - 16u) {
@@ -76,6 +76,7 @@ SKP_FN void pc_case(int c, skp_u32 k, float *o) {
     skp_hg hg;
     skp_draine dr;
     skp_two_lobe tl;
+    skp_fog fog;
     o[0] = 0.0f;
     o[1] = 0.0f;
     o[2] = 0.0f;
@@ -156,6 +157,14 @@ SKP_FN void pc_case(int c, skp_u32 k, float *o) {
         skp_two_lobe_new(0.8f, -0.3f, k & 8u ? 1.0f : 0.9f, &tl);
         v = skp_two_lobe_sample_dir(&tl, pc_dir(k), u, u2, &o[3]);
         o[0] = v.x; o[1] = v.y; o[2] = v.z;
+        break;
+    case 23:
+        skp_fog_new(0.85f, 0.45f, 250.0f, 0.3f, &fog);
+        o[0] = skp_fog_sample_cos(&fog, u);
+        o[1] = skp_fog_pdf(&fog, o[0]);
+        skp_fog_new(0.9f, 0.6f, 20.0f, u2, &fog);
+        o[2] = skp_fog_sample_cos(&fog, u);
+        o[3] = skp_fog_pdf(&fog, o[2]);
         break;
     default:
         v = skp_direction_about(pc_dir(k), SKP_MUL(2.0f, u) - 1.0f, u2, u);

@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 const N: u32 = 1 << 24;
-const CASES: i32 = 23;
+const CASES: i32 = 24;
 const NAN: u32 = 0x7fc0_0000;
 
 fn u_of(k: u32) -> f32 {
@@ -151,6 +151,12 @@ fn case(c: i32, k: u32) -> [f32; 4] {
         22 => {
             let t = p::TwoLobe::new(0.8, -0.3, if k & 8 != 0 { 1.0 } else { 0.9 }).unwrap();
             with_pdf(p::two_lobe_sample_dir(&t, dir_of(k), u, u2))
+        }
+        23 => {
+            let f1 = p::Fog::new(0.85, 0.45, 250.0, 0.3).unwrap();
+            let f2 = p::Fog::new(0.9, 0.6, 20.0, u2).unwrap();
+            let (m1, m2) = (p::fog_sample_cos(&f1, u), p::fog_sample_cos(&f2, u));
+            [m1, p::fog_pdf(&f1, m1), m2, p::fog_pdf(&f2, m2)]
         }
         _ => unreachable!("case {c}"),
     }

@@ -298,3 +298,42 @@ fn two_lobe_hg_has_the_mixtures_mean_and_density() {
     assert!(p::TwoLobe::new(0.5, 0.5, 1.5).is_none() && p::TwoLobe::new(0.5, 1.0, 0.5).is_none());
     assert!(p::TwoLobe::new(0.5, 0.5, f32::NAN).is_none());
 }
+
+/// The fog by lobe choice (the paper's sampler): stratified uniforms give
+/// the mixture's mean cosine `(1 − w) g_HG + w ḡ_D` within 1e-4, with
+/// Draine's mean cosine `g (1 + α(3 + 2g²)/5)/(1 + α(1 + 2g²)/3)`; the
+/// density is the lobes' weighted sum.
+#[test]
+fn fog_by_lobe_has_the_mixtures_mean() {
+    for (g_hg, g_d, a, w) in [
+        (0.85f32, 0.45f32, 250.0f32, 0.3f32),
+        (0.9, 0.6, 20.0, 0.1),
+        (0.7, -0.2, 1.0, 1.0),
+    ] {
+        let f = p::Fog::new(g_hg, g_d, a, w).unwrap();
+        let n = 1u32 << 20;
+        let mean: f64 = (0..n)
+            .map(|k| p::fog_sample_cos(&f, (k as f32 + 0.5) / n as f32) as f64)
+            .sum::<f64>()
+            / n as f64;
+        let (gd, a64) = (g_d as f64, a as f64);
+        let mean_d = gd * (1.0 + a64 * (3.0 + 2.0 * gd * gd) / 5.0)
+            / (1.0 + a64 * (1.0 + 2.0 * gd * gd) / 3.0);
+        let want = (1.0 - w as f64) * g_hg as f64 + w as f64 * mean_d;
+        assert!(
+            (mean - want).abs() < 1e-4,
+            "({g_hg}, {g_d}, {a}, {w}): {mean} vs {want}"
+        );
+        let d = p::Draine::new(g_d, a).unwrap();
+        let h = p::Hg::new(g_hg).unwrap();
+        for mu in [-1.0f32, 0.0, 0.7, 1.0] {
+            let want = (1.0 - w as f64) * p::hg_pdf(&h, mu) as f64
+                + w as f64 * p::draine_pdf(&d, mu) as f64;
+            assert!((p::fog_pdf(&f, mu) as f64 / want - 1.0).abs() < 1e-6);
+        }
+    }
+    assert!(
+        p::Fog::new(0.85, 0.0, 250.0, 0.3).is_none()
+            && p::Fog::new(0.85, 0.45, 250.0, 1.5).is_none()
+    );
+}

@@ -1,5 +1,6 @@
-//! The portable tier in bulk: `out[i] = f(u[i])` over the shorter of two
-//! slices, the scalar function's bits per element. With the C layer on
+//! The portable tier in bulk: cosines `out[i] = f(u[i])` over the shorter
+//! of two slices, and directions over structure-of-arrays slices, the
+//! scalar functions' bits per element. With the C layer on
 //! x86-64 Linux each loop is chosen when the program is loaded, the widest
 //! build the processor runs (`crate::math::arch`); every build runs the
 //! same IEEE operations in the same order (Rust contracts nothing), so the

@@ -13,10 +13,11 @@ use super::phase::{
 use super::turns::direction_about;
 use crate::math::real::Real;
 
-/// The phase functions [`sample_dir_n`] runs.
+/// The phase functions the batches run ([`sample_dir_n`]; the C layer's
+/// cosine batch too).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum DirPhase {
+pub enum Model {
     /// Isotropic: `cos θ = 2u − 1`, about `w_in` like the others.
     Isotropic,
     /// Henyey–Greenstein with these constants.
@@ -36,7 +37,7 @@ pub enum DirPhase {
 /// on x86-64 Linux the loop is the widest build the processor runs.
 #[inline]
 pub fn sample_dir_n(
-    phase: &DirPhase,
+    phase: &Model,
     w: [&[f32]; 3],
     u: [&[f32]; 2],
     out: [&mut [f32]; 3],
@@ -77,16 +78,10 @@ pub fn sample_dir_n(
 /// The direction loop, written once for every build (a loop per phase, so
 /// that each vectorises).
 #[inline(always)]
-fn dir_each(
-    phase: &DirPhase,
-    w: [&[f32]; 3],
-    u: [&[f32]; 2],
-    out: [&mut [f32]; 3],
-    pdf: &mut [f32],
-) {
+fn dir_each(phase: &Model, w: [&[f32]; 3], u: [&[f32]; 2], out: [&mut [f32]; 3], pdf: &mut [f32]) {
     match phase {
-        DirPhase::Hg(h) => dir_loop(|x| hg_sample_cos_sin(h, x), w, u, out, pdf),
-        DirPhase::Rayleigh => dir_loop(
+        Model::Hg(h) => dir_loop(|x| hg_sample_cos_sin(h, x), w, u, out, pdf),
+        Model::Rayleigh => dir_loop(
             |x| {
                 let mu = rayleigh_sample_cos(x);
                 (mu, Real::sqrt((1.0 - mu) * (1.0 + mu)), rayleigh_pdf(mu))
@@ -96,7 +91,7 @@ fn dir_each(
             out,
             pdf,
         ),
-        DirPhase::Isotropic => dir_loop(
+        Model::Isotropic => dir_loop(
             |x| {
                 let (mu, s) = isotropic_sample_cos_sin(x);
                 (mu, s, INV_4PI)
@@ -249,7 +244,7 @@ crate::math::arch::load_time_choice! {
     /// (`w` x, y, z, `u1`, `u2`) and four output arrays (x, y, z, pdf) at
     /// `ins` and `outs`, each valid for `n` elements, outputs distinct from
     /// the inputs and each other.
-    portable_dir_n: fn(phase: *const DirPhase, ins: *const [*const f32; 5], outs: *const [*mut f32; 4], n: usize) {
+    portable_dir_n: fn(phase: *const Model, ins: *const [*const f32; 5], outs: *const [*mut f32; 4], n: usize) {
         // SAFETY: the symbol's contract.
         unsafe {
             let ([a, b, c, d, e], [f, g, h, k]) = (*ins, *outs);

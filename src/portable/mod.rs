@@ -27,7 +27,7 @@ mod table;
 mod turns;
 
 pub use batch::{
-    DirPhase, hg_sample_cos_n, hg_sample_cos_n_in_range, isotropic_sample_cos_n,
+    Model, hg_sample_cos_n, hg_sample_cos_n_in_range, isotropic_sample_cos_n,
     rayleigh_sample_cos_n, sample_dir_n,
 };
 pub use draine::{Draine, DraineSide, Fog, draine_pdf, draine_sample_cos, fog_pdf, fog_sample_cos};

@@ -166,6 +166,20 @@ pub unsafe extern "C" fn sk_phase_sample_cos_n(
     unsafe { sample_cos_n(p, u, cos_out, n) }
 }
 
+/// The portable tier's model for a phase, chosen once per batch:
+/// SK_ERR_METHOD for a model the tier has no batch for.
+fn portable_model(ph: &Phase<f32>) -> Result<crate::portable::Model, sk_status> {
+    use crate::portable::{Hg, Model};
+    match ph {
+        Phase::HenyeyGreenstein(h) => Hg::new(h.g())
+            .map(Model::Hg)
+            .ok_or(sk_status::SK_ERR_DOMAIN),
+        Phase::Isotropic(_) => Ok(Model::Isotropic),
+        Phase::Rayleigh(_) => Ok(Model::Rayleigh),
+        _ => Err(sk_status::SK_ERR_METHOD),
+    }
+}
+
 /// The portable f32 tier in bulk (include/scatterkit_portable.h): for an
 /// isotropic, Henyey-Greenstein or Rayleigh phase, `cos_out[i]` is the
 /// cosine that header returns for `u[i]` (`2u - 1`, `skp_hg_sample_cos`
@@ -186,17 +200,16 @@ pub unsafe extern "C" fn sk_phase_sample_cos_n_portable(
         Ok(ph) => ph,
         Err(e) => return e,
     };
-    let hg = match ph {
-        Phase::HenyeyGreenstein(h) => portable::Hg::new(h.g()),
-        Phase::Isotropic(_) | Phase::Rayleigh(_) => None,
-        _ => return sk_status::SK_ERR_METHOD,
+    let phase = match portable_model(ph) {
+        Ok(m) => m,
+        Err(e) => return e,
     };
     unsafe {
         map_arrays(u, cos_out, n, check_uniforms, |u, out| {
-            match (ph, &hg) {
-                (_, Some(h)) => portable::hg_sample_cos_n_in_range(h, u, out),
-                (Phase::Rayleigh(_), None) => portable::rayleigh_sample_cos_n(u, out),
-                _ => portable::isotropic_sample_cos_n(u, out),
+            match &phase {
+                portable::Model::Hg(h) => portable::hg_sample_cos_n_in_range(h, u, out),
+                portable::Model::Rayleigh => portable::rayleigh_sample_cos_n(u, out),
+                portable::Model::Isotropic => portable::isotropic_sample_cos_n(u, out),
             }
             Ok(())
         })
@@ -268,19 +281,14 @@ pub unsafe extern "C" fn sk_phase_sample_dir_n_portable(
     pdf_out: *mut f32,
     n: usize,
 ) -> sk_status {
-    use crate::portable::{DirPhase, Hg, sample_dir_n};
+    use crate::portable::sample_dir_n;
     let ph = match unsafe { load_batch(p) } {
         Ok(ph) => ph,
         Err(e) => return e,
     };
-    let phase = match ph {
-        Phase::HenyeyGreenstein(h) => match Hg::new(h.g()) {
-            Some(c) => DirPhase::Hg(c),
-            None => return sk_status::SK_ERR_DOMAIN,
-        },
-        Phase::Isotropic(_) => DirPhase::Isotropic,
-        Phase::Rayleigh(_) => DirPhase::Rayleigh,
-        _ => return sk_status::SK_ERR_METHOD,
+    let phase = match portable_model(ph) {
+        Ok(m) => m,
+        Err(e) => return e,
     };
     let (w, out) = ([w_x, w_y, w_z], [out_x, out_y, out_z]);
     let run = |i: &[[f32; SOA_BLOCK]; 5], o: &mut [[f32; SOA_BLOCK]; 4], len: usize| {

@@ -63,6 +63,22 @@ pub(crate) unsafe fn dir_blocks<T: Real>(
     sk_status::SK_OK
 }
 
+/// [`dir_blocks`] with each block handed over as slices of its length:
+/// `run(w, [u1, u2], out, pdf)`, for loops written over slices.
+pub(crate) unsafe fn dir_block_slices<T: Real>(
+    ins: ([*const T; 3], *const T, *const T),
+    outs: ([*mut T; 3], *mut T),
+    n: usize,
+    mut run: impl FnMut([&[T]; 3], [&[T]; 2], [&mut [T]; 3], &mut [T]),
+) -> sk_status {
+    let adapt = |i: &[[T; SOA_BLOCK]; 5], o: &mut [[T; SOA_BLOCK]; 4], len: usize| {
+        let [ix, iy, iz, a, b] = i.each_ref().map(|x| x.get(..len).unwrap_or(&[]));
+        let [ox, oy, oz, pdf] = o.each_mut().map(|x| x.get_mut(..len).unwrap_or(&mut []));
+        run([ix, iy, iz], [a, b], [ox, oy, oz], pdf);
+    };
+    unsafe { dir_blocks(ins, outs, n, adapt) }
+}
+
 /// [`dir_blocks`] with `f(w_in, u1, u2)` giving each direction and its
 /// density.
 pub(crate) unsafe fn dir_n<T: Real>(

@@ -8,6 +8,7 @@
 pub mod azimuth;
 pub mod cbrt;
 pub(crate) mod double_double;
+pub(crate) mod draine_eq6;
 pub mod geometry;
 pub(crate) mod numeric;
 pub mod rayleigh_table;

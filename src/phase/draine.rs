@@ -365,28 +365,17 @@ impl Eq6 {
     /// The constants for `g` (signed as the problem is oriented) and `α`.
     #[inline(always)]
     fn new(g: f64, a: f64) -> Eq6 {
-        let g2 = g * g;
-        let omg = 1.0 - g;
-        let omg2 = omg * (1.0 + g);
-        let opg2 = 1.0 + g2;
-        let t0 = a * omg2;
-        let t6 = -4.0 * t0 * g2 * omg2;
-        // P = t4 at u = 0 and Q = dt4/du, t4 = 3g²(1 + t3) + α(2 + g²(1 +
-        // (1 + 2g²) t3)) with t3 = g(2u − 1); P ≥ 0 and P + Q ≥ 0.
-        let p = omg * (3.0 * g2 + a * (2.0 + g * (2.0 + g * (3.0 + g * (2.0 + 2.0 * g)))));
-        let q = 2.0 * g * g2 * (3.0 + a * (1.0 + 2.0 * g2));
-        let r = Real::sqrt(4.0 * a * (omg2 * omg2) * opg2 * (3.0 * g2 + a * opg2 * opg2));
-        let b = a * (a * (4.0 * g2 - g + 4.0) + 6.0 * (2.0 * g2 + g + 2.0)) - 9.0 * g;
+        let e = crate::math::draine_eq6::eq6_core(g, a);
         Eq6 {
-            d: -(g * g2) * (omg * omg) * b / (p + r),
-            q,
-            r,
-            t0,
-            t1: -a * omg2 * opg2,
-            t6,
-            t6_3: t6 * t6 * t6,
-            inv_t0: 1.0 / t0,
-            k: 6.0 * opg2,
+            d: e.d,
+            q: e.q,
+            r: e.r,
+            t0: e.t0,
+            t1: e.t1,
+            t6: e.t6,
+            t6_3: e.t6_3,
+            inv_t0: 1.0 / e.t0,
+            k: e.k,
             g,
             inv_2g: 0.5 / g,
         }

@@ -14,6 +14,7 @@
 //! step remains): `tests/models/portable.rs` has the figures.
 
 use super::clamp01;
+use crate::math::draine_eq6::eq6_core;
 use crate::math::real::Real;
 
 /// `1/(4π)` rounded to f32.
@@ -68,32 +69,21 @@ pub struct Draine {
 }
 
 impl DraineSide {
+    /// The constants of the accurate tier's eq. 6 (`math::draine_eq6`),
+    /// evaluated in f32, and the reciprocals this tier multiplies by.
     fn new(g: f32, a: f32) -> Self {
-        let g2 = g * g;
-        let omg = 1.0 - g;
-        let omg2 = omg * (1.0 + g);
-        let opg2 = 1.0 + g2;
-        let t0 = a * omg2;
-        let t6 = -4.0 * t0 * g2 * omg2;
-        // p = t4 at u = 0 and q = dt4/du, t4 = 3g²(1 + t3) + α(2 + g²(1 +
-        // (1 + 2g²) t3)), t3 = g(2u − 1); p ≥ 0 and p + q ≥ 0.
-        let p = omg * (3.0 * g2 + a * (2.0 + g * (2.0 + g * (3.0 + g * (2.0 + 2.0 * g)))));
-        let q = 2.0 * g * g2 * (3.0 + a * (1.0 + 2.0 * g2));
-        let r = Real::sqrt(4.0 * a * (omg2 * omg2) * opg2 * (3.0 * g2 + a * opg2 * opg2));
-        let b = a * (a * (4.0 * g2 - g + 4.0) + 6.0 * (2.0 * g2 + g + 2.0)) - 9.0 * g;
+        let e = eq6_core(g, a);
         DraineSide {
-            // t4 − r without the cancellation of p − r: (p² − r²)/(p + r),
-            // with p² − r² = −g³(1 − g)² b in closed form.
-            d: -(g * g2) * (omg * omg) * b / (p + r),
-            q,
-            r,
-            t0,
-            t1: -a * omg2 * opg2,
-            t6,
-            t6_3: t6 * t6 * t6,
-            two_inv_t0: 2.0 / t0,
-            eight_inv_t0: 8.0 / t0,
-            k: 6.0 * opg2,
+            d: e.d,
+            q: e.q,
+            r: e.r,
+            t0: e.t0,
+            t1: e.t1,
+            t6: e.t6,
+            t6_3: e.t6_3,
+            two_inv_t0: 2.0 / e.t0,
+            eight_inv_t0: 8.0 / e.t0,
+            k: e.k,
             half_g: 0.5 * g,
             inv_2g: 0.5 / g,
         }

@@ -5,7 +5,7 @@
 //! value, so a NULL, zeroed or never-constructed phase gives NaN or an error
 //! rather than undefined behaviour.
 
-use super::{CVec, SOA_BLOCK, map_arrays, sk_status, sk_vec3, sk_vec3_f64, write_result};
+use super::{CVec, map_arrays, sk_status, sk_vec3, sk_vec3_f64, write_result};
 use crate::error::Error;
 use crate::math::real::Real;
 use crate::phase::{Phase, PhaseFunction, PhaseVisitor, check_uniforms};
@@ -247,12 +247,11 @@ unsafe fn sample_dir_n<S: PhaseStore>(
         Err(e) => return e,
     };
     // The model's own loop per block (it vectorises for the closed forms).
-    let run = |i: &[[S::T; SOA_BLOCK]; 5], o: &mut [[S::T; SOA_BLOCK]; 4], len: usize| {
-        let [ix, iy, iz, a, b] = i.each_ref().map(|x| x.get(..len).unwrap_or(&[]));
-        let [ox, oy, oz, pdf] = o.each_mut().map(|x| x.get_mut(..len).unwrap_or(&mut []));
-        ph.sample_dir_each([ix, iy, iz], a, b, [ox, oy, oz], pdf);
-    };
-    unsafe { super::verbs::dir_blocks((w, u1, u2), (out, pdf_out), n, run) }
+    unsafe {
+        super::verbs::dir_block_slices((w, u1, u2), (out, pdf_out), n, |w, [a, b], o, pdf| {
+            ph.sample_dir_each(w, a, b, o, pdf)
+        })
+    }
 }
 
 #[cfg(test)]

@@ -291,12 +291,11 @@ pub unsafe extern "C" fn sk_phase_sample_dir_n_portable(
         Err(e) => return e,
     };
     let (w, out) = ([w_x, w_y, w_z], [out_x, out_y, out_z]);
-    let run = |i: &[[f32; SOA_BLOCK]; 5], o: &mut [[f32; SOA_BLOCK]; 4], len: usize| {
-        let [ix, iy, iz, a, b] = i.each_ref().map(|x| x.get(..len).unwrap_or(&[]));
-        let [ox, oy, oz, pdf] = o.each_mut().map(|x| x.get_mut(..len).unwrap_or(&mut []));
-        sample_dir_n(&phase, [ix, iy, iz], [a, b], [ox, oy, oz], pdf);
-    };
-    unsafe { crate::ffi::verbs::dir_blocks((w, u1, u2), (out, pdf_out), n, run) }
+    unsafe {
+        crate::ffi::verbs::dir_block_slices((w, u1, u2), (out, pdf_out), n, |w, u, o, pdf| {
+            sample_dir_n(&phase, w, u, o, pdf)
+        })
+    }
 }
 
 /// Double twin of `sk_phase_sample_dir_n`.

@@ -857,6 +857,80 @@ SKP_FN float skp_free_path(float sigma_t, float u) {
     return -l / sigma_t;
 }
 
+/* e^x within an ulp (fdlibm's expf scheme: x = k ln 2 + r, |r| <= ln 2 / 2,
+   a rational form in r, then the exact scaling by 2^k): +inf from
+   x >= 88.722839, 0 below -103.972084, subnormal between; NaN gives NaN. */
+SKP_FN float skp_exp(float x) {
+    SKP_BEGIN
+    int k;
+    float kf, hi, lo, r, t, c, y;
+    if (x != x) {
+        return x;
+    }
+    if (x >= skp_from_bits(0x42b17218u)) {
+        return skp_from_bits(0x7f800000u);
+    }
+    if (x < -103.972084f) {
+        return 0.0f;
+    }
+    k = (int)(SKP_MUL(1.44269502f, x) + (x < 0.0f ? -0.5f : 0.5f));
+    kf = (float)k;
+    hi = x - SKP_MUL(kf, 0.69314575f);
+    lo = SKP_MUL(kf, 1.4286068e-06f);
+    r = hi - lo;
+    t = r * r;
+    c = r - SKP_MUL(t, 0.16666625f + SKP_MUL(t, -2.7667333e-03f));
+    if (k == 0) {
+        return 1.0f - ((r * c) / (c - 2.0f) - r);
+    }
+    y = 1.0f - ((lo - (r * c) / (2.0f - c)) - hi);
+    if (k >= -125) {
+        if (k == 128) {
+            return y * 2.0f * skp_from_bits(0x7f000000u);
+        }
+        return y * skp_from_bits((skp_u32)(127 + k) << 23);
+    }
+    return y * skp_from_bits((skp_u32)(127 + k + 100) << 23) * skp_from_bits(0x0d800000u);
+}
+
+/* The transmittance e^(-sigma_t d) of a homogeneous medium (sigma_t >= 0 per
+   length unit, d >= 0). */
+SKP_FN float skp_transmittance(float sigma_t, float d) {
+    return skp_exp(-SKP_MUL(sigma_t, d));
+}
+
+/* Free flight in a spectral medium (hero-wavelength sampling): the distance
+   drawn at sigma_t[hero], t = -ln(1 - u)/sigma_t[hero], returned (+inf for
+   u = 1); ratio[c] receives channel c's density of the same event over the
+   hero's: (sigma_c/sigma_h) e^(-(sigma_c - sigma_h) t) for a collision
+   (t < t_max), e^(-(sigma_c - sigma_h) t_max) for an escape (t >= t_max).
+   Their mean is the balance heuristic's denominator over a uniformly drawn
+   hero. NaN, with ratio untouched, for a NaN u, hero >= n or
+   sigma_t[hero] <= 0. sigma_t: n finite values >= 0; ratio: n values. */
+SKP_FN float skp_spectral_free_path(const float *sigma_t, skp_u32 n, skp_u32 hero, float u,
+                                    float t_max, float *ratio) {
+    SKP_BEGIN
+    float sh, t, at, d, e;
+    skp_u32 c;
+    int escaped;
+    if (hero >= n || !(sigma_t[hero] > 0.0f)) {
+        return skp_from_bits(0x7fc00000u);
+    }
+    sh = sigma_t[hero];
+    t = skp_free_path(sh, u);
+    if (t != t) {
+        return t;
+    }
+    escaped = !(t < t_max);
+    at = escaped ? t_max : t;
+    for (c = 0u; c < n; ++c) {
+        d = sigma_t[c] - sh;
+        e = d == 0.0f ? 1.0f : skp_exp(-SKP_MUL(d, at));
+        ratio[c] = escaped ? e : sigma_t[c] / sh * e;
+    }
+    return t;
+}
+
 /* ---- tables the library built ------------------------------------------ */
 /* The data of an sk_table or sk_table2d (layouts in scatterkit_table.h),
    copied to the device as it is. SKP_GLOBAL is the address space the data
@@ -975,6 +1049,161 @@ SKP_FN float skp_table2d_sample_cos_pdf(const SKP_GLOBAL float *data, skp_u32 n,
     }
     *pdf = SKP_INV_2PI / ((float)n * dmu);
     return mu;
+}
+
+/* ---- tracking through a majorant grid ------------------------------------ */
+/* A walk along one ray through a grid of nx ny nz majorants (x fastest,
+   i + nx (j + ny k); each bounds sigma_t per length unit over its cell; the
+   cells divide the box [lo, hi] evenly: the layout of sk_majorants). One
+   skp_walk_step draws one tentative collision with one uniform, spending the
+   optical depth -ln(1 - u) cell by cell; delta, ratio and residual tracking
+   are loops around it. Plain data: fill with skp_walk_begin. */
+typedef struct skp_walk {
+    float o[3];    /* the origin in cell units */
+    float d[3];    /* the direction in cell units per ray parameter */
+    float next[3]; /* the ray parameter at the next face per axis */
+    float t;       /* the ray parameter reached */
+    float t_end;   /* where the walk ends */
+    skp_u32 cell[3];
+    skp_u32 dims[3];
+} skp_walk;
+
+SKP_FN float skp_walk_face_(const skp_walk *w, int a) {
+    if (w->d[a] == 0.0f) {
+        return skp_from_bits(0x7f800000u);
+    }
+    return ((float)(w->cell[a] + (w->d[a] > 0.0f ? 1u : 0u)) - w->o[a]) / w->d[a];
+}
+
+/* Starts a walk along origin + t dir, t in [t_min, t_max], through the grid
+   of nx ny nz cells over [lo, hi] (the ray parameter is a length where dir
+   is a unit vector). 1: the walk is ready; 0: the segment misses the box
+   (or touches it in one point); -1: bad input (origin or dir not finite,
+   dir = 0, not lo < hi, a dimension 0 or >= 2^24, nx ny nz >= 2^32,
+   t_min < 0 or not finite, t_max < t_min). */
+SKP_FN int skp_walk_begin(skp_walk *w, skp_vec3 origin, skp_vec3 dir, skp_vec3 lo, skp_vec3 hi,
+                          skp_u32 nx, skp_u32 ny, skp_u32 nz, float t_min, float t_max) {
+    SKP_BEGIN
+    float org[3], dv[3], lov[3], hiv[3];
+    float span, scale, o, d, t0, t1, p, inf = skp_from_bits(0x7f800000u);
+    skp_u32 c;
+    int a;
+    if (!(t_min >= 0.0f && t_min < inf && t_max >= t_min)) {
+        return -1;
+    }
+    if ((dir.x == 0.0f && dir.y == 0.0f && dir.z == 0.0f) || nx == 0u || ny == 0u || nz == 0u ||
+        ny > 0xffffffffu / nx || nz > 0xffffffffu / (nx * ny)) {
+        return -1;
+    }
+    org[0] = origin.x; org[1] = origin.y; org[2] = origin.z;
+    dv[0] = dir.x; dv[1] = dir.y; dv[2] = dir.z;
+    lov[0] = lo.x; lov[1] = lo.y; lov[2] = lo.z;
+    hiv[0] = hi.x; hiv[1] = hi.y; hiv[2] = hi.z;
+    w->dims[0] = nx; w->dims[1] = ny; w->dims[2] = nz;
+    w->t = t_min;
+    w->t_end = t_max;
+    for (a = 0; a < 3; ++a) {
+        skp_u32 n = w->dims[a];
+        span = hiv[a] - lov[a];
+        if (!(n < 16777216u && span > 0.0f && span < inf)) {
+            return -1;
+        }
+        scale = (float)n / span;
+        o = SKP_MUL(org[a] - lov[a], scale);
+        d = SKP_MUL(dv[a], scale);
+        if (!(o > -inf && o < inf && d > -inf && d < inf)) {
+            return -1;
+        }
+        w->o[a] = o;
+        w->d[a] = d;
+        w->next[a] = inf;
+        w->cell[a] = 0u;
+        if (d == 0.0f) {
+            if (o < 0.0f || o > (float)n) {
+                return 0;
+            }
+            continue;
+        }
+        t0 = (0.0f - o) / d;
+        t1 = ((float)n - o) / d;
+        if (t0 < t1) {
+            if (t0 > w->t) w->t = t0;
+            if (t1 < w->t_end) w->t_end = t1;
+        } else {
+            if (t1 > w->t) w->t = t1;
+            if (t0 < w->t_end) w->t_end = t0;
+        }
+    }
+    if (!(w->t < w->t_end)) {
+        return 0;
+    }
+    for (a = 0; a < 3; ++a) {
+        p = w->o[a] + SKP_MUL(w->d[a], w->t);
+        c = p > 0.0f ? (skp_u32)p : 0u;
+        w->cell[a] = c < w->dims[a] - 1u ? c : w->dims[a] - 1u;
+        w->next[a] = skp_walk_face_(w, a);
+    }
+    return 1;
+}
+
+/* The flat index of the walk's cell. */
+SKP_FN skp_u32 skp_walk_cell(const skp_walk *w) {
+    return w->cell[0] + w->dims[0] * (w->cell[1] + w->dims[1] * w->cell[2]);
+}
+
+/* The next tentative collision, with one uniform u (clamped; NaN and u = 1
+   walk to the end). 1: a collision at *t in a cell of majorant *sigma_maj
+   (index skp_walk_cell(w)); the walk waits there for the next step.
+   0: the walk reached t_end (*t = t_end, *sigma_maj = 0); every later step
+   returns 0. -1: a majorant on the way is negative, NaN or infinite.
+   majorants: nx ny nz values. Reads at most nx + ny + nz of them. */
+SKP_FN int skp_walk_step(skp_walk *w, const SKP_GLOBAL float *majorants, float u, float *t,
+                         float *sigma_maj) {
+    SKP_BEGIN
+    float tau = skp_free_path(1.0f, u), t_face, sigma, depth, tc;
+    skp_u32 k = 0u, crossings = w->dims[0] + w->dims[1] + w->dims[2], c;
+    int a;
+    if (tau != tau) {
+        tau = skp_from_bits(0x7f800000u);
+    }
+    while (w->t < w->t_end && k < crossings) {
+        ++k;
+        a = 0;
+        if (w->next[1] < w->next[a]) a = 1;
+        if (w->next[2] < w->next[a]) a = 2;
+        t_face = w->next[a] < w->t_end ? w->next[a] : w->t_end;
+        if (t_face < w->t) t_face = w->t;
+        sigma = majorants[skp_walk_cell(w)];
+        if (!(sigma >= 0.0f && sigma < skp_from_bits(0x7f800000u))) {
+            return -1;
+        }
+        depth = SKP_MUL(sigma, t_face - w->t);
+        if (tau < depth) {
+            tc = w->t + tau / sigma;
+            w->t = tc < t_face ? tc : t_face;
+            *t = w->t;
+            *sigma_maj = sigma;
+            return 1;
+        }
+        tau = tau - depth;
+        if (!(t_face < w->t_end)) {
+            break;
+        }
+        c = w->cell[a];
+        if (w->d[a] > 0.0f) {
+            if (c + 1u >= w->dims[a]) break;
+            w->cell[a] = c + 1u;
+        } else {
+            if (c == 0u) break;
+            w->cell[a] = c - 1u;
+        }
+        w->next[a] = skp_walk_face_(w, a);
+        w->t = t_face;
+    }
+    w->t = w->t_end;
+    *t = w->t_end;
+    *sigma_maj = 0.0f;
+    return 0;
 }
 
 #endif /* SCATTERKIT_PORTABLE_H */

@@ -1,7 +1,7 @@
 //! The portable f32 tier: samplers written once in single precision, with
 //! every operation an IEEE-754 addition, subtraction, multiplication,
 //! division or square root in a stated order, and the library's own sine,
-//! cosine and logarithm (no libm, no double precision, no fused
+//! cosine, logarithm and exponential (no libm, no double precision, no fused
 //! multiply-add). `include/scatterkit_portable.h` carries the same
 //! functions, operation for operation, for C, C++, CUDA, HIP and OpenCL C;
 //! compiled where each operation rounds correctly (C and C++ on any IEEE
@@ -25,13 +25,14 @@ mod flight;
 mod phase;
 mod table;
 mod turns;
+mod walk;
 
 pub use batch::{
     Model, hg_sample_cos_n, hg_sample_cos_n_in_range, isotropic_sample_cos_n,
     rayleigh_sample_cos_n, sample_dir_n,
 };
 pub use draine::{Draine, DraineSide, Fog, draine_pdf, draine_sample_cos, fog_pdf, fog_sample_cos};
-pub use flight::{free_path, ln};
+pub use flight::{exp, free_path, ln, spectral_free_path, transmittance};
 pub use phase::{
     Hg, TwoLobe, hg_pdf, hg_sample_cos, hg_sample_cos_sin, hg_sample_dir, isotropic_sample_cos_sin,
     isotropic_sample_dir, rayleigh_pdf, rayleigh_sample_cos, rayleigh_sample_dir, two_lobe_pdf,
@@ -41,6 +42,7 @@ pub use table::{
     table_cdf_sample_cos_pdf, table_sample_cos, table_sample_cos_pdf, table2d_sample_cos_pdf,
 };
 pub use turns::{direction_about, frame, sin_cos_2pi};
+pub use walk::{Step, Walk};
 
 /// The Rayleigh sampler's table: 128 intervals of `[μ_i, d_i, c2_i, c3_i]`,
 /// the cubic Hermite spline of the inverse CDF over `u ∈ [i/128, (i+1)/128]`

@@ -13,12 +13,15 @@ int main(int argc, char **argv) {
     unsigned long stride = argc > 1 ? strtoul(argv[1], NULL, 10) : 1ul;
     int c, i;
     skp_u32 b, k;
-    float o[4];
+    float o[4], maj[PC_MAJ_N];
+    for (k = 0; k < PC_MAJ_N; k++) {
+        maj[k] = pc_maj(k);
+    }
     for (c = 0; c < PC_CASES; c++) {
         for (b = 0; b < PC_N >> 16; b++) {
             skp_u32 h = 2166136261u;
             for (k = b << 16; k < (b + 1u) << 16; k += (skp_u32)stride) {
-                pc_case(c, k, o);
+                pc_case(c, k, maj, o);
                 for (i = 0; i < 4; i++) {
                     skp_u32 w = skp_bits(o[i]);
                     w = (w & 0x7fffffffu) > 0x7f800000u ? 0x7fc00000u : w;

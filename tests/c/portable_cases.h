@@ -9,7 +9,8 @@
 #include "scatterkit_portable.h"
 
 #define PC_N 16777216u
-#define PC_CASES 24
+#define PC_CASES 27
+#define PC_MAJ_N 60u /* the majorant grid of case 26: 5 x 3 x 4 cells */
 
 SKP_FN float pc_u(skp_u32 k) {
     if (k >= PC_N - 16u) {
@@ -69,9 +70,55 @@ SKP_FN float pc_g(int c) {
     }
 }
 
-SKP_FN void pc_case(int c, skp_u32 k, float *o) {
+/* Majorant i of case 26's grid: 0 to 3 in steps of 0.75, one cell 40. */
+SKP_FN float pc_maj(skp_u32 i) {
+    return i == 17u ? 40.0f : (float)((i * 7u) % 5u) * 0.75f;
+}
+
+/* Case 26: a walk through the 5 x 3 x 4 grid maj over [-1, 1.5] x
+   [-0.5, 0.5] x [0, 2], three steps: (begin + 1) + 3 (step + 1) + ... as a
+   code plus 100 times the cell at the end, and the three t; one input in
+   128 bad. */
+SKP_FN void pc_walk(skp_u32 k, float u, float u2, float u3, const SKP_GLOBAL float *maj, float *o) {
+    SKP_BEGIN
+    skp_vec3 d = pc_dir(k), org, lo, hi;
+    skp_walk w;
+    float sig, tmin, tmax, back = (k & 64u) ? 0.0f : 3.0f;
+    skp_u32 nx = 5u;
+    int b, s1, s2, s3;
+    org.x = 0.25f - SKP_MUL(back, d.x) + SKP_MUL(u2 - 0.5f, 2.5f);
+    org.y = 0.0f - SKP_MUL(back, d.y) + SKP_MUL(u3 - 0.5f, 1.0f);
+    org.z = 1.0f - SKP_MUL(back, d.z) + SKP_MUL(u - 0.5f, 2.0f);
+    lo.x = -1.0f; lo.y = -0.5f; lo.z = 0.0f;
+    hi.x = 1.5f; hi.y = 0.5f; hi.z = 2.0f;
+    tmin = (k & 16u) ? 0.5f : 0.0f;
+    tmax = (k & 32u) ? 4.0f : skp_from_bits(0x7f800000u);
+    if ((k & 127u) == 127u) { /* one input in 128 is bad, eight ways */
+        switch ((k >> 7) & 7u) {
+        case 0: nx = 0u; break;
+        case 1: org.x = skp_from_bits(0x7fc00000u); break;
+        case 2: tmin = -1.0f; break;
+        case 3: tmax = -1.0f; break;
+        case 4: d.x = 0.0f; d.y = 0.0f; d.z = 0.0f; break;
+        case 5: hi.x = lo.x; break;
+        case 6: org.y = skp_from_bits(0x7f800000u); break;
+        default: nx = 16777216u; break;
+        }
+    }
+    b = skp_walk_begin(&w, org, d, lo, hi, nx, 3u, 4u, tmin, tmax);
+    if (b != 1) {
+        o[0] = (float)(b + 1);
+        return;
+    }
+    s1 = skp_walk_step(&w, maj, u, &o[1], &sig);
+    s2 = skp_walk_step(&w, maj, u2, &o[2], &sig);
+    s3 = skp_walk_step(&w, maj, u3, &o[3], &sig);
+    o[0] = (float)(2 + 3 * (s1 + 1) + 9 * (s2 + 1) + 27 * (s3 + 1)) + (float)(100u * skp_walk_cell(&w));
+}
+
+SKP_FN void pc_case(int c, skp_u32 k, const SKP_GLOBAL float *maj, float *o) {
     SKP_BEGIN /* the inputs below must not contract either (0.5 + 1e4 u2) */
-    float u = pc_u(k), u2 = pc_u2(k), s, pdf;
+    float u = pc_u(k), u2 = pc_u2(k), s, pdf, sig[3];
     skp_vec3 v;
     skp_hg hg;
     skp_draine dr;
@@ -165,6 +212,21 @@ SKP_FN void pc_case(int c, skp_u32 k, float *o) {
         skp_fog_new(0.9f, 0.6f, 20.0f, u2, &fog);
         o[2] = skp_fog_sample_cos(&fog, u);
         o[3] = skp_fog_pdf(&fog, o[2]);
+        break;
+    case 24:
+        sig[0] = 0.5f;
+        sig[1] = 2.0f;
+        sig[2] = SKP_MUL(3.0f, u2);
+        o[0] = skp_spectral_free_path(sig, 3u, k % 3u, u, 1.5f, &o[1]);
+        break;
+    case 25:
+        o[0] = skp_exp(skp_from_bits(k << 7));
+        o[1] = skp_exp(-skp_from_bits(k << 7));
+        o[2] = skp_exp(SKP_MUL(200.0f, u) - 100.0f);
+        o[3] = skp_transmittance(2.5f, SKP_MUL(10.0f, u));
+        break;
+    case 26:
+        pc_walk(k, u, u2, pc_u2(k ^ 0x5bd1e995u), maj, o);
         break;
     default:
         v = skp_direction_about(pc_dir(k), SKP_MUL(2.0f, u) - 1.0f, u2, u);

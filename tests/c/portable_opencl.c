@@ -14,10 +14,10 @@
 
 static const char *KERNEL =
     "#include \"portable_cases.h\"\n"
-    "__kernel void run(int c, uint k0, __global float *out) {\n"
+    "__kernel void run(int c, uint k0, __global float *out, __global const float *maj) {\n"
     "    uint i = (uint)get_global_id(0);\n"
     "    float o[4];\n"
-    "    pc_case(c, k0 + i, o);\n"
+    "    pc_case(c, k0 + i, maj, o);\n"
     "    out[4 * i] = o[0]; out[4 * i + 1] = o[1];\n"
     "    out[4 * i + 2] = o[2]; out[4 * i + 3] = o[3];\n"
     "}\n";
@@ -38,7 +38,8 @@ int main(int argc, char **argv) {
     cl_command_queue q;
     cl_program prog;
     cl_kernel kern;
-    cl_mem buf;
+    cl_mem buf, majb;
+    float maj[PC_MAJ_N];
     char options[4096];
     float *out;
     int c;
@@ -78,6 +79,12 @@ int main(int argc, char **argv) {
     if (err != CL_SUCCESS) return fail("clCreateKernel", err);
     buf = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, 4 * sizeof(float) * CHUNK, NULL, &err);
     if (err != CL_SUCCESS) return fail("clCreateBuffer", err);
+    for (c = 0; c < (int)PC_MAJ_N; c++) {
+        maj[c] = pc_maj((skp_u32)c);
+    }
+    /* The majorant grid as a renderer would hold it: a device buffer. */
+    majb = clCreateBuffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof maj, maj, &err);
+    if (err != CL_SUCCESS) return fail("clCreateBuffer", err);
     out = (float *)malloc(4 * sizeof(float) * CHUNK);
     for (c = 0; c < PC_CASES; c++) {
         skp_u32 k0;
@@ -87,6 +94,7 @@ int main(int argc, char **argv) {
             clSetKernelArg(kern, 0, sizeof(int), &c);
             clSetKernelArg(kern, 1, sizeof(cl_uint), &k0);
             clSetKernelArg(kern, 2, sizeof(cl_mem), &buf);
+            clSetKernelArg(kern, 3, sizeof(cl_mem), &majb);
             err = clEnqueueNDRangeKernel(q, kern, 1, NULL, &global, NULL, 0, NULL, NULL);
             if (err != CL_SUCCESS) return fail("clEnqueueNDRangeKernel", err);
             err = clEnqueueReadBuffer(q, buf, CL_TRUE, 0, 4 * sizeof(float) * CHUNK, out, 0, NULL, NULL);
@@ -107,6 +115,7 @@ int main(int argc, char **argv) {
     }
     free(out);
     clReleaseMemObject(buf);
+    clReleaseMemObject(majb);
     clReleaseKernel(kern);
     clReleaseProgram(prog);
     clReleaseCommandQueue(q);

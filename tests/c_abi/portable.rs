@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 const N: u32 = 1 << 24;
-const CASES: i32 = 24;
+const CASES: i32 = 27;
 const NAN: u32 = 0x7fc0_0000;
 
 fn u_of(k: u32) -> f32 {
@@ -158,8 +158,85 @@ fn case(c: i32, k: u32) -> [f32; 4] {
             let (m1, m2) = (p::fog_sample_cos(&f1, u), p::fog_sample_cos(&f2, u));
             [m1, p::fog_pdf(&f1, m1), m2, p::fog_pdf(&f2, m2)]
         }
+        24 => {
+            let sigma = [0.5, 2.0, 3.0 * u2];
+            let mut r = [0.0; 3];
+            let t = p::spectral_free_path(&sigma, (k % 3) as usize, u, 1.5, &mut r);
+            [t, r[0], r[1], r[2]]
+        }
+        25 => {
+            let x = f32::from_bits(k << 7);
+            [
+                p::exp(x),
+                p::exp(-x),
+                p::exp(200.0 * u - 100.0),
+                p::transmittance(2.5, 10.0 * u),
+            ]
+        }
+        26 => walk(k, u, u2, u2_of(k ^ 0x5bd1_e995)),
         _ => unreachable!("case {c}"),
     }
+}
+
+/// Majorant `i` of case 26's grid (`pc_maj`).
+fn maj(i: u32) -> f32 {
+    if i == 17 {
+        40.0
+    } else {
+        ((i * 7) % 5) as f32 * 0.75
+    }
+}
+
+/// Case 26 (`pc_walk`): three steps of a walk through a 5×3×4 grid.
+fn walk(k: u32, u: f32, u2: f32, u3: f32) -> [f32; 4] {
+    let grid: [f32; 60] = core::array::from_fn(|i| maj(i as u32));
+    let d = dir_of(k);
+    let back = if k & 64 != 0 { 0.0 } else { 3.0 };
+    let org = [
+        0.25 - back * d[0] + (u2 - 0.5) * 2.5,
+        0.0 - back * d[1] + (u3 - 0.5) * 1.0,
+        1.0 - back * d[2] + (u - 0.5) * 2.0,
+    ];
+    let mut t_min = if k & 16 != 0 { 0.5 } else { 0.0 };
+    let mut t_max = if k & 32 != 0 { 4.0 } else { f32::INFINITY };
+    let (mut org, mut d, mut hi, mut nx) = (org, d, [1.5, 0.5, 2.0], 5);
+    // One input in 128 is bad, eight ways (pc_walk).
+    if k & 127 == 127 {
+        match (k >> 7) & 7 {
+            0 => nx = 0,
+            1 => org[0] = f32::NAN,
+            2 => t_min = -1.0,
+            3 => t_max = -1.0,
+            4 => d = [0.0; 3],
+            5 => hi[0] = -1.0,
+            6 => org[1] = f32::INFINITY,
+            _ => nx = 1 << 24,
+        }
+    }
+    let w = p::Walk::new(org, d, [-1.0, -0.5, 0.0], hi, [nx, 3, 4], t_min, t_max);
+    let mut w = match w {
+        Ok(Some(w)) => w,
+        Ok(None) => return [1.0, 0.0, 0.0, 0.0],
+        Err(()) => return [0.0; 4],
+    };
+    let mut o = [0.0; 4];
+    let mut code = 2;
+    for (i, (u, scale)) in [(u, 3), (u2, 9), (u3, 27)].into_iter().enumerate() {
+        let s = match w.step(&grid, u) {
+            p::Step::Collision { t, .. } => {
+                o[i + 1] = t;
+                1
+            }
+            p::Step::Exit => {
+                o[i + 1] = w.t_end;
+                0
+            }
+            p::Step::BadMajorant => -1,
+        };
+        code += scale * (s + 1);
+    }
+    o[0] = code as f32 + (100 * w.cell_index()) as f32;
+    o
 }
 
 /// Block hashes: `(case, block) → hash`, every `stride`-th index.
@@ -374,9 +451,9 @@ fn the_header_compiles_as_cuda_and_hip_device_code() {
     std::fs::write(
         &src,
         "#include \"portable_cases.h\"\n\
-         __attribute__((global)) void run(int c, unsigned k0, float *out) {\n\
+         __attribute__((global)) void run(int c, unsigned k0, float *out, const float *maj) {\n\
              float o[4];\n\
-             pc_case(c, k0, o);\n\
+             pc_case(c, k0, maj, o);\n\
              out[0] = o[0]; out[1] = o[1]; out[2] = o[2]; out[3] = o[3];\n\
          }\n",
     )
@@ -606,7 +683,7 @@ fn the_guides_code_compiles() {
         .skip(1)
         .map(|b| b.split("```").next().unwrap())
         .collect();
-    assert_eq!(blocks.len(), 3, "the guide's C, CUDA and OpenCL blocks");
+    assert_eq!(blocks.len(), 4, "the guide's two C, CUDA and OpenCL blocks");
     let dir = out_dir();
     let compile = |tool: &str, name: &str, prelude: &str, code: &str, flags: &[&str]| {
         let src = dir.join(name);
@@ -626,22 +703,24 @@ fn the_guides_code_compiles() {
     };
     let obj = dir.join("guide.o");
     let obj = obj.to_str().unwrap();
-    compile(
-        "cc",
-        "guide_renderer.c",
-        "",
-        blocks[0],
-        &[
-            "-std=c99",
-            "-pedantic",
-            "-Wall",
-            "-Wextra",
-            "-Werror",
-            "-c",
-            "-o",
-            obj,
-        ],
-    );
+    for (i, block) in blocks[..2].iter().enumerate() {
+        compile(
+            "cc",
+            &format!("guide_renderer{i}.c"),
+            "",
+            block,
+            &[
+                "-std=c99",
+                "-pedantic",
+                "-Wall",
+                "-Wextra",
+                "-Werror",
+                "-c",
+                "-o",
+                obj,
+            ],
+        );
+    }
     if !have("clang") {
         common::skip("the guide's CUDA and OpenCL blocks: clang not found");
         return;
@@ -655,7 +734,7 @@ fn the_guides_code_compiles() {
         "clang",
         "guide_kernel.cu",
         cuda_stand_in,
-        blocks[1],
+        blocks[2],
         &[
             "-x",
             "cuda",
@@ -672,7 +751,7 @@ fn the_guides_code_compiles() {
         "clang",
         "guide_kernel.cl",
         "",
-        blocks[2],
+        blocks[3],
         &[
             "-x",
             "cl",

@@ -1,0 +1,381 @@
+"""scatterkit: light-scattering models and samplers over numpy arrays.
+
+The Rust library scatterkit, from Python. Every function takes array-likes
+(lists, scalars, numpy arrays of any shape), converts them to float64 as
+numpy does, and returns arrays of the same shape (a float for a scalar).
+Long work runs with the GIL released. Bad input raises ``ValueError`` with
+the library's message; nothing crashes the interpreter.
+
+Conventions (see :mod:`scatterkit.conventions` to convert from others):
+
+* ``mu = cos(theta)``, ``theta`` the scattering angle: ``mu = +1`` is
+  forward (no deflection), ``mu = -1`` backward.
+* Phase functions are densities per steradian: the integral over the
+  sphere is 1, so isotropic scattering is ``1/(4 pi)``.
+* Legendre moments are ``chi_l = <P_l(mu)>`` (``chi_0 = 1``, ``chi_1 = g``),
+  so ``p(mu) = sum_l (2l + 1) chi_l P_l(mu) / (4 pi)``.
+* Uniforms lie in ``[0, 1]``; a ``numpy.random.Generator`` may stand in for
+  them.
+
+Contents: :class:`Phase` (every model and mixtures), :class:`Mie` (one
+sphere, exact), :class:`AlbedoCurve` (the albedo of a layer against the
+single-scattering albedo, and its inverse), :func:`water_index`,
+:func:`size_parameter`, and :mod:`scatterkit.conventions`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _scatterkit as _sk
+from . import conventions
+
+__all__ = [
+    "Phase",
+    "Mie",
+    "AlbedoCurve",
+    "water_index",
+    "size_parameter",
+    "conventions",
+]
+
+__version__ = "0.2.0"
+
+
+def _flat(x, name):
+    """``x`` as a contiguous 1-D float64 array, its shape and scalarness."""
+    a = np.asarray(x, dtype=np.float64)
+    if a.dtype != np.float64:  # pragma: no cover - asarray converts or raises
+        raise TypeError(f"{name}: expected real numbers")
+    return np.ascontiguousarray(a.ravel()), a.shape, a.ndim == 0
+
+
+def _shaped(out, shape, scalar):
+    return float(out[0]) if scalar else out.reshape(shape)
+
+
+def _uniforms(u, rng, size, name):
+    """The uniforms given, or drawn from ``rng`` (a numpy Generator)."""
+    if u is not None and rng is not None:
+        raise ValueError(f"{name}: give u or rng, not both")
+    if u is None:
+        if rng is None:
+            raise ValueError(f"{name}: give the uniforms u, or rng (a numpy.random.Generator)")
+        return rng.random(size if size is not None else ())
+    return u
+
+
+class Phase:
+    """A phase function: one of the library's models, or a mixture of them.
+
+    Build one with a class method (``Phase.henyey_greenstein(0.8)``, ...);
+    every method takes cosines or uniforms as array-likes.
+
+    >>> hg = Phase.henyey_greenstein(0.8)
+    >>> round(hg.mean_cosine, 12)
+    0.8
+    """
+
+    __slots__ = ("_p",)
+
+    def __init__(self, compiled):
+        if not isinstance(compiled, _sk._Phase):
+            raise TypeError("build a Phase with one of its class methods, e.g. Phase.isotropic()")
+        self._p = compiled
+
+    # -- models -----------------------------------------------------------
+    @classmethod
+    def isotropic(cls) -> "Phase":
+        """Isotropic scattering, ``1/(4 pi)`` per steradian."""
+        return cls(_sk._Phase.isotropic())
+
+    @classmethod
+    def rayleigh(cls) -> "Phase":
+        """Rayleigh scattering of unpolarised light, ``3(1 + mu^2)/(16 pi)``."""
+        return cls(_sk._Phase.rayleigh())
+
+    @classmethod
+    def rayleigh_depolarized(cls, rho: float) -> "Phase":
+        """Rayleigh scattering with depolarisation factor ``rho`` in ``[0, 1)``
+        (air: about 0.0279), ``p ∝ 1 + 3 gamma + (1 - gamma) mu^2`` with
+        ``gamma = rho/(2 - rho)``."""
+        return cls(_sk._Phase.rayleigh_depolarized(float(rho)))
+
+    @classmethod
+    def henyey_greenstein(cls, g: float) -> "Phase":
+        """Henyey–Greenstein with asymmetry ``g`` in ``(-1, 1)`` (the mean cosine)."""
+        return cls(_sk._Phase.henyey_greenstein(float(g)))
+
+    @classmethod
+    def two_lobe_hg(cls, g1: float, g2: float, w: float) -> "Phase":
+        """Two Henyey–Greenstein lobes: ``w p_HG(g1) + (1 - w) p_HG(g2)``,
+        ``g1, g2`` in ``(-1, 1)``, ``w`` in ``[0, 1]``."""
+        return cls(_sk._Phase.two_lobe_hg(float(g1), float(g2), float(w)))
+
+    @classmethod
+    def draine(cls, g: float, alpha: float) -> "Phase":
+        """Draine's phase function (Draine 2003, eq. 4), ``p ∝ p_HG(g) (1 + alpha mu^2)``,
+        ``g`` in ``(-1, 1)``, ``alpha >= 0``; note ``g`` is HG's parameter, not the mean cosine."""
+        return cls(_sk._Phase.draine(float(g), float(alpha)))
+
+    @classmethod
+    def cornette_shanks(cls, g: float) -> "Phase":
+        """Cornette–Shanks (1992): Draine's form at ``alpha = 1``, ``g`` in ``(-1, 1)``."""
+        return cls(_sk._Phase.cornette_shanks(float(g)))
+
+    @classmethod
+    def fog(cls, g_hg: float, g_d: float, alpha: float, w_d: float) -> "Phase":
+        """Jendersie & d'Eon's fog (2023): ``(1 - w_d) p_HG(g_hg) + w_d p_Draine(g_d, alpha)``."""
+        return cls(_sk._Phase.fog(float(g_hg), float(g_d), float(alpha), float(w_d)))
+
+    @classmethod
+    def fog_diameter(cls, diameter_um: float) -> "Phase":
+        """The fog of water droplets of ``diameter_um`` micrometres, ``0 < d <= 50``
+        (Jendersie & d'Eon's fit to Mie theory)."""
+        return cls(_sk._Phase.fog_diameter(float(diameter_um)))
+
+    @classmethod
+    def gegenbauer(cls, alpha: float, g: float) -> "Phase":
+        """The Gegenbauer kernel (Reynolds & McCormick 1980),
+        ``p ∝ (1 + g^2 - 2 g mu)^-(alpha + 1)``, ``-1/2 < alpha <= 1000``,
+        ``g`` in ``(-1, 1)`` (``alpha = 1/2`` is HG)."""
+        return cls(_sk._Phase.gegenbauer(float(alpha), float(g)))
+
+    @classmethod
+    def fournier_forand(cls, n: float, mu_j: float) -> "Phase":
+        """Fournier–Forand (1994) for ocean particles of real relative index ``n``
+        in ``(1, 1.8]`` with a Junge size distribution of slope ``mu_j`` in ``(3, 5)``."""
+        return cls(_sk._Phase.fournier_forand(float(n), float(mu_j)))
+
+    @classmethod
+    def fournier_forand_backscatter(cls, b: float, n: float) -> "Phase":
+        """Fournier–Forand from the backscatter fraction ``b`` in ``(0, 1/2)`` and the
+        index ``n`` in ``(1, 1.8]``, as oceanographers specify it (Mobley et al. 2002)."""
+        return cls(_sk._Phase.fournier_forand_backscatter(float(b), float(n)))
+
+    @classmethod
+    def mixture(cls, parts) -> "Phase":
+        """A mixture of models with weights: ``parts`` is a sequence of ``(Phase, weight)``
+        (weights >= 0, normalised to sum 1; up to 8 parts, none itself a mixture).
+        Sampling inverts the mixture's own CDF (monotone in ``u``)."""
+        compiled = []
+        for part in parts:
+            try:
+                phase, weight = part
+            except (TypeError, ValueError):
+                raise ValueError("mixture: each part is a (Phase, weight) pair") from None
+            if not isinstance(phase, Phase):
+                raise TypeError("mixture: each part's first item must be a Phase")
+            compiled.append((phase._p, float(weight)))
+        return cls(_sk._Phase.mixture(compiled))
+
+    # -- evaluation -------------------------------------------------------
+    @property
+    def name(self) -> str:
+        """The model's name (``"mixture"`` for a mixture)."""
+        return self._p.name
+
+    @property
+    def mean_cosine(self) -> float:
+        """The asymmetry parameter ``g = <mu>``."""
+        return self._p.mean_cosine
+
+    def pdf(self, mu):
+        """The density per steradian at each cosine ``mu`` in ``[-1, 1]``."""
+        x, shape, scalar = _flat(mu, "pdf")
+        return _shaped(self._p.pdf(x), shape, scalar)
+
+    def cdf(self, mu):
+        """The probability that the scattering cosine is at most ``mu``
+        (``2 pi`` times the integral of the density from -1 to ``mu``)."""
+        x, shape, scalar = _flat(mu, "cdf")
+        return _shaped(self._p.cdf(x), shape, scalar)
+
+    def sample_cos(self, u=None, *, rng=None, size=None):
+        """Scattering cosines: the inverse CDF at uniforms ``u`` in ``[0, 1]``
+        (monotone: ``u = 0`` gives -1), or at ``size`` uniforms drawn from ``rng``
+        (a ``numpy.random.Generator``). ``ValueError`` for a uniform outside
+        ``[0, 1]`` or NaN."""
+        u = _uniforms(u, rng, size, "sample_cos")
+        x, shape, scalar = _flat(u, "sample_cos")
+        return _shaped(self._p.sample_cos(x), shape, scalar)
+
+    def sample_dir(self, w_in, u1=None, u2=None, *, rng=None, size=None):
+        """Directions scattered from the unit direction ``w_in`` (3 values, the
+        direction of travel): ``(dirs, pdf)``, ``dirs`` of shape ``shape + (3,)``
+        and ``pdf`` the density per steradian of each. The uniforms ``u1`` (the
+        polar angle) and ``u2`` (the azimuth), of one shape, or ``size`` pairs from
+        ``rng``."""
+        if (u1 is None) != (u2 is None):
+            raise ValueError("sample_dir: give both u1 and u2, or rng")
+        if u1 is None:
+            if rng is None:
+                raise ValueError("sample_dir: give u1 and u2, or rng (a numpy.random.Generator)")
+            shape = size if size is not None else ()
+            u1, u2 = rng.random(shape), rng.random(shape)
+        elif rng is not None:
+            raise ValueError("sample_dir: give u1 and u2, or rng, not both")
+        w = np.asarray(w_in, dtype=np.float64)
+        if w.shape != (3,):
+            raise ValueError("sample_dir: w_in must hold 3 values")
+        a, shape, scalar = _flat(u1, "sample_dir")
+        b, shape2, _ = _flat(u2, "sample_dir")
+        if shape != shape2:
+            raise ValueError("sample_dir: u1 and u2 must have one shape")
+        d, pdf = self._p.sample_dir([float(v) for v in w], a, b)
+        d = d.reshape(tuple(shape) + (3,))
+        return (d, float(pdf[0])) if scalar else (d, pdf.reshape(shape))
+
+    def legendre(self, n: int):
+        """The Legendre moments ``chi_0 ... chi_{n-1}`` (closed forms where the
+        model has them, else quadrature over its inverse CDF); see
+        :func:`scatterkit.conventions.legendre_with_2l1` for the other convention."""
+        return self._p.legendre(int(n))
+
+    def __repr__(self) -> str:
+        return f"Phase.{self._p!r}"
+
+
+class Mie:
+    """One homogeneous sphere solved by Lorenz–Mie theory (exact; the library's
+    series, no allocation beyond its coefficients).
+
+    ``x`` is the size parameter ``pi d n_medium / wavelength`` in ``[1e-20, 1e5]``;
+    ``m`` the complex refractive index relative to the medium, ``m = n + i k``
+    with ``0 < n <= 1000``, ``0 <= k <= 1000`` (absorbing: ``k > 0``).
+
+    >>> s = Mie(10.0, 1.33)
+    >>> 2.0 < s.q_ext < 2.2
+    True
+    """
+
+    __slots__ = ("_s", "x", "m")
+
+    def __init__(self, x: float, m: complex):
+        m = complex(m)
+        self.x = float(x)
+        self.m = m
+        self._s = _sk._Mie(self.x, m.real, m.imag)
+
+    @property
+    def q_ext(self) -> float:
+        """Extinction efficiency (cross-section over ``pi r^2``)."""
+        return self._s.q_ext
+
+    @property
+    def q_sca(self) -> float:
+        """Scattering efficiency."""
+        return self._s.q_sca
+
+    @property
+    def q_abs(self) -> float:
+        """Absorption efficiency, ``q_ext - q_sca``."""
+        return self._s.q_ext - self._s.q_sca
+
+    @property
+    def q_back(self) -> float:
+        """Backscattering efficiency, ``4 |S1(180°)|^2 / x^2``."""
+        return self._s.q_back
+
+    @property
+    def g(self) -> float:
+        """Asymmetry parameter ``<cos theta>``."""
+        return self._s.g
+
+    @property
+    def albedo(self) -> float:
+        """Single-scattering albedo ``q_sca / q_ext``."""
+        return self._s.q_sca / self._s.q_ext
+
+    @property
+    def terms(self) -> int:
+        """The number of series terms kept."""
+        return self._s.terms
+
+    def phase(self, mu):
+        """The phase function per steradian (integral over the sphere 1) at each
+        cosine ``mu``."""
+        x, shape, scalar = _flat(mu, "phase")
+        return _shaped(self._s.phase(x), shape, scalar)
+
+    def amplitudes(self, mu):
+        """The amplitude functions ``(S1, S2)`` (Bohren & Huffman's convention) at
+        each cosine, as complex arrays."""
+        x, shape, scalar = _flat(mu, "amplitudes")
+        r1, i1, r2, i2 = self._s.amplitudes(x)
+        s1, s2 = r1 + 1j * i1, r2 + 1j * i2
+        if scalar:
+            return complex(s1[0]), complex(s2[0])
+        return s1.reshape(shape), s2.reshape(shape)
+
+    def legendre(self, n: int, points: int | None = None):
+        """The Legendre moments ``chi_0 ... chi_{n-1}`` of the phase function, by
+        Gauss–Legendre quadrature over ``mu`` (``points`` nodes; by default enough
+        for the series' highest degree and ``n``)."""
+        n = int(n)
+        if n < 1:
+            raise ValueError("legendre(n): n must be at least 1")
+        if points is None:
+            points = max(2 * n, 4 * self.terms + 64)
+        mu, w = np.polynomial.legendre.leggauss(int(points))
+        p = self.phase(mu) * (2.0 * np.pi)
+        return conventions.legendre_moments_of(mu, w * p, n)
+
+    def __repr__(self) -> str:
+        return f"Mie(x={self.x!r}, m={self.m!r})"
+
+
+def water_index(wavelength_um):
+    """The complex refractive index of liquid water at ``wavelength_um``
+    micrometres (the library's tabulated fit), or ``None`` outside its range."""
+    r = _sk.water_index(float(wavelength_um))
+    return None if r is None else complex(r[0], r[1])
+
+
+def size_parameter(diameter, wavelength, n_medium=1.0):
+    """``pi diameter n_medium / wavelength`` (diameter and wavelength in one unit)."""
+    d, shape, scalar = _flat(diameter, "size_parameter")
+    out = np.array([_sk.size_parameter(v, float(wavelength), float(n_medium)) for v in d])
+    return _shaped(out, shape, scalar)
+
+
+class AlbedoCurve:
+    """The albedo of a layer (the fraction of light it reflects) against the
+    single-scattering albedo ``omega`` of its medium, traced once by Monte Carlo
+    at 65 nodes ``omega_k = 1 - (k/64)^2`` and interpolated monotonically.
+
+    ``phase``: a :class:`Phase`; ``thickness``: the optical thickness of a slab,
+    or ``None`` for a semi-infinite layer; ``mu0``: the cosine of a beam's angle
+    from the normal, or ``None`` for diffuse light; ``paths`` paths from the
+    generator seeded by ``seed`` (deterministic).
+    """
+
+    __slots__ = ("_c",)
+
+    def __init__(self, phase: Phase, thickness=None, mu0=None, paths: int = 100_000, seed: int = 0):
+        if not isinstance(phase, Phase):
+            raise TypeError("AlbedoCurve: phase must be a scatterkit.Phase")
+        t = None if thickness is None else float(thickness)
+        m = None if mu0 is None else float(mu0)
+        self._c = _sk._AlbedoCurve(phase._p, t, m, int(paths), int(seed))
+
+    @property
+    def paths(self) -> int:
+        """The paths traced."""
+        return self._c.paths
+
+    def albedo(self, omega):
+        """The layer's albedo at single-scattering albedo ``omega`` in ``[0, 1]``."""
+        x, shape, scalar = _flat(omega, "albedo")
+        return _shaped(self._c.albedo(x), shape, scalar)
+
+    def std_error(self, omega):
+        """The Monte-Carlo standard error of :meth:`albedo` (not the interpolation's)."""
+        x, shape, scalar = _flat(omega, "std_error")
+        return _shaped(self._c.std_error(x), shape, scalar)
+
+    def single_scattering_albedo(self, albedo):
+        """The inverse: the ``omega`` at which the layer's albedo is ``albedo``.
+        ``ValueError`` outside the curve's range."""
+        x, shape, scalar = _flat(albedo, "single_scattering_albedo")
+        return _shaped(self._c.single_scattering_albedo(x), shape, scalar)

@@ -1,0 +1,145 @@
+"""Conversions between the conventions phase-function codes use, and exporters.
+
+scatterkit's own conventions: ``mu = cos(theta)`` with ``mu = +1`` forward;
+densities per steradian (integral over the sphere 1); Legendre moments
+``chi_l = <P_l(mu)>`` with ``p = sum (2l + 1) chi_l P_l / (4 pi)``.
+
+Others in use, and what converts:
+
+* **Legendre coefficients with the (2l + 1) factor** (``beta_l = (2l + 1) chi_l``,
+  ``p = sum beta_l P_l / (4 pi)``: Mishchenko's expansion coefficients, AT3D's
+  and SHDOM's tables): :func:`legendre_with_2l1`, :func:`legendre_without_2l1`.
+  Mixing the two up gives a phase function that goes negative.
+* **Normalisation** (:func:`convert_normalization`): ``"sr"`` integrates to 1 over
+  the sphere (scatterkit, pbrt, Mitsuba); ``"4pi"`` to ``4 pi`` over the sphere,
+  the same as to 2 over ``mu`` (DISORT, libRadtran, most atmospheric and ocean
+  codes; isotropic is 1); ``"mu"`` to 1 over ``mu`` in ``[-1, 1]`` (a density in
+  the cosine; isotropic is 1/2).
+* **Angles** (:func:`mu_from_angle`, :func:`angle_from_mu`): the scattering angle
+  from the forward direction (``0`` = forward, scatterkit), or measured from the
+  backward direction (``0`` = back to the source, as lidar and radar codes and
+  graphics conventions with the incident direction pointing away do):
+  ``backward=True``.
+
+Exporters: :func:`to_mitsuba_tabphase`, :func:`to_mcx_invcdf`, :func:`to_csv`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "legendre_with_2l1",
+    "legendre_without_2l1",
+    "legendre_moments_of",
+    "legendre_series",
+    "convert_normalization",
+    "mu_from_angle",
+    "angle_from_mu",
+    "to_mitsuba_tabphase",
+    "to_mcx_invcdf",
+    "to_csv",
+]
+
+_FACTORS = {"sr": 1.0, "4pi": 4.0 * np.pi, "mu": 2.0 * np.pi}
+
+
+def legendre_with_2l1(chi):
+    """``beta_l = (2l + 1) chi_l``: moments ``<P_l>`` to expansion coefficients."""
+    chi = np.asarray(chi, dtype=np.float64)
+    return chi * (2.0 * np.arange(chi.shape[-1]) + 1.0)
+
+
+def legendre_without_2l1(beta):
+    """``chi_l = beta_l / (2l + 1)``: expansion coefficients to moments ``<P_l>``."""
+    beta = np.asarray(beta, dtype=np.float64)
+    return beta / (2.0 * np.arange(beta.shape[-1]) + 1.0)
+
+
+def legendre_moments_of(mu, weighted_pdf, n):
+    """``chi_l = sum_j weighted_pdf_j P_l(mu_j)`` for ``l < n``: the moments from
+    quadrature nodes ``mu`` and weights already multiplied by ``2 pi p(mu)``
+    (so that ``chi_0`` is the quadrature of the normalisation, 1 when resolved)."""
+    mu = np.asarray(mu, dtype=np.float64)
+    wp = np.asarray(weighted_pdf, dtype=np.float64)
+    out = np.empty(int(n))
+    p_prev, p = np.ones_like(mu), mu.copy()
+    out[0] = wp.sum()
+    if n > 1:
+        out[1] = (wp * p).sum()
+    for l in range(1, int(n) - 1):
+        p_prev, p = p, ((2 * l + 1) * mu * p - l * p_prev) / (l + 1)
+        out[l + 1] = (wp * p).sum()
+    return out
+
+
+def legendre_series(chi, mu):
+    """The density per steradian ``sum (2l + 1) chi_l P_l(mu) / (4 pi)`` of moments ``chi``."""
+    beta = legendre_with_2l1(chi)
+    return np.polynomial.legendre.legval(np.asarray(mu, dtype=np.float64), beta) / (4.0 * np.pi)
+
+
+def convert_normalization(values, source: str, target: str):
+    """Phase-function values from one normalisation to another: ``"sr"``,
+    ``"4pi"`` (the same values as normalised to 2 over ``mu``) or ``"mu"``
+    (module docs)."""
+    try:
+        f = _FACTORS[target] / _FACTORS[source]
+    except KeyError:
+        raise ValueError(f"normalisations are {sorted(_FACTORS)}, not {source!r} -> {target!r}") from None
+    return np.asarray(values, dtype=np.float64) * f
+
+
+def mu_from_angle(angle, *, degrees: bool = False, backward: bool = False):
+    """``mu = cos(theta)`` of a scattering angle measured from the forward
+    direction, or from the backward one with ``backward=True`` (``mu = -cos``)."""
+    a = np.asarray(angle, dtype=np.float64)
+    if degrees:
+        a = np.radians(a)
+    mu = np.cos(a)
+    return -mu if backward else mu
+
+
+def angle_from_mu(mu, *, degrees: bool = False, backward: bool = False):
+    """The scattering angle of ``mu`` (inverse of :func:`mu_from_angle`), in
+    ``[0, pi]`` (or degrees)."""
+    m = np.clip(np.asarray(mu, dtype=np.float64), -1.0, 1.0)
+    a = np.arccos(-m if backward else m)
+    return np.degrees(a) if degrees else a
+
+
+def to_mitsuba_tabphase(phase, n: int = 1025) -> str:
+    """The ``values`` string of Mitsuba 3's ``tabphase`` plugin: the density at
+    ``n`` cosines evenly spaced over ``[-1, 1]``, ``-1`` first, in Mitsuba's
+    physics convention for this plugin (``cos theta = 1`` forward, as here;
+    Mitsuba normalises the table and interpolates it linearly, so a forward peak
+    needs ``n`` large enough to resolve it)."""
+    n = int(n)
+    if n < 2:
+        raise ValueError("to_mitsuba_tabphase: n must be at least 2")
+    values = phase.pdf(np.linspace(-1.0, 1.0, n))
+    return ", ".join(f"{v:.9g}" for v in values)
+
+
+def to_mcx_invcdf(phase, n: int = 1000):
+    """MCX's ``cfg.invcdf`` (mcxlab, pmcx): the scattering cosines at the
+    ``n - 1`` interior uniforms ``1/n ... (n - 1)/n`` (MCX supplies -1 and 1 at
+    the ends and interpolates linearly between)."""
+    n = int(n)
+    if n < 2:
+        raise ValueError("to_mcx_invcdf: n must be at least 2")
+    return phase.sample_cos(np.arange(1, n) / n)
+
+
+def to_csv(phase, path, n: int = 1801, *, degrees: bool = True) -> None:
+    """A plain CSV at ``path``: columns ``angle`` (from forward, degrees unless
+    ``degrees=False``), ``mu``, ``pdf_sr`` (per steradian) and ``pdf_4pi``, over
+    ``n`` angles evenly spaced from 0 to 180°."""
+    n = int(n)
+    if n < 2:
+        raise ValueError("to_csv: n must be at least 2")
+    angle = np.linspace(0.0, 180.0 if degrees else np.pi, n)
+    mu = mu_from_angle(angle, degrees=degrees)
+    p = phase.pdf(mu)
+    table = np.column_stack([angle, mu, p, convert_normalization(p, "sr", "4pi")])
+    np.savetxt(path, table, delimiter=",", header="angle,mu,pdf_sr,pdf_4pi", comments="", fmt="%.10g")

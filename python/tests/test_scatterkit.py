@@ -1,0 +1,178 @@
+"""Tests of the Python package against closed forms and published values.
+
+Run from outside the source tree (so that the installed package is
+imported): ``python -m unittest discover -s <repo>/python/tests``. The Rust
+test tests/python.rs builds the package with pip and runs these.
+Thresholds were fixed before the runs: Kolmogorov–Smirnov at the 0.1 %
+level (D < 1.95/sqrt(n)); published values to their printed digits.
+"""
+
+import math
+import os
+import tempfile
+import unittest
+
+import numpy as np
+
+import scatterkit as sk
+from scatterkit import conventions as cv
+
+
+def hg_pdf(g, mu):
+    return (1 - g * g) / (4 * math.pi * (1 + g * g - 2 * g * mu) ** 1.5)
+
+
+def ks_statistic(samples, cdf):
+    x = np.sort(samples)
+    n = len(x)
+    f = cdf(x)
+    return max(np.max(np.arange(1, n + 1) / n - f), np.max(f - np.arange(n) / n))
+
+
+class PhaseTest(unittest.TestCase):
+    def test_hg_density_cdf_and_inverse(self):
+        for g in (-0.7, 0.0, 0.3, 0.9):
+            hg = sk.Phase.henyey_greenstein(g)
+            mu = np.linspace(-1, 1, 101)
+            np.testing.assert_allclose(hg.pdf(mu), hg_pdf(g, mu), rtol=1e-13)
+            u = np.linspace(0, 1, 1001)
+            np.testing.assert_allclose(hg.cdf(hg.sample_cos(u)), u, atol=1e-12)
+            self.assertEqual(hg.sample_cos(0.0), -1.0)
+            self.assertIsInstance(hg.pdf(0.5), float)
+
+    def test_every_model_samples_its_own_cdf(self):
+        models = [
+            sk.Phase.isotropic(),
+            sk.Phase.rayleigh(),
+            sk.Phase.rayleigh_depolarized(0.0279),
+            sk.Phase.henyey_greenstein(0.85),
+            sk.Phase.two_lobe_hg(0.8, -0.3, 0.9),
+            sk.Phase.draine(0.5, 1.0),
+            sk.Phase.cornette_shanks(0.7),
+            sk.Phase.fog(0.85, 0.45, 250.0, 0.3),
+            sk.Phase.fog_diameter(10.0),
+            sk.Phase.gegenbauer(1.0, 0.6),
+            sk.Phase.fournier_forand(1.1, 3.5),
+            sk.Phase.fournier_forand_backscatter(0.02, 1.1),
+            sk.Phase.mixture([(sk.Phase.rayleigh(), 0.7), (sk.Phase.henyey_greenstein(0.8), 0.3)]),
+        ]
+        rng = np.random.default_rng(20261126)
+        n = 20_000
+        for p in models:
+            mu = p.sample_cos(rng=rng, size=n)
+            d = ks_statistic(mu, p.cdf)
+            self.assertLess(d, 1.95 / math.sqrt(n), f"{p}: KS D = {d}")
+            # The density is the CDF's derivative: its integral over
+            # [-1, 0.9] (short of the peaks some models have at mu = 1),
+            # and the CDF runs from 0 to 1.
+            x, w = np.polynomial.legendre.leggauss(400)
+            x, w = 0.95 * x - 0.05, 0.95 * w
+            integral = 2 * math.pi * float(np.sum(w * p.pdf(x)))
+            self.assertAlmostEqual(integral, p.cdf(0.9) - p.cdf(-1.0), delta=1e-9, msg=repr(p))
+            self.assertAlmostEqual(p.cdf(-1.0), 0.0, delta=4.5e-16, msg=repr(p))
+            self.assertAlmostEqual(p.cdf(1.0), 1.0, delta=4.5e-16, msg=repr(p))
+            self.assertAlmostEqual(float(p.legendre(2)[1]), p.mean_cosine, places=9, msg=repr(p))
+
+    def test_legendre_moments_closed_forms(self):
+        chi = sk.Phase.henyey_greenstein(0.6).legendre(6)
+        np.testing.assert_allclose(chi, 0.6 ** np.arange(6), rtol=1e-14)
+        ray = sk.Phase.rayleigh().legendre(4)
+        np.testing.assert_allclose(ray, [1.0, 0.0, 0.1, 0.0], atol=1e-15)
+        mu = np.linspace(-1, 1, 9)
+        np.testing.assert_allclose(cv.legendre_series(ray, mu), sk.Phase.rayleigh().pdf(mu), rtol=1e-13)
+
+    def test_directions(self):
+        p = sk.Phase.henyey_greenstein(0.7)
+        w = np.array([0.0, 0.6, 0.8])
+        d, pdf = p.sample_dir(w, rng=np.random.default_rng(3), size=(50, 4))
+        self.assertEqual(d.shape, (50, 4, 3))
+        np.testing.assert_allclose(np.linalg.norm(d, axis=-1), 1.0, atol=1e-14)
+        np.testing.assert_allclose(pdf, p.pdf(d @ w), rtol=1e-9)
+
+    def test_bad_input_is_a_value_error(self):
+        for make in (
+            lambda: sk.Phase.henyey_greenstein(1.0),
+            lambda: sk.Phase.henyey_greenstein(float("nan")),
+            lambda: sk.Phase.draine(0.5, -1.0),
+            lambda: sk.Phase.mixture([]),
+            lambda: sk.Phase.henyey_greenstein(0.5).sample_cos([0.2, 1.5]),
+            lambda: sk.Phase.henyey_greenstein(0.5).sample_cos([float("nan")]),
+            lambda: sk.Phase.henyey_greenstein(0.5).sample_dir([0, 0, 2], [0.5], [0.5]),
+            lambda: sk.Phase.henyey_greenstein(0.5).legendre(0),
+            lambda: sk.Mie(-1.0, 1.33),
+            lambda: sk.Mie(1.0, complex(1.33, -0.1)),
+            lambda: cv.convert_normalization([1.0], "sr", "per-degree"),
+        ):
+            with self.assertRaises(ValueError):
+                make()
+        with self.assertRaises(TypeError):
+            sk.Phase.mixture([("rayleigh", 1.0)])
+
+
+class MieTest(unittest.TestCase):
+    def test_bohren_huffman_bhmie_example(self):
+        # Bohren & Huffman (1983), appendix A: m = 1.55, r = 0.525 µm, λ = 0.6328 µm.
+        s = sk.Mie(2 * math.pi * 0.525 / 0.6328, 1.55)
+        self.assertAlmostEqual(s.q_ext, 3.10543, delta=5e-6)
+        self.assertAlmostEqual(s.q_sca, 3.10543, delta=5e-6)
+        self.assertAlmostEqual(s.q_back, 2.92534, delta=5e-6)
+        self.assertAlmostEqual(s.g, 0.63314, delta=5e-6)
+
+    def test_phase_is_normalised_and_its_moment_is_g(self):
+        s = sk.Mie(10.0, complex(1.33, 0.01))
+        chi = s.legendre(3)
+        self.assertAlmostEqual(chi[0], 1.0, places=9)
+        self.assertAlmostEqual(chi[1], s.g, places=9)
+        s1, s2 = s.amplitudes(1.0)
+        # The optical theorem: Q_ext = 4 Re S(0) / x².
+        self.assertAlmostEqual(4 * s1.real / s.x**2, s.q_ext, places=9)
+        self.assertAlmostEqual(abs(s1 - s2), 0.0, places=9)
+
+    def test_water(self):
+        m = sk.water_index(0.5)
+        self.assertAlmostEqual(m.real, 1.337, delta=0.005)
+        self.assertIsNone(sk.water_index(1e6))
+
+
+class AlbedoTest(unittest.TestCase):
+    def test_against_adding_doubling(self):
+        # Prahl's adding-doubling (iadpython 0.5.3), semi-infinite, diffuse light:
+        # g = 0.5, ω = 0.999 reflects 0.902179806.
+        curve = sk.AlbedoCurve(sk.Phase.henyey_greenstein(0.5), paths=20_000, seed=7)
+        a, se = curve.albedo(0.999), curve.std_error(0.999)
+        self.assertLess(abs(a - 0.902179806), 4 * se + 1e-3, (a, se))
+        omega = curve.single_scattering_albedo(a)
+        self.assertAlmostEqual(omega, 0.999, delta=1e-9)
+        with self.assertRaises(ValueError):
+            sk.AlbedoCurve(sk.Phase.isotropic(), thickness=-1.0, paths=10)
+
+
+class ConventionsTest(unittest.TestCase):
+    def test_round_trips(self):
+        chi = np.array([1.0, 0.8, 0.64])
+        np.testing.assert_allclose(cv.legendre_with_2l1(chi), [1.0, 2.4, 3.2])
+        np.testing.assert_allclose(cv.legendre_without_2l1(cv.legendre_with_2l1(chi)), chi)
+        iso = sk.Phase.isotropic().pdf(0.3)
+        self.assertAlmostEqual(float(cv.convert_normalization(iso, "sr", "4pi")), 1.0)
+        self.assertAlmostEqual(float(cv.convert_normalization(iso, "sr", "mu")), 0.5)
+        np.testing.assert_allclose(cv.mu_from_angle([0, 90, 180], degrees=True), [1, 0, -1], atol=1e-15)
+        np.testing.assert_allclose(cv.mu_from_angle(0.0, backward=True), -1.0)
+        np.testing.assert_allclose(cv.angle_from_mu(cv.mu_from_angle(1.2)), 1.2)
+
+    def test_exporters(self):
+        hg = sk.Phase.henyey_greenstein(0.8)
+        values = [float(v) for v in cv.to_mitsuba_tabphase(hg, 5).split(",")]
+        np.testing.assert_allclose(values, hg.pdf(np.linspace(-1, 1, 5)), rtol=1e-8)
+        inv = cv.to_mcx_invcdf(hg, 100)
+        self.assertEqual(len(inv), 99)
+        np.testing.assert_allclose(hg.cdf(inv), np.arange(1, 100) / 100, atol=1e-12)
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "hg.csv")
+            cv.to_csv(hg, path, n=19)
+            table = np.loadtxt(path, delimiter=",", skiprows=1)
+            self.assertEqual(table.shape, (19, 4))
+            np.testing.assert_allclose(table[:, 3], 4 * math.pi * table[:, 2], rtol=1e-9)
+
+
+if __name__ == "__main__":
+    unittest.main()

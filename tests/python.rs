@@ -1,7 +1,7 @@
 //! The Python package as a user gets it: `pip install ./python` into a
 //! fresh virtual environment (maturin builds the extension from source,
-//! pip fetches maturin and numpy from PyPI), then the package's own tests
-//! (`python/tests`, run from outside the source tree so that the installed
+//! pip fetches maturin, numpy and pytest from PyPI), then the package's own tests
+//! (`python/tests` under pytest, run from outside the source tree so that the installed
 //! package is the one imported), the README's Python block, the guide's
 //! Python blocks (`docs/guides/python.md`) and `help()` on the package.
 //! Without a Python 3.9 or later with `venv`, or without PyPI, it says
@@ -55,10 +55,10 @@ fn environment(dir: &Path) -> Option<PathBuf> {
             // maturin's cargo build beside the tests' (not in python/).
             .env("CARGO_TARGET_DIR", dir.join("target")))
     };
-    let o = pip(&["numpy"]);
+    let o = pip(&["numpy", "pytest"]);
     if !o.status.success() {
         common::skip(&format!(
-            "the Python package: numpy from PyPI: {}",
+            "the Python package: numpy and pytest from PyPI: {}",
             text(&o)
         ));
         return None;
@@ -102,7 +102,7 @@ fn the_python_package_installs_and_passes_its_tests() {
     };
     let tests = root().join("python/tests");
     let o = run(Command::new(&py)
-        .args(["-m", "unittest", "discover", "-v", "-s"])
+        .args(["-m", "pytest", "-q", "-p", "no:cacheprovider"])
         .arg(&tests)
         .current_dir(&dir));
     println!("{}", text(&o));
@@ -133,6 +133,8 @@ fn the_python_package_installs_and_passes_its_tests() {
         "class Phase",
         "class Mie",
         "class AlbedoCurve",
+        "class Medium",
+        "class RayleighPolarized",
         "sample_cos",
         "water_index",
     ] {

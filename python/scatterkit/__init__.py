@@ -20,7 +20,10 @@ Conventions (see :mod:`scatterkit.conventions` to convert from others):
 Contents: :class:`Phase` (every model and mixtures), :class:`Mie` (one
 sphere, exact), :class:`AlbedoCurve` (the albedo of a layer against the
 single-scattering albedo, and its inverse), :func:`water_index`,
-:func:`size_parameter`, and :mod:`scatterkit.conventions`.
+:func:`size_parameter`, :class:`Medium` (a density grid: transmittance
+estimators and delta tracking over arrays of rays),
+:class:`RayleighPolarized` (Stokes vectors as arrays), and
+:mod:`scatterkit.conventions`.
 """
 
 from __future__ import annotations
@@ -34,6 +37,8 @@ __all__ = [
     "Phase",
     "Mie",
     "AlbedoCurve",
+    "Medium",
+    "RayleighPolarized",
     "water_index",
     "size_parameter",
     "conventions",
@@ -379,3 +384,166 @@ class AlbedoCurve:
         ``ValueError`` outside the curve's range."""
         x, shape, scalar = _flat(albedo, "single_scattering_albedo")
         return _shaped(self._c.single_scattering_albedo(x), shape, scalar)
+
+
+def _rays(origins, dirs, t_max):
+    o = np.asarray(origins, dtype=np.float64)
+    d = np.asarray(dirs, dtype=np.float64)
+    if o.shape[-1:] != (3,) or d.shape[-1:] != (3,):
+        raise ValueError("origins and dirs must have a last axis of 3 values")
+    o, d = np.broadcast_arrays(o, d)
+    shape = o.shape[:-1]
+    t = np.broadcast_to(np.asarray(t_max, dtype=np.float64), shape)
+    flat = lambda a: np.ascontiguousarray(a, dtype=np.float64).ravel()
+    return flat(o), flat(d), flat(t), shape
+
+
+class Medium:
+    """A heterogeneous medium: a density grid over a box, scaled by
+    absorption and scattering coefficients, with majorant and minorant grids
+    for tracking.
+
+    ``density``: a 3-D array indexed ``[i, j, k]`` along x, y, z (values
+    finite and >= 0), placed at the nodes of the box (``sampling="nodes"``:
+    value ``i`` at ``lo + (hi - lo) i/(n - 1)``) or at cell centres
+    (``"cells"``, as pbrt-v4 and OpenVDB place voxels), interpolated
+    trilinearly, zero outside the box. ``sigma_a``, ``sigma_s``: per unit
+    density and length, so ``sigma_t(p) = (sigma_a + sigma_s) density(p)``.
+    ``lo``, ``hi``: the box in world units. ``majorant_cells``: the majorant
+    grid's cells per axis (pbrt-v4 uses 16).
+    """
+
+    __slots__ = ("_m", "shape", "majorant_cells")
+
+    def __init__(self, density, sigma_a, sigma_s, *, lo=(0.0, 0.0, 0.0), hi=(1.0, 1.0, 1.0),
+                 sampling="nodes", majorant_cells=(16, 16, 16)):
+        d = np.asarray(density, dtype=np.float64)
+        if d.ndim != 3:
+            raise ValueError("Medium: density must be a 3-D array indexed [x, y, z]")
+        if sampling not in ("nodes", "cells"):
+            raise ValueError('Medium: sampling is "nodes" or "cells"')
+        cells = tuple(int(c) for c in majorant_cells)
+        if len(cells) != 3:
+            raise ValueError("Medium: majorant_cells holds 3 counts")
+        self.shape = d.shape
+        self.majorant_cells = cells
+        flat = np.ascontiguousarray(d.ravel(order="F"))  # x fastest
+        lo3 = [float(v) for v in lo]
+        hi3 = [float(v) for v in hi]
+        self._m = _sk._Medium(flat, list(d.shape), float(sigma_a), float(sigma_s), lo3, hi3,
+                              sampling == "cells", list(cells))
+
+    def majorants(self):
+        """The majorant grid (per length unit), indexed ``[i, j, k]``."""
+        return self._m.majorants().reshape(self.majorant_cells, order="F")
+
+    def minorants(self):
+        """The minorant grid (per length unit), indexed ``[i, j, k]``."""
+        return self._m.minorants().reshape(self.majorant_cells, order="F")
+
+    def sigma_t(self, points):
+        """The extinction coefficient at world points (last axis 3 values)."""
+        p = np.asarray(points, dtype=np.float64)
+        if p.shape[-1:] != (3,):
+            raise ValueError("sigma_t: points must have a last axis of 3 values")
+        out = self._m.sigma_t(np.ascontiguousarray(p).ravel())
+        return out.reshape(p.shape[:-1]) if p.ndim > 1 else float(out[0])
+
+    def transmittance(self, origins, dirs, t_max=np.inf, *, estimator="ratio", seed=0,
+                      budget=1 << 20):
+        """One unbiased transmittance estimate per ray ``origins + t dirs``,
+        ``t`` in ``[0, t_max]`` (``dirs`` need not be unit; ``t`` is a distance
+        along their direction). Rays broadcast over the leading axes.
+
+        ``estimator``: ``"ratio"`` (ratio tracking through the majorant grid),
+        ``"residual"`` (residual ratio tracking with the minorants as control),
+        ``"delta"`` (delta tracking: 1 if the ray escapes, else 0),
+        ``"ray_march"`` (unbiased ray marching, the power series) or
+        ``"telescoping"``. ``seed`` seeds one generator for the whole batch
+        (deterministic); ``budget`` caps the density evaluations per ray
+        (``ValueError`` past it)."""
+        o, d, t, shape = _rays(origins, dirs, t_max)
+        out = self._m.transmittance(o, d, t, str(estimator), int(seed), int(budget))
+        return out.reshape(shape) if shape else float(out[0])
+
+    def delta_track(self, origins, dirs, t_max=np.inf, *, seed=0, budget=1 << 20):
+        """Free-flight sampling by delta tracking per ray: ``(t, event)``, the
+        distance to the real collision (or where the ray leaves the box, clipped
+        to ``[0, t_max]``) and the event: 0 escaped, 1 scattered, 2 absorbed
+        (chosen with probability ``sigma_s/sigma_t``)."""
+        o, d, t, shape = _rays(origins, dirs, t_max)
+        dist, ev = self._m.delta_track(o, d, t, int(seed), int(budget))
+        ev = ev.astype(np.int8)
+        return (dist.reshape(shape), ev.reshape(shape)) if shape else (float(dist[0]), int(ev[0]))
+
+
+def _rows(shape, *parts):
+    """Broadcasts (array, trailing width) pairs to one batch shape; flat copies."""
+    arrays = [np.asarray(a, dtype=np.float64) for a, _ in parts]
+    for a, (_, w) in zip(arrays, parts):
+        if w and a.shape[-1:] != (w,):
+            raise ValueError(f"expected a last axis of {w} values, got shape {a.shape}")
+    batch = np.broadcast_shapes(shape, *[a.shape[:-1] if w else a.shape for a, (_, w) in zip(arrays, parts)])
+    out = []
+    for a, (_, w) in zip(arrays, parts):
+        full = batch + ((w,) if w else ())
+        out.append(np.ascontiguousarray(np.broadcast_to(a, full)).ravel())
+    return batch, out
+
+
+class RayleighPolarized:
+    """Rayleigh scattering of polarised light: the Mueller matrix (Chandrasekhar
+    1950; Hansen & Travis 1974) with depolarisation factor ``rho`` in ``[0, 1)``,
+    evaluated and sampled exactly for a given incident Stokes vector.
+
+    A Stokes vector is 4 values ``(I, Q, U, V)`` with a reference direction
+    (3 values, a unit vector perpendicular to the direction of travel):
+    ``Q > 0`` is linear polarisation along the reference. Arguments broadcast
+    over their leading axes: directions ``(..., 3)``, Stokes vectors
+    ``(..., 4)``, references ``(..., 3)``.
+    """
+
+    __slots__ = ("_r", "rho")
+
+    def __init__(self, rho: float = 0.0):
+        self.rho = float(rho)
+        self._r = _sk._RayleighPolarized(self.rho)
+
+    def mueller(self, mu):
+        """``(P11, P12, P22, P33, P44)`` at each cosine: the normalised Mueller
+        matrix (the mean of ``P11`` over the sphere is 1; the phase function
+        per steradian is ``P11 / (4 pi)``)."""
+        x, shape, scalar = _flat(mu, "mueller")
+        cols = self._r.mueller(x)
+        return tuple(_shaped(c, shape, scalar) for c in cols)
+
+    def sample(self, k, stokes, reference, u1=None, u2=None, *, rng=None, size=None):
+        """Scattered directions for light ``stokes`` (referred to ``reference``)
+        travelling along the unit direction ``k``, drawn exactly from the
+        polarised phase function: ``(dirs, stokes_out, reference_out, pdf)``,
+        the scattered Stokes vectors keeping ``I`` and referred to the new
+        scattering plane, and each direction's density per steradian. Uniforms
+        ``u1``, ``u2`` in ``[0, 1]``, or ``size`` pairs from ``rng``."""
+        if u1 is None or u2 is None:
+            if rng is None or u1 is not None or u2 is not None:
+                raise ValueError("sample: give u1 and u2, or rng")
+            shape = size if size is not None else ()
+            shape = (shape,) if isinstance(shape, int) else tuple(shape)
+            u1, u2 = rng.random(shape), rng.random(shape)
+        batch, (kf, sf, rf, a, b) = _rows((), (k, 3), (stokes, 4), (reference, 3), (u1, 0), (u2, 0))
+        d, so, ro, pdf = self._r.sample(kf, sf, rf, a, b)
+        return (d.reshape(batch + (3,)), so.reshape(batch + (4,)), ro.reshape(batch + (3,)),
+                pdf.reshape(batch) if batch else float(pdf[0]))
+
+    def eval(self, k, stokes, reference, w, out_reference):
+        """The Stokes vector scattered into the unit direction ``w`` per
+        steradian, referred to ``out_reference`` (unit, perpendicular to ``w``):
+        what next-event estimation adds towards a detector."""
+        batch, (kf, sf, rf, wf, of) = _rows((), (k, 3), (stokes, 4), (reference, 3), (w, 3), (out_reference, 3))
+        return self._r.eval(kf, sf, rf, wf, of).reshape(batch + (4,))
+
+    def pdf(self, k, stokes, reference, w):
+        """The density per steradian with which :meth:`sample` draws ``w``."""
+        batch, (kf, sf, rf, wf) = _rows((), (k, 3), (stokes, 4), (reference, 3), (w, 3))
+        out = self._r.pdf(kf, sf, rf, wf)
+        return out.reshape(batch) if batch else float(out[0])

@@ -1,8 +1,9 @@
 """Tests of the Python package against closed forms and published values.
 
 Run from outside the source tree (so that the installed package is
-imported): ``python -m unittest discover -s <repo>/python/tests``. The Rust
-test tests/python.rs builds the package with pip and runs these.
+imported): ``python -m pytest <repo>/python/tests`` (or ``python -m unittest
+discover -s <repo>/python/tests``). The Rust test tests/python.rs builds the
+package with pip and runs these.
 Thresholds were fixed before the runs: Kolmogorov–Smirnov at the 0.1 %
 level (D < 1.95/sqrt(n)); published values to their printed digits.
 """
@@ -145,6 +146,82 @@ class AlbedoTest(unittest.TestCase):
         self.assertAlmostEqual(omega, 0.999, delta=1e-9)
         with self.assertRaises(ValueError):
             sk.AlbedoCurve(sk.Phase.isotropic(), thickness=-1.0, paths=10)
+
+
+class MediumTest(unittest.TestCase):
+    def test_estimators_agree_with_the_analytic_transmittance(self):
+        # density = x at the nodes of an 8^3 grid (linear: represented exactly),
+        # sigma_t = 2 density: along x through the box, tau = 1 and T = e^-1.
+        x = np.linspace(0.0, 1.0, 8)
+        density = np.broadcast_to(x[:, None, None], (8, 8, 8))
+        medium = sk.Medium(density, 0.5, 1.5, majorant_cells=(4, 4, 4))
+        self.assertEqual(medium.majorants().shape, (4, 4, 4))
+        self.assertAlmostEqual(medium.sigma_t([0.25, 0.5, 0.5]), 0.5, places=12)
+        n = 20_000
+        origins = np.tile([-1.0, 0.5, 0.5], (n, 1))
+        dirs = np.array([1.0, 0.0, 0.0])
+        exact = math.exp(-1.0)
+        for estimator in ("delta", "ratio", "residual", "ray_march", "telescoping"):
+            tr = medium.transmittance(origins, dirs, estimator=estimator, seed=3)
+            self.assertEqual(tr.shape, (n,))
+            se = tr.std() / math.sqrt(n)
+            self.assertLess(abs(tr.mean() - exact), 4 * se + 1e-12, (estimator, tr.mean(), se))
+        t, event = medium.delta_track(origins, dirs, seed=5)
+        absorbed = float(np.mean(event == 2))
+        want = (1 - exact) * 0.25
+        self.assertLess(abs(absorbed - want), 4 * math.sqrt(want * (1 - want) / n))
+        escaped = event == 0
+        np.testing.assert_allclose(t[escaped], 2.0)  # leaves the box at x = 1
+        self.assertTrue(np.all((t[~escaped] >= 1.0) & (t[~escaped] <= 2.0)))
+
+    def test_bad_media_and_rays(self):
+        good = np.ones((2, 2, 2))
+        with self.assertRaises(ValueError):
+            sk.Medium(np.ones((2, 2)), 1.0, 1.0)
+        with self.assertRaises(ValueError):
+            sk.Medium(np.full((2, 2, 2), np.nan), 1.0, 1.0)
+        with self.assertRaises(ValueError):
+            sk.Medium(good, -1.0, 1.0)
+        with self.assertRaises(ValueError):
+            sk.Medium(good, 1.0, 1.0, lo=(1, 1, 1), hi=(0, 0, 0))
+        m = sk.Medium(good, 1.0, 1.0)
+        with self.assertRaises(ValueError):
+            m.transmittance([[0, 0, 0]], [[1, 0, 0]], estimator="guess")
+        with self.assertRaises(ValueError):
+            m.transmittance([[0, 0, 0]], [[0, 0, 0]])  # no direction
+        with self.assertRaises(ValueError):
+            m.transmittance([[0, 0]], [[1, 0]])
+
+
+class PolarisedTest(unittest.TestCase):
+    def test_mueller_matrix_and_sampling(self):
+        r = sk.RayleighPolarized(0.0)
+        p11, p12, p22, p33, p44 = r.mueller([1.0, 0.0, -1.0])
+        # Chandrasekhar's matrix, normalised: P11 = 3/4 (1 + mu^2), P12 = -3/4 (1 - mu^2).
+        np.testing.assert_allclose(p11, [1.5, 0.75, 1.5], rtol=1e-14)
+        np.testing.assert_allclose(p12, [0.0, -0.75, 0.0], atol=1e-15)
+        np.testing.assert_allclose(p33, [1.5, 0.0, -1.5], atol=1e-15)
+        k = np.array([0.0, 0.0, 1.0])
+        ref = np.array([1.0, 0.0, 0.0])
+        unpolarised = np.array([1.0, 0.0, 0.0, 0.0])
+        n = 20_000
+        d, s_out, r_out, pdf = r.sample(k, unpolarised, ref, rng=np.random.default_rng(9), size=n)
+        self.assertEqual((d.shape, s_out.shape, r_out.shape, pdf.shape), ((n, 3), (n, 4), (n, 3), (n,)))
+        np.testing.assert_allclose(s_out[:, 0], 1.0)  # keeps I
+        np.testing.assert_allclose(pdf, r.pdf(k, unpolarised, ref, d), rtol=1e-9)
+        np.testing.assert_allclose(np.einsum("ij,ij->i", r_out, d), 0.0, atol=1e-12)
+        # Unpolarised light: the cosine is Rayleigh's, KS against its CDF.
+        cdf = sk.Phase.rayleigh().cdf
+        self.assertLess(ks_statistic(d[:, 2], cdf), 1.95 / math.sqrt(n))
+        # Fully polarised along x: no light scattered along x.
+        lin = np.array([1.0, 1.0, 0.0, 0.0])
+        w = np.array([1.0, 0.0, 0.0])
+        out = r.eval(k, lin, ref, w, [0.0, 1.0, 0.0])
+        self.assertAlmostEqual(float(out[0]), 0.0, places=12)
+        with self.assertRaises(ValueError):
+            r.sample(k, [1.0, 2.0, 0.0, 0.0], ref, [0.5], [0.5])  # more polarised than intense
+        with self.assertRaises(ValueError):
+            sk.RayleighPolarized(1.0)
 
 
 class ConventionsTest(unittest.TestCase):

@@ -1,0 +1,250 @@
+//! Heterogeneous media: a density grid with its majorant and minorant
+//! grids, and every transmittance estimator and free-flight sampler over
+//! arrays of rays.
+
+use crate::{Array, refused};
+use numpy::{IntoPyArray, PyReadonlyArray1};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::rand_core::SeedableRng;
+use scatterkit::medium::Event;
+use scatterkit::medium::ray_march::{Series, ray_march_transmittance, telescoping_transmittance};
+use scatterkit::medium::residual::Extrema;
+use scatterkit::{Error, Grid, Majorants, Ray, Sampling, Vec3};
+
+/// A density grid over a box, with its majorants and minorants, owned.
+#[pyclass(name = "_Medium", module = "scatterkit._scatterkit", frozen)]
+#[derive(Debug)]
+pub(crate) struct PyMedium {
+    density: Vec<f64>,
+    n: [usize; 3],
+    sigma: (f64, f64),
+    max_density: f64,
+    bounds: (Vec3<f64>, Vec3<f64>),
+    sampling: Sampling,
+    m: [usize; 3],
+    max: Vec<f64>,
+    min: Vec<f64>,
+}
+
+/// The estimators `transmittance` takes by name.
+#[derive(Clone, Copy, Debug)]
+enum Estimator {
+    Delta,
+    Ratio,
+    Residual,
+    RayMarch,
+    Telescoping,
+}
+
+impl Estimator {
+    fn parse(name: &str) -> PyResult<Self> {
+        Ok(match name {
+            "delta" => Estimator::Delta,
+            "ratio" => Estimator::Ratio,
+            "residual" => Estimator::Residual,
+            "ray_march" => Estimator::RayMarch,
+            "telescoping" => Estimator::Telescoping,
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "transmittance: estimator {name:?} is not one of \"delta\", \"ratio\", \
+                     \"residual\", \"ray_march\", \"telescoping\""
+                )));
+            }
+        })
+    }
+}
+
+impl PyMedium {
+    fn grid(&self) -> Grid<'_, f64> {
+        Grid::from_parts(
+            &self.density,
+            self.n,
+            self.sigma.0,
+            self.sigma.1,
+            self.max_density,
+            self.bounds,
+            self.sampling,
+        )
+        .expect("checked when built")
+    }
+
+    fn extrema(&self) -> Extrema<'_, f64> {
+        let (lo, hi) = self.bounds;
+        let max = Majorants::from_parts(&self.max, self.m, lo, hi).expect("built");
+        let min = Majorants::from_parts(&self.min, self.m, lo, hi).expect("built");
+        Extrema::new(max, min).expect("built together")
+    }
+}
+
+/// The rays of `origins`, `dirs` (3 values each) and `t_max`, checked for
+/// length.
+fn rays(origins: &[f64], dirs: &[f64], t_max: &[f64]) -> PyResult<Vec<Ray<f64>>> {
+    if origins.len() != dirs.len() || origins.len() != 3 * t_max.len() {
+        return Err(PyValueError::new_err(
+            "origins and dirs must be (n, 3) arrays and t_max n values",
+        ));
+    }
+    Ok(origins
+        .chunks_exact(3)
+        .zip(dirs.chunks_exact(3))
+        .zip(t_max)
+        .map(|((o, d), &t)| Ray::new(Vec3::new(o[0], o[1], o[2]), Vec3::new(d[0], d[1], d[2]), t))
+        .collect())
+}
+
+#[pymethods]
+impl PyMedium {
+    /// `density`: nx·ny·nz values, x fastest; `cells`: the majorant grid.
+    #[new]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        density: PyReadonlyArray1<'_, f64>,
+        n: [usize; 3],
+        sigma_a: f64,
+        sigma_s: f64,
+        lo: [f64; 3],
+        hi: [f64; 3],
+        cell_centred: bool,
+        cells: [usize; 3],
+    ) -> PyResult<Self> {
+        let density = density.as_slice()?.to_vec();
+        let (lo, hi) = (
+            Vec3::new(lo[0], lo[1], lo[2]),
+            Vec3::new(hi[0], hi[1], hi[2]),
+        );
+        let sampling = if cell_centred {
+            Sampling::Cells
+        } else {
+            Sampling::Nodes
+        };
+        let count = scatterkit::majorant::majorant_len(cells)
+            .ok_or_else(|| PyValueError::new_err("Medium: majorant cells must be positive"))?;
+        py.detach(|| {
+            let grid = Grid::new(&density, n[0], n[1], n[2], sigma_a, sigma_s)?
+                .with_box(lo, hi)?
+                .with_sampling(sampling);
+            let (mut max, mut min) = (vec![0.0; count], vec![0.0; count]);
+            Extrema::build(&grid, cells, &mut max, &mut min)?;
+            Ok::<_, Error>((max, min))
+        })
+        .map(|(max, min)| PyMedium {
+            n,
+            sigma: (sigma_a, sigma_s),
+            // Every value is finite and >= 0: Grid::new checked them.
+            max_density: density.iter().copied().fold(0.0, f64::max),
+            density,
+            bounds: (lo, hi),
+            sampling,
+            m: cells,
+            max,
+            min,
+        })
+        .map_err(|e| refused("Medium(density, sigma_a, sigma_s, lo, hi, cells)", e))
+    }
+
+    /// The majorants (per length unit), x fastest.
+    fn majorants<'py>(&self, py: Python<'py>) -> Array<'py> {
+        self.max.clone().into_pyarray(py)
+    }
+
+    /// The minorants (per length unit), x fastest.
+    fn minorants<'py>(&self, py: Python<'py>) -> Array<'py> {
+        self.min.clone().into_pyarray(py)
+    }
+
+    /// `σ_t` at points (3 values each).
+    fn sigma_t<'py>(
+        &self,
+        py: Python<'py>,
+        points: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Array<'py>> {
+        let p = points.as_slice()?;
+        if p.len() % 3 != 0 {
+            return Err(PyValueError::new_err(
+                "sigma_t: points must be an (n, 3) array",
+            ));
+        }
+        let grid = self.grid();
+        let out: Vec<f64> = py.detach(|| {
+            p.chunks_exact(3)
+                .map(|q| grid.sigma_t(Vec3::new(q[0], q[1], q[2])))
+                .collect()
+        });
+        Ok(out.into_pyarray(py))
+    }
+
+    /// One transmittance estimate per ray by the named estimator.
+    #[allow(clippy::too_many_arguments)]
+    fn transmittance<'py>(
+        &self,
+        py: Python<'py>,
+        origins: PyReadonlyArray1<'py, f64>,
+        dirs: PyReadonlyArray1<'py, f64>,
+        t_max: PyReadonlyArray1<'py, f64>,
+        estimator: &str,
+        seed: u64,
+        budget: u32,
+    ) -> PyResult<Array<'py>> {
+        let how = Estimator::parse(estimator)?;
+        let rays = rays(origins.as_slice()?, dirs.as_slice()?, t_max.as_slice()?)?;
+        let (grid, ext) = (self.grid(), self.extrema());
+        let out: Result<Vec<f64>, Error> = py.detach(|| {
+            let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+            let maj = ext.majorants();
+            rays.iter()
+                .map(|&ray| match how {
+                    Estimator::Delta => maj
+                        .delta_track(&grid, ray, budget, &mut rng)
+                        .map(|t| f64::from(u8::from(t.event == Event::Escaped))),
+                    Estimator::Ratio => maj.ratio_track(&grid, ray, budget, &mut rng).map(|t| t.tr),
+                    Estimator::Residual => ext
+                        .residual_ratio_track(&grid, ray, budget, &mut rng)
+                        .map(|t| t.tr),
+                    Estimator::RayMarch => {
+                        let n = Series::Power.default_strata(maj.optical_depth(ray)?)?;
+                        ray_march_transmittance(&grid, ray, n, budget, &mut rng).map(|t| t.tr)
+                    }
+                    Estimator::Telescoping => {
+                        let n = Series::Telescoping.default_strata(maj.optical_depth(ray)?)?;
+                        telescoping_transmittance(&grid, ray, n, budget, &mut rng).map(|t| t.tr)
+                    }
+                })
+                .collect()
+        });
+        Ok(out
+            .map_err(|e| refused(&format!("transmittance(estimator={estimator:?})"), e))?
+            .into_pyarray(py))
+    }
+
+    /// Delta tracking per ray: the distance to the real collision (or
+    /// where the ray leaves), and the event (0 escaped, 1 scattered, 2
+    /// absorbed).
+    fn delta_track<'py>(
+        &self,
+        py: Python<'py>,
+        origins: PyReadonlyArray1<'py, f64>,
+        dirs: PyReadonlyArray1<'py, f64>,
+        t_max: PyReadonlyArray1<'py, f64>,
+        seed: u64,
+        budget: u32,
+    ) -> PyResult<(Array<'py>, Array<'py>)> {
+        let rays = rays(origins.as_slice()?, dirs.as_slice()?, t_max.as_slice()?)?;
+        let (grid, ext) = (self.grid(), self.extrema());
+        let out: Result<Vec<(f64, f64)>, Error> = py.detach(|| {
+            let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+            let maj = ext.majorants();
+            rays.iter()
+                .map(|&ray| {
+                    maj.delta_track(&grid, ray, budget, &mut rng)
+                        .map(|t| (t.t, f64::from(t.event as u32)))
+                })
+                .collect()
+        });
+        let out = out.map_err(|e| refused("delta_track", e))?;
+        let (t, ev): (Vec<f64>, Vec<f64>) = out.into_iter().unzip();
+        Ok((t.into_pyarray(py), ev.into_pyarray(py)))
+    }
+}

@@ -1,0 +1,264 @@
+//! Phase functions: every model of the library and mixtures of them.
+
+use crate::{Array, map, refused};
+use numpy::{IntoPyArray, PyReadonlyArray1};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use scatterkit::mixture::{Mixture, Part};
+use scatterkit::phase::moments::{legendre_moments, legendre_moments_by_quadrature};
+use scatterkit::{Phase, PhaseFunction, Vec3};
+
+/// A phase function: one of the library's models or a mixture of them.
+#[derive(Clone, Debug)]
+pub(crate) enum Model {
+    One(Phase<f64>),
+    Mix(Box<Mixture<'static, f64>>),
+}
+
+impl Model {
+    pub(crate) fn pdf(&self, mu: f64) -> f64 {
+        match self {
+            Model::One(p) => p.pdf(mu),
+            Model::Mix(m) => m.pdf(mu),
+        }
+    }
+    fn cdf(&self, mu: f64) -> f64 {
+        match self {
+            Model::One(p) => p.cdf(mu),
+            Model::Mix(m) => m.cdf(mu),
+        }
+    }
+    fn mean_cosine(&self) -> f64 {
+        match self {
+            Model::One(p) => p.mean_cosine(),
+            Model::Mix(m) => m.mean_cosine(),
+        }
+    }
+    fn sample_cos_n(&self, u: &[f64], out: &mut [f64]) -> Result<(), scatterkit::Error> {
+        match self {
+            Model::One(p) => p.sample_cos_n(u, out),
+            Model::Mix(m) => m.sample_cos_n(u, out),
+        }
+    }
+    fn sample_dir(&self, w: Vec3<f64>, u1: f64, u2: f64) -> (Vec3<f64>, f64) {
+        match self {
+            Model::One(p) => p.sample_dir(w, u1, u2),
+            Model::Mix(m) => m.sample_dir(w, u1, u2),
+        }
+    }
+    fn moments(&self, out: &mut [f64]) {
+        match self {
+            Model::One(p) => legendre_moments(p, out),
+            Model::Mix(m) => legendre_moments_by_quadrature(&**m, out),
+        }
+    }
+}
+
+/// The compiled phase function behind `scatterkit.Phase`.
+#[pyclass(
+    name = "_Phase",
+    module = "scatterkit._scatterkit",
+    frozen,
+    skip_from_py_object
+)]
+#[derive(Clone, Debug)]
+pub(crate) struct PyPhase {
+    pub(crate) model: Model,
+}
+
+fn phase(r: Result<Phase<f64>, scatterkit::Error>, what: &str) -> PyResult<PyPhase> {
+    r.map(|p| PyPhase {
+        model: Model::One(p),
+    })
+    .map_err(|e| refused(what, e))
+}
+
+#[pymethods]
+impl PyPhase {
+    #[staticmethod]
+    fn isotropic() -> Self {
+        PyPhase {
+            model: Model::One(Phase::isotropic()),
+        }
+    }
+    #[staticmethod]
+    fn rayleigh() -> Self {
+        PyPhase {
+            model: Model::One(Phase::rayleigh()),
+        }
+    }
+    #[staticmethod]
+    fn rayleigh_depolarized(rho: f64) -> PyResult<Self> {
+        phase(
+            Phase::rayleigh_depolarized(rho),
+            "rayleigh_depolarized(rho)",
+        )
+    }
+    #[staticmethod]
+    fn henyey_greenstein(g: f64) -> PyResult<Self> {
+        phase(Phase::henyey_greenstein(g), "henyey_greenstein(g)")
+    }
+    #[staticmethod]
+    fn two_lobe_hg(g1: f64, g2: f64, w: f64) -> PyResult<Self> {
+        phase(Phase::two_lobe_hg(g1, g2, w), "two_lobe_hg(g1, g2, w)")
+    }
+    #[staticmethod]
+    fn draine(g: f64, alpha: f64) -> PyResult<Self> {
+        phase(Phase::draine(g, alpha), "draine(g, alpha)")
+    }
+    #[staticmethod]
+    fn cornette_shanks(g: f64) -> PyResult<Self> {
+        phase(Phase::cornette_shanks(g), "cornette_shanks(g)")
+    }
+    #[staticmethod]
+    fn fog(g_hg: f64, g_d: f64, alpha: f64, w_d: f64) -> PyResult<Self> {
+        phase(
+            Phase::fog(g_hg, g_d, alpha, w_d),
+            "fog(g_hg, g_d, alpha, w_d)",
+        )
+    }
+    #[staticmethod]
+    fn fog_diameter(diameter_um: f64) -> PyResult<Self> {
+        phase(
+            Phase::fog_diameter(diameter_um),
+            "fog_diameter(diameter_um)",
+        )
+    }
+    #[staticmethod]
+    fn gegenbauer(alpha: f64, g: f64) -> PyResult<Self> {
+        phase(Phase::gegenbauer(alpha, g), "gegenbauer(alpha, g)")
+    }
+    #[staticmethod]
+    fn fournier_forand(n: f64, mu_j: f64) -> PyResult<Self> {
+        phase(Phase::fournier_forand(n, mu_j), "fournier_forand(n, mu_j)")
+    }
+    #[staticmethod]
+    fn fournier_forand_backscatter(b: f64, n: f64) -> PyResult<Self> {
+        phase(
+            Phase::fournier_forand_backscatter(b, n),
+            "fournier_forand_backscatter(b, n)",
+        )
+    }
+    /// A mixture of single models (not of mixtures) with weights.
+    #[staticmethod]
+    fn mixture(parts: Vec<(PyRef<'_, PyPhase>, f64)>) -> PyResult<Self> {
+        let mut held = Vec::with_capacity(parts.len());
+        for (p, w) in &parts {
+            match &p.model {
+                Model::One(one) => held.push((Part::Phase(*one), *w)),
+                Model::Mix(_) => {
+                    return Err(PyValueError::new_err(
+                        "mixture: a part is itself a mixture; list its parts instead",
+                    ));
+                }
+            }
+        }
+        Mixture::new(&held)
+            .map(|m| PyPhase {
+                model: Model::Mix(Box::new(m)),
+            })
+            .map_err(|e| refused("mixture(parts)", e))
+    }
+
+    /// The model's name.
+    #[getter]
+    fn name(&self) -> &'static str {
+        match &self.model {
+            Model::One(p) => p.name(),
+            Model::Mix(_) => "mixture",
+        }
+    }
+    #[getter]
+    fn mean_cosine(&self) -> f64 {
+        self.model.mean_cosine()
+    }
+    fn pdf<'py>(&self, py: Python<'py>, mu: PyReadonlyArray1<'py, f64>) -> PyResult<Array<'py>> {
+        let m = &self.model;
+        map(py, &mu, |x| m.pdf(x))
+    }
+    fn cdf<'py>(&self, py: Python<'py>, mu: PyReadonlyArray1<'py, f64>) -> PyResult<Array<'py>> {
+        let m = &self.model;
+        map(py, &mu, |x| m.cdf(x))
+    }
+    fn sample_cos<'py>(
+        &self,
+        py: Python<'py>,
+        u: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Array<'py>> {
+        let us = u.as_slice()?;
+        let m = &self.model;
+        let out = py.detach(|| {
+            let mut out = vec![0.0; us.len()];
+            m.sample_cos_n(us, &mut out).map(|()| out)
+        });
+        Ok(out
+            .map_err(|e| refused("sample_cos(u): u must lie in [0, 1]", e))?
+            .into_pyarray(py))
+    }
+    /// Directions about `w_in` (unit, 3 values) from `u1`, `u2`: the
+    /// directions as 3n values (x, y, z per row) and their densities.
+    fn sample_dir<'py>(
+        &self,
+        py: Python<'py>,
+        w_in: [f64; 3],
+        u1: PyReadonlyArray1<'py, f64>,
+        u2: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<(Array<'py>, Array<'py>)> {
+        let (a, b) = (u1.as_slice()?, u2.as_slice()?);
+        if a.len() != b.len() {
+            return Err(PyValueError::new_err(
+                "sample_dir: u1 and u2 differ in length",
+            ));
+        }
+        let w = Vec3::new(w_in[0], w_in[1], w_in[2]);
+        let norm = (w.x * w.x + w.y * w.y + w.z * w.z).sqrt();
+        if norm.is_nan() || (norm - 1.0).abs() > 1e-6 {
+            return Err(PyValueError::new_err(
+                "sample_dir: w_in must be a unit vector",
+            ));
+        }
+        let in_unit = |u: &[f64]| u.iter().all(|&x| (0.0..=1.0).contains(&x));
+        if !(in_unit(a) && in_unit(b)) {
+            return Err(PyValueError::new_err(
+                "sample_dir: u1 and u2 must lie in [0, 1]",
+            ));
+        }
+        let m = &self.model;
+        let (dirs, pdf) = py.detach(|| {
+            let mut dirs = Vec::with_capacity(3 * a.len());
+            let mut pdf = Vec::with_capacity(a.len());
+            for (&x, &y) in a.iter().zip(b) {
+                let (d, p) = m.sample_dir(w, x, y);
+                dirs.extend([d.x, d.y, d.z]);
+                pdf.push(p);
+            }
+            (dirs, pdf)
+        });
+        Ok((dirs.into_pyarray(py), pdf.into_pyarray(py)))
+    }
+    /// The Legendre moments `χ_0 … χ_{n−1}`.
+    fn legendre<'py>(&self, py: Python<'py>, n: usize) -> PyResult<Array<'py>> {
+        if n == 0 || n > 1 << 16 {
+            return Err(PyValueError::new_err(
+                "legendre(n): n must be in 1 ..= 65536",
+            ));
+        }
+        let m = &self.model;
+        let out = py.detach(|| {
+            let mut out = vec![0.0; n];
+            m.moments(&mut out);
+            out
+        });
+        Ok(out.into_pyarray(py))
+    }
+    fn __repr__(&self) -> String {
+        match &self.model {
+            Model::One(p) => {
+                let (_, n, v) = p.params();
+                let v: Vec<String> = v.iter().take(n).map(|x| format!("{x}")).collect();
+                format!("{}({})", p.name(), v.join(", "))
+            }
+            Model::Mix(m) => format!("mixture of {} parts", m.len()),
+        }
+    }
+}

@@ -94,6 +94,35 @@ fn rays(origins: &[f64], dirs: &[f64], t_max: &[f64]) -> PyResult<Vec<Ray<f64>>>
         .collect())
 }
 
+/// One transmittance estimate along `ray` by `how`.
+fn estimate(
+    how: Estimator,
+    grid: &Grid<'_, f64>,
+    ext: &Extrema<'_, f64>,
+    ray: Ray<f64>,
+    budget: u32,
+    rng: &mut Xoshiro256PlusPlus,
+) -> Result<f64, Error> {
+    let maj = ext.majorants();
+    match how {
+        Estimator::Delta => maj
+            .delta_track(grid, ray, budget, rng)
+            .map(|t| f64::from(u8::from(t.event == Event::Escaped))),
+        Estimator::Ratio => maj.ratio_track(grid, ray, budget, rng).map(|t| t.tr),
+        Estimator::Residual => ext
+            .residual_ratio_track(grid, ray, budget, rng)
+            .map(|t| t.tr),
+        Estimator::RayMarch => {
+            let n = Series::Power.default_strata(maj.optical_depth(ray)?)?;
+            ray_march_transmittance(grid, ray, n, budget, rng).map(|t| t.tr)
+        }
+        Estimator::Telescoping => {
+            let n = Series::Telescoping.default_strata(maj.optical_depth(ray)?)?;
+            telescoping_transmittance(grid, ray, n, budget, rng).map(|t| t.tr)
+        }
+    }
+}
+
 #[pymethods]
 impl PyMedium {
     /// `density`: nx·ny·nz values, x fastest; `cells`: the majorant grid.
@@ -193,30 +222,42 @@ impl PyMedium {
         let (grid, ext) = (self.grid(), self.extrema());
         let out: Result<Vec<f64>, Error> = py.detach(|| {
             let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-            let maj = ext.majorants();
             rays.iter()
-                .map(|&ray| match how {
-                    Estimator::Delta => maj
-                        .delta_track(&grid, ray, budget, &mut rng)
-                        .map(|t| f64::from(u8::from(t.event == Event::Escaped))),
-                    Estimator::Ratio => maj.ratio_track(&grid, ray, budget, &mut rng).map(|t| t.tr),
-                    Estimator::Residual => ext
-                        .residual_ratio_track(&grid, ray, budget, &mut rng)
-                        .map(|t| t.tr),
-                    Estimator::RayMarch => {
-                        let n = Series::Power.default_strata(maj.optical_depth(ray)?)?;
-                        ray_march_transmittance(&grid, ray, n, budget, &mut rng).map(|t| t.tr)
-                    }
-                    Estimator::Telescoping => {
-                        let n = Series::Telescoping.default_strata(maj.optical_depth(ray)?)?;
-                        telescoping_transmittance(&grid, ray, n, budget, &mut rng).map(|t| t.tr)
-                    }
-                })
+                .map(|&ray| estimate(how, &grid, &ext, ray, budget, &mut rng))
                 .collect()
         });
         Ok(out
             .map_err(|e| refused(&format!("transmittance(estimator={estimator:?})"), e))?
             .into_pyarray(py))
+    }
+
+    /// The seconds the estimator's loop over the rays takes inside Rust,
+    /// without the conversions of the Python call: the benchmark's
+    /// reference for the same call made from Rust (`examples/speed.py`).
+    #[allow(clippy::too_many_arguments)]
+    fn seconds_in_rust(
+        &self,
+        py: Python<'_>,
+        origins: PyReadonlyArray1<'_, f64>,
+        dirs: PyReadonlyArray1<'_, f64>,
+        t_max: PyReadonlyArray1<'_, f64>,
+        estimator: &str,
+        seed: u64,
+        budget: u32,
+    ) -> PyResult<f64> {
+        let how = Estimator::parse(estimator)?;
+        let rays = rays(origins.as_slice()?, dirs.as_slice()?, t_max.as_slice()?)?;
+        let (grid, ext) = (self.grid(), self.extrema());
+        let start = std::time::Instant::now();
+        let sum: Result<f64, Error> = py.detach(|| {
+            let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+            rays.iter()
+                .map(|&ray| estimate(how, &grid, &ext, ray, budget, &mut rng))
+                .sum()
+        });
+        let seconds = start.elapsed().as_secs_f64();
+        sum.map_err(|e| refused("seconds_in_rust", e))?;
+        Ok(seconds)
     }
 
     /// Delta tracking per ray: the distance to the real collision (or

@@ -1,6 +1,6 @@
 //! Phase functions: every model of the library and mixtures of them.
 
-use crate::{Array, map, refused};
+use crate::{Array, filled, map, refused};
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -187,13 +187,8 @@ impl PyPhase {
     ) -> PyResult<Array<'py>> {
         let us = u.as_slice()?;
         let m = &self.model;
-        let out = py.detach(|| {
-            let mut out = vec![0.0; us.len()];
-            m.sample_cos_n(us, &mut out).map(|()| out)
-        });
-        Ok(out
-            .map_err(|e| refused("sample_cos(u): u must lie in [0, 1]", e))?
-            .into_pyarray(py))
+        filled(py, us.len(), |out| m.sample_cos_n(us, out))?
+            .map_err(|e| refused("sample_cos(u): u must lie in [0, 1]", e))
     }
     /// Directions about `w_in` (unit, 3 values) from `u1`, `u2`: the
     /// directions as 3n values (x, y, z per row) and their densities.

@@ -123,6 +123,40 @@ fn the_python_package_installs_and_passes_its_tests() {
         python(&py, &dir, &format!("the guide's block {i}"), block);
     }
 
+    // The examples: every one compiles; the fitting example runs, and the
+    // figure runs where matplotlib is installed (it is not a dependency).
+    let examples = root().join("python/examples");
+    let compile = format!(
+        "import compileall, sys\nsys.exit(not compileall.compile_dir({:?}, quiet=1, legacy=True))",
+        examples.to_str().unwrap()
+    );
+    python(&py, &dir, "compiling the examples", &compile);
+    let o = run(Command::new(&py)
+        .arg(examples.join("fit_measured.py"))
+        .current_dir(&dir));
+    assert!(
+        o.status.success(),
+        "examples/fit_measured.py:\n{}",
+        text(&o)
+    );
+    assert!(text(&o).contains("within: True"), "{}", text(&o));
+    let has_mpl = run(Command::new(&py).args(["-c", "import matplotlib"]))
+        .status
+        .success();
+    if has_mpl {
+        let o = run(Command::new(&py)
+            .arg(examples.join("phase_vs_mie.py"))
+            .arg(dir.join("phase_vs_mie.png"))
+            .current_dir(&dir));
+        assert!(
+            o.status.success(),
+            "examples/phase_vs_mie.py:\n{}",
+            text(&o)
+        );
+    } else {
+        println!("examples/phase_vs_mie.py compiled, not run: matplotlib is not installed");
+    }
+
     let help = python(
         &py,
         &dir,
@@ -135,6 +169,7 @@ fn the_python_package_installs_and_passes_its_tests() {
         "class AlbedoCurve",
         "class Medium",
         "class RayleighPolarized",
+        "fit_mie",
         "sample_cos",
         "water_index",
     ] {

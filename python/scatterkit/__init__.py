@@ -22,11 +22,14 @@ sphere, exact), :class:`AlbedoCurve` (the albedo of a layer against the
 single-scattering albedo, and its inverse), :func:`water_index`,
 :func:`size_parameter`, :class:`Medium` (a density grid: transmittance
 estimators and delta tracking over arrays of rays),
-:class:`RayleighPolarized` (Stokes vectors as arrays), and
+:class:`RayleighPolarized` (Stokes vectors as arrays), :func:`fit` and
+:func:`fit_mie` (the simplest model within a tolerance), and
 :mod:`scatterkit.conventions`.
 """
 
 from __future__ import annotations
+
+from typing import NamedTuple, Optional
 
 import numpy as np
 
@@ -39,6 +42,9 @@ __all__ = [
     "AlbedoCurve",
     "Medium",
     "RayleighPolarized",
+    "Fit",
+    "fit",
+    "fit_mie",
     "water_index",
     "size_parameter",
     "conventions",
@@ -547,3 +553,56 @@ class RayleighPolarized:
         batch, (kf, sf, rf, wf) = _rows((), (k, 3), (stokes, 4), (reference, 3), (w, 3))
         out = self._r.pdf(kf, sf, rf, wf)
         return out.reshape(batch) if batch else float(out[0])
+
+
+_CANDIDATES = ("isotropic", "henyey_greenstein", "rayleigh", "draine", "fog",
+               "two_lobe_hg", "fournier_forand", "rayleigh_hg")
+
+
+class Fit(NamedTuple):
+    """What :func:`fit` and :func:`fit_mie` found."""
+
+    phase: Optional[Phase]
+    """The chosen model, ready to sample (``None`` when a table won: build it
+    from the data)."""
+    model: str
+    """The chosen model's name."""
+    distance: float
+    """Its total-variation distance to the reference (0 to 1)."""
+    within_tolerance: bool
+    """Whether ``distance`` is within the tolerance (if no candidate is, the
+    closest is returned)."""
+    distances: dict
+    """Every candidate's best-fit distance, by name (NaN where not fitted)."""
+
+
+def _fit(r):
+    compiled, model, distance, within, distances = r
+    return Fit(None if compiled is None else Phase(compiled), model, distance, within,
+               dict(zip(_CANDIDATES, distances)))
+
+
+def fit(cos_theta, pdf, tolerance=0.01, *, allow_table=False) -> Fit:
+    """The simplest model within ``tolerance`` (total variation, in ``(0, 1)``)
+    of a measured or tabulated phase function: ``pdf`` at ``cos_theta`` (at
+    least 2 points, strictly monotone within ``[-1, 1]``; any scale; linear
+    between the points). Candidates, cheapest first: isotropic, HG, Rayleigh,
+    Draine, two-lobe HG, Fournier–Forand, Rayleigh + HG, each fitted to the
+    data; with ``allow_table`` a table of the data itself is the last."""
+    c, _, _ = _flat(cos_theta, "fit")
+    p, _, _ = _flat(pdf, "fit")
+    return _fit(_sk.fit_measured(c, p, float(tolerance), bool(allow_table)))
+
+
+def fit_mie(diameter_um, wavelength_um, m=None, tolerance=0.01, *, allow_table=False) -> Fit:
+    """The simplest model within ``tolerance`` of the Mie phase function of
+    droplets of ``diameter_um`` µm in air at vacuum wavelength ``wavelength_um``
+    µm, relative index ``m`` (``None``: water, for 0.182 to 1.129 µm).
+    Candidates as :func:`fit`, with the fog fit up to 50 µm."""
+    if m is None:
+        re, im = float("nan"), float("nan")
+    else:
+        m = complex(m)
+        re, im = m.real, m.imag
+    return _fit(_sk.fit_mie(float(diameter_um), float(wavelength_um), re, im,
+                            float(tolerance), bool(allow_table)))

@@ -5,6 +5,7 @@
 //! GIL released, and turns the library's errors into `ValueError`.
 
 mod albedo;
+mod choose;
 mod medium;
 mod mie;
 mod phase;
@@ -66,5 +67,7 @@ fn _scatterkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<stokes::PyRayleighPolarized>()?;
     m.add_function(wrap_pyfunction!(mie::water_index, m)?)?;
     m.add_function(wrap_pyfunction!(mie::size_parameter, m)?)?;
+    m.add_function(wrap_pyfunction!(choose::fit_measured, m)?)?;
+    m.add_function(wrap_pyfunction!(choose::fit_mie, m)?)?;
     Ok(())
 }

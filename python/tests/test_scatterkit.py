@@ -224,6 +224,34 @@ class PolarisedTest(unittest.TestCase):
             sk.RayleighPolarized(1.0)
 
 
+class FitTest(unittest.TestCase):
+    def test_fit_finds_the_model_behind_the_data(self):
+        mu = np.linspace(-1, 1, 2001)
+        hg = sk.Phase.henyey_greenstein(0.6)
+        found = sk.fit(mu, 3.0 * hg.pdf(mu), 0.01)  # any scale
+        self.assertEqual(found.model, "HenyeyGreenstein")
+        self.assertTrue(found.within_tolerance)
+        self.assertAlmostEqual(found.phase.mean_cosine, 0.6, delta=2e-3)
+        self.assertEqual(set(found.distances), set(sk._CANDIDATES))
+        ray = sk.fit(mu, sk.Phase.rayleigh().pdf(mu), 0.01)
+        self.assertEqual(ray.model, "Rayleigh")
+        with self.assertRaises(ValueError):
+            sk.fit([0.0], [1.0])
+        with self.assertRaises(ValueError):
+            sk.fit(mu, hg.pdf(mu), 1.5)
+
+    def test_fit_mie_of_fog_droplets(self):
+        # No analytic model comes within 5 % total variation of a 10 µm
+        # droplet's Mie phase function (its glory and rainbow): the closest
+        # is returned, flagged; with a table allowed, the table wins.
+        found = sk.fit_mie(10.0, 0.55, tolerance=0.05)
+        self.assertFalse(found.within_tolerance)
+        fitted = [d for d in found.distances.values() if not math.isnan(d)]
+        self.assertEqual(found.distance, min(fitted))
+        table = sk.fit_mie(10.0, 0.55, tolerance=0.05, allow_table=True)
+        self.assertEqual((table.model, table.phase), ("MieTable", None))
+
+
 class ConventionsTest(unittest.TestCase):
     def test_round_trips(self):
         chi = np.array([1.0, 0.8, 0.64])

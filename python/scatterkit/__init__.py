@@ -180,6 +180,39 @@ class Phase:
             compiled.append((phase._p, float(weight)))
         return cls(_sk._Phase.mixture(compiled))
 
+    @classmethod
+    def legendre_series(cls, chi) -> "Phase":
+        """The phase function ``sum (2l + 1) chi_l P_l(mu) / (4 pi)`` of the Legendre
+        moments ``chi`` (``chi_0 = 1``; see :mod:`scatterkit.conventions` for
+        coefficients that carry the ``2l + 1``), sampled by its exact inverse CDF.
+        ``ValueError`` where the series goes negative."""
+        c, _, _ = _flat(chi, "legendre_series")
+        return cls(_sk._Phase.legendre_series(list(c)))
+
+    @classmethod
+    def table(cls, phase: "Phase", n: int = 256) -> "Phase":
+        """An O(1) inverse-CDF table of ``phase`` at ``n`` intervals (cubic Hermite;
+        the library's ``sk_table`` layout, which ``include/scatterkit_portable.h``
+        looks up in GPU kernels): ``table_data`` is what to copy to the device."""
+        if not isinstance(phase, Phase):
+            raise TypeError("table: phase must be a Phase")
+        return cls(_sk._Phase.table_of(phase._p, int(n)))
+
+    @classmethod
+    def table_measured(cls, cos_theta, pdf, n: int = 256) -> "Phase":
+        """A table of a measured phase function: ``pdf`` (any scale) at
+        ``cos_theta`` (at least 2 points, strictly monotone within ``[-1, 1]``),
+        linear between the points and zero outside them."""
+        c, _, _ = _flat(cos_theta, "table_measured")
+        p, _, _ = _flat(pdf, "table_measured")
+        return cls(_sk._Phase.table_measured(c, p, int(n)))
+
+    @property
+    def table_data(self):
+        """A table's data (``2(n + 1)`` values: the nodes ``mu_i`` and slopes of
+        its Hermite spline), or ``None`` for other phase functions."""
+        return self._p.table_data()
+
     # -- evaluation -------------------------------------------------------
     @property
     def name(self) -> str:

@@ -1,6 +1,6 @@
 //! The albedo of a layer against the single-scattering albedo.
 
-use crate::phase::{Model, PyPhase};
+use crate::phase::PyPhase;
 use crate::{Array, map, refused};
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::prelude::*;
@@ -34,10 +34,7 @@ impl PyAlbedo {
         let curve = py
             .detach(|| {
                 let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-                match model {
-                    Model::One(p) => AlbedoCurve::simulate(p, layer, light, paths, &mut rng),
-                    Model::Mix(m) => AlbedoCurve::simulate(&**m, layer, light, paths, &mut rng),
-                }
+                model.with(|p| AlbedoCurve::simulate(p, layer, light, paths, &mut rng))
             })
             .map_err(|e| refused("AlbedoCurve(phase, thickness, mu0, paths)", e))?;
         Ok(PyAlbedo { curve })

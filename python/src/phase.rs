@@ -5,51 +5,86 @@ use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use scatterkit::mixture::{Mixture, Part};
+use scatterkit::phase::legendre::LegendreSeries;
 use scatterkit::phase::moments::{legendre_moments, legendre_moments_by_quadrature};
-use scatterkit::{Phase, PhaseFunction, Vec3};
+use scatterkit::{Phase, PhaseFunction, Table, TableKind, Vec3};
 
-/// A phase function: one of the library's models or a mixture of them.
+/// A phase function: one of the library's models, a mixture of them, a
+/// Legendre series or a table, owning what it borrows in the library.
 #[derive(Clone, Debug)]
 pub(crate) enum Model {
     One(Phase<f64>),
     Mix(Box<Mixture<'static, f64>>),
+    /// Legendre moments `χ_0 … χ_{n−1}`, checked when built.
+    Series(Vec<f64>),
+    /// A table's data, its resolution and kind, checked when built.
+    Table(Vec<f64>, usize, TableKind),
+}
+
+/// A table as a phase function (the library's `Table` has the methods but
+/// not the trait).
+struct TableView<'a>(Table<'a, f64>);
+
+impl PhaseFunction<f64> for TableView<'_> {
+    fn pdf(&self, mu: f64) -> f64 {
+        self.0.pdf(mu)
+    }
+    fn cdf(&self, mu: f64) -> f64 {
+        self.0.cdf(mu)
+    }
+    fn sample_cos(&self, u: f64) -> f64 {
+        self.0.sample_cos(u)
+    }
+    fn mean_cosine(&self) -> f64 {
+        self.0.mean_cosine()
+    }
+    fn sample_dir(&self, w: Vec3<f64>, u1: f64, u2: f64) -> (Vec3<f64>, f64) {
+        self.0.sample_dir(w, u1, u2)
+    }
+}
+
+/// A phase function behind a reference, sized (for the library's generic
+/// builders).
+struct ByRef<'a>(&'a (dyn PhaseFunction<f64> + Sync));
+
+impl PhaseFunction<f64> for ByRef<'_> {
+    fn pdf(&self, mu: f64) -> f64 {
+        self.0.pdf(mu)
+    }
+    fn cdf(&self, mu: f64) -> f64 {
+        self.0.cdf(mu)
+    }
+    fn sample_cos(&self, u: f64) -> f64 {
+        self.0.sample_cos(u)
+    }
+    fn mean_cosine(&self) -> f64 {
+        self.0.mean_cosine()
+    }
 }
 
 impl Model {
-    pub(crate) fn pdf(&self, mu: f64) -> f64 {
+    /// Runs `f` on the model as the library's phase-function trait.
+    pub(crate) fn with<R>(&self, f: impl FnOnce(&(dyn PhaseFunction<f64> + Sync)) -> R) -> R {
         match self {
-            Model::One(p) => p.pdf(mu),
-            Model::Mix(m) => m.pdf(mu),
-        }
-    }
-    fn cdf(&self, mu: f64) -> f64 {
-        match self {
-            Model::One(p) => p.cdf(mu),
-            Model::Mix(m) => m.cdf(mu),
+            Model::One(p) => f(p),
+            Model::Mix(m) => f(&**m),
+            Model::Series(chi) => {
+                let s = LegendreSeries::unchecked(chi).expect("checked when built");
+                f(&s)
+            }
+            Model::Table(data, n, kind) => {
+                let t = Table::from_data(data, *n, *kind).expect("checked when built");
+                f(&TableView(t))
+            }
         }
     }
     fn mean_cosine(&self) -> f64 {
-        match self {
-            Model::One(p) => p.mean_cosine(),
-            Model::Mix(m) => m.mean_cosine(),
-        }
-    }
-    fn sample_cos_n(&self, u: &[f64], out: &mut [f64]) -> Result<(), scatterkit::Error> {
-        match self {
-            Model::One(p) => p.sample_cos_n(u, out),
-            Model::Mix(m) => m.sample_cos_n(u, out),
-        }
-    }
-    fn sample_dir(&self, w: Vec3<f64>, u1: f64, u2: f64) -> (Vec3<f64>, f64) {
-        match self {
-            Model::One(p) => p.sample_dir(w, u1, u2),
-            Model::Mix(m) => m.sample_dir(w, u1, u2),
-        }
+        self.with(|p| p.mean_cosine())
     }
     fn moments(&self, out: &mut [f64]) {
         match self {
             Model::One(p) => legendre_moments(p, out),
-            Model::Mix(m) => legendre_moments_by_quadrature(&**m, out),
+            _ => self.with(|p| legendre_moments_by_quadrature(p, out)),
         }
     }
 }
@@ -139,6 +174,61 @@ impl PyPhase {
             "fournier_forand_backscatter(b, n)",
         )
     }
+    /// A Legendre series from moments `χ_0 = 1, χ_1, …` (refused where the
+    /// series goes negative).
+    #[staticmethod]
+    fn legendre_series(chi: Vec<f64>) -> PyResult<Self> {
+        LegendreSeries::new(&chi).map_err(|e| refused("legendre_series(chi)", e))?;
+        Ok(PyPhase {
+            model: Model::Series(chi),
+        })
+    }
+    /// The inverse-CDF table of `phase` at `n` intervals.
+    #[staticmethod]
+    fn table_of(py: Python<'_>, phase: PyRef<'_, PyPhase>, n: usize) -> PyResult<Self> {
+        let len = TableKind::Inverse
+            .len(n)
+            .filter(|_| n <= 1 << 20)
+            .ok_or_else(|| PyValueError::new_err("table(phase, n): n must be in 1 ..= 2^20"))?;
+        let data = phase.model.with(|p| {
+            py.detach(|| {
+                let mut buf = vec![0.0; len];
+                let built = Table::inverse(&ByRef(p), &mut buf, n).map(|_| ());
+                built.map(|()| buf)
+            })
+        });
+        let data = data.map_err(|e| refused("table(phase, n)", e))?;
+        Ok(PyPhase {
+            model: Model::Table(data, n, TableKind::Inverse),
+        })
+    }
+    /// The table of a measured phase function at `n` intervals.
+    #[staticmethod]
+    fn table_measured(
+        cos_theta: PyReadonlyArray1<'_, f64>,
+        pdf: PyReadonlyArray1<'_, f64>,
+        n: usize,
+    ) -> PyResult<Self> {
+        let len = TableKind::Measured
+            .len(n)
+            .filter(|_| n <= 1 << 20)
+            .ok_or_else(|| {
+                PyValueError::new_err("table_measured(..., n): n must be in 1 ..= 2^20")
+            })?;
+        let mut buf = vec![0.0; len];
+        Table::measured(cos_theta.as_slice()?, pdf.as_slice()?, &mut buf, n)
+            .map_err(|e| refused("table_measured(cos_theta, pdf, n)", e))?;
+        Ok(PyPhase {
+            model: Model::Table(buf, n, TableKind::Measured),
+        })
+    }
+    /// The table's data (Hermite nodes `μ_i, dμ/du_i`), or None.
+    fn table_data<'py>(&self, py: Python<'py>) -> Option<Array<'py>> {
+        match &self.model {
+            Model::Table(data, ..) => Some(data.clone().into_pyarray(py)),
+            _ => None,
+        }
+    }
     /// A mixture of single models (not of mixtures) with weights.
     #[staticmethod]
     fn mixture(parts: Vec<(PyRef<'_, PyPhase>, f64)>) -> PyResult<Self> {
@@ -146,9 +236,9 @@ impl PyPhase {
         for (p, w) in &parts {
             match &p.model {
                 Model::One(one) => held.push((Part::Phase(*one), *w)),
-                Model::Mix(_) => {
+                _ => {
                     return Err(PyValueError::new_err(
-                        "mixture: a part is itself a mixture; list its parts instead",
+                        "mixture: each part must be one of the models (not a mixture, series or table)",
                     ));
                 }
             }
@@ -166,6 +256,8 @@ impl PyPhase {
         match &self.model {
             Model::One(p) => p.name(),
             Model::Mix(_) => "mixture",
+            Model::Series(_) => "Legendre series",
+            Model::Table(..) => "table",
         }
     }
     #[getter]
@@ -173,12 +265,10 @@ impl PyPhase {
         self.model.mean_cosine()
     }
     fn pdf<'py>(&self, py: Python<'py>, mu: PyReadonlyArray1<'py, f64>) -> PyResult<Array<'py>> {
-        let m = &self.model;
-        map(py, &mu, |x| m.pdf(x))
+        self.model.with(|p| map(py, &mu, |x| p.pdf(x)))
     }
     fn cdf<'py>(&self, py: Python<'py>, mu: PyReadonlyArray1<'py, f64>) -> PyResult<Array<'py>> {
-        let m = &self.model;
-        map(py, &mu, |x| m.cdf(x))
+        self.model.with(|p| map(py, &mu, |x| p.cdf(x)))
     }
     fn sample_cos<'py>(
         &self,
@@ -186,8 +276,8 @@ impl PyPhase {
         u: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<Array<'py>> {
         let us = u.as_slice()?;
-        let m = &self.model;
-        filled(py, us.len(), |out| m.sample_cos_n(us, out))?
+        self.model
+            .with(|p| filled(py, us.len(), |out| p.sample_cos_n(us, out)))?
             .map_err(|e| refused("sample_cos(u): u must lie in [0, 1]", e))
     }
     /// Directions about `w_in` (unit, 3 values) from `u1`, `u2`: the
@@ -218,16 +308,17 @@ impl PyPhase {
                 "sample_dir: u1 and u2 must lie in [0, 1]",
             ));
         }
-        let m = &self.model;
-        let (dirs, pdf) = py.detach(|| {
-            let mut dirs = Vec::with_capacity(3 * a.len());
-            let mut pdf = Vec::with_capacity(a.len());
-            for (&x, &y) in a.iter().zip(b) {
-                let (d, p) = m.sample_dir(w, x, y);
-                dirs.extend([d.x, d.y, d.z]);
-                pdf.push(p);
-            }
-            (dirs, pdf)
+        let (dirs, pdf) = self.model.with(|m| {
+            py.detach(|| {
+                let mut dirs = Vec::with_capacity(3 * a.len());
+                let mut pdf = Vec::with_capacity(a.len());
+                for (&x, &y) in a.iter().zip(b) {
+                    let (d, p) = m.sample_dir(w, x, y);
+                    dirs.extend([d.x, d.y, d.z]);
+                    pdf.push(p);
+                }
+                (dirs, pdf)
+            })
         });
         Ok((dirs.into_pyarray(py), pdf.into_pyarray(py)))
     }
@@ -254,6 +345,8 @@ impl PyPhase {
                 format!("{}({})", p.name(), v.join(", "))
             }
             Model::Mix(m) => format!("mixture of {} parts", m.len()),
+            Model::Series(chi) => format!("Legendre series of {} moments", chi.len()),
+            Model::Table(_, n, kind) => format!("table ({kind:?}, {n} intervals)"),
         }
     }
 }

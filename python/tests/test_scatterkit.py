@@ -82,6 +82,25 @@ class PhaseTest(unittest.TestCase):
         mu = np.linspace(-1, 1, 9)
         np.testing.assert_allclose(cv.legendre_series(ray, mu), sk.Phase.rayleigh().pdf(mu), rtol=1e-13)
 
+    def test_series_and_tables(self):
+        hg = sk.Phase.henyey_greenstein(0.5)
+        series = sk.Phase.legendre_series(0.5 ** np.arange(60))  # HG's moments, truncated
+        mu = np.linspace(-1, 1, 41)
+        np.testing.assert_allclose(series.pdf(mu), hg.pdf(mu), rtol=1e-12)
+        self.assertAlmostEqual(series.mean_cosine, 0.5, places=12)
+        u = np.linspace(0, 1, 101)
+        np.testing.assert_allclose(series.cdf(series.sample_cos(u)), u, atol=1e-10)
+        table = sk.Phase.table(hg, 512)
+        self.assertEqual(table.table_data.shape, (2 * 513,))
+        self.assertLess(np.max(np.abs(table.sample_cos(u) - hg.sample_cos(u))), 1e-5)
+        measured = sk.Phase.table_measured(mu, 7.0 * hg.pdf(mu), 256)
+        self.assertAlmostEqual(measured.mean_cosine, 0.5, delta=0.01)
+        self.assertIsNone(hg.table_data)
+        with self.assertRaises(ValueError):
+            sk.Phase.legendre_series([1.0, 0.0, 2.0])  # negative somewhere
+        with self.assertRaises(ValueError):
+            sk.Phase.table(hg, 0)
+
     def test_directions(self):
         p = sk.Phase.henyey_greenstein(0.7)
         w = np.array([0.0, 0.6, 0.8])

@@ -330,27 +330,23 @@ fn have(tool: &str) -> bool {
         .is_ok_and(|o| o.status.success())
 }
 
-fn run_hashes(exe: &Path, args: &[&str]) -> Hashes {
-    let out = Command::new(exe)
-        .args(args)
-        .output()
-        .expect("program did not start");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stdout)
-    );
-    parse(&String::from_utf8_lossy(&out.stdout))
-}
-
 const STRICT: [&str; 5] = ["-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"];
+
+/// The Rust module's hashes of every index, computed once for the tests
+/// that compare against them.
+fn full_hashes() -> &'static Hashes {
+    static FULL: std::sync::OnceLock<Hashes> = std::sync::OnceLock::new();
+    FULL.get_or_init(|| rust_hashes(1))
+}
 
 #[test]
 fn the_header_returns_the_librarys_bits_on_the_cpu() {
     if !common::repository("the_header_returns_the_librarys_bits_on_the_cpu") {
         return;
     }
-    let full = rust_hashes(1);
+    // Every build first, then the programs run side by side (each is one
+    // thread), each compared with the Rust module's hashes.
+    let mut runs: Vec<(String, PathBuf, Vec<&str>)> = Vec::new();
     let exe = build(
         "cc",
         "portable.c",
@@ -358,7 +354,7 @@ fn the_header_returns_the_librarys_bits_on_the_cpu() {
         "c99",
         &["-lm"],
     );
-    compare("C99 -O2", &run_hashes(&exe, &[]), &full);
+    runs.push(("C99 -O2".into(), exe, vec![]));
     let native = ["-O3", "-march=native", "-ffp-contract=fast"];
     let mut compilers = vec!["cc"];
     if have("clang") {
@@ -368,13 +364,8 @@ fn the_header_returns_the_librarys_bits_on_the_cpu() {
     }
     for cc in compilers {
         let exe = build(cc, "portable.c", &native, &format!("native-{cc}"), &["-lm"]);
-        compare(
-            &format!("{cc} {}", native.join(" ")),
-            &run_hashes(&exe, &[]),
-            &full,
-        );
+        runs.push((format!("{cc} {}", native.join(" ")), exe, vec![]));
     }
-    let sparse = rust_hashes(257);
     for (cc, std) in [
         ("cc", "-std=c89"),
         ("cc", "-std=c11"),
@@ -385,11 +376,26 @@ fn the_header_returns_the_librarys_bits_on_the_cpu() {
         let lang: &[&str] = if cc == "c++" { &["-x", "c++"] } else { &[] };
         let flags = [lang, &STRICT[..], &[std]].concat();
         let exe = build(cc, "portable.c", &flags, &std[5..], &["-lm"]);
-        compare(
-            &format!("{std} (every 257th)"),
-            &run_hashes(&exe, &["257"]),
-            &sparse,
-        );
+        runs.push((format!("{std} (every 257th)"), exe, vec!["257"]));
+    }
+    let children: Vec<_> = runs
+        .iter()
+        .map(|(_, exe, args)| {
+            Command::new(exe)
+                .args(args)
+                .stdout(std::process::Stdio::piped())
+                .spawn()
+                .expect("program did not start")
+        })
+        .collect();
+    let sparse = rust_hashes(257);
+    let full = full_hashes();
+    for ((what, _, args), child) in runs.iter().zip(children) {
+        let out = child.wait_with_output().expect("program did not finish");
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{what}: {text}");
+        let want = if args.is_empty() { full } else { &sparse };
+        compare(what, &parse(&text), want);
     }
 }
 
@@ -435,7 +441,7 @@ fn the_header_returns_the_librarys_bits_in_opencl() {
     }
     assert_eq!(code, Some(0), "{text}");
     println!("{}", text.lines().next().unwrap_or(""));
-    compare("OpenCL", &parse(&text), &rust_hashes(1));
+    compare("OpenCL", &parse(&text), full_hashes());
 }
 
 #[test]

@@ -906,14 +906,15 @@ SKP_FN float skp_transmittance(float sigma_t, float d) {
    (t < t_max), e^(-(sigma_c - sigma_h) t_max) for an escape (t >= t_max).
    Their mean is the balance heuristic's denominator over a uniformly drawn
    hero. NaN, with ratio untouched, for a NaN u, hero >= n or
-   sigma_t[hero] <= 0. sigma_t: n finite values >= 0; ratio: n values. */
+   sigma_t[hero] not finite and > 0. sigma_t: n finite values >= 0; ratio:
+   n values. */
 SKP_FN float skp_spectral_free_path(const float *sigma_t, skp_u32 n, skp_u32 hero, float u,
                                     float t_max, float *ratio) {
     SKP_BEGIN
     float sh, t, at, d, e;
     skp_u32 c;
     int escaped;
-    if (hero >= n || !(sigma_t[hero] > 0.0f)) {
+    if (hero >= n || !(sigma_t[hero] > 0.0f && sigma_t[hero] < skp_from_bits(0x7f800000u))) {
         return skp_from_bits(0x7fc00000u);
     }
     sh = sigma_t[hero];

@@ -150,7 +150,7 @@ pub fn transmittance(sigma_t: f32, d: f32) -> f32 {
 ///
 /// Returns `t` (`+∞` for `u = 1`); NaN, with `ratio` untouched, for a NaN
 /// `u`, and unless `hero < sigma_t.len() ≤ ratio.len()` and
-/// `σ_t[hero] > 0`. Every
+/// `σ_t[hero]` is finite and `> 0`. Every
 /// `σ_c` must be finite and `≥ 0` (a NaN gives a NaN ratio); `t_max ≥ 0`
 /// (+∞ allowed). The header's `skp_spectral_free_path`.
 pub fn spectral_free_path(
@@ -163,7 +163,7 @@ pub fn spectral_free_path(
     let Some(&sh) = sigma_t.get(hero) else {
         return f32::NAN;
     };
-    if sh.is_nan() || sh <= 0.0 || ratio.len() < sigma_t.len() {
+    if !(sh > 0.0 && sh < f32::INFINITY) || ratio.len() < sigma_t.len() {
         return f32::NAN;
     }
     let t = free_path(sh, u);

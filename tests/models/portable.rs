@@ -407,6 +407,8 @@ fn exponential_and_spectral_free_flight() {
     assert!(p::spectral_free_path(&sigma, 4, 0.5, 1.0, &mut r).is_nan());
     assert!(p::spectral_free_path(&sigma, 0, 0.5, 1.0, &mut r[..2]).is_nan());
     assert!(p::spectral_free_path(&sigma, 0, f32::NAN, 1.0, &mut r).is_nan());
+    let inf = [f32::INFINITY, 1.0];
+    assert!(p::spectral_free_path(&inf, 0, 0.5, 1.0, &mut r).is_nan());
     assert_eq!(r, [7.0; 4], "untouched on failure");
 }
 

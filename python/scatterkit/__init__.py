@@ -235,13 +235,20 @@ class Phase:
         x, shape, scalar = _flat(mu, "cdf")
         return _shaped(self._p.cdf(x), shape, scalar)
 
-    def sample_cos(self, u=None, *, rng=None, size=None):
+    def sample_cos(self, u=None, *, rng=None, size=None, out=None):
         """Scattering cosines: the inverse CDF at uniforms ``u`` in ``[0, 1]``
         (monotone: ``u = 0`` gives -1), or at ``size`` uniforms drawn from ``rng``
-        (a ``numpy.random.Generator``). ``ValueError`` for a uniform outside
-        ``[0, 1]`` or NaN."""
+        (a ``numpy.random.Generator``). ``out``, a C-contiguous float64 array of
+        the uniforms' shape, receives them without a new allocation (and is
+        returned). ``ValueError`` for a uniform outside ``[0, 1]`` or NaN."""
         u = _uniforms(u, rng, size, "sample_cos")
         x, shape, scalar = _flat(u, "sample_cos")
+        if out is not None:
+            if not (isinstance(out, np.ndarray) and out.dtype == np.float64
+                    and out.flags.c_contiguous and out.shape == tuple(shape)):
+                raise ValueError("sample_cos: out must be a C-contiguous float64 array of u's shape")
+            self._p.sample_cos_into(x, out.reshape(-1))
+            return out
         return _shaped(self._p.sample_cos(x), shape, scalar)
 
     def sample_dir(self, w_in, u1=None, u2=None, *, rng=None, size=None):

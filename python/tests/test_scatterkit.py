@@ -39,6 +39,11 @@ class PhaseTest(unittest.TestCase):
             u = np.linspace(0, 1, 1001)
             np.testing.assert_allclose(hg.cdf(hg.sample_cos(u)), u, atol=1e-12)
             self.assertEqual(hg.sample_cos(0.0), -1.0)
+            out = np.empty_like(u)
+            self.assertIs(hg.sample_cos(u, out=out), out)
+            np.testing.assert_array_equal(out, hg.sample_cos(u))
+            with self.assertRaises(ValueError):
+                hg.sample_cos(u, out=np.empty(3))
             self.assertIsInstance(hg.pdf(0.5), float)
 
     def test_every_model_samples_its_own_cdf(self):

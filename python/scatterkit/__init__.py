@@ -45,6 +45,9 @@ __all__ = [
     "Fit",
     "fit",
     "fit_mie",
+    "polydisperse",
+    "Averages",
+    "equiangular",
     "water_index",
     "size_parameter",
     "conventions",
@@ -646,3 +649,79 @@ def fit_mie(diameter_um, wavelength_um, m=None, tolerance=0.01, *, allow_table=F
         re, im = m.real, m.imag
     return _fit(_sk.fit_mie(float(diameter_um), float(wavelength_um), re, im,
                             float(tolerance), bool(allow_table)))
+
+
+class Averages(NamedTuple):
+    """Mie theory averaged over a size distribution (:func:`polydisperse`)."""
+
+    c_ext: float
+    """Mean extinction cross section per particle (the radius unit squared)."""
+    c_sca: float
+    """Mean scattering cross section per particle."""
+    c_back: float
+    """Mean backscattering cross section per particle."""
+    g: float
+    """Asymmetry parameter of the mixture."""
+    area: float
+    """Mean geometric cross section ``pi <r^2>``."""
+    errors: tuple
+    """Estimated relative errors of ``c_ext``, ``c_sca``, ``c_back`` and the
+    absolute error of ``g``."""
+    phase_error: float
+    """Estimated largest relative error of ``phase``."""
+    phase: np.ndarray
+    """The phase function per steradian at the cosines asked for."""
+
+
+_DISTRIBUTIONS = {"lognormal": (0, 2), "gamma": (1, 3), "junge": (2, 1)}
+
+
+def polydisperse(distribution, *, wavelength, m, mu=(), r_min=None, r_max=None, n_medium=1.0,
+                 intervals=256) -> Averages:
+    """Mie theory averaged over a number distribution of sphere radii.
+
+    ``distribution``: ``("lognormal", r_g, sigma_g)`` (median radius, geometric
+    standard deviation > 1), ``("gamma", alpha, b, gamma)`` (Deirmendjian's
+    modified gamma, ``n(r) ∝ r^alpha exp(-b r^gamma)``) or ``("junge", slope)``
+    (``n(r) ∝ r^-slope``, which needs ``r_min`` and ``r_max``). Radii and the
+    vacuum ``wavelength`` in one unit; ``m`` the spheres' index relative to the
+    medium (``n + ik``), ``n_medium`` the medium's; ``mu`` the cosines at which
+    to return the averaged phase function; ``intervals`` Simpson intervals in
+    ``ln r`` (a multiple of 4). The range defaults to the distribution's own
+    (where its density falls below 1e-12 of the peak)."""
+    try:
+        name, *params = distribution
+        kind, count = _DISTRIBUTIONS[name]
+    except (TypeError, ValueError, KeyError):
+        raise ValueError('distribution is ("lognormal", r_g, sigma_g), ("gamma", alpha, b, gamma) '
+                         'or ("junge", slope)') from None
+    if len(params) != count:
+        raise ValueError(f"{name} takes {count} parameters")
+    p3 = [float(v) for v in params] + [0.0] * (3 - count)
+    if r_min is None or r_max is None:
+        rng = _sk.default_range(kind, p3)
+        if rng is None:
+            raise ValueError("give r_min and r_max (a Junge distribution has no natural range)")
+        r_min = rng[0] if r_min is None else r_min
+        r_max = rng[1] if r_max is None else r_max
+    m = complex(m)
+    x, shape, scalar = _flat(mu, "polydisperse")
+    (c_ext, c_sca, c_back, g, area, errors, phase_error), phase = _sk.polydisperse(
+        kind, p3, (float(r_min), float(r_max)), float(wavelength), float(n_medium),
+        (m.real, m.imag), int(intervals), x)
+    return Averages(c_ext, c_sca, c_back, g, area, tuple(errors), phase_error,
+                    _shaped(np.asarray(phase), shape, scalar))
+
+
+def equiangular(origins, dirs, point, u, t_min=0.0, t_max=np.inf):
+    """Equiangular sampling (Kulla & Fajardo 2012): distances along rays
+    ``origins + t dirs`` (unit ``dirs``), ``t`` in ``[t_min, t_max]``, with
+    density proportional to the inverse square distance to ``point`` (a light):
+    ``(t, pdf)``, the density per unit length. Monotone in ``u``. Broadcasts
+    over the leading axes."""
+    batch, (o, d, p, uu, a, b) = _rows((), (origins, 3), (dirs, 3), (point, 3), (u, 0),
+                                       (t_min, 0), (t_max, 0))
+    t, pdf = _sk.equiangular(o, d, a, b, p, uu)
+    if not batch:
+        return float(t[0]), float(pdf[0])
+    return t.reshape(batch), pdf.reshape(batch)

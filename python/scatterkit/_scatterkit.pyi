@@ -108,3 +108,18 @@ def fit_measured(cos_theta: _F, pdf: _F, tolerance: float, allow_table: bool) ->
 def fit_mie(
     diameter_um: float, wavelength_um: float, m_re: float, m_im: float, tolerance: float, allow_table: bool
 ) -> _Found: ...
+
+def polydisperse(
+    kind: int,
+    params: Sequence[float],
+    r_range: Tuple[float, float],
+    wavelength: float,
+    n_medium: float,
+    m: Tuple[float, float],
+    intervals: int,
+    mu: _F,
+) -> Tuple[Tuple[float, float, float, float, float, Sequence[float], float], Sequence[float]]: ...
+def default_range(kind: int, params: Sequence[float]) -> Optional[Tuple[float, float]]: ...
+def equiangular(
+    origins: _F, dirs: _F, t_min: _F, t_max: _F, points: _F, u: _F
+) -> Tuple[_F, _F]: ...

@@ -68,6 +68,9 @@ fn _scatterkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(mie::water_index, m)?)?;
     m.add_function(wrap_pyfunction!(mie::size_parameter, m)?)?;
     m.add_function(wrap_pyfunction!(choose::fit_measured, m)?)?;
+    m.add_function(wrap_pyfunction!(mie::polydisperse, m)?)?;
+    m.add_function(wrap_pyfunction!(medium::equiangular, m)?)?;
+    m.add_function(wrap_pyfunction!(mie::default_range, m)?)?;
     m.add_function(wrap_pyfunction!(choose::fit_mie, m)?)?;
     Ok(())
 }

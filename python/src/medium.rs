@@ -9,6 +9,7 @@ use pyo3::prelude::*;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 use scatterkit::medium::Event;
+use scatterkit::medium::equiangular::Equiangular;
 use scatterkit::medium::ray_march::{Series, ray_march_transmittance, telescoping_transmittance};
 use scatterkit::medium::residual::Extrema;
 use scatterkit::{Error, Grid, Majorants, Ray, Sampling, Vec3};
@@ -288,4 +289,42 @@ impl PyMedium {
         let (t, ev): (Vec<f64>, Vec<f64>) = out.into_iter().unzip();
         Ok((t.into_pyarray(py), ev.into_pyarray(py)))
     }
+}
+
+/// Equiangular sampling per ray toward a point: the distances (within
+/// `[t_min, t_max]`) and their densities per unit length.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn equiangular<'py>(
+    py: Python<'py>,
+    origins: PyReadonlyArray1<'py, f64>,
+    dirs: PyReadonlyArray1<'py, f64>,
+    t_min: PyReadonlyArray1<'py, f64>,
+    t_max: PyReadonlyArray1<'py, f64>,
+    points: PyReadonlyArray1<'py, f64>,
+    u: PyReadonlyArray1<'py, f64>,
+) -> PyResult<(Array<'py>, Array<'py>)> {
+    let (t0, p, u) = (t_min.as_slice()?, points.as_slice()?, u.as_slice()?);
+    let rays = rays(origins.as_slice()?, dirs.as_slice()?, t_max.as_slice()?)?;
+    if t0.len() != rays.len() || p.len() != 3 * rays.len() || u.len() != rays.len() {
+        return Err(PyValueError::new_err(
+            "equiangular: one t_min, point (3 values) and uniform per ray",
+        ));
+    }
+    let out: Result<Vec<(f64, f64)>, Error> = py.detach(|| {
+        rays.iter()
+            .zip(t0)
+            .zip(p.chunks_exact(3).zip(u))
+            .map(|((&ray, &a), (q, &x))| {
+                let e = Equiangular::new(ray.segment(a, ray.t_max), Vec3::new(q[0], q[1], q[2]))?;
+                let t = e.sample(x);
+                Ok((t, e.pdf(t)))
+            })
+            .collect()
+    });
+    let (t, pdf): (Vec<f64>, Vec<f64>) = out
+        .map_err(|e| refused("equiangular(origins, dirs, t_min, t_max, points, u)", e))?
+        .into_iter()
+        .unzip();
+    Ok((t.into_pyarray(py), pdf.into_pyarray(py)))
 }

@@ -4,6 +4,7 @@ use crate::{Array, refused};
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use scatterkit::mie::polydisperse::{Polydisperse, SizeDistribution};
 use scatterkit::mie::{self, Complex, Mie};
 
 /// One sphere solved by Lorenz–Mie theory.
@@ -100,4 +101,88 @@ pub(crate) fn water_index(wavelength_um: f64) -> Option<(f64, f64)> {
 #[pyfunction]
 pub(crate) fn size_parameter(diameter: f64, wavelength: f64, n_medium: f64) -> f64 {
     mie::size_parameter(diameter, wavelength, n_medium)
+}
+
+/// The averages over a size distribution: `(c_ext, c_sca, c_back, g, area,
+/// errors[4], phase_error)` and the phase function at `mu`.
+type Averaged = ((f64, f64, f64, f64, f64, [f64; 4], f64), Vec<f64>);
+
+/// Mie theory averaged over a size distribution (`kind` 0 lognormal
+/// `(r_g, σ_g, –)`, 1 modified gamma `(α, b, γ)`, 2 Junge `(slope, –, –)`).
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn polydisperse(
+    py: Python<'_>,
+    kind: u32,
+    params: [f64; 3],
+    r_range: (f64, f64),
+    wavelength: f64,
+    n_medium: f64,
+    m: (f64, f64),
+    intervals: usize,
+    mu: PyReadonlyArray1<'_, f64>,
+) -> PyResult<Averaged> {
+    let distribution = match kind {
+        0 => SizeDistribution::LogNormal {
+            median_radius: params[0],
+            sigma_g: params[1],
+        },
+        1 => SizeDistribution::ModifiedGamma {
+            alpha: params[0],
+            b: params[1],
+            gamma: params[2],
+        },
+        _ => SizeDistribution::Junge { slope: params[0] },
+    };
+    let p = Polydisperse {
+        distribution,
+        r_min: r_range.0,
+        r_max: r_range.1,
+        wavelength,
+        n_medium,
+        m: Complex::new(m.0, m.1),
+        intervals,
+    };
+    let len = p
+        .buffer_len()
+        .ok_or_else(|| refused("polydisperse(...)", scatterkit::Error::Domain))?;
+    let mu = mu.as_slice()?;
+    py.detach(|| {
+        let mut phase = vec![0.0; mu.len()];
+        let mut scratch = vec![0.0; mu.len()];
+        let mut buf = vec![Complex::new(0.0, 0.0); len];
+        p.average(mu, &mut phase, &mut scratch, &mut buf).map(|a| {
+            (
+                (
+                    a.c_ext,
+                    a.c_sca,
+                    a.c_back,
+                    a.g,
+                    a.area,
+                    a.errors,
+                    a.phase_error,
+                ),
+                phase,
+            )
+        })
+    })
+    .map_err(|e| refused("polydisperse(distribution, r_min, r_max, wavelength, m)", e))
+}
+
+/// The default radius range of a distribution (None for Junge).
+#[pyfunction]
+pub(crate) fn default_range(kind: u32, params: [f64; 3]) -> Option<(f64, f64)> {
+    let d = match kind {
+        0 => SizeDistribution::LogNormal {
+            median_radius: params[0],
+            sigma_g: params[1],
+        },
+        1 => SizeDistribution::ModifiedGamma {
+            alpha: params[0],
+            b: params[1],
+            gamma: params[2],
+        },
+        _ => return None,
+    };
+    d.default_range()
 }

@@ -180,6 +180,21 @@ class MieTest(unittest.TestCase):
             want = miepython.i_unpolarized(m.conjugate(), x, mu, norm="one")
             np.testing.assert_allclose(sk.Mie(x, m).phase(mu), want, rtol=1e-7, err_msg=f"x = {x}")
 
+    def test_polydisperse_narrow_distribution_is_one_sphere(self):
+        x, w = np.polynomial.legendre.leggauss(400)
+        avg = sk.polydisperse(("lognormal", 1.0, 1.0001), wavelength=0.55, m=1.33, mu=x)
+        one = sk.Mie(sk.size_parameter(2.0, 0.55), 1.33)
+        self.assertAlmostEqual(avg.c_sca / avg.area, one.q_sca, delta=1e-3)
+        self.assertAlmostEqual(avg.g, one.g, delta=1e-3)
+        self.assertAlmostEqual(2 * math.pi * float(np.sum(w * avg.phase)), 1.0, delta=1e-3)
+        wide = sk.polydisperse(("gamma", 6.0, 1.5, 1.0), wavelength=0.55, m=1.33 + 1e-4j)
+        self.assertGreater(wide.c_ext, wide.c_sca)  # absorbing
+        self.assertEqual(wide.phase.shape, (0,))
+        with self.assertRaises(ValueError):
+            sk.polydisperse(("junge", 4.0), wavelength=0.55, m=1.05)  # no range
+        with self.assertRaises(ValueError):
+            sk.polydisperse(("lognormal", 1.0, 0.5), wavelength=0.55, m=1.33)  # sigma_g < 1
+
     def test_water(self):
         m = sk.water_index(0.5)
         self.assertAlmostEqual(m.real, 1.337, delta=0.005)
@@ -262,6 +277,17 @@ class MediumTest(unittest.TestCase):
             m.transmittance([[0, 0, 0]], [[0, 0, 0]])  # no direction
         with self.assertRaises(ValueError):
             m.transmittance([[0, 0]], [[1, 0]])
+
+
+class EquiangularTest(unittest.TestCase):
+    def test_density_is_the_inverse_square_law_over_the_segment(self):
+        u = np.linspace(0.0, 1.0, 1001)
+        t, pdf = sk.equiangular([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.5, 0.0], u, 0.0, 5.0)
+        self.assertTrue(np.all(np.diff(t) >= 0) and t[0] == 0.0 and abs(t[-1] - 5.0) < 1e-12)
+        span = math.atan(3.0 / 0.5) - math.atan(-2.0 / 0.5)
+        np.testing.assert_allclose(pdf, 0.5 / (span * (0.25 + (t - 2.0) ** 2)), rtol=1e-12)
+        with self.assertRaises(ValueError):
+            sk.equiangular([0, 0, 0], [1, 0, 0], [2, 0, 0], 0.5)  # the point on the ray's line
 
 
 class PolarisedTest(unittest.TestCase):

@@ -48,6 +48,8 @@ __all__ = [
     "polydisperse",
     "Averages",
     "equiangular",
+    "Table2d",
+    "SpectralPhase",
     "water_index",
     "size_parameter",
     "conventions",
@@ -725,3 +727,87 @@ def equiangular(origins, dirs, point, u, t_min=0.0, t_max=np.inf):
     if not batch:
         return float(t[0]), float(pdf[0])
     return t.reshape(batch), pdf.reshape(batch)
+
+
+def _pair(x, v, name):
+    a, b = np.broadcast_arrays(np.asarray(x, dtype=np.float64), np.asarray(v, dtype=np.float64))
+    shape = a.shape
+    return np.ascontiguousarray(a).ravel(), np.ascontiguousarray(b).ravel(), shape
+
+
+class Table2d:
+    """A phase function that varies with a parameter ``x`` (wavelength,
+    particle size, ...): ``phases[j]`` tabulated as an inverse-CDF table of ``n``
+    intervals at ``x_j = x0 + j dx``, blended linearly between slices (clamped
+    outside). The layout of ``sk_table2d``, which GPU kernels look up with
+    ``include/scatterkit_portable.h``."""
+
+    __slots__ = ("_t",)
+
+    def __init__(self, phases, x0: float, dx: float, n: int = 256):
+        ps = list(phases)
+        if not all(isinstance(p, Phase) for p in ps):
+            raise TypeError("Table2d: phases must be Phase values")
+        self._t = _sk._Table2d([p._p for p in ps], float(x0), float(dx), int(n))
+
+    def _apply(self, f, x, v):
+        a, b, shape = _pair(x, v, "Table2d")
+        out = f(a, b)
+        return out.reshape(shape) if shape else float(out[0])
+
+    def pdf(self, x, mu):
+        """The density per steradian at parameter ``x`` and cosine ``mu``."""
+        return self._apply(self._t.pdf, x, mu)
+
+    def cdf(self, x, mu):
+        """The CDF at parameter ``x`` and cosine ``mu``."""
+        return self._apply(self._t.cdf, x, mu)
+
+    def sample_cos(self, x, u):
+        """Cosines at parameter ``x`` from uniforms ``u`` in ``[0, 1]``."""
+        return self._apply(self._t.sample_cos, x, u)
+
+    def mean_cosine(self, x):
+        """The mean cosine at parameter ``x``."""
+        a, shape, scalar = _flat(x, "mean_cosine")
+        return _shaped(self._t.mean_cosine(a), shape, scalar)
+
+    @property
+    def data(self):
+        """The table's data, shape ``(k, 2(n + 1))``: what to copy to a device."""
+        n, k, _, _ = self._t.shape
+        return self._t.data().reshape(k, 2 * (n + 1))
+
+
+class SpectralPhase:
+    """A phase function per wavelength channel (1 to 16 models), sampled at a
+    hero channel with every channel's density ratio, as hero-wavelength
+    renderers need (Wilkie et al. 2014)."""
+
+    __slots__ = ("_s",)
+
+    def __init__(self, channels):
+        cs = list(channels)
+        if not all(isinstance(p, Phase) for p in cs):
+            raise TypeError("SpectralPhase: channels must be Phase values")
+        self._s = _sk._SpectralPhase([p._p for p in cs])
+
+    @property
+    def channels(self) -> int:
+        """The number of channels."""
+        return self._s.channels
+
+    def pdf(self, mu):
+        """Every channel's density per steradian at each cosine: shape
+        ``mu.shape + (channels,)``."""
+        x, shape, _ = _flat(mu, "pdf")
+        return self._s.pdf(x).reshape(tuple(shape) + (self.channels,))
+
+    def sample_cos(self, hero: int, u):
+        """Cosines drawn from channel ``hero``'s phase function at uniforms ``u``,
+        and every channel's density over the hero's at each (shape
+        ``u.shape + (channels,)``; the hero's column is 1)."""
+        x, shape, scalar = _flat(u, "sample_cos")
+        mu, ratio = self._s.sample_cos(int(hero), x)
+        ratio = ratio.reshape(tuple(shape) + (self.channels,))
+        return (float(mu[0]), ratio) if scalar else (mu.reshape(shape), ratio)

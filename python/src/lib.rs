@@ -9,7 +9,9 @@ mod choose;
 mod medium;
 mod mie;
 mod phase;
+mod spectral;
 mod stokes;
+mod table2d;
 
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
@@ -65,6 +67,8 @@ fn _scatterkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<albedo::PyAlbedo>()?;
     m.add_class::<medium::PyMedium>()?;
     m.add_class::<stokes::PyRayleighPolarized>()?;
+    m.add_class::<table2d::PyTable2d>()?;
+    m.add_class::<spectral::PySpectralPhase>()?;
     m.add_function(wrap_pyfunction!(mie::water_index, m)?)?;
     m.add_function(wrap_pyfunction!(mie::size_parameter, m)?)?;
     m.add_function(wrap_pyfunction!(choose::fit_measured, m)?)?;

@@ -46,7 +46,7 @@ impl PhaseFunction<f64> for TableView<'_> {
 
 /// A phase function behind a reference, sized (for the library's generic
 /// builders).
-struct ByRef<'a>(&'a (dyn PhaseFunction<f64> + Sync));
+pub(crate) struct ByRef<'a>(pub(crate) &'a (dyn PhaseFunction<f64> + Sync));
 
 impl PhaseFunction<f64> for ByRef<'_> {
     fn pdf(&self, mu: f64) -> f64 {

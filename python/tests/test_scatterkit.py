@@ -106,6 +106,22 @@ class PhaseTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             sk.Phase.table(hg, 0)
 
+    def test_table2d_and_spectral_phases(self):
+        gs = [0.2, 0.5, 0.8]
+        t2 = sk.Table2d([sk.Phase.henyey_greenstein(g) for g in gs], 0.4, 0.1, 256)
+        self.assertEqual(t2.data.shape, (3, 2 * 257))
+        np.testing.assert_allclose(t2.mean_cosine([0.4, 0.5, 0.6]), gs, atol=2e-3)
+        u = np.linspace(0, 1, 11)
+        np.testing.assert_allclose(t2.cdf(0.5, t2.sample_cos(0.5, u)), u, atol=2e-3)
+        sp = sk.SpectralPhase([sk.Phase.henyey_greenstein(g) for g in gs])
+        mu, ratio = sp.sample_cos(1, u[1:-1])
+        self.assertEqual(ratio.shape, (9, 3))
+        np.testing.assert_allclose(ratio[:, 1], 1.0)
+        p = sp.pdf(mu)
+        np.testing.assert_allclose(ratio, p / p[:, 1:2], rtol=1e-12)
+        with self.assertRaises(ValueError):
+            sp.sample_cos(3, [0.5])
+
     def test_directions(self):
         p = sk.Phase.henyey_greenstein(0.7)
         w = np.array([0.0, 0.6, 0.8])

@@ -42,6 +42,38 @@ pub(crate) fn filled<'py, E: Send>(
     Ok(r.map(|()| out))
 }
 
+/// Runs `f` over matching chunks of `u` and `out` on up to as many threads
+/// as the processor has, for long arrays (at least 2¹⁶ values per thread);
+/// the first error wins. The chunks are the same values as one call would
+/// see, so the results are the same bits.
+pub(crate) fn par_chunks<E: Send>(
+    u: &[f64],
+    out: &mut [f64],
+    f: impl Fn(&[f64], &mut [f64]) -> Result<(), E> + Sync,
+) -> Result<(), E> {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = threads.min(u.len() >> 16).max(1);
+    if threads == 1 || u.len() != out.len() {
+        return f(u, out);
+    }
+    let chunk = u.len().div_ceil(threads);
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = u
+            .chunks(chunk)
+            .zip(out.chunks_mut(chunk))
+            .map(|(a, b)| {
+                let f = &f;
+                scope.spawn(move || f(a, b))
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
+            .collect::<Result<Vec<()>, E>>()
+            .map(|_| ())
+    })
+}
+
 /// Applies `f` to every element of `x` with the GIL released.
 pub(crate) fn map<'py>(
     py: Python<'py>,

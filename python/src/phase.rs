@@ -1,6 +1,6 @@
 //! Phase functions: every model of the library and mixtures of them.
 
-use crate::{Array, filled, map, refused};
+use crate::{Array, filled, map, par_chunks, refused};
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadwriteArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -311,11 +311,17 @@ impl PyPhase {
     ) -> PyResult<Array<'py>> {
         let us = u.as_slice()?;
         if let Model::One(Phase::HenyeyGreenstein(h)) = &self.model {
-            return filled(py, us.len(), |out| hg_cos_n(h, us, out))?
-                .map_err(|e| refused("sample_cos(u): u must lie in [0, 1]", e));
+            return filled(py, us.len(), |out| {
+                par_chunks(us, out, |a, b| hg_cos_n(h, a, b))
+            })?
+            .map_err(|e| refused("sample_cos(u): u must lie in [0, 1]", e));
         }
         self.model
-            .with(|p| filled(py, us.len(), |out| p.sample_cos_n(us, out)))?
+            .with(|p| {
+                filled(py, us.len(), |out| {
+                    par_chunks(us, out, |a, b| p.sample_cos_n(a, b))
+                })
+            })?
             .map_err(|e| refused("sample_cos(u): u must lie in [0, 1]", e))
     }
     /// `sample_cos` into a caller's array (same length as `u`).
@@ -327,9 +333,16 @@ impl PyPhase {
     ) -> PyResult<()> {
         let us = u.as_slice()?;
         let o = out.as_slice_mut()?;
+        if us.len() != o.len() {
+            return Err(PyValueError::new_err(
+                "sample_cos(u, out): out as long as u",
+            ));
+        }
         let r = match &self.model {
-            Model::One(Phase::HenyeyGreenstein(h)) => py.detach(|| hg_cos_n(h, us, o)),
-            m => m.with(|p| py.detach(|| p.sample_cos_n(us, o))),
+            Model::One(Phase::HenyeyGreenstein(h)) => {
+                py.detach(|| par_chunks(us, o, |a, b| hg_cos_n(h, a, b)))
+            }
+            m => m.with(|p| py.detach(|| par_chunks(us, o, |a, b| p.sample_cos_n(a, b)))),
         };
         r.map_err(|e| {
             refused(

@@ -631,6 +631,73 @@ SKP_FN skp_vec3 skp_two_lobe_sample_dir(const skp_two_lobe *p, skp_vec3 w_in, fl
     return skp_direction_about(w_in, mu, s, u2);
 }
 
+/* ---- Schlick ------------------------------------------------------------- */
+/* Schlick's phase function (Blasi, Le Saec & Schlick 1993, eq. 3),
+   p = (1 - k^2)/(4 pi (1 - k mu)^2), -1 < k < 1, with the library's
+   cancellation-free inverse. Fill with skp_schlick_new. */
+typedef struct skp_schlick {
+    float k;
+    float omk;  /* 1 - k */
+    float opk;  /* 1 + k */
+    float norm; /* (1 - k)(1 + k)/(4 pi) */
+} skp_schlick;
+
+/* 1 for -1 < k < 1; 0 otherwise (NaN included), the constants then NaN. */
+SKP_FN int skp_schlick_new(float k, skp_schlick *p) {
+    SKP_BEGIN
+    if (!(k > -1.0f && k < 1.0f)) {
+        float nan = skp_from_bits(0x7fc00000u);
+        p->k = nan;
+        p->omk = nan;
+        p->opk = nan;
+        p->norm = nan;
+        return 0;
+    }
+    p->k = k;
+    p->omk = 1.0f - k;
+    p->opk = 1.0f + k;
+    p->norm = p->omk * p->opk * SKP_INV_4PI;
+    return 1;
+}
+
+/* cos theta at u (clamped; NaN gives NaN), monotone in u. */
+SKP_FN float skp_schlick_sample_cos(const skp_schlick *p, float u) {
+    SKP_BEGIN
+    float v = skp_clamp01(u), d, mu;
+    if (p->k >= 0.0f) {
+        d = p->omk + SKP_MUL(2.0f * p->k, v);
+    } else {
+        d = p->opk - SKP_MUL(2.0f * p->k, 1.0f - v);
+    }
+    if (2.0f * v <= p->omk) {
+        mu = (2.0f * v) * p->opk / d - 1.0f;
+    } else {
+        mu = 1.0f - (2.0f * p->omk) * (1.0f - v) / d;
+    }
+    return mu > 1.0f ? 1.0f : (mu < -1.0f ? -1.0f : mu);
+}
+
+/* The density per steradian at cos theta = mu. */
+SKP_FN float skp_schlick_pdf(const skp_schlick *p, float mu) {
+    SKP_BEGIN
+    float d;
+    if (p->k >= 0.0f) {
+        d = p->omk + SKP_MUL(p->k, 1.0f - mu);
+    } else {
+        d = p->opk - SKP_MUL(p->k, 1.0f + mu);
+    }
+    return p->norm / (d * d);
+}
+
+/* A direction about the unit w_in, its density at *pdf. */
+SKP_FN skp_vec3 skp_schlick_sample_dir(const skp_schlick *p, skp_vec3 w_in, float u1, float u2, float *pdf) {
+    SKP_BEGIN
+    float mu = skp_schlick_sample_cos(p, u1);
+    float s = skp_sqrt((1.0f - mu) * (1.0f + mu));
+    *pdf = skp_schlick_pdf(p, mu);
+    return skp_direction_about(w_in, mu, s, u2);
+}
+
 /* ---- Rayleigh ------------------------------------------------------------ */
 /* cos theta = F^-1(u) from the built-in table: x = 128 u, i = min(floor(x),
    127), t = x - i, the interval's cubic by Horner, clamped to [-1, 1]

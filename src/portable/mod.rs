@@ -23,6 +23,7 @@ mod draine;
 mod exact;
 mod flight;
 mod phase;
+mod schlick;
 mod table;
 mod turns;
 mod walk;
@@ -38,6 +39,7 @@ pub use phase::{
     isotropic_sample_dir, rayleigh_pdf, rayleigh_sample_cos, rayleigh_sample_dir, two_lobe_pdf,
     two_lobe_sample_cos, two_lobe_sample_dir,
 };
+pub use schlick::{Schlick, schlick_pdf, schlick_sample_cos, schlick_sample_dir};
 pub use table::{
     table_cdf_sample_cos_pdf, table_sample_cos, table_sample_cos_pdf, table2d_sample_cos_pdf,
 };

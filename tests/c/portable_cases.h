@@ -9,7 +9,7 @@
 #include "scatterkit_portable.h"
 
 #define PC_N 16777216u
-#define PC_CASES 27
+#define PC_CASES 29
 #define PC_MAJ_N 60u /* the majorant grid of case 26: 5 x 3 x 4 cells */
 
 SKP_FN float pc_u(skp_u32 k) {
@@ -120,6 +120,7 @@ SKP_FN void pc_case(int c, skp_u32 k, const SKP_GLOBAL float *maj, float *o) {
     SKP_BEGIN /* the inputs below must not contract either (0.5 + 1e4 u2) */
     float u = pc_u(k), u2 = pc_u2(k), s, pdf, sig[3];
     skp_vec3 v;
+    skp_schlick sch;
     skp_hg hg;
     skp_draine dr;
     skp_two_lobe tl;
@@ -227,6 +228,19 @@ SKP_FN void pc_case(int c, skp_u32 k, const SKP_GLOBAL float *maj, float *o) {
         break;
     case 26:
         pc_walk(k, u, u2, pc_u2(k ^ 0x5bd1e995u), maj, o);
+        break;
+    case 27:
+        skp_schlick_new(0.7f, &sch);
+        o[0] = skp_schlick_sample_cos(&sch, u);
+        o[1] = skp_schlick_pdf(&sch, o[0]);
+        skp_schlick_new(SKP_MUL(2.0f, u2) - 1.0f, &sch);
+        o[2] = skp_schlick_sample_cos(&sch, u);
+        o[3] = skp_schlick_pdf(&sch, o[2]);
+        break;
+    case 28:
+        skp_schlick_new(k & 8u ? -0.4f : 0.85f, &sch);
+        v = skp_schlick_sample_dir(&sch, pc_dir(k), u, u2, &o[3]);
+        o[0] = v.x; o[1] = v.y; o[2] = v.z;
         break;
     default:
         v = skp_direction_about(pc_dir(k), SKP_MUL(2.0f, u) - 1.0f, u2, u);

@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 const N: u32 = 1 << 24;
-const CASES: i32 = 27;
+const CASES: i32 = 29;
 const NAN: u32 = 0x7fc0_0000;
 
 fn u_of(k: u32) -> f32 {
@@ -174,6 +174,24 @@ fn case(c: i32, k: u32) -> [f32; 4] {
             ]
         }
         26 => walk(k, u, u2, u2_of(k ^ 0x5bd1_e995)),
+        27 => {
+            let a = p::Schlick::new(0.7).unwrap();
+            let b = p::Schlick::new(2.0 * u2 - 1.0);
+            let (m1, m2) = (
+                p::schlick_sample_cos(&a, u),
+                b.map_or(f32::NAN, |b| p::schlick_sample_cos(&b, u)),
+            );
+            [
+                m1,
+                p::schlick_pdf(&a, m1),
+                m2,
+                b.map_or(f32::NAN, |b| p::schlick_pdf(&b, m2)),
+            ]
+        }
+        28 => {
+            let sch = p::Schlick::new(if k & 8 != 0 { -0.4 } else { 0.85 }).unwrap();
+            with_pdf(p::schlick_sample_dir(&sch, dir_of(k), u, u2))
+        }
         _ => unreachable!("case {c}"),
     }
 }

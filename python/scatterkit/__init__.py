@@ -245,7 +245,9 @@ class Phase:
         (monotone: ``u = 0`` gives -1), or at ``size`` uniforms drawn from ``rng``
         (a ``numpy.random.Generator``). ``out``, a C-contiguous float64 array of
         the uniforms' shape, receives them without a new allocation (and is
-        returned). ``ValueError`` for a uniform outside ``[0, 1]`` or NaN."""
+        returned). ``ValueError`` for a uniform outside ``[0, 1]`` or NaN (with
+        ``out``, part of it may have been written then). Long arrays are split
+        over the processor's cores, with the same results as one pass."""
         u = _uniforms(u, rng, size, "sample_cos")
         x, shape, scalar = _flat(u, "sample_cos")
         if out is not None:

@@ -519,6 +519,21 @@ class Medium:
         out = self._m.transmittance(o, d, t, str(estimator), int(seed), int(budget))
         return out.reshape(shape) if shape else float(out[0])
 
+    def emission(self, source, origins, dirs, t_max=np.inf, *, seed=0, budget=1 << 20):
+        """The radiance emitted along each ray and reaching its origin,
+        ``integral T(0, t) sigma_a(t) L_e(t) dt``, with the ray's transmittance:
+        ``(radiance, tr)``, unbiased estimates (ratio tracking). ``source``: the
+        emitted radiance ``L_e`` as a 3-D array indexed ``[x, y, z]`` over the
+        medium's box, placed as the density is (any resolution), in the units
+        of the result."""
+        src = np.asarray(source, dtype=np.float64)
+        if src.ndim != 3:
+            raise ValueError("emission: source must be a 3-D array indexed [x, y, z]")
+        o, d, t, shape = _rays(origins, dirs, t_max)
+        flat = np.ascontiguousarray(src.ravel(order="F"))
+        l, tr = self._m.emission(o, d, t, flat, list(src.shape), int(seed), int(budget))
+        return (l.reshape(shape), tr.reshape(shape)) if shape else (float(l[0]), float(tr[0]))
+
     def delta_track(self, origins, dirs, t_max=np.inf, *, seed=0, budget=1 << 20):
         """Free-flight sampling by delta tracking per ray: ``(t, event)``, the
         distance to the real collision (or where the ray leaves the box, clipped

@@ -261,6 +261,44 @@ impl PyMedium {
         Ok(seconds)
     }
 
+    /// The emitted radiance along each ray (and the ray's transmittance):
+    /// `source` is an emission grid of `ns` values (x fastest) over the
+    /// medium's box, sampled as the density is.
+    #[allow(clippy::too_many_arguments)]
+    fn emission<'py>(
+        &self,
+        py: Python<'py>,
+        origins: PyReadonlyArray1<'py, f64>,
+        dirs: PyReadonlyArray1<'py, f64>,
+        t_max: PyReadonlyArray1<'py, f64>,
+        source: PyReadonlyArray1<'py, f64>,
+        ns: [usize; 3],
+        seed: u64,
+        budget: u32,
+    ) -> PyResult<(Array<'py>, Array<'py>)> {
+        let rays = rays(origins.as_slice()?, dirs.as_slice()?, t_max.as_slice()?)?;
+        let src = source.as_slice()?;
+        let (lo, hi) = self.bounds;
+        let emitter = Grid::new(src, ns[0], ns[1], ns[2], 0.0, 1.0)
+            .and_then(|g| g.with_box(lo, hi))
+            .map(|g| g.with_sampling(self.sampling))
+            .map_err(|e| refused("emission: the source grid", e))?;
+        let (grid, ext) = (self.grid(), self.extrema());
+        let out: Result<Vec<(f64, f64)>, Error> = py.detach(|| {
+            let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+            let maj = ext.majorants();
+            rays.iter()
+                .map(|&ray| {
+                    maj.emission_track(&grid, |p| emitter.density(p), ray, budget, &mut rng)
+                        .map(|e| (e.radiance, e.tr))
+                })
+                .collect()
+        });
+        let (l, tr): (Vec<f64>, Vec<f64>) =
+            out.map_err(|e| refused("emission", e))?.into_iter().unzip();
+        Ok((l.into_pyarray(py), tr.into_pyarray(py)))
+    }
+
     /// Delta tracking per ray: the distance to the real collision (or
     /// where the ray leaves), and the event (0 escaped, 1 scattered, 2
     /// absorbed).

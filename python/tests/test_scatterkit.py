@@ -276,6 +276,20 @@ class MediumTest(unittest.TestCase):
         np.testing.assert_allclose(t[escaped], 2.0)  # leaves the box at x = 1
         self.assertTrue(np.all((t[~escaped] >= 1.0) & (t[~escaped] <= 2.0)))
 
+    def test_emission_of_a_uniform_slab(self):
+        # Constant density 1, sigma_a = 0.5, sigma_s = 1, uniform L_e = 2 over
+        # the unit box, a ray along x through it: radiance
+        # L_e sigma_a/sigma_t (1 - e^-sigma_t) and T = e^-sigma_t, sigma_t = 1.5.
+        medium = sk.Medium(np.ones((4, 4, 4)), 0.5, 1.0, majorant_cells=(2, 2, 2))
+        n = 20_000
+        origins = np.tile([-1.0, 0.5, 0.5], (n, 1))
+        l, tr = medium.emission(np.full((3, 3, 3), 2.0), origins, [1.0, 0.0, 0.0], seed=4)
+        want_l = 2.0 * 0.5 / 1.5 * (1 - math.exp(-1.5))
+        self.assertLess(abs(l.mean() - want_l), 4 * l.std() / math.sqrt(n) + 1e-12, (l.mean(), want_l))
+        self.assertLess(abs(tr.mean() - math.exp(-1.5)), 4 * tr.std() / math.sqrt(n) + 1e-12)
+        with self.assertRaises(ValueError):
+            medium.emission(np.full((3, 3), 2.0), origins, [1.0, 0.0, 0.0])
+
     def test_bad_media_and_rays(self):
         good = np.ones((2, 2, 2))
         with self.assertRaises(ValueError):

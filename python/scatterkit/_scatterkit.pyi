@@ -97,6 +97,18 @@ class _Medium:
     def emission(
         self, origins: _F, dirs: _F, t_max: _F, source: _F, ns: Sequence[int], seed: int, budget: int
     ) -> Tuple[_F, _F]: ...
+    def spectral(
+        self,
+        origins: _F,
+        dirs: _F,
+        t_max: _F,
+        sigma_a: Sequence[float],
+        sigma_s: Sequence[float],
+        heroes: Sequence[int],
+        ratio: bool,
+        seed: int,
+        budget: int,
+    ) -> Tuple[_F, _F, _F, _F, _F]: ...
     def seconds_in_rust(
         self, origins: _F, dirs: _F, t_max: _F, estimator: str, seed: int, budget: int
     ) -> float: ...

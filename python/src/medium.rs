@@ -12,6 +12,7 @@ use scatterkit::medium::Event;
 use scatterkit::medium::equiangular::Equiangular;
 use scatterkit::medium::ray_march::{Series, ray_march_transmittance, telescoping_transmittance};
 use scatterkit::medium::residual::Extrema;
+use scatterkit::medium::spectral::{Ratios, Spectrum};
 use scatterkit::{Error, Grid, Majorants, Ray, Sampling, Vec3};
 
 /// A density grid over a box, with its majorants and minorants, owned.
@@ -297,6 +298,98 @@ impl PyMedium {
         let (l, tr): (Vec<f64>, Vec<f64>) =
             out.map_err(|e| refused("emission", e))?.into_iter().unzip();
         Ok((l.into_pyarray(py), tr.into_pyarray(py)))
+    }
+
+    /// Hero-wavelength delta tracking (`ratio` false) or ratio tracking
+    /// (`ratio` true) per ray: per-channel coefficients per unit density,
+    /// the hero per ray; the distances (or the tentative-collision counts
+    /// for ratio tracking), the events and per channel (`n·c`, row-major)
+    /// the weights and the ratios `r_u`, `r_l`.
+    #[allow(clippy::too_many_arguments, clippy::type_complexity)]
+    fn spectral<'py>(
+        &self,
+        py: Python<'py>,
+        origins: PyReadonlyArray1<'py, f64>,
+        dirs: PyReadonlyArray1<'py, f64>,
+        t_max: PyReadonlyArray1<'py, f64>,
+        sigma_a: Vec<f64>,
+        sigma_s: Vec<f64>,
+        heroes: Vec<usize>,
+        ratio: bool,
+        seed: u64,
+        budget: u32,
+    ) -> PyResult<(Array<'py>, Array<'py>, Array<'py>, Array<'py>, Array<'py>)> {
+        let rays = rays(origins.as_slice()?, dirs.as_slice()?, t_max.as_slice()?)?;
+        if heroes.len() != rays.len() {
+            return Err(PyValueError::new_err("spectral: one hero per ray"));
+        }
+        let c = sigma_a.len();
+        let grid = self.grid();
+        let mut dens = vec![0.0; self.max.len()];
+        let maj = Majorants::build_density(&grid, self.m, &mut dens)
+            .map_err(|e| refused("spectral: density majorants", e))?;
+        type Row = (f64, f64, Vec<f64>, Vec<f64>, Vec<f64>);
+        let out: Result<Vec<Row>, Error> = py.detach(|| {
+            let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+            rays.iter()
+                .zip(&heroes)
+                .map(|(&ray, &hero)| {
+                    let spectrum = Spectrum {
+                        sigma_a: &sigma_a,
+                        sigma_s: &sigma_s,
+                        hero,
+                    };
+                    let (mut w, mut ru, mut rl) = (vec![0.0; c], vec![0.0; c], vec![0.0; c]);
+                    let mut ratios = Ratios {
+                        weight: &mut w,
+                        r_u: &mut ru,
+                        r_l: &mut rl,
+                    };
+                    let (t, ev) = if ratio {
+                        let steps = maj.ratio_track_spectral(
+                            &grid,
+                            &spectrum,
+                            ray,
+                            budget,
+                            &mut rng,
+                            &mut ratios,
+                        )?;
+                        (f64::from(steps), 0.0)
+                    } else {
+                        let tr = maj.delta_track_spectral(
+                            &grid,
+                            &spectrum,
+                            ray,
+                            budget,
+                            &mut rng,
+                            &mut ratios,
+                        )?;
+                        (tr.t, f64::from(tr.event as u32))
+                    };
+                    Ok((t, ev, w, ru, rl))
+                })
+                .collect()
+        });
+        let rows = out.map_err(|e| refused("spectral tracking", e))?;
+        let (mut t, mut ev) = (
+            Vec::with_capacity(rows.len()),
+            Vec::with_capacity(rows.len()),
+        );
+        let (mut w, mut ru, mut rl) = (Vec::new(), Vec::new(), Vec::new());
+        for (a, b, x, y, z) in rows {
+            t.push(a);
+            ev.push(b);
+            w.extend(x);
+            ru.extend(y);
+            rl.extend(z);
+        }
+        Ok((
+            t.into_pyarray(py),
+            ev.into_pyarray(py),
+            w.into_pyarray(py),
+            ru.into_pyarray(py),
+            rl.into_pyarray(py),
+        ))
     }
 
     /// Delta tracking per ray: the distance to the real collision (or

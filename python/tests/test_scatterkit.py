@@ -290,6 +290,26 @@ class MediumTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             medium.emission(np.full((3, 3), 2.0), origins, [1.0, 0.0, 0.0])
 
+    def test_spectral_tracking_recovers_each_channels_transmittance(self):
+        # Density 1 over the unit box, three channels of sigma_t 0.5, 1, 2:
+        # along x through the box, T_c = e^-sigma_c, estimated from paths
+        # drawn at a hero chosen uniformly per ray.
+        medium = sk.Medium(np.ones((3, 3, 3)), 0.0, 1.0, majorant_cells=(2, 2, 2))
+        n = 20_000
+        origins = np.tile([-1.0, 0.5, 0.5], (n, 1))
+        sigma = [0.5, 1.0, 2.0]
+        steps, _, w, ru, rl = medium.spectral_track(origins, [1.0, 0.0, 0.0], [0.0] * 3, sigma,
+                                                    estimator="ratio", seed=6)
+        est = w / rl.mean(axis=-1, keepdims=True)
+        for k, s in enumerate(sigma):
+            m, se = est[:, k].mean(), est[:, k].std() / math.sqrt(n)
+            self.assertLess(abs(m - math.exp(-s)), 4 * se + 1e-12, (k, m, se))
+        t, event, w, ru, rl = medium.spectral_track(origins, [1.0, 0.0, 0.0], [0.0] * 3, sigma, seed=7)
+        self.assertEqual(w.shape, (n, 3))
+        self.assertTrue(set(np.unique(event)) <= {0, 1})
+        with self.assertRaises(ValueError):
+            medium.spectral_track(origins[:2], [1.0, 0.0, 0.0], [0.0], [1.0], hero=3)
+
     def test_bad_media_and_rays(self):
         good = np.ones((2, 2, 2))
         with self.assertRaises(ValueError):

@@ -170,6 +170,10 @@ fn the_python_package_installs_and_passes_its_tests() {
         "class Medium",
         "class RayleighPolarized",
         "fit_mie",
+        "class Table2d",
+        "class SpectralPhase",
+        "spectral_track",
+        "polydisperse",
         "sample_cos",
         "water_index",
     ] {

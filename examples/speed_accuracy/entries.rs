@@ -255,6 +255,48 @@ pub(crate) fn hg_entries(out: &mut Vec<Entry>) {
     }
 }
 
+/// Schlick's stand-in for HG (k = 0.8, about HG g = 0.6): the library's
+/// f32 sampler, the portable f32 tier, and the textbook inverse
+/// `μ = (2u − 1 + k)/(1 − k + 2ku)` as GPU renderers write it.
+pub(crate) fn schlick_entries(out: &mut Vec<Entry>) {
+    use scatterkit::phase::schlick::Schlick;
+    let k = 0.8f32;
+    let s32 = Schlick::new(k).unwrap();
+    let s64 = Schlick::new(k as f64).unwrap();
+    let tier = scatterkit::portable::Schlick::new(k).unwrap();
+    let textbook = |u: f32| (2.0 * u - 1.0 + k) / (1.0 - k + 2.0 * k * u);
+    let mut r = fast_rng();
+    let ns = time_ns(|| s32.sample_cos(f32::uniform(&mut r)));
+    let exact = |u: f64| s64.sample_cos(u);
+    let cdf = |x: f64| s64.cdf(x);
+    out.push(Entry::new(
+        "HG",
+        format!("Schlick k = {k}"),
+        ns,
+        errors(|u| s32.sample_cos(u), exact, cdf),
+    ));
+    let mut r = fast_rng();
+    let ns = time_ns(|| scatterkit::portable::schlick_sample_cos(&tier, f32::uniform(&mut r)));
+    out.push(Entry::new(
+        "HG",
+        format!("Schlick k = {k}, portable f32 tier"),
+        ns,
+        errors(
+            |u| scatterkit::portable::schlick_sample_cos(&tier, u),
+            exact,
+            cdf,
+        ),
+    ));
+    let mut r = fast_rng();
+    let ns = time_ns(|| textbook(f32::uniform(&mut r)));
+    out.push(Entry::new(
+        "HG",
+        format!("peer: textbook Schlick inverse k = {k}"),
+        ns,
+        errors(textbook, exact, cdf),
+    ));
+}
+
 /// Draine: ours, eq. 6 as published, rejection from HG; and the fog.
 pub(crate) fn draine_entries(out: &mut Vec<Entry>) {
     for (g, a) in [(0.5f32, 1.0f32), (0.9, 10.0), (0.3, 250.0), (0.01, 1000.0)] {

@@ -81,6 +81,7 @@ fn main() -> std::io::Result<()> {
     let mut es = Vec::new();
     rayleigh_entries(&mut es);
     hg_entries(&mut es);
+    schlick_entries(&mut es);
     draine_entries(&mut es);
     cbrt_entries(&mut es);
     mie_entries(&mut es);

@@ -29,9 +29,10 @@ estimators and delta tracking over arrays of rays),
 
 from __future__ import annotations
 
-from typing import NamedTuple, Optional
+from typing import NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _scatterkit as _sk
 from . import conventions
@@ -56,6 +57,11 @@ __all__ = [
 ]
 
 __version__ = "0.2.0"
+
+#: Anything numpy converts to an array of floats: a scalar, a list, an array.
+ArrayLike = npt.ArrayLike
+#: A float for a scalar argument, else an array of the argument's shape.
+FloatOrArray = Union[float, np.ndarray]
 
 
 def _flat(x, name):
@@ -94,7 +100,7 @@ class Phase:
 
     __slots__ = ("_p",)
 
-    def __init__(self, compiled):
+    def __init__(self, compiled: _sk._Phase):
         if not isinstance(compiled, _sk._Phase):
             raise TypeError("build a Phase with one of its class methods, e.g. Phase.isotropic()")
         self._p = compiled
@@ -170,7 +176,7 @@ class Phase:
         return cls(_sk._Phase.fournier_forand_backscatter(float(b), float(n)))
 
     @classmethod
-    def mixture(cls, parts) -> "Phase":
+    def mixture(cls, parts: Sequence[Tuple["Phase", float]]) -> "Phase":
         """A mixture of models with weights: ``parts`` is a sequence of ``(Phase, weight)``
         (weights >= 0, normalised to sum 1; up to 8 parts, none itself a mixture).
         Sampling inverts the mixture's own CDF (monotone in ``u``)."""
@@ -186,7 +192,7 @@ class Phase:
         return cls(_sk._Phase.mixture(compiled))
 
     @classmethod
-    def legendre_series(cls, chi) -> "Phase":
+    def legendre_series(cls, chi: ArrayLike) -> "Phase":
         """The phase function ``sum (2l + 1) chi_l P_l(mu) / (4 pi)`` of the Legendre
         moments ``chi`` (``chi_0 = 1``; see :mod:`scatterkit.conventions` for
         coefficients that carry the ``2l + 1``), sampled by its exact inverse CDF.
@@ -204,7 +210,7 @@ class Phase:
         return cls(_sk._Phase.table_of(phase._p, int(n)))
 
     @classmethod
-    def table_measured(cls, cos_theta, pdf, n: int = 256) -> "Phase":
+    def table_measured(cls, cos_theta: ArrayLike, pdf: ArrayLike, n: int = 256) -> "Phase":
         """A table of a measured phase function: ``pdf`` (any scale) at
         ``cos_theta`` (at least 2 points, strictly monotone within ``[-1, 1]``),
         linear between the points and zero outside them."""
@@ -213,7 +219,7 @@ class Phase:
         return cls(_sk._Phase.table_measured(c, p, int(n)))
 
     @property
-    def table_data(self):
+    def table_data(self) -> Optional[np.ndarray]:
         """A table's data (``2(n + 1)`` values: the nodes ``mu_i`` and slopes of
         its Hermite spline), or ``None`` for other phase functions."""
         return self._p.table_data()
@@ -229,18 +235,19 @@ class Phase:
         """The asymmetry parameter ``g = <mu>``."""
         return self._p.mean_cosine
 
-    def pdf(self, mu):
+    def pdf(self, mu: ArrayLike) -> FloatOrArray:
         """The density per steradian at each cosine ``mu`` in ``[-1, 1]``."""
         x, shape, scalar = _flat(mu, "pdf")
         return _shaped(self._p.pdf(x), shape, scalar)
 
-    def cdf(self, mu):
+    def cdf(self, mu: ArrayLike) -> FloatOrArray:
         """The probability that the scattering cosine is at most ``mu``
         (``2 pi`` times the integral of the density from -1 to ``mu``)."""
         x, shape, scalar = _flat(mu, "cdf")
         return _shaped(self._p.cdf(x), shape, scalar)
 
-    def sample_cos(self, u=None, *, rng=None, size=None, out=None):
+    def sample_cos(self, u: Optional[ArrayLike] = None, *, rng: Optional[np.random.Generator] = None,
+                   size=None, out: Optional[np.ndarray] = None) -> FloatOrArray:
         """Scattering cosines: the inverse CDF at uniforms ``u`` in ``[0, 1]``
         (monotone: ``u = 0`` gives -1), or at ``size`` uniforms drawn from ``rng``
         (a ``numpy.random.Generator``). ``out``, a C-contiguous float64 array of
@@ -258,7 +265,8 @@ class Phase:
             return out
         return _shaped(self._p.sample_cos(x), shape, scalar)
 
-    def sample_dir(self, w_in, u1=None, u2=None, *, rng=None, size=None):
+    def sample_dir(self, w_in: ArrayLike, u1: Optional[ArrayLike] = None, u2: Optional[ArrayLike] = None, *,
+                   rng: Optional[np.random.Generator] = None, size=None) -> Tuple[np.ndarray, FloatOrArray]:
         """Directions scattered from the unit direction ``w_in`` (3 values, the
         direction of travel): ``(dirs, pdf)``, ``dirs`` of shape ``shape + (3,)``
         and ``pdf`` the density per steradian of each. The uniforms ``u1`` (the
@@ -284,7 +292,7 @@ class Phase:
         d = d.reshape(tuple(shape) + (3,))
         return (d, float(pdf[0])) if scalar else (d, pdf.reshape(shape))
 
-    def legendre(self, n: int):
+    def legendre(self, n: int) -> np.ndarray:
         """The Legendre moments ``chi_0 ... chi_{n-1}`` (closed forms where the
         model has them, else quadrature over its inverse CDF); see
         :func:`scatterkit.conventions.legendre_with_2l1` for the other convention."""
@@ -350,13 +358,13 @@ class Mie:
         """The number of series terms kept."""
         return self._s.terms
 
-    def phase(self, mu):
+    def phase(self, mu: ArrayLike) -> FloatOrArray:
         """The phase function per steradian (integral over the sphere 1) at each
         cosine ``mu``."""
         x, shape, scalar = _flat(mu, "phase")
         return _shaped(self._s.phase(x), shape, scalar)
 
-    def amplitudes(self, mu):
+    def amplitudes(self, mu: ArrayLike) -> Tuple[Union[complex, np.ndarray], Union[complex, np.ndarray]]:
         """The amplitude functions ``(S1, S2)`` (Bohren & Huffman's convention) at
         each cosine, as complex arrays."""
         x, shape, scalar = _flat(mu, "amplitudes")
@@ -366,7 +374,7 @@ class Mie:
             return complex(s1[0]), complex(s2[0])
         return s1.reshape(shape), s2.reshape(shape)
 
-    def legendre(self, n: int, points: int | None = None):
+    def legendre(self, n: int, points: Optional[int] = None) -> np.ndarray:
         """The Legendre moments ``chi_0 ... chi_{n-1}`` of the phase function, by
         Gauss–Legendre quadrature over ``mu`` (``points`` nodes; by default enough
         for the series' highest degree and ``n``)."""
@@ -383,14 +391,14 @@ class Mie:
         return f"Mie(x={self.x!r}, m={self.m!r})"
 
 
-def water_index(wavelength_um):
+def water_index(wavelength_um: float) -> Optional[complex]:
     """The complex refractive index of liquid water at ``wavelength_um``
     micrometres (the library's tabulated fit), or ``None`` outside its range."""
     r = _sk.water_index(float(wavelength_um))
     return None if r is None else complex(r[0], r[1])
 
 
-def size_parameter(diameter, wavelength, n_medium=1.0):
+def size_parameter(diameter: ArrayLike, wavelength: float, n_medium: float = 1.0) -> FloatOrArray:
     """``pi diameter n_medium / wavelength`` (diameter and wavelength in one unit)."""
     d, shape, scalar = _flat(diameter, "size_parameter")
     out = np.array([_sk.size_parameter(v, float(wavelength), float(n_medium)) for v in d])
@@ -410,7 +418,8 @@ class AlbedoCurve:
 
     __slots__ = ("_c",)
 
-    def __init__(self, phase: Phase, thickness=None, mu0=None, paths: int = 100_000, seed: int = 0):
+    def __init__(self, phase: Phase, thickness: Optional[float] = None, mu0: Optional[float] = None,
+                 paths: int = 100_000, seed: int = 0):
         if not isinstance(phase, Phase):
             raise TypeError("AlbedoCurve: phase must be a scatterkit.Phase")
         t = None if thickness is None else float(thickness)
@@ -422,17 +431,17 @@ class AlbedoCurve:
         """The paths traced."""
         return self._c.paths
 
-    def albedo(self, omega):
+    def albedo(self, omega: ArrayLike) -> FloatOrArray:
         """The layer's albedo at single-scattering albedo ``omega`` in ``[0, 1]``."""
         x, shape, scalar = _flat(omega, "albedo")
         return _shaped(self._c.albedo(x), shape, scalar)
 
-    def std_error(self, omega):
+    def std_error(self, omega: ArrayLike) -> FloatOrArray:
         """The Monte-Carlo standard error of :meth:`albedo` (not the interpolation's)."""
         x, shape, scalar = _flat(omega, "std_error")
         return _shaped(self._c.std_error(x), shape, scalar)
 
-    def single_scattering_albedo(self, albedo):
+    def single_scattering_albedo(self, albedo: ArrayLike) -> FloatOrArray:
         """The inverse: the ``omega`` at which the layer's albedo is ``albedo``.
         ``ValueError`` outside the curve's range."""
         x, shape, scalar = _flat(albedo, "single_scattering_albedo")
@@ -468,7 +477,8 @@ class Medium:
 
     __slots__ = ("_m", "shape", "majorant_cells")
 
-    def __init__(self, density, sigma_a, sigma_s, *, lo=(0.0, 0.0, 0.0), hi=(1.0, 1.0, 1.0),
+    def __init__(self, density: ArrayLike, sigma_a: float, sigma_s: float, *,
+                 lo: Sequence[float] = (0.0, 0.0, 0.0), hi: Sequence[float] = (1.0, 1.0, 1.0),
                  sampling="nodes", majorant_cells=(16, 16, 16)):
         d = np.asarray(density, dtype=np.float64)
         if d.ndim != 3:
@@ -486,15 +496,15 @@ class Medium:
         self._m = _sk._Medium(flat, list(d.shape), float(sigma_a), float(sigma_s), lo3, hi3,
                               sampling == "cells", list(cells))
 
-    def majorants(self):
+    def majorants(self) -> np.ndarray:
         """The majorant grid (per length unit), indexed ``[i, j, k]``."""
         return self._m.majorants().reshape(self.majorant_cells, order="F")
 
-    def minorants(self):
+    def minorants(self) -> np.ndarray:
         """The minorant grid (per length unit), indexed ``[i, j, k]``."""
         return self._m.minorants().reshape(self.majorant_cells, order="F")
 
-    def sigma_t(self, points):
+    def sigma_t(self, points: ArrayLike) -> FloatOrArray:
         """The extinction coefficient at world points (last axis 3 values)."""
         p = np.asarray(points, dtype=np.float64)
         if p.shape[-1:] != (3,):
@@ -502,8 +512,8 @@ class Medium:
         out = self._m.sigma_t(np.ascontiguousarray(p).ravel())
         return out.reshape(p.shape[:-1]) if p.ndim > 1 else float(out[0])
 
-    def transmittance(self, origins, dirs, t_max=np.inf, *, estimator="ratio", seed=0,
-                      budget=1 << 20):
+    def transmittance(self, origins: ArrayLike, dirs: ArrayLike, t_max: ArrayLike = np.inf, *,
+                      estimator: str = "ratio", seed: int = 0, budget: int = 1 << 20) -> FloatOrArray:
         """One unbiased transmittance estimate per ray ``origins + t dirs``,
         ``t`` in ``[0, t_max]`` (``dirs`` need not be unit; ``t`` is a distance
         along their direction). Rays broadcast over the leading axes.
@@ -519,7 +529,8 @@ class Medium:
         out = self._m.transmittance(o, d, t, str(estimator), int(seed), int(budget))
         return out.reshape(shape) if shape else float(out[0])
 
-    def emission(self, source, origins, dirs, t_max=np.inf, *, seed=0, budget=1 << 20):
+    def emission(self, source: ArrayLike, origins: ArrayLike, dirs: ArrayLike, t_max: ArrayLike = np.inf, *,
+                 seed: int = 0, budget: int = 1 << 20) -> Tuple[FloatOrArray, FloatOrArray]:
         """The radiance emitted along each ray and reaching its origin,
         ``integral T(0, t) sigma_a(t) L_e(t) dt``, with the ray's transmittance:
         ``(radiance, tr)``, unbiased estimates (ratio tracking). ``source``: the
@@ -534,8 +545,9 @@ class Medium:
         l, tr = self._m.emission(o, d, t, flat, list(src.shape), int(seed), int(budget))
         return (l.reshape(shape), tr.reshape(shape)) if shape else (float(l[0]), float(tr[0]))
 
-    def spectral_track(self, origins, dirs, sigma_a, sigma_s, t_max=np.inf, *, hero=None,
-                       estimator="delta", seed=0, budget=1 << 20):
+    def spectral_track(self, origins: ArrayLike, dirs: ArrayLike, sigma_a: ArrayLike, sigma_s: ArrayLike,
+                       t_max: ArrayLike = np.inf, *, hero: Optional[ArrayLike] = None,
+                       estimator: str = "delta", seed: int = 0, budget: int = 1 << 20):
         """Hero-wavelength tracking (pbrt-v4, section 14.2; Wilkie et al. 2014)
         for ``c`` wavelength channels at once (1 to 16): ``sigma_a``, ``sigma_s``
         are each channel's coefficients per unit density (the medium's own
@@ -570,7 +582,8 @@ class Medium:
         return (t_out.reshape(shape), ev.reshape(shape), w.reshape(per), ru.reshape(per),
                 rl.reshape(per))
 
-    def delta_track(self, origins, dirs, t_max=np.inf, *, seed=0, budget=1 << 20):
+    def delta_track(self, origins: ArrayLike, dirs: ArrayLike, t_max: ArrayLike = np.inf, *, seed: int = 0,
+                    budget: int = 1 << 20):
         """Free-flight sampling by delta tracking per ray: ``(t, event)``, the
         distance to the real collision (or where the ray leaves the box, clipped
         to ``[0, t_max]``) and the event: 0 escaped, 1 scattered, 2 absorbed
@@ -613,7 +626,7 @@ class RayleighPolarized:
         self.rho = float(rho)
         self._r = _sk._RayleighPolarized(self.rho)
 
-    def mueller(self, mu):
+    def mueller(self, mu: ArrayLike) -> Tuple[FloatOrArray, ...]:
         """``(P11, P12, P22, P33, P44)`` at each cosine: the normalised Mueller
         matrix (the mean of ``P11`` over the sphere is 1; the phase function
         per steradian is ``P11 / (4 pi)``)."""
@@ -621,7 +634,8 @@ class RayleighPolarized:
         cols = self._r.mueller(x)
         return tuple(_shaped(c, shape, scalar) for c in cols)
 
-    def sample(self, k, stokes, reference, u1=None, u2=None, *, rng=None, size=None):
+    def sample(self, k: ArrayLike, stokes: ArrayLike, reference: ArrayLike, u1: Optional[ArrayLike] = None,
+               u2: Optional[ArrayLike] = None, *, rng: Optional[np.random.Generator] = None, size=None):
         """Scattered directions for light ``stokes`` (referred to ``reference``)
         travelling along the unit direction ``k``, drawn exactly from the
         polarised phase function: ``(dirs, stokes_out, reference_out, pdf)``,
@@ -639,14 +653,15 @@ class RayleighPolarized:
         return (d.reshape(batch + (3,)), so.reshape(batch + (4,)), ro.reshape(batch + (3,)),
                 pdf.reshape(batch) if batch else float(pdf[0]))
 
-    def eval(self, k, stokes, reference, w, out_reference):
+    def eval(self, k: ArrayLike, stokes: ArrayLike, reference: ArrayLike, w: ArrayLike,
+             out_reference: ArrayLike) -> np.ndarray:
         """The Stokes vector scattered into the unit direction ``w`` per
         steradian, referred to ``out_reference`` (unit, perpendicular to ``w``):
         what next-event estimation adds towards a detector."""
         batch, (kf, sf, rf, wf, of) = _rows((), (k, 3), (stokes, 4), (reference, 3), (w, 3), (out_reference, 3))
         return self._r.eval(kf, sf, rf, wf, of).reshape(batch + (4,))
 
-    def pdf(self, k, stokes, reference, w):
+    def pdf(self, k: ArrayLike, stokes: ArrayLike, reference: ArrayLike, w: ArrayLike) -> FloatOrArray:
         """The density per steradian with which :meth:`sample` draws ``w``."""
         batch, (kf, sf, rf, wf) = _rows((), (k, 3), (stokes, 4), (reference, 3), (w, 3))
         out = self._r.pdf(kf, sf, rf, wf)
@@ -680,7 +695,7 @@ def _fit(r):
                dict(zip(_CANDIDATES, distances)))
 
 
-def fit(cos_theta, pdf, tolerance=0.01, *, allow_table=False) -> Fit:
+def fit(cos_theta: ArrayLike, pdf: ArrayLike, tolerance: float = 0.01, *, allow_table: bool = False) -> Fit:
     """The simplest model within ``tolerance`` (total variation, in ``(0, 1)``)
     of a measured or tabulated phase function: ``pdf`` at ``cos_theta`` (at
     least 2 points, strictly monotone within ``[-1, 1]``; any scale; linear
@@ -692,7 +707,8 @@ def fit(cos_theta, pdf, tolerance=0.01, *, allow_table=False) -> Fit:
     return _fit(_sk.fit_measured(c, p, float(tolerance), bool(allow_table)))
 
 
-def fit_mie(diameter_um, wavelength_um, m=None, tolerance=0.01, *, allow_table=False) -> Fit:
+def fit_mie(diameter_um: float, wavelength_um: float, m: Optional[complex] = None, tolerance: float = 0.01, *,
+            allow_table: bool = False) -> Fit:
     """The simplest model within ``tolerance`` of the Mie phase function of
     droplets of ``diameter_um`` µm in air at vacuum wavelength ``wavelength_um``
     µm, relative index ``m`` (``None``: water, for 0.182 to 1.129 µm).
@@ -731,8 +747,9 @@ class Averages(NamedTuple):
 _DISTRIBUTIONS = {"lognormal": (0, 2), "gamma": (1, 3), "junge": (2, 1)}
 
 
-def polydisperse(distribution, *, wavelength, m, mu=(), r_min=None, r_max=None, n_medium=1.0,
-                 intervals=256) -> Averages:
+def polydisperse(distribution: Tuple, *, wavelength: float, m: complex, mu: ArrayLike = (),
+                 r_min: Optional[float] = None, r_max: Optional[float] = None, n_medium: float = 1.0,
+                 intervals: int = 256) -> Averages:
     """Mie theory averaged over a number distribution of sphere radii.
 
     ``distribution``: ``("lognormal", r_g, sigma_g)`` (median radius, geometric
@@ -768,7 +785,8 @@ def polydisperse(distribution, *, wavelength, m, mu=(), r_min=None, r_max=None, 
                     _shaped(np.asarray(phase), shape, scalar))
 
 
-def equiangular(origins, dirs, point, u, t_min=0.0, t_max=np.inf):
+def equiangular(origins: ArrayLike, dirs: ArrayLike, point: ArrayLike, u: ArrayLike, t_min: ArrayLike = 0.0,
+                t_max: ArrayLike = np.inf) -> Tuple[FloatOrArray, FloatOrArray]:
     """Equiangular sampling (Kulla & Fajardo 2012): distances along rays
     ``origins + t dirs`` (unit ``dirs``), ``t`` in ``[t_min, t_max]``, with
     density proportional to the inverse square distance to ``point`` (a light):
@@ -797,7 +815,7 @@ class Table2d:
 
     __slots__ = ("_t",)
 
-    def __init__(self, phases, x0: float, dx: float, n: int = 256):
+    def __init__(self, phases: Sequence[Phase], x0: float, dx: float, n: int = 256):
         ps = list(phases)
         if not all(isinstance(p, Phase) for p in ps):
             raise TypeError("Table2d: phases must be Phase values")
@@ -808,25 +826,25 @@ class Table2d:
         out = f(a, b)
         return out.reshape(shape) if shape else float(out[0])
 
-    def pdf(self, x, mu):
+    def pdf(self, x: ArrayLike, mu: ArrayLike) -> FloatOrArray:
         """The density per steradian at parameter ``x`` and cosine ``mu``."""
         return self._apply(self._t.pdf, x, mu)
 
-    def cdf(self, x, mu):
+    def cdf(self, x: ArrayLike, mu: ArrayLike) -> FloatOrArray:
         """The CDF at parameter ``x`` and cosine ``mu``."""
         return self._apply(self._t.cdf, x, mu)
 
-    def sample_cos(self, x, u):
+    def sample_cos(self, x: ArrayLike, u: ArrayLike) -> FloatOrArray:
         """Cosines at parameter ``x`` from uniforms ``u`` in ``[0, 1]``."""
         return self._apply(self._t.sample_cos, x, u)
 
-    def mean_cosine(self, x):
+    def mean_cosine(self, x: ArrayLike) -> FloatOrArray:
         """The mean cosine at parameter ``x``."""
         a, shape, scalar = _flat(x, "mean_cosine")
         return _shaped(self._t.mean_cosine(a), shape, scalar)
 
     @property
-    def data(self):
+    def data(self) -> np.ndarray:
         """The table's data, shape ``(k, 2(n + 1))``: what to copy to a device."""
         n, k, _, _ = self._t.shape
         return self._t.data().reshape(k, 2 * (n + 1))
@@ -839,7 +857,7 @@ class SpectralPhase:
 
     __slots__ = ("_s",)
 
-    def __init__(self, channels):
+    def __init__(self, channels: Sequence[Phase]):
         cs = list(channels)
         if not all(isinstance(p, Phase) for p in cs):
             raise TypeError("SpectralPhase: channels must be Phase values")
@@ -850,13 +868,13 @@ class SpectralPhase:
         """The number of channels."""
         return self._s.channels
 
-    def pdf(self, mu):
+    def pdf(self, mu: ArrayLike) -> np.ndarray:
         """Every channel's density per steradian at each cosine: shape
         ``mu.shape + (channels,)``."""
         x, shape, _ = _flat(mu, "pdf")
         return self._s.pdf(x).reshape(tuple(shape) + (self.channels,))
 
-    def sample_cos(self, hero: int, u):
+    def sample_cos(self, hero: int, u: ArrayLike) -> Tuple[FloatOrArray, np.ndarray]:
         """Cosines drawn from channel ``hero``'s phase function at uniforms ``u``,
         and every channel's density over the hero's at each (shape
         ``u.shape + (channels,)``; the hero's column is 1)."""

@@ -472,7 +472,7 @@ class Medium:
     trilinearly, zero outside the box. ``sigma_a``, ``sigma_s``: per unit
     density and length, so ``sigma_t(p) = (sigma_a + sigma_s) density(p)``.
     ``lo``, ``hi``: the box in world units. ``majorant_cells``: the majorant
-    grid's cells per axis (pbrt-v4 uses 16).
+    grid's cells per axis (pbrt-v4 uses 16; at most 2^24 cells in all).
     """
 
     __slots__ = ("_m", "shape", "majorant_cells")

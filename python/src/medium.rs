@@ -151,8 +151,15 @@ impl PyMedium {
         } else {
             Sampling::Nodes
         };
+        // At most 2²⁴ majorant cells (256 per axis): the two grids are
+        // allocated here, and an allocation that fails would abort Python.
         let count = scatterkit::majorant::majorant_len(cells)
-            .ok_or_else(|| PyValueError::new_err("Medium: majorant cells must be positive"))?;
+            .filter(|&c| c <= 1 << 24)
+            .ok_or_else(|| {
+                PyValueError::new_err(
+                    "Medium: majorant cells must be positive, at most 2^24 in all",
+                )
+            })?;
         py.detach(|| {
             let grid = Grid::new(&density, n[0], n[1], n[2], sigma_a, sigma_s)?
                 .with_box(lo, hi)?

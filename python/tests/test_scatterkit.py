@@ -320,6 +320,10 @@ class MediumTest(unittest.TestCase):
             sk.Medium(good, -1.0, 1.0)
         with self.assertRaises(ValueError):
             sk.Medium(good, 1.0, 1.0, lo=(1, 1, 1), hi=(0, 0, 0))
+        with self.assertRaises(ValueError):
+            sk.Medium(good, 1.0, 1.0, majorant_cells=(1 << 20, 1 << 20, 1))
+        with self.assertRaises(ValueError):
+            sk.Medium(good, 1.0, 1.0, majorant_cells=(0, 4, 4))
         m = sk.Medium(good, 1.0, 1.0)
         with self.assertRaises(ValueError):
             m.transmittance([[0, 0, 0]], [[1, 0, 0]], estimator="guess")

@@ -88,7 +88,8 @@ def _uniforms(u, rng, size, name):
 
 
 class Phase:
-    """A phase function: one of the library's models, or a mixture of them.
+    """A phase function: one of the library's models, a mixture of them, a
+    Legendre series or a table.
 
     Build one with a class method (``Phase.henyey_greenstein(0.8)``, ...);
     every method takes cosines or uniforms as array-likes.

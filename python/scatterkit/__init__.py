@@ -87,6 +87,20 @@ def _uniforms(u, rng, size, name):
     return u
 
 
+def _uniform_pair(u1, u2, rng, size, name):
+    """Both uniforms given, or ``size`` pairs drawn from ``rng``."""
+    if (u1 is None) != (u2 is None):
+        raise ValueError(f"{name}: give both u1 and u2, or rng")
+    if u1 is None:
+        if rng is None:
+            raise ValueError(f"{name}: give u1 and u2, or rng (a numpy.random.Generator)")
+        shape = size if size is not None else ()
+        return rng.random(shape), rng.random(shape)
+    if rng is not None:
+        raise ValueError(f"{name}: give u1 and u2, or rng, not both")
+    return u1, u2
+
+
 class Phase:
     """A phase function: one of the library's models, a mixture of them, a
     Legendre series or a table.
@@ -273,15 +287,7 @@ class Phase:
         and ``pdf`` the density per steradian of each. The uniforms ``u1`` (the
         polar angle) and ``u2`` (the azimuth), of one shape, or ``size`` pairs from
         ``rng``."""
-        if (u1 is None) != (u2 is None):
-            raise ValueError("sample_dir: give both u1 and u2, or rng")
-        if u1 is None:
-            if rng is None:
-                raise ValueError("sample_dir: give u1 and u2, or rng (a numpy.random.Generator)")
-            shape = size if size is not None else ()
-            u1, u2 = rng.random(shape), rng.random(shape)
-        elif rng is not None:
-            raise ValueError("sample_dir: give u1 and u2, or rng, not both")
+        u1, u2 = _uniform_pair(u1, u2, rng, size, "sample_dir")
         w = np.asarray(w_in, dtype=np.float64)
         if w.shape != (3,):
             raise ValueError("sample_dir: w_in must hold 3 values")
@@ -643,12 +649,7 @@ class RayleighPolarized:
         the scattered Stokes vectors keeping ``I`` and referred to the new
         scattering plane, and each direction's density per steradian. Uniforms
         ``u1``, ``u2`` in ``[0, 1]``, or ``size`` pairs from ``rng``."""
-        if u1 is None or u2 is None:
-            if rng is None or u1 is not None or u2 is not None:
-                raise ValueError("sample: give u1 and u2, or rng")
-            shape = size if size is not None else ()
-            shape = (shape,) if isinstance(shape, int) else tuple(shape)
-            u1, u2 = rng.random(shape), rng.random(shape)
+        u1, u2 = _uniform_pair(u1, u2, rng, size, "sample")
         batch, (kf, sf, rf, a, b) = _rows((), (k, 3), (stokes, 4), (reference, 3), (u1, 0), (u2, 0))
         d, so, ro, pdf = self._r.sample(kf, sf, rf, a, b)
         return (d.reshape(batch + (3,)), so.reshape(batch + (4,)), ro.reshape(batch + (3,)),

@@ -74,6 +74,18 @@ pub(crate) fn par_chunks<E: Send>(
     })
 }
 
+/// Whether every value lies in `[0, 1]` (NaN fails): the library's own
+/// check of uniforms.
+pub(crate) fn uniforms_ok(u: &[f64]) -> bool {
+    scatterkit::phase::check_uniforms(u).is_ok()
+}
+
+/// Whether `v` has unit length within 10⁻⁶ (NaN fails).
+pub(crate) fn is_unit(v: scatterkit::Vec3<f64>) -> bool {
+    let n = (v.x * v.x + v.y * v.y + v.z * v.z).sqrt();
+    (n - 1.0).abs() <= 1e-6
+}
+
 /// Applies `f` to every element of `x` with the GIL released.
 pub(crate) fn map<'py>(
     py: Python<'py>,

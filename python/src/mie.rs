@@ -122,18 +122,7 @@ pub(crate) fn polydisperse(
     intervals: usize,
     mu: PyReadonlyArray1<'_, f64>,
 ) -> PyResult<Averaged> {
-    let distribution = match kind {
-        0 => SizeDistribution::LogNormal {
-            median_radius: params[0],
-            sigma_g: params[1],
-        },
-        1 => SizeDistribution::ModifiedGamma {
-            alpha: params[0],
-            b: params[1],
-            gamma: params[2],
-        },
-        _ => SizeDistribution::Junge { slope: params[0] },
-    };
+    let distribution = distribution(kind, params);
     let p = Polydisperse {
         distribution,
         r_min: r_range.0,
@@ -172,7 +161,13 @@ pub(crate) fn polydisperse(
 /// The default radius range of a distribution (None for Junge).
 #[pyfunction]
 pub(crate) fn default_range(kind: u32, params: [f64; 3]) -> Option<(f64, f64)> {
-    let d = match kind {
+    distribution(kind, params).default_range()
+}
+
+/// The distribution `kind` names (0 lognormal, 1 modified gamma, else
+/// Junge) with its parameters.
+fn distribution(kind: u32, params: [f64; 3]) -> SizeDistribution {
+    match kind {
         0 => SizeDistribution::LogNormal {
             median_radius: params[0],
             sigma_g: params[1],
@@ -182,7 +177,6 @@ pub(crate) fn default_range(kind: u32, params: [f64; 3]) -> Option<(f64, f64)> {
             b: params[1],
             gamma: params[2],
         },
-        _ => return None,
-    };
-    d.default_range()
+        _ => SizeDistribution::Junge { slope: params[0] },
+    }
 }

@@ -1,6 +1,6 @@
 //! Phase functions: every model of the library and mixtures of them.
 
-use crate::{Array, filled, map, par_chunks, refused};
+use crate::{Array, filled, is_unit, map, par_chunks, refused, uniforms_ok};
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadwriteArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -367,14 +367,12 @@ impl PyPhase {
             ));
         }
         let w = Vec3::new(w_in[0], w_in[1], w_in[2]);
-        let norm = (w.x * w.x + w.y * w.y + w.z * w.z).sqrt();
-        if norm.is_nan() || (norm - 1.0).abs() > 1e-6 {
+        if !is_unit(w) {
             return Err(PyValueError::new_err(
                 "sample_dir: w_in must be a unit vector",
             ));
         }
-        let in_unit = |u: &[f64]| u.iter().all(|&x| (0.0..=1.0).contains(&x));
-        if !(in_unit(a) && in_unit(b)) {
+        if !(uniforms_ok(a) && uniforms_ok(b)) {
             return Err(PyValueError::new_err(
                 "sample_dir: u1 and u2 must lie in [0, 1]",
             ));

@@ -1,7 +1,7 @@
 //! A phase function per wavelength channel, sampled at a hero channel.
 
 use crate::phase::{Model, PyPhase};
-use crate::{Array, refused};
+use crate::{Array, refused, uniforms_ok};
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -66,7 +66,7 @@ impl PySpectralPhase {
         u: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<(Array<'py>, Array<'py>)> {
         let us = u.as_slice()?;
-        if !us.iter().all(|v| (0.0..=1.0).contains(v)) {
+        if !uniforms_ok(us) {
             return Err(PyValueError::new_err("sample_cos: u must lie in [0, 1]"));
         }
         let s = self.spectral();

@@ -1,6 +1,6 @@
 //! Polarised Rayleigh scattering with Stokes vectors, over arrays.
 
-use crate::{Array, refused};
+use crate::{Array, is_unit, refused, uniforms_ok};
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -35,11 +35,6 @@ fn stokes(s: &[f64], r: &[f64]) -> Result<Vec<Stokes<f64>>, Error> {
         .zip(r.chunks_exact(3))
         .map(|(s, r)| Stokes::new(s[0], s[1], s[2], s[3], v3(r)))
         .collect()
-}
-
-fn unit(v: Vec3<f64>) -> bool {
-    let n = (v.x * v.x + v.y * v.y + v.z * v.z).sqrt();
-    (n - 1.0).abs() <= 1e-6
 }
 
 #[pymethods]
@@ -97,8 +92,7 @@ impl PyRayleighPolarized {
                 "sample: one pair of uniforms per row",
             ));
         }
-        let in_unit = |u: &[f64]| u.iter().all(|&x| (0.0..=1.0).contains(&x));
-        if !(in_unit(a) && in_unit(b) && k.chunks_exact(3).all(|c| unit(v3(c)))) {
+        if !(uniforms_ok(a) && uniforms_ok(b) && k.chunks_exact(3).all(|c| is_unit(v3(c)))) {
             return Err(PyValueError::new_err(
                 "sample: directions must be unit vectors and uniforms lie in [0, 1]",
             ));

@@ -2,7 +2,7 @@
 //! size), tabulated at evenly spaced values and blended between them.
 
 use crate::phase::{ByRef, PyPhase};
-use crate::{Array, filled, refused};
+use crate::{Array, filled, refused, uniforms_ok};
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -103,7 +103,7 @@ impl PyTable2d {
         x: PyReadonlyArray1<'py, f64>,
         u: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<Array<'py>> {
-        if !u.as_slice()?.iter().all(|v| (0.0..=1.0).contains(v)) {
+        if !uniforms_ok(u.as_slice()?) {
             return Err(PyValueError::new_err("sample_cos: u must lie in [0, 1]"));
         }
         let t = self.table();

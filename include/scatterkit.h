@@ -1288,7 +1288,10 @@ typedef struct {
      telescoping estimator), where tau is the optical depth that places
      the strata: with `majorants`, the integral of sigma_maj - sigma_min
      along the segment (sigma_min 0 without minorants); without, that of
-     the one majorant. Otherwise unused.
+     the one majorant. Residual ratio tracking: the rate of its
+     tentative collisions as a multiple of sigma_maj - sigma_min; 0 lets
+     the library choose 2 (1 is Novak et al.'s estimator). Otherwise
+     unused.
      */
     uint32_t strata;
     /*
@@ -1462,7 +1465,8 @@ typedef struct {
      */
     uint32_t budget;
     /*
-     Ray marching: strata per march; 0 lets the library choose.
+     Ray marching: strata per march; residual ratio tracking: its rate;
+     0 lets the library choose.
      */
     uint32_t strata;
     /*
@@ -3599,8 +3603,11 @@ sk_status sk_ratio_track_f64(const sk_track_args_f64 *args, sk_track_result_f64 
 /*
  Residual ratio tracking (Novak et al. 2014): the transmittance
  exp(-integral of the minorants) along the segment, exact, times ratio
- tracking of the residual at the rate majorant - minorant; unbiased,
- exact where the density is constant per cell. Needs majorants with
+ tracking of the residual, its tentative collisions at `strata` times
+ the rate majorant - minorant (0: twice, which halves the variance
+ where the residual is thin for less than twice the time; 1 is the
+ published rate); unbiased, exact where the density is constant per
+ cell. Needs majorants with
  minorants (SK_ERR_DOMAIN otherwise, and for a cell whose minorant
  exceeds its majorant); other statuses as sk_ratio_track.
  */

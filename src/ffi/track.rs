@@ -160,7 +160,10 @@ pub struct sk_track_args {
     /// telescoping estimator), where tau is the optical depth that places
     /// the strata: with `majorants`, the integral of sigma_maj - sigma_min
     /// along the segment (sigma_min 0 without minorants); without, that of
-    /// the one majorant. Otherwise unused.
+    /// the one majorant. Residual ratio tracking: the rate of its
+    /// tentative collisions as a multiple of sigma_maj - sigma_min; 0 lets
+    /// the library choose 2 (1 is Novak et al.'s estimator). Otherwise
+    /// unused.
     pub strata: u32,
     /// SK_TRACK_NONBOUNDING or 0; other bits are SK_ERR_METHOD.
     pub flags: u32,
@@ -186,7 +189,8 @@ pub struct sk_track_args_f64 {
     pub t_max: f64,
     /// The step budget; 0 means SK_TRACK_BUDGET.
     pub budget: u32,
-    /// Ray marching: strata per march; 0 lets the library choose.
+    /// Ray marching: strata per march; residual ratio tracking: its rate;
+    /// 0 lets the library choose.
     pub strata: u32,
     /// SK_TRACK_NONBOUNDING or 0.
     pub flags: u32,
@@ -647,7 +651,7 @@ fn estimate<P: Prec>(
             let b = bounds.ok_or(Error::Domain)?;
             let min = b.min.ok_or(Error::Domain)?;
             let ext = Extrema::paired(b.max, min)?;
-            let x = ext.residual_ratio_track_fn(coef, ray, budget, rng)?;
+            let x = ext.residual_ratio_track_rate(coef, ray, given, budget, rng)?;
             Ok(Found::transmittance(x.tr, x.steps))
         }
         (Estimator::RayMarch | Estimator::Telescoping, own, _) => {
@@ -824,8 +828,11 @@ pub unsafe extern "C" fn sk_ratio_track_f64(
 
 /// Residual ratio tracking (Novak et al. 2014): the transmittance
 /// exp(-integral of the minorants) along the segment, exact, times ratio
-/// tracking of the residual at the rate majorant - minorant; unbiased,
-/// exact where the density is constant per cell. Needs majorants with
+/// tracking of the residual, its tentative collisions at `strata` times
+/// the rate majorant - minorant (0: twice, which halves the variance
+/// where the residual is thin for less than twice the time; 1 is the
+/// published rate); unbiased, exact where the density is constant per
+/// cell. Needs majorants with
 /// minorants (SK_ERR_DOMAIN otherwise, and for a cell whose minorant
 /// exceeds its majorant); other statuses as sk_ratio_track.
 #[unsafe(no_mangle)]

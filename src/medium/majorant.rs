@@ -143,8 +143,12 @@ impl<'a, T: Real> Majorants<'a, T> {
     /// interpolation is a convex combination of the values it reaches, so
     /// it never falls below them: the minorants bound `σ_t` from below
     /// everywhere in the cell, as residual ratio tracking's control
-    /// ([`Extrema`](super::residual::Extrema)) needs. Errors as
-    /// [`Majorants::new`].
+    /// ([`Extrema`](super::residual::Extrema)) needs. Where every value
+    /// reaching into a cell is the same `ρ`, the interpolation returns `ρ`
+    /// exactly and the cell gets `σ_t` itself, `σ_a ρ + σ_s ρ` as tracking
+    /// rounds it, with no slack: a tentative collision there weighs exactly
+    /// 1, so a medium constant per cell is exact whatever the residual
+    /// majorant's few ULP draw. Errors as [`Majorants::new`].
     pub fn build_minorants(
         grid: &Grid<'_, T>,
         m: [usize; 3],
@@ -152,7 +156,13 @@ impl<'a, T: Real> Majorants<'a, T> {
     ) -> Result<Self, Error> {
         let (sa, ss) = grid.coefficients();
         let scale = (sa + ss) * (T::ONE - T::from_f64(4.0) * T::EPSILON);
-        Self::build_with(grid, m, out, scale, T::INFINITY, T::min_of)
+        Self::build_with(grid, m, out, |lo, hi| {
+            if lo == hi {
+                sa * lo + ss * lo
+            } else {
+                scale * lo
+            }
+        })
     }
 
     fn build_scaled(
@@ -162,18 +172,16 @@ impl<'a, T: Real> Majorants<'a, T> {
         coefficient: T,
     ) -> Result<Self, Error> {
         let scale = coefficient * (T::ONE + T::from_f64(4.0) * T::EPSILON);
-        Self::build_with(grid, m, out, scale, T::ZERO, T::max_of)
+        Self::build_with(grid, m, out, |_, hi| scale * hi)
     }
 
-    /// Each cell of `out` gets `scale` times `pick` folded, from `first`,
-    /// over the grid values whose interpolation reaches into the cell.
+    /// Each cell of `out` gets `value(lo, hi)` of the smallest and largest
+    /// grid values whose interpolation reaches into the cell.
     fn build_with(
         grid: &Grid<'_, T>,
         m: [usize; 3],
         out: &'a mut [T],
-        scale: T,
-        first: T,
-        pick: fn(T, T) -> T,
+        value: impl Fn(T, T) -> T,
     ) -> Result<Self, Error> {
         let count = majorant_len(m).ok_or(Error::Size)?;
         let cells = out.get_mut(..count).ok_or(Error::Size)?;
@@ -185,16 +193,17 @@ impl<'a, T: Real> Majorants<'a, T> {
                 let (j0, j1) = reach(grid, b, m[1], ny);
                 for a in 0..m[0] {
                     let (i0, i1) = reach(grid, a, m[0], nx);
-                    let mut folded = first;
+                    let (mut lo, mut hi) = (T::INFINITY, T::ZERO);
                     for k in k0..=k1 {
                         for j in j0..=j1 {
                             for i in i0..=i1 {
-                                folded = pick(folded, grid.value(i, j, k));
+                                let v = grid.value(i, j, k);
+                                (lo, hi) = (lo.min_of(v), hi.max_of(v));
                             }
                         }
                     }
                     if let Some(cell) = cells.next() {
-                        *cell = scale * folded;
+                        *cell = value(lo, hi);
                     }
                 }
             }

@@ -9,6 +9,21 @@
 //! medium that is constant in each cell (minorant = majorant = `σ_t`) no
 //! collision is drawn and the estimate is exact.
 //!
+//! Tentative collisions are drawn at [`RESIDUAL_RATE`] times the residual
+//! majorant by default, not at the residual majorant itself as in Novák et
+//! al.: ratio tracking is unbiased at any rate at or above the residual,
+//! and its relative variance, `exp(∫ σ_r²/λ) − 1` at rate `λ` for a
+//! residual `σ_r`, falls as `1/λ` where the residual depth is small while
+//! the walk's fixed cost (the cells crossed, the ray's setup) does not
+//! grow. Measured over the main example's suite of media (seven kinds,
+//! five classes of ray, f32): variance × time at twice the rate is
+//! 1.3–1.5× better than at once the rate in the worst class, and the
+//! best of 1, 1.25, 1.5, 1.75, 2, 2.5 and 3 there. Where one cell's
+//! residual depth is large (a dense sheet in a cell of haze) the gain
+//! falls as the rate rises past 2: the collisions in the haze cost without
+//! reducing variance. [`Extrema::residual_ratio_track_rate`] takes any
+//! whole multiple, 1 for the published estimator.
+//!
 //! An [`Extrema`] pairs a grid's majorants with its minorants over the
 //! same cells; [`Extrema::build`] fills both from a density [`Grid`] in
 //! one pass each ([`Majorants::build`], [`Majorants::build_minorants`]).
@@ -20,6 +35,11 @@ use crate::medium::majorant::{Majorants, Tentative, Transmittance, grid_coeffici
 use crate::medium::{Grid, Ray, roulette};
 use core::cell::Cell;
 use rand_core::Rng;
+
+/// The default rate of residual ratio tracking's tentative collisions, as
+/// a multiple of each cell's residual majorant `σ_maj − σ_min` (see the
+/// module's documentation for why it is not 1).
+pub const RESIDUAL_RATE: u32 = 2;
 
 /// Majorants and minorants (per length unit) over the same cells of the
 /// same box: `0 ≤ minorant ≤ majorant` in every cell.
@@ -95,8 +115,11 @@ impl<'a, T: Real> Extrema<'a, T> {
     /// Residual ratio tracking through `grid` (whose extrema these must be:
     /// same box, else [`Error::Domain`]) along `ray`: an unbiased estimate
     /// of the transmittance, with the Russian roulette of ratio tracking on
-    /// the residual factor. Budget and errors as
-    /// [`Majorants::ratio_track`].
+    /// the residual factor, at the default rate [`RESIDUAL_RATE`]. Budget
+    /// and errors as [`Majorants::ratio_track`]. Another rate:
+    /// [`residual_ratio_track_rate`](Self::residual_ratio_track_rate) with
+    /// `|p| (σ_a ρ(p), σ_s ρ(p))` from [`Grid::coefficients`] and
+    /// [`Grid::density`].
     pub fn residual_ratio_track<R: Rng + ?Sized>(
         &self,
         grid: &Grid<'_, T>,
@@ -113,7 +136,8 @@ impl<'a, T: Real> Extrema<'a, T> {
     /// Residual ratio tracking through a caller's medium,
     /// `coefficients(p) = (σ_a, σ_s)` at a world point (both `≥ 0`, their
     /// sum within the majorant of the cell holding `p`, else
-    /// [`Error::Domain`]), along `ray`.
+    /// [`Error::Domain`]), along `ray`, at the default rate
+    /// [`RESIDUAL_RATE`].
     pub fn residual_ratio_track_fn<R: Rng + ?Sized>(
         &self,
         coefficients: impl Fn(Vec3<T>) -> (T, T),
@@ -121,6 +145,25 @@ impl<'a, T: Real> Extrema<'a, T> {
         budget: u32,
         rng: &mut R,
     ) -> Result<Transmittance<T>, Error> {
+        self.residual_ratio_track_rate(coefficients, ray, 0, budget, rng)
+    }
+
+    /// [`residual_ratio_track_fn`](Self::residual_ratio_track_fn) with
+    /// tentative collisions drawn at `rate` times each cell's residual
+    /// majorant `σ_maj − σ_min` (a whole number; 1 is Novák et al.'s
+    /// estimator, 0 takes [`RESIDUAL_RATE`]). Each weighs
+    /// `1 − (σ_t − σ_min)/(rate (σ_maj − σ_min))`, in `[0, 1]` wherever the
+    /// extrema bound `σ_t`. A higher rate spends more density evaluations
+    /// (and more of `budget`) for less variance.
+    pub fn residual_ratio_track_rate<R: Rng + ?Sized>(
+        &self,
+        coefficients: impl Fn(Vec3<T>) -> (T, T),
+        ray: Ray<T>,
+        rate: u32,
+        budget: u32,
+        rng: &mut R,
+    ) -> Result<Transmittance<T>, Error> {
+        let rate = T::from_f64(f64::from(if rate == 0 { RESIDUAL_RATE } else { rate }));
         let mut tr = T::ONE;
         // The rates (σ_c, σ_maj) of the cell being crossed, set by
         // `residual` as the walk enters it, read at its collisions.
@@ -131,8 +174,9 @@ impl<'a, T: Real> Extrema<'a, T> {
             if !(sa >= T::ZERO && ss >= T::ZERO && sa + ss <= sigma_maj) {
                 return Err(Error::Domain);
             }
-            // c.value is the residual majorant σ_maj − σ_c of the cell.
-            tr = roulette(tr * (T::ONE - (sa + ss - sigma_c) / c.value), r);
+            // c.value is the residual majorant σ_maj − σ_c of the cell;
+            // the collisions come at `rate` times it.
+            tr = roulette(tr * (T::ONE - (sa + ss - sigma_c) / (rate * c.value)), r);
             Ok((tr == T::ZERO).then_some(()))
         };
         // The control's optical depth is summed in the same walk, cell by
@@ -150,13 +194,13 @@ impl<'a, T: Real> Extrema<'a, T> {
         };
         let walk = self
             .max
-            .walk_cells(ray, T::ONE, residual, budget, rng, visit)?;
+            .walk_cells(ray, rate, residual, budget, rng, visit)?;
         if inverted {
             return Err(Error::Domain);
         }
         let tr = if walk.found.is_some() { T::ZERO } else { tr };
         // Where the control is 0 along the ray (a sparse medium) this is
-        // ratio tracking, and costs no more than it.
+        // ratio tracking at `rate` times the majorant.
         let tr = if control > T::ZERO {
             tr * (-control).exp()
         } else {

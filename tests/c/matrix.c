@@ -1148,6 +1148,21 @@ static void majorants(void) {
         i = 0;
         ad = targs64(NULL, coeff64, NULL, &ebd, od, dd, 0, 1e6, 1, &rng);
         CHECK(sk_residual_ratio_track_f64(&ad, &trd) == SK_ERR_BUDGET);
+        /* The rate: `strata` 0 is 2, the same draws as 2 from the same
+         * generator state; 1 draws about half as often (sigma_t 0.25 under
+         * the majorant 50 with a zero control). */
+        {
+            uint32_t steps[3], k;
+            for (k = 0; k < 3; k++) {
+                st = 99;
+                ctxf = 0.0f;
+                a = targs(NULL, coeff32, &ctxf, &eb, o, d, 0, 3, 100000, &rng);
+                a.strata = k;
+                CHECK(sk_residual_ratio_track(&a, &tr) == SK_OK && tr.tr > 0.0f && tr.tr < 1.0f);
+                steps[k] = tr.steps;
+            }
+            CHECK(steps[0] == steps[2] && steps[1] > 20 && steps[2] > 1.6 * steps[1] && steps[2] < 2.4 * steps[1]);
+        }
     }
     {
         /* The majorant optical depth and the unbiased ray marchers: the

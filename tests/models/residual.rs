@@ -9,7 +9,7 @@
 use super::majorant::{check_bounds, cloud, for_each_grid, mean_se, optical_depth, rays};
 use crate::common::rng;
 use scatterkit::majorant::{DEFAULT_RES, Majorants};
-use scatterkit::medium::residual::Extrema;
+use scatterkit::medium::residual::{Extrema, RESIDUAL_RATE};
 use scatterkit::{Error, Grid, Ray, Vec3};
 
 /// Unbiased on every ray of every case; and the check has the power to
@@ -51,6 +51,55 @@ fn residual_ratio_tracking_is_unbiased() {
     });
 }
 
+/// Every rate is unbiased, not only the default: rates 1 (Novák et al.'s)
+/// and 3 on every ray, grids read at nodes and at cells, 4σ; and rate 0 is the
+/// default, [`RESIDUAL_RATE`], draw for draw.
+#[test]
+fn residual_ratio_tracking_is_unbiased_at_every_rate() {
+    for_each_grid(|g, rays, case| {
+        if case % 2 == 1 {
+            return;
+        }
+        let (mut max, mut min) = ([0.0; 16 * 16 * 16], [0.0; 16 * 16 * 16]);
+        let ext = Extrema::build(g, [DEFAULT_RES; 3], &mut max, &mut min).unwrap();
+        let coefficients = |p| {
+            let (sa, ss) = g.coefficients();
+            (sa * g.density(p), ss * g.density(p))
+        };
+        for (k, &(o, d, t_max)) in rays.iter().enumerate() {
+            let ray = Ray::new(o, d, t_max);
+            let p = (-optical_depth(g, o, d, t_max)).exp();
+            for rate in [1, 3] {
+                let mut r = rng(90 + case + rate as u64);
+                let tr: Vec<f64> = (0..40_000)
+                    .map(|_| {
+                        let x =
+                            ext.residual_ratio_track_rate(coefficients, ray, rate, 1 << 20, &mut r);
+                        x.unwrap().tr
+                    })
+                    .collect();
+                let (m, se) = mean_se(&tr);
+                assert!(
+                    (m - p).abs() <= 4.0 * se + 1e-12,
+                    "case {case} ray {k} rate {rate}: {m} ± {se} vs {p}"
+                );
+            }
+            let (mut r0, mut r2) = (rng(5), rng(5));
+            for _ in 0..100 {
+                let a = ext.residual_ratio_track_rate(coefficients, ray, 0, 1 << 20, &mut r0);
+                let b = ext.residual_ratio_track_rate(
+                    coefficients,
+                    ray,
+                    RESIDUAL_RATE,
+                    1 << 20,
+                    &mut r2,
+                );
+                assert_eq!(a, b);
+            }
+        }
+    });
+}
+
 /// The length of the ray `o + t d/|d|`, `t ∈ [0, t_max]`, inside the unit
 /// cube (slabs).
 fn inside_unit_cube(o: Vec3<f64>, d: Vec3<f64>, t_max: f64) -> f64 {
@@ -70,11 +119,16 @@ fn inside_unit_cube(o: Vec3<f64>, d: Vec3<f64>, t_max: f64) -> f64 {
     (b - a).max(0.0)
 }
 
-/// A medium constant in each majorant cell: the minorant is the majorant
-/// (but for their few ULP of slack), almost no collision is drawn, and
+/// A medium constant in each majorant cell: the minorant is `σ_t` itself
+/// and the majorant a few ULP above it, almost no collision is drawn, and
 /// every estimate is the exact transmittance `exp(−σ_t ℓ)`, `ℓ` the length
 /// inside the box (computed in closed form: Simpson's rule across the
-/// box's faces, where the density jumps, is off by 10⁻⁵).
+/// box's faces, where the density jumps, is off by 10⁻⁵). Where the
+/// residual majorant's few ULP do draw, the collision weighs exactly 1: in
+/// f32 at a rate that makes draws likely, every estimate along a ray is
+/// the same number. (With a minorant a few ULP below `σ_t`, as before, a
+/// draw weighed a half at rate 1: the main example's constant medium
+/// showed a variance of 2.5·10⁻⁹ where it claimed 0.)
 #[test]
 fn a_constant_medium_has_zero_variance() {
     let values = [2.5f64; 27];
@@ -96,6 +150,27 @@ fn a_constant_medium_has_zero_variance() {
             );
         }
     }
+    let values = [2.5f32; 27];
+    let g = Grid::new(&values, 3, 3, 3, 0.3, 0.9).unwrap();
+    let (mut max, mut min) = ([0.0f32; 64], [0.0f32; 64]);
+    let ext = Extrema::build(&g, [4; 3], &mut max, &mut min).unwrap();
+    let coefficients = |p| (0.3 * g.density(p), 0.9 * g.density(p));
+    let mut drawn = 0;
+    for (o, d, t_max) in rays() {
+        let f = |v: Vec3<f64>| Vec3::new(v.x as f32, v.y as f32, v.z as f32);
+        let ray = Ray::new(f(o), f(d), t_max as f32);
+        let first = ext
+            .residual_ratio_track_rate(coefficients, ray, 1, 10, &mut r)
+            .unwrap();
+        for _ in 0..1000 {
+            let t = ext
+                .residual_ratio_track_rate(coefficients, ray, 4_000_000, 1 << 20, &mut r)
+                .unwrap();
+            drawn += t.steps;
+            assert_eq!(t.tr, first.tr, "{} steps", t.steps);
+        }
+    }
+    assert!(drawn > 1000, "{drawn} collisions drawn");
 }
 
 #[test]

@@ -520,20 +520,28 @@ class Medium:
         return out.reshape(p.shape[:-1]) if p.ndim > 1 else float(out[0])
 
     def transmittance(self, origins: ArrayLike, dirs: ArrayLike, t_max: ArrayLike = np.inf, *,
-                      estimator: str = "ratio", seed: int = 0, budget: int = 1 << 20) -> FloatOrArray:
+                      estimator: str = "ratio", seed: int = 0, budget: int = 1 << 20,
+                      strata: int = 0) -> FloatOrArray:
         """One unbiased transmittance estimate per ray ``origins + t dirs``,
         ``t`` in ``[0, t_max]`` (``dirs`` need not be unit; ``t`` is a distance
         along their direction). Rays broadcast over the leading axes.
 
         ``estimator``: ``"ratio"`` (ratio tracking through the majorant grid),
-        ``"residual"`` (residual ratio tracking with the minorants as control),
+        ``"residual"`` (residual ratio tracking with the minorants as control,
+        its tentative collisions at twice the residual majorant),
         ``"delta"`` (delta tracking: 1 if the ray escapes, else 0),
         ``"ray_march"`` (unbiased ray marching, the power series) or
-        ``"telescoping"``. ``seed`` seeds one generator for the whole batch
+        ``"telescoping"``; each at the library's defaults (the marchers'
+        strata placed by the majorants and minorants, as many as the
+        library chooses per ray; ``strata`` sets the marchers' strata per march,
+        or residual tracking's rate as a multiple of the residual majorant,
+        1 for the published estimator; 0 is the default). ``seed`` seeds one generator for the whole batch
         (deterministic); ``budget`` caps the density evaluations per ray
         (``ValueError`` past it)."""
         o, d, t, shape = _rays(origins, dirs, t_max)
-        out = self._m.transmittance(o, d, t, str(estimator), int(seed), int(budget))
+        if int(strata) < 0:
+            raise ValueError("strata must be >= 0")
+        out = self._m.transmittance(o, d, t, str(estimator), int(seed), int(budget), int(strata))
         return out.reshape(shape) if shape else float(out[0])
 
     def emission(self, source: ArrayLike, origins: ArrayLike, dirs: ArrayLike, t_max: ArrayLike = np.inf, *,

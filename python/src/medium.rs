@@ -10,7 +10,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 use scatterkit::medium::Event;
 use scatterkit::medium::equiangular::Equiangular;
-use scatterkit::medium::ray_march::{Series, ray_march_transmittance, telescoping_transmittance};
+use scatterkit::medium::ray_march::{Placement, Series, march_grid_within};
 use scatterkit::medium::residual::Extrema;
 use scatterkit::medium::spectral::{Ratios, Spectrum};
 use scatterkit::{Error, Grid, Majorants, Ray, Sampling, Vec3};
@@ -31,7 +31,7 @@ pub(crate) struct PyMedium {
 }
 
 /// The estimators `transmittance` takes by name.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Estimator {
     Delta,
     Ratio,
@@ -96,13 +96,14 @@ fn rays(origins: &[f64], dirs: &[f64], t_max: &[f64]) -> PyResult<Vec<Ray<f64>>>
         .collect())
 }
 
-/// One transmittance estimate along `ray` by `how`.
+/// One transmittance estimate along `ray` by `how`; `strata`: the
+/// marchers' strata or residual tracking's rate, 0 the library's choice.
 fn estimate(
     how: Estimator,
     grid: &Grid<'_, f64>,
     ext: &Extrema<'_, f64>,
     ray: Ray<f64>,
-    budget: u32,
+    (strata, budget): (u32, u32),
     rng: &mut Xoshiro256PlusPlus,
 ) -> Result<f64, Error> {
     let maj = ext.majorants();
@@ -111,16 +112,25 @@ fn estimate(
             .delta_track(grid, ray, budget, rng)
             .map(|t| f64::from(u8::from(t.event == Event::Escaped))),
         Estimator::Ratio => maj.ratio_track(grid, ray, budget, rng).map(|t| t.tr),
-        Estimator::Residual => ext
-            .residual_ratio_track(grid, ray, budget, rng)
-            .map(|t| t.tr),
-        Estimator::RayMarch => {
-            let n = Series::Power.default_strata(maj.optical_depth(ray)?)?;
-            ray_march_transmittance(grid, ray, n, budget, rng).map(|t| t.tr)
+        Estimator::Residual => {
+            let (sa, ss) = grid.coefficients();
+            let coefficients = |p| (sa * grid.density(p), ss * grid.density(p));
+            ext.residual_ratio_track_rate(coefficients, ray, strata, budget, rng)
+                .map(|t| t.tr)
         }
-        Estimator::Telescoping => {
-            let n = Series::Telescoping.default_strata(maj.optical_depth(ray)?)?;
-            telescoping_transmittance(grid, ray, n, budget, rng).map(|t| t.tr)
+        Estimator::RayMarch | Estimator::Telescoping => {
+            // Strata placed by the majorants and minorants, as many as the
+            // library chooses for `strata` 0.
+            let series = if how == Estimator::RayMarch {
+                Series::Power
+            } else {
+                Series::Telescoping
+            };
+            let place = Placement {
+                max: maj,
+                min: Some(ext.minorants()),
+            };
+            march_grid_within(series, place, grid, ray, strata, budget, rng).map(|t| t.tr)
         }
     }
 }
@@ -225,6 +235,7 @@ impl PyMedium {
         estimator: &str,
         seed: u64,
         budget: u32,
+        strata: u32,
     ) -> PyResult<Array<'py>> {
         let how = Estimator::parse(estimator)?;
         let rays = rays(origins.as_slice()?, dirs.as_slice()?, t_max.as_slice()?)?;
@@ -232,7 +243,7 @@ impl PyMedium {
         let out: Result<Vec<f64>, Error> = py.detach(|| {
             let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
             rays.iter()
-                .map(|&ray| estimate(how, &grid, &ext, ray, budget, &mut rng))
+                .map(|&ray| estimate(how, &grid, &ext, ray, (strata, budget), &mut rng))
                 .collect()
         });
         Ok(out
@@ -261,7 +272,7 @@ impl PyMedium {
         let sum: Result<f64, Error> = py.detach(|| {
             let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
             rays.iter()
-                .map(|&ray| estimate(how, &grid, &ext, ray, budget, &mut rng))
+                .map(|&ray| estimate(how, &grid, &ext, ray, (0, budget), &mut rng))
                 .sum()
         });
         let seconds = start.elapsed().as_secs_f64();

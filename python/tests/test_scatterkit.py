@@ -268,6 +268,11 @@ class MediumTest(unittest.TestCase):
             self.assertEqual(tr.shape, (n,))
             se = tr.std() / math.sqrt(n)
             self.assertLess(abs(tr.mean() - exact), 4 * se + 1e-12, (estimator, tr.mean(), se))
+        # Strata other than the default (residual tracking: its rate).
+        for estimator, strata in (("residual", 1), ("residual", 3), ("ray_march", 2), ("telescoping", 16)):
+            tr = medium.transmittance(origins, dirs, estimator=estimator, seed=4, strata=strata)
+            se = tr.std() / math.sqrt(n)
+            self.assertLess(abs(tr.mean() - exact), 4 * se + 1e-12, (estimator, strata, tr.mean(), se))
         t, event = medium.delta_track(origins, dirs, seed=5)
         absorbed = float(np.mean(event == 2))
         want = (1 - exact) * 0.25
@@ -327,6 +332,8 @@ class MediumTest(unittest.TestCase):
         m = sk.Medium(good, 1.0, 1.0)
         with self.assertRaises(ValueError):
             m.transmittance([[0, 0, 0]], [[1, 0, 0]], estimator="guess")
+        with self.assertRaises(ValueError):
+            m.transmittance([[0, 0, 0]], [[1, 0, 0]], estimator="residual", strata=-1)
         with self.assertRaises(ValueError):
             m.transmittance([[0, 0, 0]], [[0, 0, 0]])  # no direction
         with self.assertRaises(ValueError):

@@ -1,5 +1,6 @@
 //! criterion benchmarks: every sampler of the foundation, f32 and f64, as
-//! elements per second (`cargo bench`; `cargo bench --no-run` to only build).
+//! elements per second (`cargo bench -p scatterkit-dev`; `--no-run` to only build; the package
+//! `dev/` builds it, with criterion).
 
 #[path = "cloud.rs"]
 mod cloud;

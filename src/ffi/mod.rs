@@ -1,6 +1,6 @@
 //! The `extern "C"` layer: argument checks, conversion, and a call into the
 //! core, nothing else. `include/scatterkit.h` is generated from these files by
-//! cbindgen (`SK_BLESS=1 cargo test --test header` rewrites it).
+//! cbindgen (`SK_BLESS=1 cargo test --release -p scatterkit-dev` rewrites it).
 //!
 //! # Safety (every function here)
 //! Pointer arguments are either NULL (checked, reported as `SK_ERR_NULL` or a

@@ -2,7 +2,7 @@
 //! the static library and run, the bad-input matrix, sanitizers and
 //! valgrind, the exported symbols against the header, the header-only
 //! table lookup, and the golden bits through Rust and C. (The header's own
-//! regeneration is `tests/header.rs`.)
+//! regeneration is `dev/tests/generated_header.rs`.)
 
 #[path = "../common/mod.rs"]
 mod common;

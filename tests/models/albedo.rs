@@ -302,6 +302,22 @@ const AT_099: [(f64, f64, f64); 3] = [
     (0.9, 1.1702630863808018e-06, 1.895284808484096e-06),
 ];
 
+/// The inverse of curve `c` (HG `g`; light `li`: 0 beam, 1 diffuse) at
+/// `A = 0.99` against [`AT_099`]: the relative error in `1 − ω`, and its σ
+/// from the curve's reported error and slope.
+fn inverse_at_099(c: &AlbedoCurve, g: f64, li: usize) -> (f64, f64) {
+    let at = AT_099.iter().find(|x| x.0 == g).unwrap();
+    let want = if li == 0 { at.1 } else { at.2 };
+    let omega = c.single_scattering_albedo(0.99).unwrap();
+    // σ of 1 − ω = s²: 2 σ_s/s, σ_s = σ_A / |dA/ds|.
+    let s = (1.0 - omega).sqrt();
+    let ds = 1e-3 * s;
+    let at_s = |s: f64| c.albedo(1.0 - s * s);
+    let slope = (at_s(s + ds) - at_s(s - ds)) / (2.0 * ds);
+    let sigma = 2.0 * c.std_error(omega) / slope.abs() / s;
+    ((1.0 - omega) / want - 1.0, sigma)
+}
+
 /// As `ω → 1` (HG, g = 0, 0.5, 0.9; beam at normal incidence and diffuse;
 /// 10⁵ paths each): the curve within 3σ of adding-doubling at ω = 0.999,
 /// 0.9999 and 0.99999, σ the reported error (Monte Carlo and
@@ -331,16 +347,7 @@ fn near_one_against_adding_doubling() {
                     worst = (z.abs(), format!("g = {g}, {name}, ω = {omega}"));
                 }
             }
-            let at = AT_099.iter().find(|x| x.0 == g).unwrap();
-            let want = if li == 0 { at.1 } else { at.2 };
-            let omega = c.single_scattering_albedo(0.99).unwrap();
-            // σ of 1 − ω = s²: 2 σ_s/s, σ_s = σ_A / |dA/ds|.
-            let s = (1.0 - omega).sqrt();
-            let ds = 1e-3 * s;
-            let at_s = |s: f64| c.albedo(1.0 - s * s);
-            let slope = (at_s(s + ds) - at_s(s - ds)) / (2.0 * ds);
-            let sigma = 2.0 * c.std_error(omega) / slope.abs() / s;
-            let rel = (1.0 - omega) / want - 1.0;
+            let (rel, sigma) = inverse_at_099(&c, g, li);
             eprintln!("g = {g}, {name}: 1 − ω at A = 0.99 off by {rel:+.4} (σ {sigma:.4})");
             assert!(
                 rel.abs() < 3.0 * sigma,
@@ -349,4 +356,62 @@ fn near_one_against_adding_doubling() {
         }
     }
     eprintln!("largest |z| {:.2} ({})", worst.0, worst.1);
+}
+
+/// The inverse at `A = 0.99` within 1 % in `1 − ω` of adding-doubling, for
+/// g = 0, 0.5, 0.9, beam and diffuse, at `SK_ALBEDO_PATHS` paths per curve
+/// (10⁷ by default: a standard error of 0.2–0.3 % there, where 10⁵ paths
+/// give 1.7–3.3 %, too wide to show 1 %). Ignored: about 25 minutes on two
+/// cores; `cargo test --release --test models -- --ignored
+/// near_one_inverse_within_one_percent`. The bound, 1 %, is the issue's;
+/// the test also asserts 3σ, σ from the curve's reported error.
+#[test]
+#[ignore]
+fn near_one_inverse_within_one_percent() {
+    let paths: u64 = std::env::var("SK_ALBEDO_PATHS").map_or(10_000_000, |s| s.parse().unwrap());
+    // The forward-scattering cases first: their paths are the longest.
+    let cases: Vec<(usize, f64, usize)> = [0.9, 0.5, 0.0]
+        .into_iter()
+        .map(|g| ([0.0, 0.5, 0.9].iter().position(|&x| x == g).unwrap(), g))
+        .flat_map(|(gi, g)| [(gi, g, 0), (gi, g, 1)])
+        .collect();
+    let run = |&(gi, g, li): &(usize, f64, usize)| {
+        let light = if li == 0 {
+            Illumination::Directional(1.0)
+        } else {
+            Illumination::Diffuse
+        };
+        let hg = HenyeyGreenstein::new(g).unwrap();
+        let mut r = rng(140 + 2 * gi as u64 + li as u64);
+        let c = AlbedoCurve::simulate(&hg, Layer::SemiInfinite, light, paths, &mut r).unwrap();
+        inverse_at_099(&c, g, li)
+    };
+    // Two workers take the cases in turn (the machine has two cores).
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let slots = std::sync::Mutex::new(vec![(f64::NAN, f64::NAN); cases.len()]);
+    std::thread::scope(|scope| {
+        for _ in 0..2 {
+            scope.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    let Some(case) = cases.get(i) else { break };
+                    let x = run(case);
+                    slots.lock().unwrap()[i] = x;
+                }
+            });
+        }
+    });
+    let results = slots.into_inner().unwrap();
+    for (&(_, g, li), &(rel, sigma)) in cases.iter().zip(&results) {
+        let name = if li == 0 { "beam" } else { "diffuse" };
+        eprintln!(
+            "g = {g}, {name}: 1 − ω at A = 0.99 off by {rel:+.4} (σ {sigma:.4}), {paths} paths"
+        );
+    }
+    for (&(_, g, li), &(rel, sigma)) in cases.iter().zip(&results) {
+        assert!(
+            rel.abs() < 0.01 && rel.abs() < 3.0 * sigma,
+            "g = {g}, light {li}: {rel} (σ {sigma})"
+        );
+    }
 }

@@ -113,8 +113,7 @@ fn estimate(
             .map(|t| f64::from(u8::from(t.event == Event::Escaped))),
         Estimator::Ratio => maj.ratio_track(grid, ray, budget, rng).map(|t| t.tr),
         Estimator::Residual => {
-            let (sa, ss) = grid.coefficients();
-            let coefficients = |p| (sa * grid.density(p), ss * grid.density(p));
+            let coefficients = |p| grid.coefficients_at(p);
             ext.residual_ratio_track_rate(coefficients, ray, strata, budget, rng)
                 .map(|t| t.tr)
         }

@@ -401,11 +401,7 @@ pub unsafe extern "C" fn sk_grid_coefficients_f64(
 /// `(σ_a, σ_s)` of the grid behind `g` at `p`, NaN for a bad grid.
 unsafe fn grid_coefficients_at<S: GridStore>(g: *const S, p: S::V) -> (S::T, S::T) {
     match unsafe { grid_at(g) } {
-        Ok(grid) => {
-            let (sa, ss) = grid.coefficients();
-            let rho = grid.density(p.to_vec());
-            (sa * rho, ss * rho)
-        }
+        Ok(grid) => grid.coefficients_at(p.to_vec()),
         Err(_) => (S::T::NAN, S::T::NAN),
     }
 }

@@ -14,7 +14,7 @@ use crate::error::Error;
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
 use crate::medium::emission::{Emission, emission_cells};
-use crate::medium::majorant::{Majorants, grid_coefficients};
+use crate::medium::majorant::Majorants;
 use crate::medium::nonbounding::Exceeded;
 use crate::medium::ray_march::{
     Placement, Series, march_within, ray_march_transmittance, ray_march_transmittance_fn,
@@ -535,7 +535,7 @@ unsafe fn found<P: Prec>(e: Estimator, a: Parts<P>) -> Result<Found<P::T>, sk_st
     };
     let r = match source {
         Source::Grid(g) => {
-            let coef = |p: Vec3<P::T>| grid_coefficients(g, p);
+            let coef = |p: Vec3<P::T>| g.coefficients_at(p);
             let spectral = a.spectrum.as_ref();
             match (e, bounds, spectral) {
                 (Estimator::Delta | Estimator::Ratio, Some(b), Some(s)) => {

@@ -27,7 +27,7 @@
 use crate::error::Error;
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
-use crate::medium::majorant::{Majorants, NoDraws, grid_coefficients, within};
+use crate::medium::majorant::{Majorants, NoDraws, within};
 use crate::medium::{Grid, Ray, roulette};
 use rand_core::Rng;
 
@@ -61,7 +61,7 @@ impl<T: Real> Majorants<'_, T> {
         rng: &mut R,
     ) -> Result<Emission<T>, Error> {
         self.same_box(grid)?;
-        self.emission_track_fn(|p| grid_coefficients(grid, p), source, ray, budget, rng)
+        self.emission_track_fn(|p| grid.coefficients_at(p), source, ray, budget, rng)
     }
 
     /// The emitted radiance along `ray` through a caller's medium,

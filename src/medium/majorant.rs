@@ -280,7 +280,7 @@ impl<'a, T: Real> Majorants<'a, T> {
         rng: &mut R,
     ) -> Result<Track<T>, Error> {
         self.same_box(grid)?;
-        self.delta_track_fn(|p| grid_coefficients(grid, p), ray, budget, rng)
+        self.delta_track_fn(|p| grid.coefficients_at(p), ray, budget, rng)
     }
 
     /// Ratio tracking through `grid` (arguments as
@@ -294,7 +294,7 @@ impl<'a, T: Real> Majorants<'a, T> {
         rng: &mut R,
     ) -> Result<Transmittance<T>, Error> {
         self.same_box(grid)?;
-        self.ratio_track_fn(|p| grid_coefficients(grid, p), ray, budget, rng)
+        self.ratio_track_fn(|p| grid.coefficients_at(p), ray, budget, rng)
     }
 
     /// Delta tracking through a caller's medium, `coefficients(p) = (σ_a,
@@ -609,14 +609,6 @@ fn reach<T: Real>(grid: &Grid<'_, T>, c: usize, m: usize, n: usize) -> (usize, u
     let i0 = s0.to_index().min(n - 1);
     let i1 = (s1.to_index() + 1).min(n - 1);
     (i0, i1)
-}
-
-/// `(σ_a, σ_s)` of the grid at `p`.
-#[inline(always)]
-pub(crate) fn grid_coefficients<T: Real>(grid: &Grid<'_, T>, p: Vec3<T>) -> (T, T) {
-    let (sa, ss) = grid.coefficients();
-    let rho = grid.density(p);
-    (sa * rho, ss * rho)
 }
 
 /// The coefficients if both are `≥ 0` with a sum within `sigma_maj`.

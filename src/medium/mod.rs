@@ -435,6 +435,16 @@ impl<'a, T: Real> Grid<'a, T> {
         lerp(lerp(x00, x10, fy), lerp(x01, x11, fy), fz)
     }
 
+    /// `(σ_a ρ(p), σ_s ρ(p))` at a world point `p`, `ρ` the interpolated
+    /// density: what tracking through the grid reads, and what a call
+    /// taking a caller's medium (`*_fn`, `residual_ratio_track_rate`) takes
+    /// as `|p| grid.coefficients_at(p)`.
+    #[inline(always)]
+    pub fn coefficients_at(&self, p: Vec3<T>) -> (T, T) {
+        let rho = self.density(p);
+        (self.sigma_a * rho, self.sigma_s * rho)
+    }
+
     /// `σ_t(p)`.
     #[inline]
     pub fn sigma_t(&self, p: Vec3<T>) -> T {

@@ -79,7 +79,7 @@
 use crate::error::Error;
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
-use crate::medium::majorant::{Majorants, Transmittance, grid_coefficients};
+use crate::medium::majorant::{Majorants, Transmittance};
 use crate::medium::{Grid, Ray, clip_box};
 use rand_core::Rng;
 
@@ -349,7 +349,7 @@ pub fn march_grid_within<T: Real, R: Rng + ?Sized>(
     rng: &mut R,
 ) -> Result<Transmittance<T>, Error> {
     bounds.max.same_box(grid)?;
-    let coefficients = |p| grid_coefficients(grid, p);
+    let coefficients = |p| grid.coefficients_at(p);
     march_within(series, bounds, coefficients, ray, strata, budget, rng)
 }
 
@@ -370,7 +370,7 @@ fn through_grid<T: Real, R: Rng + ?Sized>(
         });
     };
     let sigma = |p: Vec3<T>| {
-        let (sa, ss) = grid_coefficients(grid, p);
+        let (sa, ss) = grid.coefficients_at(p);
         Ok(sa + ss)
     };
     series.run(Marcher::new(sigma, (o, d), Line::Even { a, b }, cost)?, rng)

@@ -39,7 +39,7 @@
 use crate::error::Error;
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
-use crate::medium::majorant::{Majorants, Tentative, Transmittance, grid_coefficients};
+use crate::medium::majorant::{Majorants, Tentative, Transmittance};
 use crate::medium::{Grid, Ray, roulette};
 use core::cell::Cell;
 use rand_core::Rng;
@@ -126,8 +126,7 @@ impl<'a, T: Real> Extrema<'a, T> {
     /// the residual factor, at the default rate [`RESIDUAL_RATE`]. Budget
     /// and errors as [`Majorants::ratio_track`]. Another rate:
     /// [`residual_ratio_track_rate`](Self::residual_ratio_track_rate) with
-    /// `|p| (σ_a ρ(p), σ_s ρ(p))` from [`Grid::coefficients`] and
-    /// [`Grid::density`].
+    /// `|p| grid.coefficients_at(p)` ([`Grid::coefficients_at`]).
     pub fn residual_ratio_track<R: Rng + ?Sized>(
         &self,
         grid: &Grid<'_, T>,
@@ -138,7 +137,7 @@ impl<'a, T: Real> Extrema<'a, T> {
         if grid.bounds() != self.max.bounds() {
             return Err(Error::Domain);
         }
-        self.residual_ratio_track_fn(|p| grid_coefficients(grid, p), ray, budget, rng)
+        self.residual_ratio_track_fn(|p| grid.coefficients_at(p), ray, budget, rng)
     }
 
     /// Residual ratio tracking through a caller's medium,

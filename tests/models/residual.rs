@@ -62,10 +62,7 @@ fn residual_ratio_tracking_is_unbiased_at_every_rate() {
         }
         let (mut max, mut min) = ([0.0; 16 * 16 * 16], [0.0; 16 * 16 * 16]);
         let ext = Extrema::build(g, [DEFAULT_RES; 3], &mut max, &mut min).unwrap();
-        let coefficients = |p| {
-            let (sa, ss) = g.coefficients();
-            (sa * g.density(p), ss * g.density(p))
-        };
+        let coefficients = |p| g.coefficients_at(p);
         for (k, &(o, d, t_max)) in rays.iter().enumerate() {
             let ray = Ray::new(o, d, t_max);
             let p = (-optical_depth(g, o, d, t_max)).exp();
@@ -154,7 +151,7 @@ fn a_constant_medium_has_zero_variance() {
     let g = Grid::new(&values, 3, 3, 3, 0.3, 0.9).unwrap();
     let (mut max, mut min) = ([0.0f32; 64], [0.0f32; 64]);
     let ext = Extrema::build(&g, [4; 3], &mut max, &mut min).unwrap();
-    let coefficients = |p| (0.3 * g.density(p), 0.9 * g.density(p));
+    let coefficients = |p| g.coefficients_at(p);
     let mut drawn = 0;
     for (o, d, t_max) in rays() {
         let f = |v: Vec3<f64>| Vec3::new(v.x as f32, v.y as f32, v.z as f32);

@@ -217,10 +217,14 @@ static inline skp_vec3 to_skp(sk_vec3 v) {
     return r;
 }
 static inline sk_vec3 header_hg_dir(sk_vec3 w, float u1, float u2, float *pdf) {
-    return from_skp(skp_hg_sample_dir(&php, to_skp(w), u1, u2, pdf));
+    skp_dir_sample r = skp_hg_sample_dir(php, to_skp(w), u1, u2);
+    *pdf = r.pdf;
+    return from_skp(r.dir);
 }
 static inline sk_vec3 header_rayleigh_dir(sk_vec3 w, float u1, float u2, float *pdf) {
-    return from_skp(skp_rayleigh_sample_dir(to_skp(w), u1, u2, pdf));
+    skp_dir_sample r = skp_rayleigh_sample_dir(to_skp(w), u1, u2);
+    *pdf = r.pdf;
+    return from_skp(r.dir);
 }
 /* The isotropic direction about w (the header's own is about +z; this one
    is for the accuracy check about W_IN). */
@@ -367,14 +371,14 @@ static void time_round(void) {
     TIME("hg_cos.sk", acc += sk_phase_sample_cos(&hg, xo_float(&rng)));
     TIME("hg_cos.pbrt", acc += pbrt_hg_cos(0.7f, xo_float(&rng)));
     TIME("hg_cos.inline", acc += sk_phase_cos_inline_sample(&hgi, xo_float(&rng)));
-    TIME("hg_cos.header", acc += skp_hg_sample_cos(&php, xo_float(&rng)));
+    TIME("hg_cos.header", acc += skp_hg_sample_cos(php, xo_float(&rng)));
     TIME("hg_dir.header", {
         sk_vec3 d = header_hg_dir(W_IN, xo_float(&rng), xo_float(&rng), &pdf);
         acc += d.z + pdf;
     });
     TIME("iso_dir.header", {
-        skp_vec3 d = skp_isotropic_sample_dir(xo_float(&rng), xo_float(&rng), &pdf);
-        acc += d.z + pdf;
+        skp_dir_sample d = skp_isotropic_sample_dir(xo_float(&rng), xo_float(&rng));
+        acc += d.dir.z + d.pdf;
     });
     TIME("rayleigh_dir.header", {
         sk_vec3 d = header_rayleigh_dir(W_IN, xo_float(&rng), xo_float(&rng), &pdf);
@@ -383,7 +387,7 @@ static void time_round(void) {
     TIME_BATCH("hg_cos_n.portable", sk_phase_sample_cos_n_portable(&hg, bu1, bcos, BATCH));
     TIME_BATCH("hg_cos_n.header", {
         int i;
-        for (i = 0; i < BATCH; i++) bcos[i] = skp_hg_sample_cos(&php, bu1[i]);
+        for (i = 0; i < BATCH; i++) bcos[i] = skp_hg_sample_cos(php, bu1[i]);
     });
     TIME_BATCH("hg_cos_n.sk", sk_phase_sample_cos_n(&hg, bu1, bcos, BATCH));
     TIME_BATCH("hg_cos_n.pbrt", {
@@ -457,14 +461,14 @@ static void time_round(void) {
     TIME("two_lobe_cos.sk", acc += sk_phase_sample_cos(&two, xo_float(&rng)));
     TIME("two_lobe_cos.sk_lobe", acc += sk_phase_sample_cos_by_lobe(&two, xo_float(&rng)));
     TIME("two_lobe_cos.c", acc += two_lobe_cos(0.8f, -0.3f, 0.9f, xo_float(&rng)));
-    TIME("two_lobe_cos.header", acc += skp_two_lobe_sample_cos(&two_p, xo_float(&rng)));
+    TIME("two_lobe_cos.header", acc += skp_two_lobe_sample_cos(two_p, xo_float(&rng)));
     TIME("ff_cos.sk", acc += sk_phase_sample_cos(&ff, xo_float(&rng)));
     TIME("ff_cos.cycles", acc += cycles_ff_cos(ffc, xo_float(&rng)));
     for (k = 0; k < 4; k++) {
         float g = DRAINE_G[k], a = DRAINE_A[k];
         TIME(DRAINE_SK[k], acc += sk_phase_sample_cos(&draine[k], xo_float(&rng)));
         TIME(DRAINE_EQ6[k], acc += draine_eq6(g, a, xo_float(&rng)));
-        TIME(DRAINE_HEADER[k], acc += skp_draine_sample_cos(&draine_p[k], xo_float(&rng)));
+        TIME(DRAINE_HEADER[k], acc += skp_draine_sample_cos(draine_p[k], xo_float(&rng)));
     }
 }
 
@@ -514,9 +518,9 @@ static void accuracy(void) {
     MAX_ERR("hg_cos_n.sk", &hg64, sk_phase_sample_cos(&hg, u));
     MAX_ERR("hg_cos_n.pbrt", &hg64, pbrt_hg_cos(0.7f, u));
     /* The batch returns the header's bits (tests/c/portable_batch.c). */
-    MAX_ERR("hg_cos_n.portable", &hg64, skp_hg_sample_cos(&php, u));
-    MAX_ERR("hg_cos_n.header", &hg64, skp_hg_sample_cos(&php, u));
-    MAX_ERR("hg_cos.header", &hg64, skp_hg_sample_cos(&php, u));
+    MAX_ERR("hg_cos_n.portable", &hg64, skp_hg_sample_cos(php, u));
+    MAX_ERR("hg_cos_n.header", &hg64, skp_hg_sample_cos(php, u));
+    MAX_ERR("hg_cos.header", &hg64, skp_hg_sample_cos(php, u));
     MAX_DIR_ERR("hg_dir.header", &hg64, header_hg_dir(W_IN, u1, u2, &pdf));
     /* The direction batch returns the header's bits (tests/c/portable_batch.c). */
     MAX_DIR_ERR("hg_dir_n.portable", &hg64, header_hg_dir(W_IN, u1, u2, &pdf));
@@ -536,7 +540,7 @@ static void accuracy(void) {
         float g = DRAINE_G[k], a = DRAINE_A[k];
         MAX_ERR(DRAINE_SK[k], &draine64[k], sk_phase_sample_cos(&draine[k], u));
         MAX_ERR(DRAINE_EQ6[k], &draine64[k], draine_eq6(g, a, u));
-        MAX_ERR(DRAINE_HEADER[k], &draine64[k], skp_draine_sample_cos(&draine_p[k], u));
+        MAX_ERR(DRAINE_HEADER[k], &draine64[k], skp_draine_sample_cos(draine_p[k], u));
     }
 }
 

@@ -38,19 +38,16 @@ int main(void) {
         skp_vec3 dir = {0.0f, 0.0f, 1.0f};
         float z = 0.0f; /* optical depth into the slab */
         for (;;) {
-            float pdf;
-            skp_vec3 out;
+            skp_dir_sample out;
             z += dir.z * skp_free_path(1.0f, next(&rng));
             if (z < 0.0f) { reflected++; break; }
             if (z > tau) { transmitted++; break; }
-            out = skp_hg_sample_dir(&hg, dir, next(&rng), next(&rng), &pdf);
-            {
-                double c = (double)dir.x * out.x + (double)dir.y * out.y + (double)dir.z * out.z;
-                sum_cos += c;
-                sum_cos2 += c * c;
-            }
+            out = skp_hg_sample_dir(hg, dir, next(&rng), next(&rng));
+            /* The scattering angle's cosine comes with the direction. */
+            sum_cos += out.cos_theta;
+            sum_cos2 += (double)out.cos_theta * out.cos_theta;
             events++;
-            dir = out;
+            dir = out.dir;
         }
     }
     mean = sum_cos / events;

@@ -32,6 +32,25 @@
  * -cl-mad-enable or -cl-fast-relaxed-math. CUDA: the defaults (-prec-div=true,
  * -prec-sqrt=true, no --use_fast_math).
  *
+ * Memory spaces. Every sampler takes its model's constants by value
+ * (skp_hg, skp_two_lobe, skp_fog, skp_draine, skp_schlick) and returns a
+ * direction as a value (skp_dir_sample: the direction, its cos theta and
+ * its density), so a kernel passes a table entry from wherever it lives,
+ * as it stands: skp_hg_sample_dir(media[m].hg, w, u1, u2) with media in
+ * OpenCL __constant, __global or private memory (OpenCL C 1.2, 2.0 and
+ * 3.0), in CUDA or HIP __constant__ or device memory, or on the host. A
+ * pointer parameter would name one address space: OpenCL 1.2 has no
+ * generic one, and no version converts __constant to it. Inlined, as
+ * these functions are, the copy is only the loads of the fields the
+ * sampler reads. The constructors (skp_*_new) write through a pointer to
+ * the caller's own (private or host) variable, and the scalar outputs of
+ * skp_*_sample_cos_sin go to the caller's private variables.
+ *
+ * Several units. The header defines nothing with external linkage in any
+ * language: functions are static inline and the Rayleigh table static, so
+ * translation units (C, C++) and OpenCL programs linked with
+ * clLinkProgram may each include it.
+ *
  * Conventions: u in [0, 1] is clamped, NaN gives NaN; cos theta = +1 is
  * forward; densities are per steradian; directions are unit vectors.
  */
@@ -309,7 +328,9 @@ SKP_FN float skp_clamp01(float u) {
    reads its own copy, the host its), read-only data on a CPU. */
 #if defined(SKP_OPENCL_)
 #define SKP_TABLE_SPACE __constant
-__constant float skp_rayleigh_table_[512] = {SKP_RAYLEIGH_TABLE_DATA};
+/* static: each program that includes the header has its own copy, so
+   programs compiled apart link (clLinkProgram) without a clash. */
+static __constant float skp_rayleigh_table_[512] = {SKP_RAYLEIGH_TABLE_DATA};
 #define SKP_RAYLEIGH_TABLE skp_rayleigh_table_
 #else
 #define SKP_TABLE_SPACE
@@ -340,6 +361,15 @@ static __constant__ const float skp_rayleigh_table_dev_[512] SKP_UNUSED_ = {
 typedef struct skp_vec3 {
     float x, y, z;
 } skp_vec3;
+
+/* What a direction sampler returns: the unit direction, the cosine of its
+   angle to w_in (the sampled cos theta, exactly) and its density per
+   steradian. Returned by value, so a kernel may store it anywhere. */
+typedef struct skp_dir_sample {
+    skp_vec3 dir;
+    float cos_theta;
+    float pdf;
+} skp_dir_sample;
 
 /* Henyey-Greenstein's constants for one asymmetry g (fill with skp_hg_new):
    the Rust scatterkit::portable::Hg, field for field. */
@@ -425,9 +455,19 @@ SKP_FN float skp_isotropic_sample_cos_sin(float u, float *sin_out) {
     return SKP_MUL(2.0f, w) - 1.0f;
 }
 
+/* A direction sample from cos theta, sin theta and the density, the
+   azimuth 2 pi turns about the unit w_in. */
+SKP_FN skp_dir_sample skp_dir_sample_(skp_vec3 w_in, float mu, float sin_theta, float turns, float pdf) {
+    skp_dir_sample r;
+    r.dir = skp_direction_about(w_in, mu, sin_theta, turns);
+    r.cos_theta = mu;
+    r.pdf = pdf;
+    return r;
+}
+
 /* An isotropic direction from two uniforms (cos theta from u1 about +z,
-   azimuth 2 pi u2); *pdf = 1/(4 pi). */
-SKP_FN skp_vec3 skp_isotropic_sample_dir(float u1, float u2, float *pdf) {
+   azimuth 2 pi u2), density 1/(4 pi). */
+SKP_FN skp_dir_sample skp_isotropic_sample_dir(float u1, float u2) {
     SKP_BEGIN
     float s;
     float mu = skp_isotropic_sample_cos_sin(u1, &s);
@@ -435,8 +475,7 @@ SKP_FN skp_vec3 skp_isotropic_sample_dir(float u1, float u2, float *pdf) {
     z.x = 0.0f;
     z.y = 0.0f;
     z.z = 1.0f;
-    *pdf = SKP_INV_4PI;
-    return skp_direction_about(z, mu, s, u2);
+    return skp_dir_sample_(z, mu, s, u2, SKP_INV_4PI);
 }
 
 /* ---- error-free transformations (for the constructors) ---------------- */
@@ -473,14 +512,20 @@ SKP_FN void skp_dd_mul_(float xh, float xl, float yh, float yl, float *h, float 
 }
 
 /* ---- Henyey-Greenstein --------------------------------------------------- */
-/* The constants for g: 1 for |g| < 1, else 0 with every field NaN (so a
+/* The constants for g: 1 for -1 <= g <= 1, else 0 with every field NaN (so a
    sampler given them returns NaN). c1 ... c4 are rounded once from their
-   exact values (error-free transformations in float). */
+   exact values (error-free transformations in float).
+   |g| = 1 is the Dirac limit, which transport codes give a background
+   medium: every sampler returns cos theta = g (sin theta 0), the density is
+   +inf at cos theta = g and 0 elsewhere (HG's density as |g| -> 1, point by
+   point), and a sampler's density is +inf. A caller that weighs a sample by
+   value over density takes that ratio as 1, as for any sample of a phase
+   function's own distribution. */
 SKP_FN int skp_hg_new(float g, skp_hg *p) {
     SKP_BEGIN
     float a, ph, pl, mh, ml, p2h, p2l, m2h, m2l, h, l, c;
     a = skp_from_bits(skp_bits(g) & 0x7fffffffu); /* |g| */
-    if (!(a < 1.0f)) {
+    if (!(a <= 1.0f)) {
         float nan = skp_from_bits(0x7fc00000u);
         p->a = nan;
         p->sign = nan;
@@ -509,7 +554,7 @@ SKP_FN int skp_hg_new(float g, skp_hg *p) {
     p->c3 = SKP_MUL(2.0f, m2h + m2l);
     skp_dd_mul_(m2h, m2l, a, 0.0f, &h, &l);
     p->c4 = SKP_MUL(2.0f, h + l);
-    p->kd = SKP_INV_4PI / (c * c);
+    p->kd = SKP_INV_4PI / (c * c); /* +inf for |g| = 1 */
     p->k2 = SKP_MUL(mh, mh);
     p->kp = SKP_INV_4PI * c;
     return 1;
@@ -517,56 +562,69 @@ SKP_FN int skp_hg_new(float g, skp_hg *p) {
 
 /* P and M at u in [0, 1], and g' u' (the Rust module documents them):
    1 + mu' = P/d^2, 1 - mu' = M/d^2, u' = u (g > 0) or 1 - u, v' = 1 - u'. */
-SKP_FN float skp_hg_pm_(const skp_hg *p, float u, float *mm, float *gu) {
+SKP_FN float skp_hg_pm_(skp_hg p, float u, float *mm, float *gu) {
     SKP_BEGIN
     float u1, v1;
-    if (p->sign > 0.0f) {
+    if (p.sign > 0.0f) {
         u1 = u;
         v1 = 1.0f - u;
     } else {
         u1 = 1.0f - u;
         v1 = u;
     }
-    *mm = SKP_MUL(v1, p->c3 + SKP_MUL(p->c4, u1));
-    *gu = SKP_MUL(p->a, u1);
-    return SKP_MUL(u1, p->c1 + SKP_MUL(p->c2, u1));
+    *mm = SKP_MUL(v1, p.c3 + SKP_MUL(p.c4, u1));
+    *gu = SKP_MUL(p.a, u1);
+    return SKP_MUL(u1, p.c1 + SKP_MUL(p.c2, u1));
 }
 
 /* cos theta = F^-1(u) = +-(P - M)/(P + M) (u clamped to [0, 1], NaN gives
-   NaN): within 1.6e-7 for every |g| < 1. */
-SKP_FN float skp_hg_sample_cos(const skp_hg *p, float u) {
+   NaN): within 1.6e-7 for every |g| < 1; g itself for |g| = 1. */
+SKP_FN float skp_hg_sample_cos(skp_hg p, float u) {
     SKP_BEGIN
-    float mm, gu;
-    float pp = skp_hg_pm_(p, skp_clamp01(u), &mm, &gu);
-    return p->sign * ((pp - mm) / (pp + mm));
+    float mm, gu, pp;
+    if (p.a == 1.0f) {
+        return u != u ? u : p.sign; /* the Dirac limit */
+    }
+    pp = skp_hg_pm_(p, skp_clamp01(u), &mm, &gu);
+    return p.sign * ((pp - mm) / (pp + mm));
 }
 
 /* cos theta at u, with *sin_out = sin theta = 2 sqrt(P M)/(P + M) and *pdf
-   the density there, d^3/(4 pi (1 - g^2)^2). */
-SKP_FN float skp_hg_sample_cos_sin(const skp_hg *p, float u, float *sin_out, float *pdf) {
+   the density there, d^3/(4 pi (1 - g^2)^2) (|g| = 1: sin theta 0, density
+   +inf). */
+SKP_FN float skp_hg_sample_cos_sin(skp_hg p, float u, float *sin_out, float *pdf) {
     SKP_BEGIN
-    float mm, gu, sum, d;
-    float pp = skp_hg_pm_(p, skp_clamp01(u), &mm, &gu);
+    float mm, gu, sum, d, pp;
+    if (p.a == 1.0f) {
+        *sin_out = u != u ? u : 0.0f;
+        *pdf = u != u ? u : p.kd;
+        return u != u ? u : p.sign;
+    }
+    pp = skp_hg_pm_(p, skp_clamp01(u), &mm, &gu);
     sum = pp + mm;
-    d = p->omg + SKP_MUL(2.0f, gu); /* gu + gu, exactly */
+    d = p.omg + SKP_MUL(2.0f, gu); /* gu + gu, exactly */
     *sin_out = 2.0f * skp_sqrt(pp * mm) / sum;
-    *pdf = p->kd * (d * d * d);
-    return p->sign * ((pp - mm) / sum);
+    *pdf = p.kd * (d * d * d);
+    return p.sign * ((pp - mm) / sum);
 }
 
 /* The scattered direction about the unit w_in (cos theta from u1, azimuth
-   2 pi u2), with *pdf its density per steradian. */
-SKP_FN skp_vec3 skp_hg_sample_dir(const skp_hg *p, skp_vec3 w_in, float u1, float u2, float *pdf) {
-    float s;
-    float mu = skp_hg_sample_cos_sin(p, u1, &s, pdf);
-    return skp_direction_about(w_in, mu, s, u2);
+   2 pi u2), its cos theta and its density per steradian. */
+SKP_FN skp_dir_sample skp_hg_sample_dir(skp_hg p, skp_vec3 w_in, float u1, float u2) {
+    float s, pdf;
+    float mu = skp_hg_sample_cos_sin(p, u1, &s, &pdf);
+    return skp_dir_sample_(w_in, mu, s, u2, pdf);
 }
 
-/* The density per steradian at cos theta = mu in [-1, 1]. */
-SKP_FN float skp_hg_pdf(const skp_hg *p, float mu) {
+/* The density per steradian at cos theta = mu in [-1, 1] (|g| = 1: +inf at
+   mu = g, 0 elsewhere). */
+SKP_FN float skp_hg_pdf(skp_hg p, float mu) {
     SKP_BEGIN
-    float q = p->k2 + SKP_MUL(2.0f * p->a, 1.0f - SKP_MUL(p->sign, mu));
-    return p->kp / (q * skp_sqrt(q));
+    float q = p.k2 + SKP_MUL(2.0f * p.a, 1.0f - SKP_MUL(p.sign, mu));
+    if (p.a == 1.0f) {
+        return q > 0.0f ? 0.0f : (q == 0.0f ? p.kd : skp_from_bits(0x7fc00000u));
+    }
+    return p.kp / (q * skp_sqrt(q));
 }
 
 /* ---- two-lobe Henyey-Greenstein ------------------------------------------ */
@@ -577,8 +635,9 @@ typedef struct skp_two_lobe {
     float w;
 } skp_two_lobe;
 
-/* The lobes g1, g2 (each in (-1, 1)) with weight w in [0, 1] on the first:
-   1, else 0 with every field NaN. */
+/* The lobes g1, g2 (each in [-1, 1]; |g| = 1 is the Dirac limit, see
+   skp_hg_new) with weight w in [0, 1] on the first: 1, else 0 with every
+   field NaN. */
 SKP_FN int skp_two_lobe_new(float g1, float g2, float w, skp_two_lobe *p) {
     int ok = w >= 0.0f && w <= 1.0f;
     ok = skp_hg_new(g1, &p->first) & ok;
@@ -593,42 +652,44 @@ SKP_FN int skp_two_lobe_new(float g1, float g2, float w, skp_two_lobe *p) {
 }
 
 /* The lobe one uniform picks and the uniform rescaled inside it. */
-SKP_FN const skp_hg *skp_two_lobe_pick_(const skp_two_lobe *p, float u, float *v) {
+SKP_FN skp_hg skp_two_lobe_pick_(skp_two_lobe p, float u, float *v) {
     float w = skp_clamp01(u);
-    if (w < p->w) {
-        *v = w / p->w;
-        return &p->first;
+    if (w < p.w) {
+        *v = w / p.w;
+        return p.first;
     }
-    if (p->w < 1.0f) {
-        *v = (w - p->w) / (1.0f - p->w);
-        return &p->second;
+    if (p.w < 1.0f) {
+        *v = (w - p.w) / (1.0f - p.w);
+        return p.second;
     }
     *v = 1.0f;
-    return &p->first;
+    return p.first;
 }
 
 /* cos theta for u (clamped; NaN gives NaN), the lobe chosen by u itself:
    exact in distribution, not monotone across the lobes. */
-SKP_FN float skp_two_lobe_sample_cos(const skp_two_lobe *p, float u) {
+SKP_FN float skp_two_lobe_sample_cos(skp_two_lobe p, float u) {
     float v;
-    const skp_hg *lobe = skp_two_lobe_pick_(p, u, &v);
+    skp_hg lobe = skp_two_lobe_pick_(p, u, &v);
     return skp_hg_sample_cos(lobe, v);
 }
 
-/* The density per steradian at cos theta = mu, w p_1 + (1 - w) p_2. */
-SKP_FN float skp_two_lobe_pdf(const skp_two_lobe *p, float mu) {
+/* The density per steradian at cos theta = mu, w p_1 + (1 - w) p_2 (a lobe
+   of weight 0 adds nothing, even where a Dirac lobe's density is +inf). */
+SKP_FN float skp_two_lobe_pdf(skp_two_lobe p, float mu) {
     SKP_BEGIN
-    return SKP_MUL(p->w, skp_hg_pdf(&p->first, mu)) + SKP_MUL(1.0f - p->w, skp_hg_pdf(&p->second, mu));
+    float a = p.w > 0.0f ? SKP_MUL(p.w, skp_hg_pdf(p.first, mu)) : 0.0f;
+    float b = p.w < 1.0f ? SKP_MUL(1.0f - p.w, skp_hg_pdf(p.second, mu)) : 0.0f;
+    return a + b;
 }
 
 /* A direction about the unit w_in (cos theta and the lobe from u1, azimuth
-   2 pi u2), with *pdf the mixture's density there. */
-SKP_FN skp_vec3 skp_two_lobe_sample_dir(const skp_two_lobe *p, skp_vec3 w_in, float u1, float u2, float *pdf) {
+   2 pi u2), its cos theta and the mixture's density there. */
+SKP_FN skp_dir_sample skp_two_lobe_sample_dir(skp_two_lobe p, skp_vec3 w_in, float u1, float u2) {
     float v, s, lobe_pdf, mu;
-    const skp_hg *lobe = skp_two_lobe_pick_(p, u1, &v);
+    skp_hg lobe = skp_two_lobe_pick_(p, u1, &v);
     mu = skp_hg_sample_cos_sin(lobe, v, &s, &lobe_pdf);
-    *pdf = skp_two_lobe_pdf(p, mu);
-    return skp_direction_about(w_in, mu, s, u2);
+    return skp_dir_sample_(w_in, mu, s, u2, skp_two_lobe_pdf(p, mu));
 }
 
 /* ---- Schlick ------------------------------------------------------------- */
@@ -661,41 +722,40 @@ SKP_FN int skp_schlick_new(float k, skp_schlick *p) {
 }
 
 /* cos theta at u (clamped; NaN gives NaN), monotone in u. */
-SKP_FN float skp_schlick_sample_cos(const skp_schlick *p, float u) {
+SKP_FN float skp_schlick_sample_cos(skp_schlick p, float u) {
     SKP_BEGIN
     float v = skp_clamp01(u), d, mu;
-    if (p->k >= 0.0f) {
-        d = p->omk + SKP_MUL(2.0f * p->k, v);
+    if (p.k >= 0.0f) {
+        d = p.omk + SKP_MUL(2.0f * p.k, v);
     } else {
-        d = p->opk - SKP_MUL(2.0f * p->k, 1.0f - v);
+        d = p.opk - SKP_MUL(2.0f * p.k, 1.0f - v);
     }
-    if (2.0f * v <= p->omk) {
-        mu = (2.0f * v) * p->opk / d - 1.0f;
+    if (2.0f * v <= p.omk) {
+        mu = (2.0f * v) * p.opk / d - 1.0f;
     } else {
-        mu = 1.0f - (2.0f * p->omk) * (1.0f - v) / d;
+        mu = 1.0f - (2.0f * p.omk) * (1.0f - v) / d;
     }
     return mu > 1.0f ? 1.0f : (mu < -1.0f ? -1.0f : mu);
 }
 
 /* The density per steradian at cos theta = mu. */
-SKP_FN float skp_schlick_pdf(const skp_schlick *p, float mu) {
+SKP_FN float skp_schlick_pdf(skp_schlick p, float mu) {
     SKP_BEGIN
     float d;
-    if (p->k >= 0.0f) {
-        d = p->omk + SKP_MUL(p->k, 1.0f - mu);
+    if (p.k >= 0.0f) {
+        d = p.omk + SKP_MUL(p.k, 1.0f - mu);
     } else {
-        d = p->opk - SKP_MUL(p->k, 1.0f + mu);
+        d = p.opk - SKP_MUL(p.k, 1.0f + mu);
     }
-    return p->norm / (d * d);
+    return p.norm / (d * d);
 }
 
-/* A direction about the unit w_in, its density at *pdf. */
-SKP_FN skp_vec3 skp_schlick_sample_dir(const skp_schlick *p, skp_vec3 w_in, float u1, float u2, float *pdf) {
+/* A direction about the unit w_in, its cos theta and its density. */
+SKP_FN skp_dir_sample skp_schlick_sample_dir(skp_schlick p, skp_vec3 w_in, float u1, float u2) {
     SKP_BEGIN
     float mu = skp_schlick_sample_cos(p, u1);
     float s = skp_sqrt((1.0f - mu) * (1.0f + mu));
-    *pdf = skp_schlick_pdf(p, mu);
-    return skp_direction_about(w_in, mu, s, u2);
+    return skp_dir_sample_(w_in, mu, s, u2, skp_schlick_pdf(p, mu));
 }
 
 /* ---- Rayleigh ------------------------------------------------------------ */
@@ -720,13 +780,12 @@ SKP_FN float skp_rayleigh_pdf(float mu) {
     return SKP_RAYLEIGH_K * (1.0f + SKP_MUL(mu, mu));
 }
 
-/* A Rayleigh direction about the unit w_in, with *pdf its density. */
-SKP_FN skp_vec3 skp_rayleigh_sample_dir(skp_vec3 w_in, float u1, float u2, float *pdf) {
+/* A Rayleigh direction about the unit w_in, its cos theta and density. */
+SKP_FN skp_dir_sample skp_rayleigh_sample_dir(skp_vec3 w_in, float u1, float u2) {
     SKP_BEGIN
     float mu = skp_rayleigh_sample_cos(u1);
     float s = skp_sqrt((1.0f - mu) * (1.0f + mu));
-    *pdf = skp_rayleigh_pdf(mu);
-    return skp_direction_about(w_in, mu, s, u2);
+    return skp_dir_sample_(w_in, mu, s, u2, skp_rayleigh_pdf(mu));
 }
 
 /* ---- Draine and Cornette-Shanks ------------------------------------------ */
@@ -810,34 +869,43 @@ SKP_FN float skp_cbrt_(float x) {
 }
 
 /* Eq. 6 for one orientation at u in [0, 1/2]. */
-SKP_FN float skp_draine_side_sample_(const skp_draine_side *e, float u) {
+SKP_FN float skp_draine_side_sample_(skp_draine_side e, float u) {
     SKP_BEGIN
-    float lo = e->d + SKP_MUL(e->q, u);
-    float t4 = lo + e->r;
-    float t5 = SKP_MUL(e->t0, lo * (lo + SKP_MUL(2.0f, e->r)));
-    float root = skp_sqrt(SKP_MUL(t5, t5) - e->t6_3);
+    float lo = e.d + SKP_MUL(e.q, u);
+    float t4 = lo + e.r;
+    float t5 = SKP_MUL(e.t0, lo * (lo + SKP_MUL(2.0f, e.r)));
+    float root = skp_sqrt(SKP_MUL(t5, t5) - e.t6_3);
     float m = t5 + skp_from_bits(skp_bits(root) | (skp_bits(t5) & 0x80000000u));
     float c = skp_cbrt_(m);
-    float t8 = SKP_MUL(e->t1 + c + e->t6 / c, e->two_inv_t0);
-    float t9 = skp_sqrt(e->k + t8);
-    float d = skp_sqrt(e->k - t8 + t4 * e->eight_inv_t0 / t9) - t9;
-    return e->half_g + SKP_MUL(1.0f - SKP_MUL(0.25f * d, d), e->inv_2g);
+    float t8 = SKP_MUL(e.t1 + c + e.t6 / c, e.two_inv_t0);
+    float t9 = skp_sqrt(e.k + t8);
+    float d = skp_sqrt(e.k - t8 + t4 * e.eight_inv_t0 / t9) - t9;
+    return e.half_g + SKP_MUL(1.0f - SKP_MUL(0.25f * d, d), e.inv_2g);
 }
 
 /* Draine's cos theta = F^-1(u) (u clamped to [0, 1], NaN gives NaN): eq. 6
    of Jendersie and d'Eon (2023) rearranged without its cancellations, in
    float; never further from the exact inverse than eq. 6 as published. */
-SKP_FN float skp_draine_sample_cos(const skp_draine *p, float u) {
+SKP_FN float skp_draine_sample_cos(skp_draine p, float u) {
     SKP_BEGIN
     float w = skp_clamp01(u);
-    return w > 0.5f ? -skp_draine_side_sample_(&p->upper, 1.0f - w) : skp_draine_side_sample_(&p->lower, w);
+    return w > 0.5f ? -skp_draine_side_sample_(p.upper, 1.0f - w) : skp_draine_side_sample_(p.lower, w);
 }
 
 /* Draine's density per steradian at cos theta = mu. */
-SKP_FN float skp_draine_pdf(const skp_draine *p, float mu) {
+SKP_FN float skp_draine_pdf(skp_draine p, float mu) {
     SKP_BEGIN
-    float q = 1.0f + SKP_MUL(p->g, p->g) - SKP_MUL(2.0f * p->g, mu);
-    return p->kp * (1.0f + SKP_MUL(p->alpha * mu, mu)) / (q * skp_sqrt(q));
+    float q = 1.0f + SKP_MUL(p.g, p.g) - SKP_MUL(2.0f * p.g, mu);
+    return p.kp * (1.0f + SKP_MUL(p.alpha * mu, mu)) / (q * skp_sqrt(q));
+}
+
+/* A Draine direction about the unit w_in (cos theta from u1, azimuth
+   2 pi u2), its cos theta and its density. */
+SKP_FN skp_dir_sample skp_draine_sample_dir(skp_draine p, skp_vec3 w_in, float u1, float u2) {
+    SKP_BEGIN
+    float mu = skp_draine_sample_cos(p, u1);
+    float s = skp_sqrt((1.0f - mu) * (1.0f + mu));
+    return skp_dir_sample_(w_in, mu, s, u2, skp_draine_pdf(p, mu));
 }
 
 /* ---- the fog (Jendersie and d'Eon 2023) ---------------------------------- */
@@ -850,7 +918,7 @@ typedef struct skp_fog {
     float w_d;
 } skp_fog;
 
-/* 1 for g_hg in (-1, 1), the Draine lobe within skp_draine_new's reach and
+/* 1 for g_hg in [-1, 1] (|g_hg| = 1: a Dirac lobe, see skp_hg_new), the Draine lobe within skp_draine_new's reach and
    w_d in [0, 1]; else 0 with every field NaN. */
 SKP_FN int skp_fog_new(float g_hg, float g_d, float alpha, float w_d, skp_fog *p) {
     int ok = w_d >= 0.0f && w_d <= 1.0f;
@@ -867,17 +935,29 @@ SKP_FN int skp_fog_new(float g_hg, float g_d, float alpha, float w_d, skp_fog *p
 
 /* cos theta for u (clamped; NaN gives NaN) by the paper's lobe choice: u <
    w_d picks the Draine lobe with u / w_d, else HG with (u - w_d)/(1 - w_d). */
-SKP_FN float skp_fog_sample_cos(const skp_fog *p, float u) {
+SKP_FN float skp_fog_sample_cos(skp_fog p, float u) {
     float w = skp_clamp01(u);
-    if (w < p->w_d) return skp_draine_sample_cos(&p->draine, w / p->w_d);
-    if (p->w_d < 1.0f) return skp_hg_sample_cos(&p->hg, (w - p->w_d) / (1.0f - p->w_d));
-    return skp_draine_sample_cos(&p->draine, 1.0f);
+    if (w < p.w_d) return skp_draine_sample_cos(p.draine, w / p.w_d);
+    if (p.w_d < 1.0f) return skp_hg_sample_cos(p.hg, (w - p.w_d) / (1.0f - p.w_d));
+    return skp_draine_sample_cos(p.draine, 1.0f);
 }
 
-/* The fog's density per steradian at cos theta = mu. */
-SKP_FN float skp_fog_pdf(const skp_fog *p, float mu) {
+/* The fog's density per steradian at cos theta = mu (an HG lobe of weight
+   0 adds nothing, even a Dirac one). */
+SKP_FN float skp_fog_pdf(skp_fog p, float mu) {
     SKP_BEGIN
-    return SKP_MUL(1.0f - p->w_d, skp_hg_pdf(&p->hg, mu)) + SKP_MUL(p->w_d, skp_draine_pdf(&p->draine, mu));
+    float h = p.w_d < 1.0f ? SKP_MUL(1.0f - p.w_d, skp_hg_pdf(p.hg, mu)) : 0.0f;
+    return h + SKP_MUL(p.w_d, skp_draine_pdf(p.draine, mu));
+}
+
+/* A fog direction about the unit w_in (cos theta and the lobe from u1 as
+   skp_fog_sample_cos, azimuth 2 pi u2), its cos theta and the fog's
+   density there. */
+SKP_FN skp_dir_sample skp_fog_sample_dir(skp_fog p, skp_vec3 w_in, float u1, float u2) {
+    SKP_BEGIN
+    float mu = skp_fog_sample_cos(p, u1);
+    float s = skp_sqrt((1.0f - mu) * (1.0f + mu));
+    return skp_dir_sample_(w_in, mu, s, u2, skp_fog_pdf(p, mu));
 }
 
 /* ---- free flight --------------------------------------------------------- */

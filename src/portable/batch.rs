@@ -7,7 +7,7 @@
 //! bits are the same in all of them, and the header's.
 
 use super::phase::{
-    Hg, hg_pm_of, hg_sample_cos, hg_sample_cos_sin, isotropic_sample_cos_sin, rayleigh_pdf,
+    Hg, dirac, hg_pm_of, is_dirac, hg_sample_cos, hg_sample_cos_sin, isotropic_sample_cos_sin, rayleigh_pdf,
     rayleigh_sample_cos,
 };
 use super::turns::direction_about;
@@ -186,9 +186,16 @@ pub fn isotropic_sample_cos_n(u: &[f32], out: &mut [f32]) {
 /// The HG loop for `u ∈ [0, 1]`, written once for every build: the
 /// scalar sampler's operations (`phase::hg_pm_of`, `phase::hg_mu`) without
 /// the clamp, which leaves such `u` as they are, and with the sign of `g`
-/// taken out of the loop (`±1 · x` is `±x` exactly).
+/// and the Dirac limit (`|g| = 1`) taken out of the loop (`±1 · x` is `±x`
+/// exactly).
 #[inline(always)]
 fn hg_each(p: &Hg, u: &[f32], out: &mut [f32]) {
+    if is_dirac(p) {
+        for (o, &x) in out.iter_mut().zip(u) {
+            *o = dirac(x, p.sign);
+        }
+        return;
+    }
     let mu = |u1: f32, v1: f32| {
         let (pp, mm) = hg_pm_of(p, u1, v1);
         (pp - mm) / (pp + mm)
@@ -266,7 +273,7 @@ mod tests {
     #[test]
     fn all_builds_agree() {
         let u: std::vec::Vec<f32> = (0..=4099).map(|i| i as f32 / 4099.0).collect();
-        for g in [0.7f32, -0.3, 0.0, 0.999_999, -0.999_999] {
+        for g in [0.7f32, -0.3, 0.0, 0.999_999, -0.999_999, 1.0, -1.0] {
             let p = Hg::new(g).unwrap();
             for (needs, build) in portable_hg_cos_n::BUILDS {
                 if needs > detected() {

@@ -14,6 +14,7 @@
 //! step remains): `tests/models/portable.rs` has the figures.
 
 use super::clamp01;
+use super::phase::DirSample;
 use crate::math::draine_eq6::eq6_core;
 use crate::math::real::Real;
 
@@ -165,6 +166,15 @@ pub fn draine_pdf(p: &Draine, mu: f32) -> f32 {
     p.kp * (1.0 + p.alpha * mu * mu) / (q * Real::sqrt(q))
 }
 
+/// A Draine direction about the unit `w_in` (`cos θ` from `u1`, azimuth
+/// `2π u2`), its `cos θ` and its density.
+#[inline(always)]
+pub fn draine_sample_dir(p: &Draine, w_in: [f32; 3], u1: f32, u2: f32) -> DirSample {
+    let mu = draine_sample_cos(p, u1);
+    let s = Real::sqrt((1.0 - mu) * (1.0 + mu));
+    DirSample::about(w_in, mu, s, u2, draine_pdf(p, mu))
+}
+
 /// Jendersie & d'Eon's fog phase function (2023): a Henyey–Greenstein lobe
 /// and a Draine lobe, `p = (1 − w_D) p_HG + w_D p_D`, sampled by lobe (the
 /// paper's sampler: `u < w_D` picks the Draine lobe and `u/w_D` is reused
@@ -183,7 +193,8 @@ pub struct Fog {
 
 impl Fog {
     /// The lobes from the fit's parameters (the library's `fog_fit` gives
-    /// them for a droplet diameter): `g_hg ∈ (−1, 1)`, the Draine lobe
+    /// them for a droplet diameter): `g_hg ∈ [−1, 1]` (`|g_hg| = 1` is a
+    /// Dirac lobe, [`Hg::new`](super::Hg::new)), the Draine lobe
     /// within [`Draine::new`]'s reach, `w_d ∈ [0, 1]`; `None` otherwise.
     pub fn new(g_hg: f32, g_d: f32, alpha: f32, w_d: f32) -> Option<Self> {
         if !(0.0..=1.0).contains(&w_d) {
@@ -211,8 +222,24 @@ pub fn fog_sample_cos(p: &Fog, u: f32) -> f32 {
 }
 
 /// The fog's density per steradian at `cos θ = mu`,
-/// `(1 − w_D) p_HG(μ) + w_D p_D(μ)`.
+/// `(1 − w_D) p_HG(μ) + w_D p_D(μ)`; an HG lobe of weight 0 adds nothing,
+/// even a Dirac lobe where its density is `+∞`.
 #[inline(always)]
 pub fn fog_pdf(p: &Fog, mu: f32) -> f32 {
-    (1.0 - p.w_d) * super::phase::hg_pdf(&p.hg, mu) + p.w_d * draine_pdf(&p.draine, mu)
+    let h = if p.w_d < 1.0 {
+        (1.0 - p.w_d) * super::phase::hg_pdf(&p.hg, mu)
+    } else {
+        0.0
+    };
+    h + p.w_d * draine_pdf(&p.draine, mu)
+}
+
+/// A fog direction about the unit `w_in` (`cos θ` and the lobe from `u1`
+/// as [`fog_sample_cos`], azimuth `2π u2`), its `cos θ` and the fog's
+/// density there.
+#[inline(always)]
+pub fn fog_sample_dir(p: &Fog, w_in: [f32; 3], u1: f32, u2: f32) -> DirSample {
+    let mu = fog_sample_cos(p, u1);
+    let s = Real::sqrt((1.0 - mu) * (1.0 + mu));
+    DirSample::about(w_in, mu, s, u2, fog_pdf(p, mu))
 }

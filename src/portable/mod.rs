@@ -32,10 +32,13 @@ pub use batch::{
     Model, hg_sample_cos_n, hg_sample_cos_n_in_range, isotropic_sample_cos_n,
     rayleigh_sample_cos_n, sample_dir_n,
 };
-pub use draine::{Draine, DraineSide, Fog, draine_pdf, draine_sample_cos, fog_pdf, fog_sample_cos};
+pub use draine::{
+    Draine, DraineSide, Fog, draine_pdf, draine_sample_cos, draine_sample_dir, fog_pdf, fog_sample_cos,
+    fog_sample_dir,
+};
 pub use flight::{exp, free_path, ln, spectral_free_path, transmittance};
 pub use phase::{
-    Hg, TwoLobe, hg_pdf, hg_sample_cos, hg_sample_cos_sin, hg_sample_dir, isotropic_sample_cos_sin,
+    DirSample, Hg, TwoLobe, hg_pdf, hg_sample_cos, hg_sample_cos_sin, hg_sample_dir, isotropic_sample_cos_sin,
     isotropic_sample_dir, rayleigh_pdf, rayleigh_sample_cos, rayleigh_sample_dir, two_lobe_pdf,
     two_lobe_sample_cos, two_lobe_sample_dir,
 };

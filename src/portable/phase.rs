@@ -23,13 +23,40 @@ pub fn isotropic_sample_cos_sin(u: f32) -> (f32, f32) {
     (2.0 * u - 1.0, 2.0 * Real::sqrt(u * (1.0 - u)))
 }
 
-/// An isotropic direction (independent of any incoming one) and its
-/// density `1/(4π)`, from two uniforms: `cos θ` from `u1` about `+z`,
-/// azimuth `2π u2`.
+/// A sampled direction (the header's `skp_dir_sample`): the unit
+/// direction, the cosine of its angle to `w_in` (the sampled `cos θ`,
+/// exactly) and its density per steradian.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirSample {
+    /// The unit direction.
+    pub dir: [f32; 3],
+    /// `cos θ` between `w_in` and `dir`, as sampled.
+    pub cos_theta: f32,
+    /// The density per steradian at `dir`.
+    pub pdf: f32,
+}
+
+impl DirSample {
+    /// The direction at `cos θ = mu`, `sin θ = sin_theta`, azimuth
+    /// `2π turns` about the unit `w_in`, with density `pdf`.
+    #[inline(always)]
+    pub(super) fn about(w_in: [f32; 3], mu: f32, sin_theta: f32, turns: f32, pdf: f32) -> Self {
+        DirSample {
+            dir: direction_about(w_in, mu, sin_theta, turns),
+            cos_theta: mu,
+            pdf,
+        }
+    }
+}
+
+/// An isotropic direction (independent of any incoming one), its `cos θ`
+/// about `+z` and its density `1/(4π)`, from two uniforms: `cos θ` from
+/// `u1`, azimuth `2π u2`.
 #[inline(always)]
-pub fn isotropic_sample_dir(u1: f32, u2: f32) -> ([f32; 3], f32) {
+pub fn isotropic_sample_dir(u1: f32, u2: f32) -> DirSample {
     let (mu, s) = isotropic_sample_cos_sin(u1);
-    (direction_about([0.0, 0.0, 1.0], mu, s, u2), INV_4PI)
+    DirSample::about([0.0, 0.0, 1.0], mu, s, u2, INV_4PI)
 }
 
 /// Henyey–Greenstein's constants for one asymmetry `g` (the header's
@@ -39,7 +66,7 @@ pub fn isotropic_sample_dir(u1: f32, u2: f32) -> ([f32; 3], f32) {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hg {
-    /// `g' = |g|`, the asymmetry's magnitude (`g ∈ (−1, 1)`).
+    /// `g' = |g|`, the asymmetry's magnitude (`g ∈ [−1, 1]`).
     pub a: f32,
     /// `+1` for `g > 0`, `−1` for `g ≤ 0`: samples of `g < 0` are the
     /// mirror `μ(g, u) = −μ(−g, 1 − u)`.
@@ -54,7 +81,8 @@ pub struct Hg {
     pub c3: f32,
     /// `2 g' (1 − g')²`.
     pub c4: f32,
-    /// `1/(4π (1 − g²)²)`: the density at a sample is this times `d³`.
+    /// `1/(4π (1 − g²)²)`: the density at a sample is this times `d³`
+    /// (`+∞` for `|g| = 1`).
     pub kd: f32,
     /// `(1 − g')²`, for the density at any `μ`.
     pub k2: f32,
@@ -63,9 +91,14 @@ pub struct Hg {
 }
 
 impl Hg {
-    /// The constants for `g`; `None` unless `|g| < 1` (NaN included).
+    /// The constants for `g`; `None` unless `|g| ≤ 1` (NaN included).
+    /// `|g| = 1` is the Dirac limit (all scattering at `cos θ = g`), which
+    /// transport codes give a background medium: the samplers return
+    /// `cos θ = g` (`sin θ = 0`) for every `u` but NaN, the density is `+∞`
+    /// at `μ = g` and 0 elsewhere (HG's density as `|g| → 1`, point by
+    /// point), and a sample's density is `+∞`.
     pub fn new(g: f32) -> Option<Self> {
-        if g.is_nan() || g.abs() >= 1.0 {
+        if g.is_nan() || g.abs() > 1.0 {
             return None;
         }
         let a = g.abs();
@@ -76,6 +109,7 @@ impl Hg {
         let (opg2, omg2) = (mul(opg, opg), mul(omg, omg));
         let round = |x: (f32, f32)| 2.0 * (x.0 + x.1);
         let c = omg.0 * opg.0;
+        // kd is +∞ at |g| = 1, the Dirac limit's density.
         Some(Hg {
             a,
             sign: if g > 0.0 { 1.0 } else { -1.0 },
@@ -132,20 +166,40 @@ fn hg_mu(p: &Hg, pp: f32, mm: f32) -> f32 {
     p.sign * ((pp - mm) / (pp + mm))
 }
 
+/// Whether these are the Dirac limit's constants (`|g| = 1`).
+#[inline(always)]
+pub(super) fn is_dirac(p: &Hg) -> bool {
+    p.a == 1.0
+}
+
+/// The Dirac limit's `x` at `u`: NaN for a NaN `u`, else `x`.
+#[inline(always)]
+pub(super) fn dirac(u: f32, x: f32) -> f32 {
+    if u.is_nan() { u } else { x }
+}
+
 /// Henyey–Greenstein's `cos θ = F⁻¹(u)` for `u ∈ [0, 1]` (clamped; NaN
 /// gives NaN), within 1.6·10⁻⁷ of the exact value for every `|g| < 1`
-/// (`tests/models/portable.rs` gives the measured bound).
+/// (`tests/models/portable.rs` gives the measured bound); `g` itself for
+/// `|g| = 1`.
 #[inline(always)]
 pub fn hg_sample_cos(p: &Hg, u: f32) -> f32 {
+    if is_dirac(p) {
+        return dirac(u, p.sign);
+    }
     let (pp, mm, _) = hg_pm(p, clamp01(u));
     hg_mu(p, pp, mm)
 }
 
 /// `(cos θ, sin θ, density)` at `u`: `sin θ = sqrt((1 + μ)(1 − μ))
 /// = 2 sqrt(P M)/(P + M)`, relative precision kept at both poles; the
-/// density `d³/(4π (1 − g²)²)` from `d = 1 − g' + 2g'u'`.
+/// density `d³/(4π (1 − g²)²)` from `d = 1 − g' + 2g'u'` (for `|g| = 1`:
+/// `(g, 0, +∞)`).
 #[inline(always)]
 pub fn hg_sample_cos_sin(p: &Hg, u: f32) -> (f32, f32, f32) {
+    if is_dirac(p) {
+        return (dirac(u, p.sign), dirac(u, 0.0), dirac(u, p.kd));
+    }
     let (pp, mm, gu) = hg_pm(p, clamp01(u));
     let sum = pp + mm;
     let d = p.omg + (gu + gu);
@@ -157,20 +211,30 @@ pub fn hg_sample_cos_sin(p: &Hg, u: f32) -> (f32, f32, f32) {
 }
 
 /// The scattered direction about the unit `w_in` (`cos θ` from `u1`,
-/// azimuth `2π u2`) and its density per steradian.
+/// azimuth `2π u2`), its `cos θ` and its density per steradian.
 #[inline(always)]
-pub fn hg_sample_dir(p: &Hg, w_in: [f32; 3], u1: f32, u2: f32) -> ([f32; 3], f32) {
+pub fn hg_sample_dir(p: &Hg, w_in: [f32; 3], u1: f32, u2: f32) -> DirSample {
     let (mu, s, pdf) = hg_sample_cos_sin(p, u1);
-    (direction_about(w_in, mu, s, u2), pdf)
+    DirSample::about(w_in, mu, s, u2, pdf)
 }
 
 /// Henyey–Greenstein's density per steradian at `cos θ = mu ∈ [−1, 1]`,
 /// `(1 − g²)/(4π q^{3/2})` with `q = 1 + g² − 2gμ` written as
 /// `(1 − g')² + 2g'(1 − sμ)` (`g' = |g|`, `s` its sign), a sum of
-/// non-negative terms that does not cancel in the forward peak.
+/// non-negative terms that does not cancel in the forward peak. For
+/// `|g| = 1`: `+∞` at `μ = g` (`q = 0`), 0 elsewhere in `[−1, 1]`.
 #[inline(always)]
 pub fn hg_pdf(p: &Hg, mu: f32) -> f32 {
     let q = p.k2 + 2.0 * p.a * (1.0 - p.sign * mu);
+    if is_dirac(p) {
+        return if q > 0.0 {
+            0.0
+        } else if q == 0.0 {
+            p.kd
+        } else {
+            f32::NAN
+        };
+    }
     p.kp / (q * Real::sqrt(q))
 }
 
@@ -203,12 +267,12 @@ pub fn rayleigh_pdf(mu: f32) -> f32 {
     RAYLEIGH_K * (1.0 + mu * mu)
 }
 
-/// A Rayleigh direction about the unit `w_in` and its density.
+/// A Rayleigh direction about the unit `w_in`, its `cos θ` and density.
 #[inline(always)]
-pub fn rayleigh_sample_dir(w_in: [f32; 3], u1: f32, u2: f32) -> ([f32; 3], f32) {
+pub fn rayleigh_sample_dir(w_in: [f32; 3], u1: f32, u2: f32) -> DirSample {
     let mu = rayleigh_sample_cos(u1);
     let s = Real::sqrt((1.0 - mu) * (1.0 + mu));
-    (direction_about(w_in, mu, s, u2), rayleigh_pdf(mu))
+    DirSample::about(w_in, mu, s, u2, rayleigh_pdf(mu))
 }
 
 /// Two Henyey–Greenstein lobes mixed with weight `w` on the first (the
@@ -225,8 +289,9 @@ pub struct TwoLobe {
 }
 
 impl TwoLobe {
-    /// The lobes `g1`, `g2` (each in `(−1, 1)`) with weight `w ∈ [0, 1]` on
-    /// the first; `None` otherwise (NaN included).
+    /// The lobes `g1`, `g2` (each in `[−1, 1]`; `|g| = 1` is a Dirac lobe,
+    /// [`Hg::new`]) with weight `w ∈ [0, 1]` on the first; `None` otherwise
+    /// (NaN included).
     pub fn new(g1: f32, g2: f32, w: f32) -> Option<Self> {
         if !(0.0..=1.0).contains(&w) {
             return None;
@@ -265,17 +330,29 @@ pub fn two_lobe_sample_cos(p: &TwoLobe, u: f32) -> f32 {
 }
 
 /// Two-lobe HG's density per steradian at `cos θ = mu`,
-/// `w p_1(μ) + (1 − w) p_2(μ)`.
+/// `w p_1(μ) + (1 − w) p_2(μ)`; a lobe of weight 0 adds nothing, even a
+/// Dirac lobe where its density is `+∞`.
 #[inline(always)]
 pub fn two_lobe_pdf(p: &TwoLobe, mu: f32) -> f32 {
-    p.w * hg_pdf(&p.first, mu) + (1.0 - p.w) * hg_pdf(&p.second, mu)
+    let a = if p.w > 0.0 {
+        p.w * hg_pdf(&p.first, mu)
+    } else {
+        0.0
+    };
+    let b = if p.w < 1.0 {
+        (1.0 - p.w) * hg_pdf(&p.second, mu)
+    } else {
+        0.0
+    };
+    a + b
 }
 
 /// A two-lobe HG direction about the unit `w_in` (`cos θ` and the lobe
-/// from `u1`, azimuth `2π u2`) and the mixture's density there.
+/// from `u1`, azimuth `2π u2`), its `cos θ` and the mixture's density
+/// there.
 #[inline(always)]
-pub fn two_lobe_sample_dir(p: &TwoLobe, w_in: [f32; 3], u1: f32, u2: f32) -> ([f32; 3], f32) {
+pub fn two_lobe_sample_dir(p: &TwoLobe, w_in: [f32; 3], u1: f32, u2: f32) -> DirSample {
     let (lobe, v) = two_lobe_pick(p, u1);
     let (mu, s, _) = hg_sample_cos_sin(lobe, v);
-    (direction_about(w_in, mu, s, u2), two_lobe_pdf(p, mu))
+    DirSample::about(w_in, mu, s, u2, two_lobe_pdf(p, mu))
 }

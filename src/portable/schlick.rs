@@ -6,7 +6,7 @@
 //! from two non-negative terms, so neither end cancels.
 
 use super::clamp01;
-use super::turns::direction_about;
+use super::phase::DirSample;
 use crate::math::real::Real;
 
 /// Schlick's constants for one `k ∈ (−1, 1)` (the header's `skp_schlick`).
@@ -69,10 +69,11 @@ pub fn schlick_pdf(p: &Schlick, mu: f32) -> f32 {
     p.norm / (d * d)
 }
 
-/// A direction about the unit `w_in` and its density per steradian.
+/// A direction about the unit `w_in`, its `cos θ` and its density per
+/// steradian.
 #[inline(always)]
-pub fn schlick_sample_dir(p: &Schlick, w_in: [f32; 3], u1: f32, u2: f32) -> ([f32; 3], f32) {
+pub fn schlick_sample_dir(p: &Schlick, w_in: [f32; 3], u1: f32, u2: f32) -> DirSample {
     let mu = schlick_sample_cos(p, u1);
     let s = Real::sqrt((1.0 - mu) * (1.0 + mu));
-    (direction_about(w_in, mu, s, u2), schlick_pdf(p, mu))
+    DirSample::about(w_in, mu, s, u2, schlick_pdf(p, mu))
 }

@@ -47,14 +47,19 @@ int main(void) {
             if (sk_phase_sample_dir_n_portable(&ph, wx, wy, wz, u, u2, ox, oy, oz, pdf, n) != SK_OK) return 2;
             for (i = 0; i < n; i++) {
                 skp_vec3 w, d;
+                skp_dir_sample r;
                 float q, s, mu;
                 w.x = wx[i];
                 w.y = wy[i];
                 w.z = wz[i];
                 if (m < 6) {
-                    d = skp_hg_sample_dir(&h, w, u[i], u2[i], &q);
+                    r = skp_hg_sample_dir(h, w, u[i], u2[i]);
+                    d = r.dir;
+                    q = r.pdf;
                 } else if (m == 6) {
-                    d = skp_rayleigh_sample_dir(w, u[i], u2[i], &q);
+                    r = skp_rayleigh_sample_dir(w, u[i], u2[i]);
+                    d = r.dir;
+                    q = r.pdf;
                 } else {
                     mu = skp_isotropic_sample_cos_sin(u[i], &s);
                     d = skp_direction_about(w, mu, s, u2[i]);
@@ -68,7 +73,7 @@ int main(void) {
                 }
             }
             for (i = 0; i < n; i++) {
-                float s, want = m < 6 ? skp_hg_sample_cos(&h, u[i])
+                float s, want = m < 6 ? skp_hg_sample_cos(h, u[i])
                                       : (m == 6 ? skp_rayleigh_sample_cos(u[i])
                                                 : skp_isotropic_sample_cos_sin(u[i], &s));
                 compared++;

@@ -9,7 +9,7 @@
 #include "scatterkit_portable.h"
 
 #define PC_N 16777216u
-#define PC_CASES 29
+#define PC_CASES 35
 #define PC_MAJ_N 60u /* the majorant grid of case 26: 5 x 3 x 4 cells */
 
 SKP_FN float pc_u(skp_u32 k) {
@@ -68,6 +68,15 @@ SKP_FN float pc_g(int c) {
     case 6: return 0.999f;
     default: return -0.999999f;
     }
+}
+
+/* A direction sample to o: the direction, then its density; its cos theta
+   goes to nothing here (case 34 writes those). */
+SKP_FN void pc_dir_out(skp_dir_sample r, float *o) {
+    o[0] = r.dir.x;
+    o[1] = r.dir.y;
+    o[2] = r.dir.z;
+    o[3] = r.pdf;
 }
 
 /* Majorant i of case 26's grid: 0 to 3 in steps of 0.75, one cell 40. */
@@ -134,34 +143,31 @@ SKP_FN void pc_case(int c, skp_u32 k, const SKP_GLOBAL float *maj, float *o) {
         skp_sin_cos_2pi(u, &o[0], &o[1]);
         break;
     case 1:
-        v = skp_isotropic_sample_dir(u, u2, &o[3]);
-        o[0] = v.x; o[1] = v.y; o[2] = v.z;
+        pc_dir_out(skp_isotropic_sample_dir(u, u2), o);
         break;
     case 2: case 3: case 4: case 5: case 6: case 7:
         skp_hg_new(pc_g(c), &hg);
-        o[0] = skp_hg_sample_cos(&hg, u);
-        o[1] = skp_hg_sample_cos_sin(&hg, u, &s, &pdf);
+        o[0] = skp_hg_sample_cos(hg, u);
+        o[1] = skp_hg_sample_cos_sin(hg, u, &s, &pdf);
         o[2] = s;
         o[3] = pdf;
         break;
     case 8: case 9:
         skp_hg_new(c == 8 ? 0.7f : -0.2f, &hg);
-        v = skp_hg_sample_dir(&hg, pc_dir(k), u, u2, &o[3]);
-        o[0] = v.x; o[1] = v.y; o[2] = v.z;
+        pc_dir_out(skp_hg_sample_dir(hg, pc_dir(k), u, u2), o);
         break;
     case 10:
         skp_hg_new(0.9f, &hg);
-        o[0] = skp_hg_pdf(&hg, SKP_MUL(2.0f, u) - 1.0f);
+        o[0] = skp_hg_pdf(hg, SKP_MUL(2.0f, u) - 1.0f);
         skp_hg_new(-0.5f, &hg);
-        o[1] = skp_hg_pdf(&hg, SKP_MUL(2.0f, u) - 1.0f);
+        o[1] = skp_hg_pdf(hg, SKP_MUL(2.0f, u) - 1.0f);
         break;
     case 11:
         o[0] = skp_rayleigh_sample_cos(u);
         o[1] = skp_rayleigh_pdf(o[0]);
         break;
     case 12:
-        v = skp_rayleigh_sample_dir(pc_dir(k), u, u2, &o[3]);
-        o[0] = v.x; o[1] = v.y; o[2] = v.z;
+        pc_dir_out(skp_rayleigh_sample_dir(pc_dir(k), u, u2), o);
         break;
     case 13:
         o[0] = skp_ln(skp_from_bits(k << 7));
@@ -180,11 +186,11 @@ SKP_FN void pc_case(int c, skp_u32 k, const SKP_GLOBAL float *maj, float *o) {
         break;
     case 18: case 19:
         skp_draine_new(c == 18 ? 0.5f : -0.3f, c == 18 ? 1.0f : 250.0f, &dr);
-        o[0] = skp_draine_sample_cos(&dr, u);
-        o[1] = skp_draine_pdf(&dr, o[0]);
+        o[0] = skp_draine_sample_cos(dr, u);
+        o[1] = skp_draine_pdf(dr, o[0]);
         skp_draine_new(c == 18 ? 0.9f : 0.01f, c == 18 ? 10.0f : 1000.0f, &dr);
-        o[2] = skp_draine_sample_cos(&dr, u);
-        o[3] = skp_draine_pdf(&dr, o[2]);
+        o[2] = skp_draine_sample_cos(dr, u);
+        o[3] = skp_draine_pdf(dr, o[2]);
         break;
     case 20:
         skp_draine_new(SKP_MUL(2.0f, u) - 1.0f, 0.5f + SKP_MUL(1e4f, u2), &dr); /* alpha < 1: refused */
@@ -195,24 +201,23 @@ SKP_FN void pc_case(int c, skp_u32 k, const SKP_GLOBAL float *maj, float *o) {
         break;
     case 21:
         skp_two_lobe_new(0.8f, -0.3f, 0.9f, &tl);
-        o[0] = skp_two_lobe_sample_cos(&tl, u);
-        o[1] = skp_two_lobe_pdf(&tl, o[0]);
+        o[0] = skp_two_lobe_sample_cos(tl, u);
+        o[1] = skp_two_lobe_pdf(tl, o[0]);
         skp_two_lobe_new(0.5f, 0.99f, u2, &tl);
-        o[2] = skp_two_lobe_sample_cos(&tl, u);
-        o[3] = skp_two_lobe_pdf(&tl, o[2]);
+        o[2] = skp_two_lobe_sample_cos(tl, u);
+        o[3] = skp_two_lobe_pdf(tl, o[2]);
         break;
     case 22:
         skp_two_lobe_new(0.8f, -0.3f, k & 8u ? 1.0f : 0.9f, &tl);
-        v = skp_two_lobe_sample_dir(&tl, pc_dir(k), u, u2, &o[3]);
-        o[0] = v.x; o[1] = v.y; o[2] = v.z;
+        pc_dir_out(skp_two_lobe_sample_dir(tl, pc_dir(k), u, u2), o);
         break;
     case 23:
         skp_fog_new(0.85f, 0.45f, 250.0f, 0.3f, &fog);
-        o[0] = skp_fog_sample_cos(&fog, u);
-        o[1] = skp_fog_pdf(&fog, o[0]);
+        o[0] = skp_fog_sample_cos(fog, u);
+        o[1] = skp_fog_pdf(fog, o[0]);
         skp_fog_new(0.9f, 0.6f, 20.0f, u2, &fog);
-        o[2] = skp_fog_sample_cos(&fog, u);
-        o[3] = skp_fog_pdf(&fog, o[2]);
+        o[2] = skp_fog_sample_cos(fog, u);
+        o[3] = skp_fog_pdf(fog, o[2]);
         break;
     case 24:
         sig[0] = 0.5f;
@@ -231,16 +236,51 @@ SKP_FN void pc_case(int c, skp_u32 k, const SKP_GLOBAL float *maj, float *o) {
         break;
     case 27:
         skp_schlick_new(0.7f, &sch);
-        o[0] = skp_schlick_sample_cos(&sch, u);
-        o[1] = skp_schlick_pdf(&sch, o[0]);
+        o[0] = skp_schlick_sample_cos(sch, u);
+        o[1] = skp_schlick_pdf(sch, o[0]);
         skp_schlick_new(SKP_MUL(2.0f, u2) - 1.0f, &sch);
-        o[2] = skp_schlick_sample_cos(&sch, u);
-        o[3] = skp_schlick_pdf(&sch, o[2]);
+        o[2] = skp_schlick_sample_cos(sch, u);
+        o[3] = skp_schlick_pdf(sch, o[2]);
         break;
     case 28:
         skp_schlick_new(k & 8u ? -0.4f : 0.85f, &sch);
-        v = skp_schlick_sample_dir(&sch, pc_dir(k), u, u2, &o[3]);
-        o[0] = v.x; o[1] = v.y; o[2] = v.z;
+        pc_dir_out(skp_schlick_sample_dir(sch, pc_dir(k), u, u2), o);
+        break;
+    case 29: /* the Dirac limits g = +-1 */
+        skp_hg_new(1.0f, &hg);
+        o[0] = skp_hg_sample_cos(hg, u);
+        o[1] = skp_hg_pdf(hg, SKP_MUL(2.0f, u) - 1.0f);
+        skp_hg_new(-1.0f, &hg);
+        o[2] = skp_hg_sample_cos_sin(hg, u, &s, &pdf);
+        o[3] = skp_hg_pdf(hg, SKP_MUL(2.0f, u2) - 1.0f) + s + pdf;
+        break;
+    case 30:
+        skp_hg_new(k & 8u ? 1.0f : -1.0f, &hg);
+        pc_dir_out(skp_hg_sample_dir(hg, pc_dir(k), u, u2), o);
+        break;
+    case 31: /* Dirac lobes in the mixtures */
+        skp_two_lobe_new(1.0f, -0.3f, u2, &tl);
+        o[0] = skp_two_lobe_sample_cos(tl, u);
+        o[1] = skp_two_lobe_pdf(tl, o[0]);
+        skp_fog_new(k & 8u ? -1.0f : 1.0f, 0.6f, 20.0f, k & 16u ? 1.0f : u2, &fog);
+        o[2] = skp_fog_sample_cos(fog, u);
+        o[3] = skp_fog_pdf(fog, o[2]);
+        break;
+    case 32:
+        skp_draine_new(k & 8u ? 0.5f : -0.3f, k & 8u ? 1.0f : 250.0f, &dr);
+        pc_dir_out(skp_draine_sample_dir(dr, pc_dir(k), u, u2), o);
+        break;
+    case 33:
+        skp_fog_new(0.85f, 0.45f, 250.0f, k & 8u ? 0.3f : 1.0f, &fog);
+        pc_dir_out(skp_fog_sample_dir(fog, pc_dir(k), u, u2), o);
+        break;
+    case 34: /* cos theta of the direction samplers */
+        skp_hg_new(0.7f, &hg);
+        o[0] = skp_hg_sample_dir(hg, pc_dir(k), u, u2).cos_theta;
+        o[1] = skp_rayleigh_sample_dir(pc_dir(k), u, u2).cos_theta;
+        o[2] = skp_isotropic_sample_dir(u, u2).cos_theta;
+        skp_two_lobe_new(0.8f, -0.3f, 0.9f, &tl);
+        o[3] = skp_two_lobe_sample_dir(tl, pc_dir(k), u, u2).cos_theta;
         break;
     default:
         v = skp_direction_about(pc_dir(k), SKP_MUL(2.0f, u) - 1.0f, u2, u);

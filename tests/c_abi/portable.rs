@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 const N: u32 = 1 << 24;
-const CASES: i32 = 29;
+const CASES: i32 = 35;
 const NAN: u32 = 0x7fc0_0000;
 
 fn u_of(k: u32) -> f32 {
@@ -83,7 +83,7 @@ fn hg(g: f32) -> p::Hg {
 
 fn case(c: i32, k: u32) -> [f32; 4] {
     let (u, u2) = (u_of(k), u2_of(k));
-    let with_pdf = |(v, pdf): ([f32; 3], f32)| [v[0], v[1], v[2], pdf];
+    let with_pdf = |r: p::DirSample| [r.dir[0], r.dir[1], r.dir[2], r.pdf];
     match c {
         0 => {
             let (s, co) = p::sin_cos_2pi(u);
@@ -191,6 +191,56 @@ fn case(c: i32, k: u32) -> [f32; 4] {
         28 => {
             let sch = p::Schlick::new(if k & 8 != 0 { -0.4 } else { 0.85 }).unwrap();
             with_pdf(p::schlick_sample_dir(&sch, dir_of(k), u, u2))
+        }
+        29 => {
+            let (up, down) = (hg(1.0), hg(-1.0));
+            let (mu, s, pdf) = p::hg_sample_cos_sin(&down, u);
+            [
+                p::hg_sample_cos(&up, u),
+                p::hg_pdf(&up, 2.0 * u - 1.0),
+                mu,
+                p::hg_pdf(&down, 2.0 * u2 - 1.0) + s + pdf,
+            ]
+        }
+        30 => with_pdf(p::hg_sample_dir(
+            &hg(if k & 8 != 0 { 1.0 } else { -1.0 }),
+            dir_of(k),
+            u,
+            u2,
+        )),
+        31 => {
+            let t = p::TwoLobe::new(1.0, -0.3, u2).unwrap();
+            let f = p::Fog::new(
+                if k & 8 != 0 { -1.0 } else { 1.0 },
+                0.6,
+                20.0,
+                if k & 16 != 0 { 1.0 } else { u2 },
+            )
+            .unwrap();
+            let (m1, m2) = (p::two_lobe_sample_cos(&t, u), p::fog_sample_cos(&f, u));
+            [m1, p::two_lobe_pdf(&t, m1), m2, p::fog_pdf(&f, m2)]
+        }
+        32 => {
+            let d = if k & 8 != 0 {
+                p::Draine::new(0.5, 1.0)
+            } else {
+                p::Draine::new(-0.3, 250.0)
+            };
+            with_pdf(p::draine_sample_dir(&d.unwrap(), dir_of(k), u, u2))
+        }
+        33 => {
+            let w = if k & 8 != 0 { 0.3 } else { 1.0 };
+            let f = p::Fog::new(0.85, 0.45, 250.0, w).unwrap();
+            with_pdf(p::fog_sample_dir(&f, dir_of(k), u, u2))
+        }
+        34 => {
+            let t = p::TwoLobe::new(0.8, -0.3, 0.9).unwrap();
+            [
+                p::hg_sample_dir(&hg(0.7), dir_of(k), u, u2).cos_theta,
+                p::rayleigh_sample_dir(dir_of(k), u, u2).cos_theta,
+                p::isotropic_sample_dir(u, u2).cos_theta,
+                p::two_lobe_sample_dir(&t, dir_of(k), u, u2).cos_theta,
+            ]
         }
         _ => unreachable!("case {c}"),
     }
@@ -750,6 +800,7 @@ fn the_guides_code_compiles() {
         return;
     }
     let cuda_stand_in = "#define __global__ __attribute__((global))\n\
+        #define __constant__ __attribute__((constant))\n\
         struct guide_dim { int x; };\n\
         #define blockIdx (guide_dim{__nvvm_read_ptx_sreg_ctaid_x()})\n\
         #define blockDim (guide_dim{__nvvm_read_ptx_sreg_ntid_x()})\n\

@@ -73,13 +73,56 @@ fn hg_cosine_sine_and_density() {
     assert!(cos_err.0 <= 2e-7, "{cos_err:?}");
     assert!(sin_err <= 1e-6 && pdf_err <= 1e-6);
     assert!(
-        p::Hg::new(1.0).is_none() && p::Hg::new(-1.0).is_none() && p::Hg::new(f32::NAN).is_none()
+        p::Hg::new(1.000_000_1).is_none()
+            && p::Hg::new(-1.000_000_1).is_none()
+            && p::Hg::new(f32::NAN).is_none()
     );
     let h = p::Hg::new(0.5).unwrap();
     assert!(p::hg_sample_cos(&h, f32::NAN).is_nan());
     assert_eq!(p::hg_sample_cos(&h, 0.0), -1.0);
     assert_eq!(p::hg_sample_cos(&h, 1.0), 1.0);
     assert_eq!(p::hg_sample_cos(&h, 7.0), 1.0);
+}
+
+/// `|g| = 1`, the Dirac limit transport codes pass: every sampler gives
+/// `cos θ = g`, `sin θ = 0` and density `+∞` for every `u` but NaN (NaN
+/// there), the direction is `±w_in`, the density is `+∞` at `μ = g` and 0
+/// elsewhere; in the mixtures a Dirac lobe of weight 0 adds nothing.
+#[test]
+fn the_dirac_limit_is_finite_and_at_the_pole() {
+    let w_in = [0.48f32, 0.6, 0.64];
+    for g in [1.0f32, -1.0] {
+        let h = p::Hg::new(g).unwrap();
+        for u in [0.0f32, 1e-45, 0.3, 0.5, 1.0, -2.0, 7.0, f32::INFINITY] {
+            assert_eq!(p::hg_sample_cos(&h, u), g, "g {g} u {u}");
+            assert_eq!(p::hg_sample_cos_sin(&h, u), (g, 0.0, f32::INFINITY));
+            let r = p::hg_sample_dir(&h, w_in, u, 0.37);
+            assert_eq!((r.cos_theta, r.pdf), (g, f32::INFINITY));
+            for (d, w) in r.dir.iter().zip(w_in) {
+                assert!((d - g * w).abs() <= 1e-7, "g {g} u {u}: {:?}", r.dir);
+            }
+        }
+        assert!(p::hg_sample_cos(&h, f32::NAN).is_nan());
+        assert!(p::hg_sample_cos_sin(&h, f32::NAN).2.is_nan());
+        assert_eq!(p::hg_pdf(&h, g), f32::INFINITY);
+        for mu in [-0.999_999_9f32, -0.5, 0.0, 0.5, 0.999_999_9] {
+            assert_eq!(p::hg_pdf(&h, mu), 0.0, "g {g} mu {mu}");
+        }
+        assert!(p::hg_pdf(&h, f32::NAN).is_nan());
+        // A Dirac lobe of weight 0 adds nothing; of weight w > 0 it is the peak.
+        let t = p::TwoLobe::new(g, 0.3, 0.0).unwrap();
+        let hg3 = p::Hg::new(0.3).unwrap();
+        assert_eq!(p::two_lobe_pdf(&t, g), p::hg_pdf(&hg3, g));
+        let t = p::TwoLobe::new(g, 0.3, 0.25).unwrap();
+        assert_eq!(p::two_lobe_pdf(&t, g), f32::INFINITY);
+        assert_eq!(p::two_lobe_sample_cos(&t, 0.1), g);
+        let f = p::Fog::new(g, 0.6, 20.0, 1.0).unwrap();
+        let d = p::Draine::new(0.6, 20.0).unwrap();
+        assert_eq!(p::fog_pdf(&f, g), p::draine_pdf(&d, g));
+        let f = p::Fog::new(g, 0.6, 20.0, 0.4).unwrap();
+        assert_eq!(p::fog_sample_cos(&f, 0.7), g);
+        assert!(p::fog_sample_dir(&f, w_in, 0.7, 0.2).pdf.is_infinite());
+    }
 }
 
 #[test]
@@ -113,9 +156,9 @@ fn directions_are_unit_and_at_the_sampled_angle() {
         let u2 = (i as f32 * 0.618_034).fract();
         let (mu, _, _) = p::hg_sample_cos_sin(&h, u);
         for (d, want) in [
-            (p::hg_sample_dir(&h, w_in, u, u2).0, mu),
+            (p::hg_sample_dir(&h, w_in, u, u2).dir, mu),
             (
-                p::rayleigh_sample_dir(w_in, u, u2).0,
+                p::rayleigh_sample_dir(w_in, u, u2).dir,
                 p::rayleigh_sample_cos(u),
             ),
         ] {
@@ -295,7 +338,7 @@ fn two_lobe_hg_has_the_mixtures_mean_and_density() {
                 && p::two_lobe_sample_cos(&t, 0.0).is_finite()
         );
     }
-    assert!(p::TwoLobe::new(0.5, 0.5, 1.5).is_none() && p::TwoLobe::new(0.5, 1.0, 0.5).is_none());
+    assert!(p::TwoLobe::new(0.5, 0.5, 1.5).is_none() && p::TwoLobe::new(0.5, 1.5, 0.5).is_none());
     assert!(p::TwoLobe::new(0.5, 0.5, f32::NAN).is_none());
 }
 
@@ -558,7 +601,12 @@ fn schlick_against_the_f64_library() {
     assert!(cos_err <= 3e-7 && pdf_err <= 1e-6, "{cos_err} {pdf_err}");
     assert!(p::Schlick::new(1.0).is_none() && p::Schlick::new(f32::NAN).is_none());
     let p = p::Schlick::new(0.6).unwrap();
-    let (d, pdf) = p::schlick_sample_dir(&p, [0.0, 0.6, 0.8], 0.3, 0.7);
+    let p::DirSample {
+        dir: d,
+        pdf,
+        cos_theta,
+    } = p::schlick_sample_dir(&p, [0.0, 0.6, 0.8], 0.3, 0.7);
+    assert_eq!(cos_theta, p::schlick_sample_cos(&p, 0.3));
     let dot = d[1] * 0.6 + d[2] * 0.8;
     assert!((dot - p::schlick_sample_cos(&p, 0.3)).abs() < 1e-6);
     assert_eq!(pdf, p::schlick_pdf(&p, p::schlick_sample_cos(&p, 0.3)));

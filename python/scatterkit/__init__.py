@@ -140,13 +140,15 @@ class Phase:
 
     @classmethod
     def henyey_greenstein(cls, g: float) -> "Phase":
-        """Henyey–Greenstein with asymmetry ``g`` in ``(-1, 1)`` (the mean cosine)."""
+        """Henyey–Greenstein with asymmetry ``g`` in ``[-1, 1]`` (the mean cosine).
+        ``|g| = 1`` is the Dirac limit: every sample is ``cos θ = g``, the
+        density ``inf`` there and 0 elsewhere."""
         return cls(_sk._Phase.henyey_greenstein(float(g)))
 
     @classmethod
     def two_lobe_hg(cls, g1: float, g2: float, w: float) -> "Phase":
         """Two Henyey–Greenstein lobes: ``w p_HG(g1) + (1 - w) p_HG(g2)``,
-        ``g1, g2`` in ``(-1, 1)``, ``w`` in ``[0, 1]``."""
+        ``g1, g2`` in ``[-1, 1]`` (``|g| = 1`` a Dirac lobe), ``w`` in ``[0, 1]``."""
         return cls(_sk._Phase.two_lobe_hg(float(g1), float(g2), float(w)))
 
     @classmethod

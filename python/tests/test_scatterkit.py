@@ -132,7 +132,7 @@ class PhaseTest(unittest.TestCase):
 
     def test_bad_input_is_a_value_error(self):
         for make in (
-            lambda: sk.Phase.henyey_greenstein(1.0),
+            lambda: sk.Phase.henyey_greenstein(1.5),
             lambda: sk.Phase.henyey_greenstein(float("nan")),
             lambda: sk.Phase.draine(0.5, -1.0),
             lambda: sk.Phase.mixture([]),

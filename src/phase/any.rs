@@ -181,7 +181,8 @@ impl<T: Real> Phase<T> {
     pub fn rayleigh_depolarized(rho: T) -> Result<Self, Error> {
         RayleighDepolarized::new(rho).map(Phase::RayleighDepolarized)
     }
-    /// Henyey–Greenstein with asymmetry `g ∈ (-1, 1)`.
+    /// Henyey–Greenstein with asymmetry `g ∈ [−1, 1]` (`|g| = 1`: the
+    /// Dirac limit, [`HenyeyGreenstein`]).
     pub fn henyey_greenstein(g: T) -> Result<Self, Error> {
         HenyeyGreenstein::new(g).map(Phase::HenyeyGreenstein)
     }

@@ -129,6 +129,19 @@ fn bad_input_from_c() {
     assert!(out.contains(" 0 failed"), "{out}");
 }
 
+/// `|g| = 1` through the C ABI and the portable header alike
+/// (`tests/c/dirac.c`).
+#[test]
+fn the_dirac_limit_from_c_and_the_header() {
+    if !crate::common::repository("the_dirac_limit_from_c_and_the_header") {
+        return;
+    }
+    let exe = common::cbuild::build_program(&root().join("tests/c/dirac.c"), false);
+    let (code, out) = run(&exe);
+    println!("{out}");
+    assert!(code == 0 && out.contains(" 0 failed"), "{out}");
+}
+
 #[test]
 fn direction_batches_agree_with_scalar_calls() {
     if !crate::common::repository("direction_batches_agree_with_scalar_calls") {

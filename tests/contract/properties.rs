@@ -129,17 +129,21 @@ fn probes(r: &mut Xoshiro256PlusPlus, lo: f64, hi: f64) -> Vec<f64> {
 fn constructors_reject_exactly_the_documented_set() {
     let mut r = rng(102);
     for g in probes(&mut r, -2.0, 2.0) {
+        // Open for Draine's g; closed for HG's (|g| = 1, the Dirac limit),
+        // the fog's HG lobe and a two-lobe HG's lobes (Draine with α = 0).
         let ok = g > -1.0 && g < 1.0;
-        assert_eq!(Phase::henyey_greenstein(g).is_ok(), ok, "hg {g}");
+        let hg_ok = (-1.0..=1.0).contains(&g);
+        assert_eq!(Phase::henyey_greenstein(g).is_ok(), hg_ok, "hg {g}");
         assert_eq!(Phase::cornette_shanks(g).is_ok(), ok, "cs {g}");
         assert_eq!(Phase::draine(g, 1.0).is_ok(), ok, "draine g {g}");
-        assert_eq!(Phase::fog(g, 0.5, 1.0, 0.5).is_ok(), ok, "fog g_hg {g}");
+        assert_eq!(Phase::fog(g, 0.5, 1.0, 0.5).is_ok(), hg_ok, "fog g_hg {g}");
         assert_eq!(Phase::fog(0.5, g, 1.0, 0.5).is_ok(), ok, "fog g_d {g}");
+        assert_eq!(Phase::fog(0.5, g, 0.0, 0.5).is_ok(), hg_ok, "fog g_d {g}, α = 0");
         // f32 too: the same set after rounding.
         let g32 = g as f32;
         assert_eq!(
             Phase::henyey_greenstein(g32).is_ok(),
-            g32 > -1.0 && g32 < 1.0,
+            (-1.0..=1.0).contains(&g32),
             "hg f32 {g32}"
         );
     }

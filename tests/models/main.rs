@@ -9,6 +9,7 @@ mod common;
 mod albedo;
 mod azimuth;
 mod cbrt;
+mod dirac;
 mod choose_fog;
 mod choose_measured;
 mod choose_mie;

@@ -26,8 +26,13 @@ pub unsafe extern "C" fn sk_phase_new_rayleigh_f64(out: *mut sk_phase_f64) -> sk
     unsafe { construct(out, Ok(Phase::rayleigh())) }
 }
 
-/// Henyey-Greenstein with asymmetry -1 < g < 1 (g > 0 forward).
-/// SK_ERR_DOMAIN for |g| >= 1, NaN or inf; SK_ERR_NULL for a NULL `out`.
+/// Henyey-Greenstein with asymmetry -1 <= g <= 1 (g > 0 forward).
+/// |g| = 1 is the Dirac limit transport codes pass for a background medium:
+/// every sample is cos theta = g (the direction +-w_in), the density is +inf
+/// at cos theta = g and 0 elsewhere, a sampled direction's density is +inf,
+/// and the CDF is the step at g (skp_hg_new(+-1) of scatterkit_portable.h
+/// gives the same). SK_ERR_DOMAIN for |g| > 1, NaN or inf; SK_ERR_NULL for a
+/// NULL `out`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_phase_new_hg(g: f32, out: *mut sk_phase) -> sk_status {
     unsafe { construct(out, Phase::henyey_greenstein(g)) }
@@ -92,7 +97,10 @@ pub unsafe extern "C" fn sk_phase_new_cornette_shanks_f64(
 }
 
 /// The fog mixture (1 - w_d) HG(g_hg) + w_d Draine(g_d, alpha):
-/// |g_hg| < 1, |g_d| < 1, finite alpha >= 0, 0 <= w_d <= 1, else SK_ERR_DOMAIN.
+/// |g_hg| <= 1, |g_d| < 1, finite alpha >= 0, 0 <= w_d <= 1, else SK_ERR_DOMAIN.
+/// |g_hg| = 1 is a Dirac lobe (sk_phase_new_hg): its weight sits at
+/// cos theta = g_hg, where the density is +inf (a lobe of weight 0 adds
+/// nothing), and the exact inverse returns g_hg for the uniforms it covers.
 /// sk_phase_sample_cos inverts the mixture's CDF exactly (monotone);
 /// sk_phase_sample_cos_by_lobe is the paper's cheaper lobe-choice sampler.
 /// Construction tabulates seeds for the inverse (about 10 microseconds):
@@ -193,7 +201,8 @@ pub unsafe extern "C" fn sk_phase_new_gegenbauer_f64(
 
 /// Two-lobe Henyey-Greenstein, w HG(g1) + (1 - w) HG(g2): |g1| < 1,
 /// |g2| < 1, 0 <= w <= 1, else SK_ERR_DOMAIN. The fog mixture with alpha =
-/// 0 (sk_phase_get_params reports SK_PHASE_FOG with g_hg = g2, g_d = g1,
+/// 0 (each |g| <= 1; |g| = 1 a Dirac lobe as in sk_phase_new_fog;
+/// sk_phase_get_params reports SK_PHASE_FOG with g_hg = g2, g_d = g1,
 /// alpha = 0, w_d = w): sk_phase_sample_cos inverts the mixture's CDF
 /// exactly (monotone), sk_phase_sample_cos_by_lobe picks a lobe with the
 /// uniform and reuses it (cheaper, not monotone). Construction takes about

@@ -19,6 +19,7 @@
 //!   Cheaper, exact in distribution, but not monotone in `u` and not the
 //!   inverse of [`PhaseFunction::cdf`].
 
+mod dirac;
 mod inverse;
 
 use super::draine::{Params, from_tail, inverse_tail};
@@ -29,6 +30,7 @@ use crate::error::Error;
 use crate::math::double_double::Dd;
 use crate::math::numeric::{Eval, solve_bracketed};
 use crate::math::real::{PackedF64, Real};
+use dirac::{DiracFog, has_dirac_lobe};
 use inverse::{FogSeeds, Mixture};
 
 /// The fog mixture. Built from its four parameters or from a droplet
@@ -63,6 +65,9 @@ enum Aux {
     /// An f32 two-lobe HG whose lobe choice takes [`Fog::two_hg_wide`]: the
     /// seeds in 16 bits and each lobe's `(a, b, k)` in f64.
     TwoHg(HalfSeeds, PackedF64<6>),
+    /// A Dirac lobe (`dirac`): nothing to tabulate; the samplers split off
+    /// the point masses.
+    Dirac,
 }
 
 /// The four fitted parameters of the fog phase function at one diameter.
@@ -123,12 +128,17 @@ pub fn fog_fit(d: f64) -> Result<FogParams, Error> {
 }
 
 impl<T: Real> Fog<T> {
-    /// Fails with [`Error::Domain`] unless `|g_hg| < 1`, `|g_d| < 1`,
-    /// `0 ≤ alpha < ∞` and `0 ≤ w_d ≤ 1` (NaN fails).
+    /// Fails with [`Error::Domain`] unless `|g_hg| ≤ 1`, `|g_d| < 1` (`≤ 1`
+    /// for `α = 0`, a two-lobe HG), `0 ≤ alpha < ∞` and `0 ≤ w_d ≤ 1` (NaN
+    /// fails). An HG lobe at `|g| = 1` is a Dirac lobe
+    /// ([`HenyeyGreenstein`](super::HenyeyGreenstein)'s limit): its weight
+    /// sits at `cos θ = g`, where the density is `+∞`, and the exact
+    /// inverse returns `g` for the uniforms it covers.
     pub fn new(g_hg: T, g_d: T, alpha: T, w_d: T) -> Result<Self, Error> {
         let g_ok = |g: T| g > -T::ONE && g < T::ONE;
-        let ok = g_ok(g_hg)
-            && g_ok(g_d)
+        let hg_ok = |g: T| g >= -T::ONE && g <= T::ONE;
+        let ok = hg_ok(g_hg)
+            && (g_ok(g_d) || (alpha == T::ZERO && hg_ok(g_d)))
             && alpha >= T::ZERO
             && alpha.is_finite()
             && w_d >= T::ZERO
@@ -171,6 +181,10 @@ impl<T: Real> Fog<T> {
             w_d,
             aux: Aux::Seeds(Seeds::NONE),
         };
+        if has_dirac_lobe(g_hg, g_d, alpha) {
+            fog.aux = Aux::Dirac;
+            return fog;
+        }
         let (h, d, w) = fog.lobes();
         let oriented = |m: bool| {
             if m {
@@ -233,6 +247,13 @@ impl<T: Real> Fog<T> {
             f(self.w_d),
             mirrored,
         )
+    }
+
+    /// The mixture as weighted lobes, if it has a Dirac lobe (`dirac`).
+    #[inline(always)]
+    fn dirac(&self) -> Option<DiracFog<T>> {
+        matches!(self.aux, Aux::Dirac)
+            .then(|| DiracFog::new(self.g_hg, self.g_d, self.alpha, self.w_d))
     }
 
     /// The four parameters `(g_hg, g_d, alpha, w_d)`.
@@ -335,7 +356,7 @@ impl<T: Real> Fog<T> {
         match &self.aux {
             Aux::Seeds(s) => s.y(mirrored, target),
             Aux::TwoHg(s, _) => s.y(mirrored, target),
-            Aux::Mixture(_) => f64::NAN,
+            Aux::Mixture(_) | Aux::Dirac => f64::NAN,
         }
     }
 
@@ -529,6 +550,9 @@ impl<T: Real> PhaseFunction<T> for Fog<T> {
     /// error of 10⁻⁸ in the density at `μ = 1 − 10⁻⁸`, `g = 0.9999`).
     #[inline]
     fn pdf(&self, cos_theta: T) -> T {
+        if let Some(d) = self.dirac() {
+            return d.pdf(cos_theta);
+        }
         let (eval, _) = self.near_pole(cos_theta.to_f64());
         T::from_f64(eval.density / core::f64::consts::TAU)
     }
@@ -536,16 +560,25 @@ impl<T: Real> PhaseFunction<T> for Fog<T> {
     /// `μ ≥ 0`, one minus the mirrored tail.
     #[inline]
     fn cdf(&self, cos_theta: T) -> T {
+        if let Some(d) = self.dirac() {
+            return d.cdf(cos_theta);
+        }
         let (eval, mirrored) = self.near_pole(cos_theta.to_f64().clamp(-1.0, 1.0));
         let f = if mirrored { 1.0 - eval.cdf } else { eval.cdf };
         T::from_f64(f.clamp(0.0, 1.0))
     }
     fn sample_cos(&self, u: T) -> T {
+        if let Some(d) = self.dirac() {
+            return d.sample_cos_sin(u).0;
+        }
         T::from_f64(self.inverse(u).0)
     }
     /// `sin θ` from the f64 solution, so forward lobes keep angles that
     /// `cos θ` in f32 cannot resolve (see [`Draine`](super::Draine)).
     fn sample_cos_sin(&self, u: T) -> (T, T) {
+        if let Some(d) = self.dirac() {
+            return d.sample_cos_sin(u);
+        }
         let (mu, sin) = self.inverse(u);
         (T::from_f64(mu), T::from_f64(sin))
     }

@@ -66,8 +66,15 @@ const WIDE_LEN: usize = if WIDE { 5 } else { 0 };
 /// pass `3·10⁻¹³`.
 const WIDE_G_MIN: f64 = 1.0 / 1024.0;
 
-/// Henyey–Greenstein with asymmetry `g ∈ (-1, 1)`; `g > 0` scatters forward.
+/// Henyey–Greenstein with asymmetry `g ∈ [−1, 1]`; `g > 0` scatters forward.
 /// Holds `g` and the constants every sample needs, computed once.
+///
+/// `|g| = 1` is the Dirac limit, which transport codes give a background
+/// medium: every sample is `cos θ = g` (`sin θ = 0`, the direction `±w_in`)
+/// for every `u` but NaN; the density is `+∞` at `cos θ = g` and 0
+/// elsewhere (HG's density as `|g| → 1`, point by point), a sampled
+/// direction's density is `+∞`, and the CDF is the step `μ ≥ g`. The
+/// portable header's `skp_hg_new(±1)` gives the same answers.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HenyeyGreenstein<T> {
     g: T,
@@ -83,15 +90,19 @@ pub struct HenyeyGreenstein<T> {
 }
 
 impl<T: Real> HenyeyGreenstein<T> {
-    /// Fails with [`Error::Domain`] unless `-1 < g < 1` (NaN and ±∞ fail).
+    /// Fails with [`Error::Domain`] unless `−1 ≤ g ≤ 1` (NaN and ±∞ fail);
+    /// `|g| = 1` is the Dirac limit (type docs).
     pub fn new(g: T) -> Result<Self, Error> {
-        if g > -T::ONE && g < T::ONE {
+        if g >= -T::ONE && g <= T::ONE {
             Ok(Self::from_g(g))
         } else {
             Err(Error::Domain)
         }
     }
-    /// The constants for a `g` already known to lie in `(-1, 1)`.
+    /// The constants for a `g` already known to lie in `[−1, 1]` (at
+    /// `|g| = 1` the density constant is `+∞` and the f64 path's `B` is 0,
+    /// so the f32 sampler takes the factored forms, which `factors` makes
+    /// exact there).
     pub(crate) fn from_g(g: T) -> Self {
         let (omg, opg) = (T::ONE - g, T::ONE + g);
         let omg2 = omg * opg;
@@ -139,10 +150,23 @@ impl<T: Real> HenyeyGreenstein<T> {
         (opm, omm)
     }
 
+    /// Whether `|g| = 1`, the Dirac limit (type docs).
+    #[inline(always)]
+    fn is_dirac(&self) -> bool {
+        self.omg == T::ZERO || self.opg == T::ZERO
+    }
+
     /// `(1 + μ, 1 − μ, d)` for `u ∈ [0, 1]` (not clamped here), with
-    /// `d = 1 − g + 2gu` (module docs).
+    /// `d = 1 − g + 2gu` (module docs). At `|g| = 1` the forms are `0/0`
+    /// where `d = 0`, so the Dirac limit's exact factors are returned
+    /// instead (`1 ± μ = 1 ± g`, and `d = 1`, which with the density
+    /// constant `+∞` gives density `+∞`), NaN for a NaN `u`.
     #[inline(always)]
     fn factors(&self, u: T) -> (T, T, T) {
+        if self.is_dirac() {
+            let z = u - u; // 0, or NaN for a NaN u
+            return (self.opg + z, self.omg + z, T::ONE + z);
+        }
         let g = self.g;
         let v = T::ONE - u;
         // d = 1 − g + 2gu, 1 − g + gu and 1 + gu, each written as a sum of
@@ -277,6 +301,20 @@ impl<T: Real> HenyeyGreenstein<T> {
     }
 }
 
+/// The Dirac limit's density from `1 + g² − 2gμ = q` (`2(1 ∓ μ)` there):
+/// `+∞` at the peak (`q = 0`), 0 elsewhere, NaN for `q < 0` (`|μ| > 1`) or
+/// NaN.
+#[inline(always)]
+fn dirac_density<T: Real>(q: T) -> T {
+    if q > T::ZERO {
+        T::ZERO
+    } else if q == T::ZERO {
+        T::INFINITY
+    } else {
+        T::NAN
+    }
+}
+
 /// True for f32 on a target with fast doubles: where HG-based f32 samplers
 /// compute in f64 (module docs).
 #[inline(always)]
@@ -302,19 +340,26 @@ fn wide_constants(g: f64) -> PackedF64<WIDE_LEN> {
 }
 
 impl<T: Real> PhaseFunction<T> for HenyeyGreenstein<T> {
+    /// At `|g| = 1`: `+∞` at `cos θ = g`, 0 elsewhere in `[−1, 1]`.
     #[inline]
     fn pdf(&self, cos_theta: T) -> T {
         let g = self.g;
         let d = self.denom(cos_theta);
+        if self.is_dirac() {
+            return dirac_density(d);
+        }
         T::INV_4PI * (T::ONE - g) * (T::ONE + g) / (d * d.sqrt())
     }
     /// `F(μ) = (1 − g)(1 + μ) / (s (1 + g + s))`, `s = sqrt(1 + g² − 2gμ)`:
     /// the textbook `(1 − g²)/(2g) (1/s − 1/(1 + g))` with the `1/g` cancelled
-    /// analytically.
+    /// analytically. At `|g| = 1` the step: 1 for `cos θ ≥ g`, else 0.
     #[inline]
     fn cdf(&self, cos_theta: T) -> T {
         let g = self.g;
         let mu = cos_theta.clamp_unit();
+        if self.is_dirac() && !mu.is_nan() {
+            return if mu >= g { T::ONE } else { T::ZERO };
+        }
         let s = self.denom(mu).sqrt();
         ((T::ONE - g) * (T::ONE + mu) / (s * (T::ONE + g + s))).clamp01()
     }

@@ -7,8 +7,8 @@
 //! bits are the same in all of them, and the header's.
 
 use super::phase::{
-    Hg, dirac, hg_pm_of, is_dirac, hg_sample_cos, hg_sample_cos_sin, isotropic_sample_cos_sin, rayleigh_pdf,
-    rayleigh_sample_cos,
+    Hg, dirac, hg_pm_of, hg_sample_cos, hg_sample_cos_sin, is_dirac, isotropic_sample_cos_sin,
+    rayleigh_pdf, rayleigh_sample_cos,
 };
 use super::turns::direction_about;
 use crate::math::real::Real;

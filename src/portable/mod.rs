@@ -33,14 +33,14 @@ pub use batch::{
     rayleigh_sample_cos_n, sample_dir_n,
 };
 pub use draine::{
-    Draine, DraineSide, Fog, draine_pdf, draine_sample_cos, draine_sample_dir, fog_pdf, fog_sample_cos,
-    fog_sample_dir,
+    Draine, DraineSide, Fog, draine_pdf, draine_sample_cos, draine_sample_dir, fog_pdf,
+    fog_sample_cos, fog_sample_dir,
 };
 pub use flight::{exp, free_path, ln, spectral_free_path, transmittance};
 pub use phase::{
-    DirSample, Hg, TwoLobe, hg_pdf, hg_sample_cos, hg_sample_cos_sin, hg_sample_dir, isotropic_sample_cos_sin,
-    isotropic_sample_dir, rayleigh_pdf, rayleigh_sample_cos, rayleigh_sample_dir, two_lobe_pdf,
-    two_lobe_sample_cos, two_lobe_sample_dir,
+    DirSample, Hg, TwoLobe, hg_pdf, hg_sample_cos, hg_sample_cos_sin, hg_sample_dir,
+    isotropic_sample_cos_sin, isotropic_sample_dir, rayleigh_pdf, rayleigh_sample_cos,
+    rayleigh_sample_dir, two_lobe_pdf, two_lobe_sample_cos, two_lobe_sample_dir,
 };
 pub use schlick::{Schlick, schlick_pdf, schlick_sample_cos, schlick_sample_dir};
 pub use table::{

@@ -522,13 +522,31 @@ fn the_header_compiles_as_cuda_and_hip_device_code() {
         return;
     }
     let src = out_dir().join("portable_device.cu");
+    // The cases, and the media table read from __constant__ and from
+    // device memory as a kernel keeps it (tests/c/portable_media.h).
     std::fs::write(
         &src,
-        "#include \"portable_cases.h\"\n\
+        "#include \"portable_media.h\"\n\
+         #if defined(__NVPTX__)\n\
+         #define TID() __nvvm_read_ptx_sreg_tid_x()\n\
+         #else\n\
+         #define TID() __builtin_amdgcn_workitem_id_x()\n\
+         #endif\n\
          __attribute__((global)) void run(int c, unsigned k0, float *out, const float *maj) {\n\
              float o[4];\n\
              pc_case(c, k0, maj, o);\n\
              out[0] = o[0]; out[1] = o[1]; out[2] = o[2]; out[3] = o[3];\n\
+         }\n\
+         __attribute__((constant)) pm_medium media_c[PM_MEDIA];\n\
+         __attribute__((global)) void from_constant(unsigned *out) {\n\
+             unsigned k = TID(), h;\n\
+             PM_HASH(media_c, k, h);\n\
+             out[k] = h;\n\
+         }\n\
+         __attribute__((global)) void from_device(const pm_medium *media, unsigned *out) {\n\
+             unsigned k = TID(), h;\n\
+             PM_HASH(media, k, h);\n\
+             out[k] = h;\n\
          }\n",
     )
     .unwrap();
@@ -838,4 +856,227 @@ fn the_guides_code_compiles() {
             "-Werror",
         ],
     );
+}
+
+/// One medium of `tests/c/portable_media.h` (`pm_medium`).
+struct Medium {
+    hg: p::Hg,
+    two: p::TwoLobe,
+    fog: p::Fog,
+    draine: p::Draine,
+    schlick: p::Schlick,
+}
+
+/// `pm_medium_new`.
+fn medium(m: u32) -> Medium {
+    let (hg, two, fog, draine, schlick) = match m {
+        0 => (
+            0.85,
+            (0.8, -0.3, 0.9),
+            (0.85, 0.45, 250.0, 0.3),
+            (0.5, 1.0),
+            0.7,
+        ),
+        1 => (
+            -0.4,
+            (1.0, -0.3, 0.25),
+            (0.9, 0.6, 20.0, 0.1),
+            (-0.3, 250.0),
+            -0.4,
+        ),
+        2 => (
+            1.0,
+            (0.5, 0.99, 0.5),
+            (-1.0, 0.6, 20.0, 0.4),
+            (0.9, 10.0),
+            0.0,
+        ),
+        _ => (
+            0.0,
+            (0.2, -1.0, 1.0),
+            (0.85, 0.45, 250.0, 1.0),
+            (0.01, 1000.0),
+            0.95,
+        ),
+    };
+    Medium {
+        hg: p::Hg::new(hg).unwrap(),
+        two: p::TwoLobe::new(two.0, two.1, two.2).unwrap(),
+        fog: p::Fog::new(fog.0, fog.1, fog.2, fog.3).unwrap(),
+        draine: p::Draine::new(draine.0, draine.1).unwrap(),
+        schlick: p::Schlick::new(schlick).unwrap(),
+    }
+}
+
+const PM_N: u32 = 1 << 20;
+
+/// `PM_HASH` at index `k`.
+fn media_hash(media: &[Medium], k: u32) -> u32 {
+    let t = &media[(k % 4) as usize];
+    let u = if k >= PM_N - 16 {
+        u_of(N - PM_N + k)
+    } else {
+        u2_of(k ^ 0x9e37_79b9)
+    };
+    let (v, w) = (u2_of(k), dir_of(k));
+    let c = 2.0 * v - 1.0;
+    let mut h: u32 = 2_166_136_261;
+    let mut mix = |x: f32| {
+        let b = if x.is_nan() { NAN } else { x.to_bits() };
+        h = (h ^ b).wrapping_mul(16_777_619);
+    };
+    for r in [
+        p::hg_sample_dir(&t.hg, w, u, v),
+        p::two_lobe_sample_dir(&t.two, w, u, v),
+        p::fog_sample_dir(&t.fog, w, u, v),
+        p::draine_sample_dir(&t.draine, w, u, v),
+        p::schlick_sample_dir(&t.schlick, w, u, v),
+        p::rayleigh_sample_dir(w, u, v),
+    ] {
+        for x in [r.dir[0], r.dir[1], r.dir[2], r.cos_theta, r.pdf] {
+            mix(x);
+        }
+    }
+    for x in [
+        p::hg_sample_cos(&t.hg, u),
+        p::hg_pdf(&t.hg, c),
+        p::two_lobe_sample_cos(&t.two, u),
+        p::two_lobe_pdf(&t.two, c),
+        p::fog_sample_cos(&t.fog, u),
+        p::fog_pdf(&t.fog, c),
+        p::draine_sample_cos(&t.draine, u),
+        p::draine_pdf(&t.draine, c),
+        p::schlick_sample_cos(&t.schlick, u),
+        p::schlick_pdf(&t.schlick, c),
+    ] {
+        mix(x);
+    }
+    h
+}
+
+/// Model constants wherever a kernel keeps them: `tests/c/portable_spaces.c`
+/// builds the table of `tests/c/portable_media.h` on the host, hashes
+/// 2²⁰ indices there, and has OpenCL kernels read the same table from a
+/// `__constant` and from a `__global` buffer, in OpenCL C 1.2, 2.0 and
+/// 3.0; every hash must be the Rust module's. The same program links two
+/// OpenCL programs that each include the header (`clLinkProgram`).
+#[test]
+fn model_constants_from_any_memory_space_and_linked_programs() {
+    if !common::repository("model_constants_from_any_memory_space_and_linked_programs") {
+        return;
+    }
+    let media: Vec<Medium> = (0..4).map(medium).collect();
+    let want = (0..PM_N).fold(2_166_136_261u32, |acc, k| {
+        (acc ^ media_hash(&media, k)).wrapping_mul(16_777_619)
+    });
+    let want = format!("{want:08x}");
+    let exe = out_dir().join("spaces");
+    let out = Command::new("cc")
+        .args(["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-I"])
+        .arg(root().join("include"))
+        .arg("-I")
+        .arg(root().join("tests/c"))
+        .arg(root().join("tests/c/portable_spaces.c"))
+        .arg("-o")
+        .arg(&exe)
+        .args(["-lOpenCL", "-lm"])
+        .output()
+        .expect("cc did not start");
+    if !out.status.success() {
+        common::skip(&format!(
+            "memory spaces in OpenCL (Debian's ocl-icd-opencl-dev, opencl-headers, pocl-opencl-icd): {}",
+            String::from_utf8_lossy(&out.stderr)
+                .lines()
+                .next()
+                .unwrap_or("")
+        ));
+        return;
+    }
+    let run = Command::new(&exe)
+        .arg(root().join("include"))
+        .arg(root().join("tests/c"))
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&run.stdout).into_owned();
+    println!("{text}");
+    assert_eq!(run.status.code(), Some(0), "{text}");
+    assert!(
+        text.contains(&format!("host {want}")),
+        "Rust {want}\n{text}"
+    );
+    if let Some(line) = text.lines().find(|l| l.starts_with("SKIPPED")) {
+        common::skip(&format!("OpenCL runtime for the memory spaces: {line}"));
+        return;
+    }
+    for space in ["__constant", "__global"] {
+        for version in ["CL1.2", "CL2.0", "CL3.0"] {
+            let line = format!("{space} {version} {want}");
+            assert!(text.lines().any(|l| l == line), "{line}\n{text}");
+        }
+    }
+    assert!(text.contains("link: ok"), "{text}");
+}
+
+/// Four translation units, two C (C99, C89) and two C++ (C++11, C++17),
+/// each including the header, link into one program
+/// (`tests/c/portable_unit.c`).
+#[test]
+fn the_header_links_into_programs_of_several_units() {
+    if !common::repository("the_header_links_into_programs_of_several_units") {
+        return;
+    }
+    let dir = out_dir().join("units");
+    std::fs::create_dir_all(&dir).unwrap();
+    let src = root().join("tests/c/portable_unit.c");
+    let mut objs = Vec::new();
+    for (tool, std, name) in [
+        ("cc", "-std=c99", "unit_c1"),
+        ("cc", "-std=c89", "unit_c2"),
+        ("c++", "-std=c++11", "unit_cpp1"),
+        ("c++", "-std=c++17", "unit_cpp2"),
+    ] {
+        let obj = dir.join(format!("{name}.o"));
+        let lang: &[&str] = if tool == "c++" { &["-x", "c++"] } else { &[] };
+        let main: &[&str] = if name == "unit_c1" {
+            &["-DPORTABLE_UNIT_MAIN"]
+        } else {
+            &[]
+        };
+        let out = Command::new(tool)
+            .args(lang)
+            .args(STRICT)
+            .arg(std)
+            .args(main)
+            .arg(format!("-DUNIT_NAME={name}"))
+            .arg("-I")
+            .arg(root().join("include"))
+            .arg("-c")
+            .arg(&src)
+            .arg("-o")
+            .arg(&obj)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{tool} {std}:\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        objs.push(obj);
+    }
+    let exe = dir.join("units");
+    let out = Command::new("c++")
+        .args(&objs)
+        .arg("-o")
+        .arg(&exe)
+        .arg("-lm")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "link:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (code, text) = run(&exe);
+    println!("{text}");
+    assert!(code == 0 && text.contains("4 of 4 agree"), "{text}");
 }

@@ -19,6 +19,7 @@ const PROGRAMS: [&str; 12] = [
     "c_examples/mie_cloud.c",
     "c_examples/rayleigh_sky.c",
     "tests/c/bad_input.c",
+    "tests/c/dirac.c",
     "tests/c/golden.c",
     "tests/c/batch.c",
 ];

@@ -138,7 +138,11 @@ fn constructors_reject_exactly_the_documented_set() {
         assert_eq!(Phase::draine(g, 1.0).is_ok(), ok, "draine g {g}");
         assert_eq!(Phase::fog(g, 0.5, 1.0, 0.5).is_ok(), hg_ok, "fog g_hg {g}");
         assert_eq!(Phase::fog(0.5, g, 1.0, 0.5).is_ok(), ok, "fog g_d {g}");
-        assert_eq!(Phase::fog(0.5, g, 0.0, 0.5).is_ok(), hg_ok, "fog g_d {g}, α = 0");
+        assert_eq!(
+            Phase::fog(0.5, g, 0.0, 0.5).is_ok(),
+            hg_ok,
+            "fog g_d {g}, α = 0"
+        );
         // f32 too: the same set after rounding.
         let g32 = g as f32;
         assert_eq!(

@@ -8,7 +8,7 @@ use common::cbuild::{build_program, build_program_with, root};
 use std::process::Command;
 
 /// The longest under valgrind first, so that the parallel runs end together.
-const PROGRAMS: [&str; 12] = [
+const PROGRAMS: [&str; 13] = [
     "tests/c/matrix.c",
     "c_examples/cloud_majorants.c",
     "c_examples/surface_shares.c",

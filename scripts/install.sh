@@ -2,18 +2,22 @@
 # Installs the C library the way cargo-c's `cargo cinstall` does, without
 # needing cargo-c: libscatterkit.a and/or the shared library into PREFIX/lib
 # (libscatterkit.so.MAJOR.MINOR, its SONAME, with the libscatterkit.so link
-# beside it), the headers into PREFIX/include, pkg-config files in
-# PREFIX/lib/pkgconfig (scatterkit.pc links the shared library where it is
-# installed, else the static one; scatterkit-static.pc always the static
-# one, by its path) and a CMake package in PREFIX/lib/cmake/scatterkit
-# (find_package(scatterkit CONFIG) gives the imported target
-# scatterkit::scatterkit).
+# beside it), every header into PREFIX/include (scatterkit.h,
+# scatterkit_inline.h, scatterkit_table.h and the header-only
+# scatterkit_portable.h), pkg-config files in PREFIX/lib/pkgconfig
+# (scatterkit.pc links the shared library where it is installed, else the
+# static one; scatterkit-static.pc always the static one, by its path;
+# scatterkit-portable.pc the header-only tier, no library) and a CMake
+# package in PREFIX/lib/cmake/scatterkit (find_package(scatterkit CONFIG)
+# gives the imported targets scatterkit::scatterkit, the library, and
+# scatterkit::portable, the headers alone).
 #
 #   scripts/install.sh PREFIX [--static-only | --shared-only]
 #
 # Then, with PKG_CONFIG_PATH=PREFIX/lib/pkgconfig:
 #   cc app.c $(pkg-config --cflags --libs scatterkit) -Wl,-rpath,PREFIX/lib   # shared
 #   cc app.c $(pkg-config --cflags --libs scatterkit-static)                  # static
+#   cc kernel_host.c $(pkg-config --cflags scatterkit-portable)               # header only
 set -eu
 prefix=${1:?usage: scripts/install.sh PREFIX [--static-only | --shared-only]}
 mode=${2:-both}
@@ -25,7 +29,8 @@ version=$(sed -n 's/^version = "\(.*\)"/\1/p' "$root/Cargo.toml" | head -n 1)
 # The native libraries a static link needs (`--print native-static-libs`).
 native="-lgcc_s -lutil -lrt -lpthread -lm -ldl -lc"
 mkdir -p "$prefix/lib/pkgconfig" "$prefix/include"
-cp "$root/include/scatterkit.h" "$root/include/scatterkit_table.h" "$root/include/scatterkit_inline.h" "$prefix/include/"
+cp "$root/include/scatterkit.h" "$root/include/scatterkit_table.h" "$root/include/scatterkit_inline.h" \
+  "$root/include/scatterkit_portable.h" "$prefix/include/"
 [ "$mode" = "--shared-only" ] || cp "$target/libscatterkit.a" "$prefix/lib/"
 soname=libscatterkit.so.$(echo "$version" | cut -d. -f1-2)
 if [ "$mode" != "--static-only" ]; then
@@ -42,6 +47,16 @@ Description: Light-scattering samplers for Monte Carlo light transport
 Version: $version
 Libs: -L\${libdir} -lscatterkit
 Libs.private: $native
+Cflags: -I\${includedir}
+PC
+# The portable tier: headers alone (C, C++, CUDA, HIP and OpenCL C kernels).
+cat > "$prefix/lib/pkgconfig/scatterkit-portable.pc" <<PC
+prefix=$prefix
+includedir=\${prefix}/include
+
+Name: scatterkit-portable
+Description: Light-scattering samplers for Monte Carlo light transport (header-only float tier)
+Version: $version
 Cflags: -I\${includedir}
 PC
 # The static library by its path, so that no shared library beside it is
@@ -76,6 +91,12 @@ if(NOT TARGET scatterkit::scatterkit)
     IMPORTED_LOCATION "\${_sk_prefix}/lib/$lib"
     INTERFACE_INCLUDE_DIRECTORIES "\${_sk_prefix}/include"
     INTERFACE_LINK_LIBRARIES "$links")
+endif()
+# The header-only tier (scatterkit_portable.h): include directories alone.
+if(NOT TARGET scatterkit::portable)
+  add_library(scatterkit::portable INTERFACE IMPORTED)
+  set_target_properties(scatterkit::portable PROPERTIES
+    INTERFACE_INCLUDE_DIRECTORIES "\${_sk_prefix}/include")
 endif()
 unset(_sk_prefix)
 CM

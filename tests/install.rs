@@ -1,7 +1,9 @@
 //! The install path for C users: `scripts/install.sh` (what `cargo cinstall`
 //! does, without cargo-c) into temporary prefixes, then a C example built
 //! with `pkg-config --cflags --libs scatterkit`, against the shared library
-//! and (with `--static`) the static one, and run.
+//! and (with `--static`) the static one, and run; and the header-only
+//! tier, `c_examples/portable_slab.c`, built with `pkg-config --cflags
+//! scatterkit-portable` alone (every header is installed).
 
 mod common;
 
@@ -46,6 +48,30 @@ fn install_and_build(mode: &str, pc_static: bool) -> (String, String) {
     sh(&mut cc);
     let run = sh(Command::new(&exe).env("LD_LIBRARY_PATH", tmp.join("lib")));
     let ldd = sh(Command::new("ldd").arg(&exe));
+    // Every header is installed, and the portable one builds a program
+    // with no library.
+    for h in [
+        "scatterkit.h",
+        "scatterkit_inline.h",
+        "scatterkit_table.h",
+        "scatterkit_portable.h",
+    ] {
+        assert!(tmp.join("include").join(h).exists(), "{h} not installed");
+    }
+    let flags = sh(Command::new("pkg-config")
+        .args(["--cflags", "scatterkit-portable"])
+        .env("PKG_CONFIG_PATH", &pc));
+    let slab = tmp.join("portable_slab");
+    let mut cc = Command::new("cc");
+    cc.args(["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror"])
+        .arg(root.join("c_examples/portable_slab.c"))
+        .args(flags.split_whitespace())
+        .arg("-o")
+        .arg(&slab)
+        .arg("-lm");
+    sh(&mut cc);
+    let slab_out = sh(&mut Command::new(&slab));
+    assert!(slab_out.contains("R + T = 1.0000"), "{slab_out}");
     (run, ldd)
 }
 

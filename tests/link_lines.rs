@@ -163,8 +163,16 @@ fn cmake_package_builds_an_app_where_cmake_is_installed() {
     let dir = workdir("cmake");
     let prefix = dir.join("prefix");
     install(&prefix, None);
+    // The README's block, and the header-only target beside it.
+    std::fs::copy(
+        root().join("c_examples/portable_slab.c"),
+        dir.join("slab.c"),
+    )
+    .unwrap();
     let cmakelists = format!(
-        "cmake_minimum_required(VERSION 3.10)\nproject(app C)\nadd_executable(app app.c)\n{block}"
+        "cmake_minimum_required(VERSION 3.10)\nproject(app C)\nadd_executable(app app.c)\n{block}\n\
+         add_executable(slab slab.c)\n\
+         target_link_libraries(slab PRIVATE scatterkit::portable m)\n"
     );
     std::fs::write(dir.join("CMakeLists.txt"), cmakelists).unwrap();
     let build = dir.join("build");
@@ -189,4 +197,10 @@ fn cmake_package_builds_an_app_where_cmake_is_installed() {
         .output()
         .unwrap();
     assert!(String::from_utf8_lossy(&run.stdout).contains(QUICK_START_SAYS));
+    let slab = Command::new(build.join("slab")).output().unwrap();
+    let text = String::from_utf8_lossy(&slab.stdout);
+    assert!(
+        slab.status.success() && text.contains("R + T = 1.0000"),
+        "{text}"
+    );
 }

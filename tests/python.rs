@@ -63,6 +63,12 @@ fn environment(dir: &Path) -> Option<PathBuf> {
         ));
         return None;
     }
+    // pyopencl for the kernel test (python/tests/test_opencl.py), which
+    // says SKIPPED without it and fails then under SK_REQUIRE_ALL.
+    let o = pip(&["pyopencl"]);
+    if !o.status.success() {
+        println!("pyopencl did not install: {}", text(&o));
+    }
     let src = root().join("python");
     let o = pip(&["--no-deps", "--force-reinstall", src.to_str().unwrap()]);
     assert!(

@@ -53,6 +53,7 @@ __all__ = [
     "SpectralPhase",
     "water_index",
     "size_parameter",
+    "get_include",
     "conventions",
 ]
 
@@ -282,6 +283,18 @@ class Phase:
             return out
         return _shaped(self._p.sample_cos(x), shape, scalar)
 
+    def sample_cos_portable(self, u: ArrayLike) -> np.ndarray:
+        """The cosines ``scatterkit_portable.h`` computes in float for an
+        isotropic, Henyey–Greenstein or Rayleigh phase, bit for bit: what a
+        kernel compiled with ``-I`` :func:`get_include` returns for the same
+        float32 uniforms ``u`` (converted to float32; clamped to ``[0, 1]``
+        as the header clamps, NaN gives NaN). A float32 array of ``u``'s
+        shape; ``ValueError`` for any other model."""
+        if np.iscomplexobj(u):
+            raise TypeError("sample_cos_portable: u must be real numbers")
+        a = np.ascontiguousarray(u, dtype=np.float32)
+        return self._p.sample_cos_portable(a.reshape(-1)).reshape(a.shape)
+
     def sample_dir(self, w_in: ArrayLike, u1: Optional[ArrayLike] = None, u2: Optional[ArrayLike] = None, *,
                    rng: Optional[np.random.Generator] = None, size=None) -> Tuple[np.ndarray, FloatOrArray]:
         """Directions scattered from the unit direction ``w_in`` (3 values, the
@@ -398,6 +411,25 @@ class Mie:
 
     def __repr__(self) -> str:
         return f"Mie(x={self.x!r}, m={self.m!r})"
+
+
+def get_include() -> str:
+    """The folder of scatterkit's C headers inside the installed package, as
+    ``numpy.get_include()`` gives numpy's: pass it as ``-I`` when compiling a
+    kernel that includes ``scatterkit_portable.h`` (pyopencl, CuPy, a C
+    extension). It holds ``scatterkit_portable.h`` (header-only: float
+    samplers for OpenCL C, CUDA, HIP, C and C++), ``scatterkit_table.h``
+    (the layout of the tables :meth:`Phase.table_data` returns) and the C
+    library's ``scatterkit.h`` and ``scatterkit_inline.h``::
+
+        import pyopencl as cl
+        prg = cl.Program(ctx, src).build(
+            options=["-I", scatterkit.get_include(),
+                     "-cl-fp32-correctly-rounded-divide-sqrt"])
+    """
+    import os
+
+    return os.path.join(os.path.dirname(os.path.abspath(__file__)), "include")
 
 
 def water_index(wavelength_um: float) -> Optional[complex]:

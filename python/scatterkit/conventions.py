@@ -122,13 +122,38 @@ def to_mitsuba_tabphase(phase, n: int = 1025) -> str:
 
 
 def to_mcx_invcdf(phase, n: int = 1000):
-    """MCX's ``cfg.invcdf`` (mcxlab, pmcx): the scattering cosines at the
-    ``n - 1`` interior uniforms ``1/n ... (n - 1)/n`` (MCX supplies -1 and 1 at
-    the ends and interpolates linearly between)."""
+    """MCX's ``cfg.invcdf`` (mcxlab, pmcx; ``Domain.InverseCDF`` in its JSON
+    input): ``m`` scattering cosines, ``m = n`` for an even ``n`` and
+    ``n + 1`` for an odd one, at the uniforms ``k/(m + 1)``, ``k = 1 ... m``.
+
+    That is where MCX reads them. Its host code (``mcx_set_field`` in
+    ``mcxlab.cpp``, the ``InverseCDF`` reader in ``mcx_utils.c``) puts -1
+    before the ``m`` values and 1 after them (``nphase = m + 2``), then pads
+    an odd ``nphase`` with one more 1 (``cfg->nphase += (cfg->nphase &
+    0x1)``); its kernel (``mcx_core.cu``) draws ``x = u (nphase - 1)`` and
+    interpolates linearly between entries ``floor(x)`` and ``floor(x) + 1``,
+    so entry ``j`` sits at ``u = j/(nphase - 1)``. An even ``m`` is never
+    padded, and value ``k`` then sits at ``u = k/(m + 1)``; an odd ``m``
+    would be padded, putting mass ``1/(m + 2)`` at ``cos θ = 1`` and every
+    node at the wrong ``u``."""
     n = int(n)
     if n < 2:
         raise ValueError("to_mcx_invcdf: n must be at least 2")
-    return phase.sample_cos(np.arange(1, n) / n)
+    m = n + (n & 1)
+    return phase.sample_cos(np.arange(1, m + 1) / (m + 1))
+
+
+def _mcx_table(invcdf):
+    """The table MCX's kernel reads for ``cfg.invcdf`` (see
+    :func:`to_mcx_invcdf`): -1, the values, 1, and one more 1 when the count
+    so far is odd."""
+    values = np.asarray(invcdf, dtype=np.float64)
+    nphase = values.size + 2
+    nphase += nphase & 1
+    table = np.ones(nphase)
+    table[0] = -1.0
+    table[1 : values.size + 1] = values
+    return table
 
 
 def to_csv(phase, path, n: int = 1801, *, degrees: bool = True) -> None:

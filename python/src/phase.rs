@@ -324,6 +324,44 @@ impl PyPhase {
             })?
             .map_err(|e| refused("sample_cos(u): u must lie in [0, 1]", e))
     }
+    /// The portable f32 tier's cosines (`include/scatterkit_portable.h`,
+    /// bit for bit) for an isotropic, HG or Rayleigh phase, at float32
+    /// uniforms in `[0, 1]` (clamped as the header clamps; NaN gives NaN).
+    fn sample_cos_portable<'py>(
+        &self,
+        py: Python<'py>,
+        u: PyReadonlyArray1<'py, f32>,
+    ) -> PyResult<Bound<'py, numpy::PyArray1<f32>>> {
+        use numpy::PyArrayMethods;
+        use scatterkit::portable;
+        let model = match &self.model {
+            Model::One(Phase::HenyeyGreenstein(h)) => portable::Hg::new(h.g() as f32)
+                .map(portable::Model::Hg)
+                .ok_or_else(|| {
+                    PyValueError::new_err("sample_cos_portable: g does not round to [-1, 1]")
+                })?,
+            Model::One(Phase::Isotropic(_)) => portable::Model::Isotropic,
+            Model::One(Phase::Rayleigh(_)) => portable::Model::Rayleigh,
+            _ => {
+                return Err(PyValueError::new_err(
+                    "sample_cos_portable: the portable tier's batch holds isotropic, \
+                     Henyey-Greenstein and Rayleigh only",
+                ));
+            }
+        };
+        let us = u.as_slice()?;
+        let out = numpy::PyArray1::<f32>::zeros(py, us.len(), false);
+        {
+            let mut rw = out.readwrite();
+            let o = rw.as_slice_mut()?;
+            py.detach(|| match &model {
+                portable::Model::Hg(h) => portable::hg_sample_cos_n(h, us, o),
+                portable::Model::Rayleigh => portable::rayleigh_sample_cos_n(us, o),
+                portable::Model::Isotropic => portable::isotropic_sample_cos_n(us, o),
+            });
+        }
+        Ok(out)
+    }
     /// `sample_cos` into a caller's array (same length as `u`).
     fn sample_cos_into(
         &self,

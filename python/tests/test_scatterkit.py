@@ -427,14 +427,53 @@ class ConventionsTest(unittest.TestCase):
         values = [float(v) for v in cv.to_mitsuba_tabphase(hg, 5).split(",")]
         np.testing.assert_allclose(values, hg.pdf(np.linspace(-1, 1, 5)), rtol=1e-8)
         inv = cv.to_mcx_invcdf(hg, 100)
-        self.assertEqual(len(inv), 99)
-        np.testing.assert_allclose(hg.cdf(inv), np.arange(1, 100) / 100, atol=1e-12)
+        self.assertEqual(len(inv), 100)
+        np.testing.assert_allclose(hg.cdf(inv), np.arange(1, 101) / 101, atol=1e-12)
+        self.assertEqual(len(cv.to_mcx_invcdf(hg, 101)), 102)
         with tempfile.TemporaryDirectory() as d:
             path = os.path.join(d, "hg.csv")
             cv.to_csv(hg, path, n=19)
             table = np.loadtxt(path, delimiter=",", skiprows=1)
             self.assertEqual(table.shape, (19, 4))
             np.testing.assert_allclose(table[:, 3], 4 * math.pi * table[:, 2], rtol=1e-9)
+
+
+def mcx_ks(phase, invcdf):
+    """The Kolmogorov–Smirnov distance between the phase function and the
+    distribution MCX samples from ``cfg.invcdf``: its table (-1, the values,
+    1, padded to an even length with 1) read at ``u (nphase - 1)`` with
+    linear interpolation, so entry ``j`` sits at ``u = j/(nphase - 1)``; the
+    table's CDF is linear in ``cos θ`` between entries and steps where two
+    entries are equal."""
+    table = cv._mcx_table(invcdf)
+    last = table.size - 1
+    worst = 0.0
+    for j in range(last):
+        a, b = table[j], table[j + 1]
+        u0, u1 = j / last, (j + 1) / last
+        if b > a:
+            mu = np.linspace(a, b, 33)
+            worst = max(worst, float(np.max(np.abs(u0 + (mu - a) / (b - a) * (u1 - u0) - phase.cdf(mu)))))
+        else:
+            # A point mass at a: the table's CDF jumps from u0 to u1 there.
+            below = float(phase.cdf(np.nextafter(a, -2.0))) if a > -1.0 else 0.0
+            worst = max(worst, abs(u0 - below), abs(u1 - float(phase.cdf(a))))
+    return worst
+
+
+class McxReading(unittest.TestCase):
+    def test_invcdf_as_mcx_reads_it(self):
+        # Thresholds chosen before the run: the linear interpolation of a
+        # 1000-node table leaves about 3e-6; a padded table 1e-3.
+        for phase in (sk.Phase.henyey_greenstein(0.8), sk.Phase.fog_diameter(2.0)):
+            for n in (1000, 1001):
+                ks = mcx_ks(phase, cv.to_mcx_invcdf(phase, n))
+                self.assertLessEqual(ks, 1e-5, (n, ks))
+        # The reading itself: an odd count is padded, and that puts 1/(m + 2)
+        # at cos θ = 1.
+        hg = sk.Phase.henyey_greenstein(0.8)
+        odd = hg.sample_cos(np.arange(1, 1000) / 1000)
+        self.assertGreater(mcx_ks(hg, odd), 9e-4)
 
 
 if __name__ == "__main__":

@@ -29,8 +29,9 @@ static int untouched_phase(const sk_phase *p) {
 }
 
 static void phase_constructors(void) {
-    const float bad_g[] = {1.0f, -1.0f, 1.5f, -7.0f, NAN, INFINITY, -INFINITY};
-    const double bad_g64[] = {1.0, -1.0, 2.0, NAN, INFINITY, -INFINITY};
+    /* |g| = 1 is HG's Dirac limit (accepted); just past it is not. */
+    const float bad_g[] = {1.0000001f, -1.0000001f, 1.5f, -7.0f, NAN, INFINITY, -INFINITY};
+    const double bad_g64[] = {1.0000000000000002, -1.0000000000000002, 2.0, NAN, INFINITY, -INFINITY};
     const float bad_rho[] = {-0.001f, 1.0f, 2.0f, NAN, INFINITY, -INFINITY};
     sk_phase p;
     sk_phase_f64 p64;
@@ -78,7 +79,8 @@ static void scattering_phases(void) {
     CHECK(sk_phase_new_draine_f64(-1.0, 1.0, &p64) == SK_ERR_DOMAIN);
     CHECK(sk_phase_new_cornette_shanks(-1.5f, &p) == SK_ERR_DOMAIN);
     CHECK(sk_phase_new_cornette_shanks_f64(INFINITY, &p64) == SK_ERR_DOMAIN);
-    CHECK(sk_phase_new_fog(1.0f, 0.5f, 1.0f, 0.5f, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_new_fog(1.0000001f, 0.5f, 1.0f, 0.5f, &p) == SK_ERR_DOMAIN);
+    CHECK(sk_phase_new_fog(0.5f, 1.0f, 1.0f, 0.5f, &p) == SK_ERR_DOMAIN); /* a Draine lobe at 1 */
     CHECK(sk_phase_new_fog(0.5f, 0.5f, 1.0f, 1.5f, &p) == SK_ERR_DOMAIN);
     CHECK(sk_phase_new_fog(0.5f, 0.5f, 1.0f, -0.1f, &p) == SK_ERR_DOMAIN);
     CHECK(sk_phase_new_fog_f64(0.5, 0.5, 1.0, NAN, &p64) == SK_ERR_DOMAIN);

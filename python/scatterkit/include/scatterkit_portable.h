@@ -1,0 +1,1 @@
+../../../include/scatterkit_portable.h

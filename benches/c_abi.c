@@ -11,6 +11,8 @@
  *   Mitsuba 3 Rayleigh: Cardano with two cube roots.
  *   Cycles Rayleigh: Cardano with the fast inverse cube root (two Newton steps).
  *   Frisvad (2011) simplified rejection: mu = 2 xi - 1 kept with (1 + mu^2)/2.
+ *   pbrt-v4 SampleUniformSphere: z from one uniform, r = sqrt(1 - z^2),
+ *     sin/cos of 2 pi u, about +z (no frame), density 1/(4 pi).
  *   Jendersie & d'Eon (2023) eq. 6 for Draine, as published, in float.
  *   Cycles' Fournier-Forand sampler: the published forward CDF (Fournier &
  *     Jonasz 1999) with a first-order expansion within 1e-3 of delta = 1,
@@ -203,6 +205,15 @@ static inline sk_vec3 isotropic_dir(sk_vec3 w, float u1, float u2, float *pdf) {
     return frame_dir(w, sqrtf(fmaxf(0.0f, (1.0f - c) * (1.0f + c))), c, 2.0f * PI_F * u2);
 }
 
+/* pbrt-v4's SampleUniformSphere (z = 2u - 1 here, the file's orientation),
+   about +z as pbrt returns it: the peer of skp_isotropic_sample_dir. */
+static inline sk_vec3 pbrt_uniform_sphere(float u1, float u2, float *pdf) {
+    float z = 2.0f * u1 - 1.0f, r = sqrtf(fmaxf(0.0f, 1.0f - z * z)), phi = 2.0f * PI_F * u2;
+    sk_vec3 d = {r * cosf(phi), r * sinf(phi), z};
+    *pdf = INV_4PI_F;
+    return d;
+}
+
 /* The portable header's samplers with this file's vector type. */
 static skp_hg php;
 static inline sk_vec3 from_skp(skp_vec3 v) {
@@ -360,6 +371,13 @@ static void time_round(void) {
         sk_vec3 d = isotropic_dir(W_IN, xo_float(&rng), xo_float(&rng), &pdf);
         acc += d.z + pdf;
     });
+    /* About +z, z does not depend on the azimuth: every component is summed
+       here and for skp_isotropic_sample_dir, so neither loses its sine and
+       cosine to dead-code elimination. */
+    TIME("iso_dir.pbrt", {
+        sk_vec3 d = pbrt_uniform_sphere(xo_float(&rng), xo_float(&rng), &pdf);
+        acc += d.x + d.y + d.z + pdf;
+    });
     TIME("hg_dir.sk", {
         sk_vec3 d = sk_phase_sample_dir(&hg, W_IN, xo_float(&rng), xo_float(&rng), &pdf);
         acc += d.z + pdf;
@@ -378,7 +396,7 @@ static void time_round(void) {
     });
     TIME("iso_dir.header", {
         skp_dir_sample d = skp_isotropic_sample_dir(xo_float(&rng), xo_float(&rng));
-        acc += d.dir.z + d.pdf;
+        acc += d.dir.x + d.dir.y + d.dir.z + d.pdf;
     });
     TIME("rayleigh_dir.header", {
         sk_vec3 d = header_rayleigh_dir(W_IN, xo_float(&rng), xo_float(&rng), &pdf);
@@ -510,6 +528,7 @@ static void accuracy(void) {
     sk_phase_new_isotropic_f64(&iso64);
     MAX_DIR_ERR("iso_dir.sk", &iso64, sk_phase_sample_dir(&iso, W_IN, u1, u2, &pdf));
     MAX_DIR_ERR("iso_dir.c", &iso64, isotropic_dir(W_IN, u1, u2, &pdf));
+    MAX_ERR("iso_dir.pbrt", &iso64, pbrt_uniform_sphere(u, 0.3f, &pdf).z);
     MAX_DIR_ERR("hg_dir.sk", &hg64, sk_phase_sample_dir(&hg, W_IN, u1, u2, &pdf));
     MAX_DIR_ERR("hg_dir.pbrt", &hg64, pbrt_hg_dir(0.7f, W_IN, u1, u2, &pdf));
     MAX_ERR("hg_cos.sk", &hg64, sk_phase_sample_cos(&hg, u));

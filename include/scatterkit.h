@@ -2267,6 +2267,63 @@ sk_status sk_phase_sample_dir_n_portable(const sk_phase *p,
                                          size_t n);
 
 /*
+ `sk_phase_sample_dir_n` with each direction's cos theta to `cos_out[i]`
+ (the cosine the direction was built from, `sk_phase_sample_cos(p,
+ u1[i])` bit for bit), for codes that tally the scattering angle
+ (angular scoring, momentum transfer) beside the direction. cos_out must
+ not be NULL (SK_ERR_NULL for n > 0); pdf_out may be. Arrays, overlaps
+ (cos_out counts as an output) and statuses as `sk_phase_sample_dir_n`.
+ */
+sk_status sk_phase_sample_dir_cos_n(const sk_phase *p,
+                                    const float *w_x,
+                                    const float *w_y,
+                                    const float *w_z,
+                                    const float *u1,
+                                    const float *u2,
+                                    float *out_x,
+                                    float *out_y,
+                                    float *out_z,
+                                    float *cos_out,
+                                    float *pdf_out,
+                                    size_t n);
+
+/*
+ Double twin of `sk_phase_sample_dir_cos_n`.
+ */
+sk_status sk_phase_sample_dir_cos_n_f64(const sk_phase_f64 *p,
+                                        const double *w_x,
+                                        const double *w_y,
+                                        const double *w_z,
+                                        const double *u1,
+                                        const double *u2,
+                                        double *out_x,
+                                        double *out_y,
+                                        double *out_z,
+                                        double *cos_out,
+                                        double *pdf_out,
+                                        size_t n);
+
+/*
+ The portable f32 tier's directions with their cos theta:
+ `sk_phase_sample_dir_n_portable` with `cos_out[i]` the `cos_theta` of
+ the header's `skp_dir_sample` at the same inputs, bit for bit. Arrays
+ and statuses as `sk_phase_sample_dir_cos_n`; SK_ERR_METHOD for a model
+ other than isotropic, Henyey-Greenstein and Rayleigh.
+ */
+sk_status sk_phase_sample_dir_cos_n_portable(const sk_phase *p,
+                                             const float *w_x,
+                                             const float *w_y,
+                                             const float *w_z,
+                                             const float *u1,
+                                             const float *u2,
+                                             float *out_x,
+                                             float *out_y,
+                                             float *out_z,
+                                             float *cos_out,
+                                             float *pdf_out,
+                                             size_t n);
+
+/*
  Double twin of `sk_phase_sample_dir_n`.
  */
 sk_status sk_phase_sample_dir_n_f64(const sk_phase_f64 *p,

@@ -35,14 +35,25 @@ pub(crate) unsafe fn cos_n<T: Real>(
 /// all pass; then `run(inputs, outputs, len)` fills each block of 64 (the
 /// inputs w_x, w_y, w_z, u1, u2; the outputs x, y, z, pdf).
 pub(crate) unsafe fn dir_blocks<T: Real>(
-    (w, u1, u2): ([*const T; 3], *const T, *const T),
+    ins: ([*const T; 3], *const T, *const T),
     (out, pdf_out): ([*mut T; 3], *mut T),
     n: usize,
     run: impl FnMut(&[[T; SOA_BLOCK]; 5], &mut [[T; SOA_BLOCK]; 4], usize),
 ) -> sk_status {
     let [ox, oy, oz] = out;
-    let inputs = [w[0], w[1], w[2], u1, u2];
     let outputs = [(ox, false), (oy, false), (oz, false), (pdf_out, true)];
+    unsafe { checked_blocks(ins, outputs, n, run) }
+}
+
+/// [`dir_blocks`] for any list of outputs `(array, may be NULL)`: the
+/// checks, then `run` per block.
+unsafe fn checked_blocks<T: Real, const O: usize>(
+    (w, u1, u2): ([*const T; 3], *const T, *const T),
+    outputs: [(*mut T, bool); O],
+    n: usize,
+    run: impl FnMut(&[[T; SOA_BLOCK]; 5], &mut [[T; SOA_BLOCK]; O], usize),
+) -> sk_status {
+    let inputs = [w[0], w[1], w[2], u1, u2];
     if let Err(e) = check_soa(&inputs, &outputs, n) {
         return e;
     }
@@ -59,8 +70,32 @@ pub(crate) unsafe fn dir_blocks<T: Real>(
     if let Err(e) = check_uniforms(a).and_then(|()| check_uniforms(b)) {
         return e.into();
     }
-    unsafe { soa_blocks(inputs, [ox, oy, oz, pdf_out], n, run) };
+    unsafe { soa_blocks(inputs, outputs.map(|(p, _)| p), n, run) };
     sk_status::SK_OK
+}
+
+/// [`dir_block_slices`] with each direction's `cos θ` too: `run(w, [u1,
+/// u2], out, cos, pdf)`; `cos_out` must not be NULL, `pdf_out` may be.
+pub(crate) unsafe fn dir_cos_block_slices<T: Real>(
+    ins: ([*const T; 3], *const T, *const T),
+    (out, cos_out, pdf_out): ([*mut T; 3], *mut T, *mut T),
+    n: usize,
+    mut run: impl FnMut([&[T]; 3], [&[T]; 2], [&mut [T]; 3], &mut [T], &mut [T]),
+) -> sk_status {
+    let [ox, oy, oz] = out;
+    let outputs = [
+        (ox, false),
+        (oy, false),
+        (oz, false),
+        (cos_out, false),
+        (pdf_out, true),
+    ];
+    let adapt = |i: &[[T; SOA_BLOCK]; 5], o: &mut [[T; SOA_BLOCK]; 5], len: usize| {
+        let [ix, iy, iz, a, b] = i.each_ref().map(|x| x.get(..len).unwrap_or(&[]));
+        let [ox, oy, oz, cos, pdf] = o.each_mut().map(|x| x.get_mut(..len).unwrap_or(&mut []));
+        run([ix, iy, iz], [a, b], [ox, oy, oz], cos, pdf);
+    };
+    unsafe { checked_blocks(ins, outputs, n, adapt) }
 }
 
 /// [`dir_blocks`] with each block handed over as slices of its length:

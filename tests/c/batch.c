@@ -1,6 +1,7 @@
 /* The direction batches agree with the scalar calls bit for bit: every phase
  * kind (float and double) through sk_phase_sample_dir_n, in place and not,
- * with and without pdf_out, at lengths across the 64-element block; every
+ * with and without pdf_out, at lengths across the 64-element block, and with
+ * each direction's cos theta (sk_phase_sample_dir_cos_n and its twins); every
  * Rayleigh method through sk_rayleigh_sample_dir_n against n scalar calls
  * with a copy of the generator. Exits with the number of failures. */
 #include <math.h>
@@ -79,6 +80,46 @@ static void phase_batches(const sk_phase *p, const sk_phase_f64 *q, int k) {
     }
 }
 
+/* The batches with cos theta: the directions and densities of
+   sk_phase_sample_dir_n, bit for bit, and each cosine sk_phase_sample_cos's
+   at the same u1 (the portable batch: the header's cos_theta, which is
+   sk_phase_sample_cos_n_portable's); a NULL cos_out and an overlap refused. */
+static void cos_batches(const sk_phase *p, const sk_phase_f64 *q, int k, int portable) {
+    static float cx[N], cy[N], cz[N], cpdf[N], cosv[N], want[N];
+    static double ex[N], ey[N], ez[N], epdf[N], cosd[N];
+    size_t i;
+    int ok = 1;
+    CHECK(sk_phase_sample_dir_n(p, wx, wy, wz, u1, u2, ox, oy, oz, pdf, N) == SK_OK);
+    CHECK(sk_phase_sample_dir_cos_n(p, wx, wy, wz, u1, u2, cx, cy, cz, cosv, cpdf, N) == SK_OK);
+    CHECK(sk_phase_sample_dir_n_f64(q, dx, dy, dz, v1, v2, px, py, pz, pdfd, N) == SK_OK);
+    CHECK(sk_phase_sample_dir_cos_n_f64(q, dx, dy, dz, v1, v2, ex, ey, ez, cosd, epdf, N) == SK_OK);
+    for (i = 0; i < N; i++) {
+        float c = sk_phase_sample_cos(p, u1[i]);
+        double cd = sk_phase_sample_cos_f64(q, v1[i]);
+        ok &= same(&cx[i], &ox[i]) && same(&cy[i], &oy[i]) && same(&cz[i], &oz[i]) && same(&cpdf[i], &pdf[i]);
+        ok &= same(&c, &cosv[i]) && same_d(&cd, &cosd[i]);
+        ok &= same_d(&ex[i], &px[i]) && same_d(&ey[i], &py[i]) && same_d(&ez[i], &pz[i]) && same_d(&epdf[i], &pdfd[i]);
+    }
+    CHECK(ok);
+    CHECK(sk_phase_sample_dir_cos_n(p, wx, wy, wz, u1, u2, cx, cy, cz, NULL, cpdf, N) == SK_ERR_NULL);
+    CHECK(sk_phase_sample_dir_cos_n(p, wx, wy, wz, u1, u2, cx, cy, cz, cx, NULL, N) == SK_ERR_OVERLAP);
+    CHECK(sk_phase_sample_dir_cos_n(p, wx, wy, wz, u1, u2, cx, cy, cz, cosv, NULL, N) == SK_OK);
+    if (portable) {
+        ok = 1;
+        CHECK(sk_phase_sample_dir_n_portable(p, wx, wy, wz, u1, u2, ox, oy, oz, pdf, N) == SK_OK);
+        CHECK(sk_phase_sample_dir_cos_n_portable(p, wx, wy, wz, u1, u2, cx, cy, cz, cosv, cpdf, N) == SK_OK);
+        CHECK(sk_phase_sample_cos_n_portable(p, u1, want, N) == SK_OK);
+        for (i = 0; i < N; i++) {
+            ok &= same(&cx[i], &ox[i]) && same(&cy[i], &oy[i]) && same(&cz[i], &oz[i]) && same(&cpdf[i], &pdf[i]);
+            ok &= same(&want[i], &cosv[i]);
+        }
+        CHECK(ok);
+    } else {
+        CHECK(sk_phase_sample_dir_cos_n_portable(p, wx, wy, wz, u1, u2, cx, cy, cz, cosv, cpdf, N) ==
+              SK_ERR_METHOD);
+    }
+}
+
 static void rayleigh_batches(uint32_t m, int k) {
     uint64_t s1 = 99, s2 = 99;
     sk_rng batch = {&s1, splitmix}, scalar = {&s2, splitmix};
@@ -117,6 +158,7 @@ int main(void) {
     sk_phase_new_gegenbauer(-0.25f, 0.7f, &p[8]), sk_phase_new_gegenbauer_f64(-0.25, 0.7, &q[8]);
     sk_phase_new_fournier_forand(1.1f, 4.0f, &p[9]), sk_phase_new_fournier_forand_f64(1.1, 4.0, &q[9]);
     for (k = 0; k < 10; k++) phase_batches(&p[k], &q[k], k);
+    for (k = 0; k < 10; k++) cos_batches(&p[k], &q[k], k, k < 4);
     for (k = SK_RAYLEIGH_REJECT_CUBE; k <= SK_RAYLEIGH_TABLE; k++) rayleigh_batches((uint32_t)k, k);
     printf("%d passed, %d failed\n", passed, failed);
     return failed;

@@ -386,6 +386,29 @@ static void direction_batches(void) {
     CHECK(sk_phase_sample_dir_n(&p, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0) == SK_OK);
     CHECK(sk_phase_sample_dir_n(&p, wx, wy, wz, u1, u2, ox, oy, oz, pdf, SIZE_MAX) == SK_ERR_SIZE);
     CHECK(sk_phase_sample_dir_n_f64(&q, dx, dy, dz, v1, v2, px, py, pz, pdfd, SIZE_MAX) == SK_ERR_SIZE);
+    /* With cos theta: the same checks, and cos_out never NULL. */
+    {
+        float cosv[4];
+        double cosd[4];
+        CHECK(sk_phase_sample_dir_cos_n(&p, wx, wy, wz, u1, u2, ox, oy, oz, cosv, pdf, 4) == SK_OK);
+        CHECK(sk_phase_sample_dir_cos_n(&p, wx, wy, wz, u1, u2, ox, oy, oz, cosv, NULL, 4) == SK_OK);
+        CHECK(sk_phase_sample_dir_cos_n(&p, wx, wy, wz, u1, u2, ox, oy, oz, NULL, pdf, 4) == SK_ERR_NULL);
+        CHECK(sk_phase_sample_dir_cos_n(NULL, wx, wy, wz, u1, u2, ox, oy, oz, cosv, pdf, 4) == SK_ERR_NULL);
+        CHECK(sk_phase_sample_dir_cos_n(&zero, wx, wy, wz, u1, u2, ox, oy, oz, cosv, pdf, 4) == SK_ERR_DOMAIN);
+        CHECK(sk_phase_sample_dir_cos_n(&p, wx, wy, wz, u1, u2, ox, oy, oz, ox, pdf, 4) == SK_ERR_OVERLAP);
+        CHECK(sk_phase_sample_dir_cos_n(&p, wx, wy, wz, u1, u2, ox, oy, oz, cosv, pdf, SIZE_MAX) == SK_ERR_SIZE);
+        CHECK(sk_phase_sample_dir_cos_n(&p, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0) == SK_OK);
+        CHECK(sk_phase_sample_dir_cos_n_f64(&q, dx, dy, dz, v1, v2, px, py, pz, cosd, pdfd, 4) == SK_OK);
+        CHECK(sk_phase_sample_dir_cos_n_f64(&q, dx, dy, dz, v1, v2, px, py, pz, NULL, pdfd, 4) == SK_ERR_NULL);
+        CHECK(sk_phase_sample_dir_cos_n_f64(&zero64, dx, dy, dz, v1, v2, px, py, pz, cosd, pdfd, 4) == SK_ERR_DOMAIN);
+        CHECK(sk_phase_sample_dir_cos_n_portable(&p, wx, wy, wz, u1, u2, ox, oy, oz, cosv, pdf, 4) == SK_OK);
+        CHECK(sk_phase_sample_dir_cos_n_portable(&p, wx, wy, wz, u1, u2, ox, oy, oz, NULL, pdf, 4) == SK_ERR_NULL);
+        CHECK(sk_phase_sample_dir_cos_n_portable(&zero, wx, wy, wz, u1, u2, ox, oy, oz, cosv, pdf, 4) == SK_ERR_DOMAIN);
+        u1[1] = NAN;
+        CHECK(sk_phase_sample_dir_cos_n(&p, wx, wy, wz, u1, u2, ox, oy, oz, cosv, pdf, 4) == SK_ERR_DOMAIN);
+        CHECK(sk_phase_sample_dir_cos_n_portable(&p, wx, wy, wz, u1, u2, ox, oy, oz, cosv, pdf, 4) == SK_ERR_DOMAIN);
+        u1[1] = 0.5f;
+    }
     /* The portable tier's batch: the same checks; isotropic, HG and
        Rayleigh only. */
     CHECK(sk_phase_sample_dir_n_portable(&p, wx, wy, wz, u1, u2, ox, oy, oz, NULL, 4) == SK_OK);

@@ -254,6 +254,37 @@ unsafe fn sample_dir_n<S: PhaseStore>(
     }
 }
 
+/// [`sample_dir_n`] with each direction's `cos θ` to `cos_out`: the
+/// model's `sample_cos` at the same `u1` (the cosine its `sample_dir`
+/// turns into the direction, bit for bit).
+#[allow(clippy::too_many_arguments)]
+unsafe fn sample_dir_cos_n<S: PhaseStore>(
+    p: *const S,
+    w: [*const S::T; 3],
+    u1: *const S::T,
+    u2: *const S::T,
+    out: [*mut S::T; 3],
+    cos_out: *mut S::T,
+    pdf_out: *mut S::T,
+    n: usize,
+) -> sk_status {
+    let ph = match unsafe { load_batch(p) } {
+        Ok(ph) => ph,
+        Err(e) => return e,
+    };
+    unsafe {
+        super::verbs::dir_cos_block_slices(
+            (w, u1, u2),
+            (out, cos_out, pdf_out),
+            n,
+            |w, [a, b], o, cos, pdf| {
+                ph.sample_dir_each(w, a, b, o, pdf);
+                ph.sample_cos_each_in_range(a, cos);
+            },
+        )
+    }
+}
+
 #[cfg(test)]
 mod tag_tests {
     use super::*;

@@ -298,6 +298,101 @@ pub unsafe extern "C" fn sk_phase_sample_dir_n_portable(
     }
 }
 
+/// `sk_phase_sample_dir_n` with each direction's cos theta to `cos_out[i]`
+/// (the cosine the direction was built from, `sk_phase_sample_cos(p,
+/// u1[i])` bit for bit), for codes that tally the scattering angle
+/// (angular scoring, momentum transfer) beside the direction. cos_out must
+/// not be NULL (SK_ERR_NULL for n > 0); pdf_out may be. Arrays, overlaps
+/// (cos_out counts as an output) and statuses as `sk_phase_sample_dir_n`.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_phase_sample_dir_cos_n(
+    p: *const sk_phase,
+    w_x: *const f32,
+    w_y: *const f32,
+    w_z: *const f32,
+    u1: *const f32,
+    u2: *const f32,
+    out_x: *mut f32,
+    out_y: *mut f32,
+    out_z: *mut f32,
+    cos_out: *mut f32,
+    pdf_out: *mut f32,
+    n: usize,
+) -> sk_status {
+    let (w, out) = ([w_x, w_y, w_z], [out_x, out_y, out_z]);
+    unsafe { sample_dir_cos_n(p, w, u1, u2, out, cos_out, pdf_out, n) }
+}
+
+/// Double twin of `sk_phase_sample_dir_cos_n`.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_phase_sample_dir_cos_n_f64(
+    p: *const sk_phase_f64,
+    w_x: *const f64,
+    w_y: *const f64,
+    w_z: *const f64,
+    u1: *const f64,
+    u2: *const f64,
+    out_x: *mut f64,
+    out_y: *mut f64,
+    out_z: *mut f64,
+    cos_out: *mut f64,
+    pdf_out: *mut f64,
+    n: usize,
+) -> sk_status {
+    let (w, out) = ([w_x, w_y, w_z], [out_x, out_y, out_z]);
+    unsafe { sample_dir_cos_n(p, w, u1, u2, out, cos_out, pdf_out, n) }
+}
+
+/// The portable f32 tier's directions with their cos theta:
+/// `sk_phase_sample_dir_n_portable` with `cos_out[i]` the `cos_theta` of
+/// the header's `skp_dir_sample` at the same inputs, bit for bit. Arrays
+/// and statuses as `sk_phase_sample_dir_cos_n`; SK_ERR_METHOD for a model
+/// other than isotropic, Henyey-Greenstein and Rayleigh.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn sk_phase_sample_dir_cos_n_portable(
+    p: *const sk_phase,
+    w_x: *const f32,
+    w_y: *const f32,
+    w_z: *const f32,
+    u1: *const f32,
+    u2: *const f32,
+    out_x: *mut f32,
+    out_y: *mut f32,
+    out_z: *mut f32,
+    cos_out: *mut f32,
+    pdf_out: *mut f32,
+    n: usize,
+) -> sk_status {
+    use crate::portable;
+    let ph = match unsafe { load_batch(p) } {
+        Ok(ph) => ph,
+        Err(e) => return e,
+    };
+    let phase = match portable_model(ph) {
+        Ok(m) => m,
+        Err(e) => return e,
+    };
+    let (w, out) = ([w_x, w_y, w_z], [out_x, out_y, out_z]);
+    unsafe {
+        crate::ffi::verbs::dir_cos_block_slices(
+            (w, u1, u2),
+            (out, cos_out, pdf_out),
+            n,
+            |w, u, o, cos, pdf| {
+                portable::sample_dir_n(&phase, w, u, o, pdf);
+                match &phase {
+                    portable::Model::Hg(h) => portable::hg_sample_cos_n_in_range(h, u[0], cos),
+                    portable::Model::Rayleigh => portable::rayleigh_sample_cos_n(u[0], cos),
+                    portable::Model::Isotropic => portable::isotropic_sample_cos_n(u[0], cos),
+                }
+            },
+        )
+    }
+}
+
 /// Double twin of `sk_phase_sample_dir_n`.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]

@@ -164,7 +164,7 @@ impl<T: Real> HenyeyGreenstein<T> {
     #[inline(always)]
     fn factors(&self, u: T) -> (T, T, T) {
         if self.is_dirac() {
-            let z = u - u; // 0, or NaN for a NaN u
+            let z = if u.is_nan() { u } else { T::ZERO };
             return (self.opg + z, self.omg + z, T::ONE + z);
         }
         let g = self.g;

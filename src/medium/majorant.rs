@@ -308,24 +308,7 @@ impl<'a, T: Real> Majorants<'a, T> {
         budget: u32,
         rng: &mut R,
     ) -> Result<Track<T>, Error> {
-        let real = |p: Vec3<T>, sigma_maj: T, r: &mut R| {
-            let st = within(coefficients(p), sigma_maj)?;
-            let x = T::uniform(r) * sigma_maj;
-            Ok(if x < st.0 {
-                Some(Event::Absorbed)
-            } else if x < st.0 + st.1 {
-                Some(Event::Scattered)
-            } else {
-                None
-            })
-        };
-        let walk = self.walk(ray, budget, rng, real)?;
-        let (t, event) = walk.found.unwrap_or((walk.exit, Event::Escaped));
-        Ok(Track {
-            t,
-            event,
-            steps: walk.steps,
-        })
+        Walker::Cells(self).delta_track_fn(coefficients, ray, budget, rng)
     }
 
     /// Ratio tracking through a caller's medium (arguments as
@@ -338,17 +321,7 @@ impl<'a, T: Real> Majorants<'a, T> {
         budget: u32,
         rng: &mut R,
     ) -> Result<Transmittance<T>, Error> {
-        let mut tr = T::ONE;
-        let visit = |p: Vec3<T>, sigma_maj: T, r: &mut R| {
-            let (sa, ss) = within(coefficients(p), sigma_maj)?;
-            tr = roulette(tr * (T::ONE - (sa + ss) / sigma_maj), r);
-            Ok((tr == T::ZERO).then_some(()))
-        };
-        let walk = self.walk(ray, budget, rng, visit)?;
-        Ok(Transmittance {
-            tr: if walk.found.is_some() { T::ZERO } else { tr },
-            steps: walk.steps,
-        })
+        Walker::Cells(self).ratio_track_fn(coefficients, ray, budget, rng)
     }
 
     /// [`Error::Domain`] unless `grid` spans this grid's box.
@@ -414,40 +387,16 @@ impl<'a, T: Real> Majorants<'a, T> {
         let mut since = T::ZERO;
         let cell = |cell: [usize; 3], t_cell: T, t_end: T| {
             let value = value_of(cell, t_end - t_cell);
-            // Values are checked here, per cell crossed, not when the
-            // caller's array is loaded (`from_parts`): the cost of a call
-            // does not grow with the grid.
-            if !(value >= T::ZERO && value.is_finite()) {
-                return Err(Error::Domain);
-            }
-            let sigma_maj = rate * value;
-            let mut t = t_cell;
-            // An empty cell (majorant 0) is crossed without a draw.
-            while sigma_maj > T::ZERO && t < t_end {
-                let next = t + exponential_step(sigma_maj, T::uniform(rng));
-                if next >= t_end || next.is_nan() {
-                    break;
-                }
-                if walk.steps >= budget {
-                    return Err(Error::Budget);
-                }
-                walk.steps += 1;
-                since += value * (next - t);
-                t = next;
-                let c = Tentative {
-                    p: o + d * t,
-                    cell,
-                    value,
-                    since,
-                };
-                since = T::ZERO;
-                if let Some(x) = visit(c, rng)? {
-                    walk.found = Some((t, x));
-                    return Ok(true);
-                }
-            }
-            since += value * (t_end - t);
-            Ok(false)
+            let span = Span {
+                o,
+                d,
+                cell,
+                value,
+                rate,
+                t: (t_cell, t_end),
+                budget,
+            };
+            walk_span(span, &mut walk, &mut since, rng, &mut visit)
         };
         if let Some((_, tb)) = self.cells(ray, cell)? {
             walk.exit = tb;
@@ -504,6 +453,167 @@ pub(crate) struct Tentative<T> {
     pub(crate) value: T,
     /// `∫ value dt` along the ray since the previous tentative collision.
     pub(crate) since: T,
+}
+
+/// One stretch of a walk at one majorant value: `[t.0, t.1]` of the ray
+/// `o + t d` inside cell `cell` of value `value`, free paths drawn at
+/// `rate · value`, at most `budget` tentative collisions in the whole walk.
+struct Span<T> {
+    o: Vec3<T>,
+    d: Vec3<T>,
+    cell: [usize; 3],
+    value: T,
+    rate: T,
+    t: (T, T),
+    budget: u32,
+}
+
+/// Draws the tentative collisions of one [`Span`] into `walk` (`since`
+/// carrying `∫ value dt` since the last one): `Ok(true)` once `visit`
+/// ends the walk. The value is checked here, per cell crossed, not when
+/// the caller's array is loaded (`from_parts`): the cost of a call does
+/// not grow with the grid.
+fn walk_span<T: Real, R: Rng + ?Sized, X>(
+    s: Span<T>,
+    walk: &mut Walk<T, X>,
+    since: &mut T,
+    rng: &mut R,
+    visit: &mut impl FnMut(Tentative<T>, &mut R) -> Result<Option<X>, Error>,
+) -> Result<bool, Error> {
+    let (value, (t_cell, t_end)) = (s.value, s.t);
+    if !(value >= T::ZERO && value.is_finite()) {
+        return Err(Error::Domain);
+    }
+    let sigma_maj = s.rate * value;
+    let mut t = t_cell;
+    // An empty cell (majorant 0) is crossed without a draw.
+    while sigma_maj > T::ZERO && t < t_end {
+        let next = t + exponential_step(sigma_maj, T::uniform(rng));
+        if next >= t_end || next.is_nan() {
+            break;
+        }
+        if walk.steps >= s.budget {
+            return Err(Error::Budget);
+        }
+        walk.steps += 1;
+        *since += value * (next - t);
+        t = next;
+        let c = Tentative {
+            p: s.o + s.d * t,
+            cell: s.cell,
+            value,
+            since: *since,
+        };
+        *since = T::ZERO;
+        if let Some(x) = visit(c, rng)? {
+            walk.found = Some((t, x));
+            return Ok(true);
+        }
+    }
+    *since += value * (t_end - t);
+    Ok(false)
+}
+
+/// How delta and ratio tracking walk a ray: through the cells of a
+/// majorant grid, or at one majorant over the whole segment (a caller's
+/// medium with one majorant: the walk a one-cell grid around the segment
+/// gives, draw for draw, without building the box or clipping the ray
+/// against it, which one call per flight would pay every time).
+pub(crate) enum Walker<'m, 'a, T> {
+    Cells(&'m Majorants<'a, T>),
+    One(T),
+}
+
+impl<T: Real> Walker<'_, '_, T> {
+    /// The walk along `ray` (`visit(p, σ_maj, rng)` as in
+    /// [`Majorants::walk`]). `One` needs a finite segment and a majorant
+    /// `≥ 0` and finite ([`Error::Domain`]), as the one-cell grid did.
+    fn walk<R: Rng + ?Sized, X>(
+        &self,
+        ray: Ray<T>,
+        budget: u32,
+        rng: &mut R,
+        mut visit: impl FnMut(Vec3<T>, T, &mut R) -> Result<Option<X>, Error>,
+    ) -> Result<Walk<T, X>, Error> {
+        let sigma = match self {
+            Walker::Cells(m) => return m.walk(ray, budget, rng, visit),
+            Walker::One(sigma) => *sigma,
+        };
+        let (o, d) = ray.checked()?;
+        let finite = ray.t_max.is_finite() && sigma >= T::ZERO && sigma.is_finite();
+        if !finite {
+            return Err(Error::Domain);
+        }
+        let mut walk = Walk {
+            found: None,
+            exit: ray.t_max,
+            steps: 0,
+            tail: T::ZERO,
+        };
+        let mut since = T::ZERO;
+        let span = Span {
+            o,
+            d,
+            cell: [0; 3],
+            value: sigma,
+            rate: T::ONE,
+            t: (ray.t_min, ray.t_max),
+            budget,
+        };
+        let mut v = |c: Tentative<T>, r: &mut R| visit(c.p, c.value, r);
+        walk_span(span, &mut walk, &mut since, rng, &mut v)?;
+        walk.tail = if walk.found.is_none() { since } else { T::ZERO };
+        Ok(walk)
+    }
+
+    /// Delta tracking (see [`Majorants::delta_track_fn`]).
+    pub(crate) fn delta_track_fn<R: Rng + ?Sized>(
+        &self,
+        coefficients: impl Fn(Vec3<T>) -> (T, T),
+        ray: Ray<T>,
+        budget: u32,
+        rng: &mut R,
+    ) -> Result<Track<T>, Error> {
+        let real = |p: Vec3<T>, sigma_maj: T, r: &mut R| {
+            let st = within(coefficients(p), sigma_maj)?;
+            let x = T::uniform(r) * sigma_maj;
+            Ok(if x < st.0 {
+                Some(Event::Absorbed)
+            } else if x < st.0 + st.1 {
+                Some(Event::Scattered)
+            } else {
+                None
+            })
+        };
+        let walk = self.walk(ray, budget, rng, real)?;
+        let (t, event) = walk.found.unwrap_or((walk.exit, Event::Escaped));
+        Ok(Track {
+            t,
+            event,
+            steps: walk.steps,
+        })
+    }
+
+    /// Ratio tracking (see [`Majorants::ratio_track_fn`]).
+    pub(crate) fn ratio_track_fn<R: Rng + ?Sized>(
+        &self,
+        coefficients: impl Fn(Vec3<T>) -> (T, T),
+        ray: Ray<T>,
+        budget: u32,
+        rng: &mut R,
+    ) -> Result<Transmittance<T>, Error> {
+        let mut tr = T::ONE;
+        let visit = |p: Vec3<T>, sigma_maj: T, r: &mut R| {
+            let (sa, ss) = within(coefficients(p), sigma_maj)?;
+            tr = roulette(tr * (T::ONE - (sa + ss) / sigma_maj), r);
+            Ok((tr == T::ZERO).then_some(()))
+        };
+        let walk = self.walk(ray, budget, rng, visit)?;
+        Ok(Transmittance {
+            tr: if walk.found.is_some() { T::ZERO } else { tr },
+            steps: walk.steps,
+        })
+    }
 }
 
 /// The outcome of a walk: what ended it and where, or where the ray left.
@@ -635,5 +745,91 @@ impl rand_core::TryRng for NoDraws {
     fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
         dst.fill(0);
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand_xoshiro::Xoshiro256PlusPlus;
+    use rand_xoshiro::rand_core::SeedableRng;
+
+    /// The one-majorant walk draws what a one-cell grid around the segment
+    /// draws: the same distances, events, steps and transmittances, bit for
+    /// bit, over rays in every direction, segments starting inside, and a
+    /// medium that varies along them (the C layer took the grid before).
+    #[test]
+    fn one_majorant_walks_as_a_one_cell_grid() {
+        let coef = |p: Vec3<f64>| (0.3 + 0.2 * (3.0 * p.x).sin(), 1.0 + 0.5 * (2.0 * p.z).cos());
+        let dirs = [
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::new(0.3, -0.4, -0.866),
+            Vec3::new(-1.0, 0.0, 0.0),
+            Vec3::new(0.5, 0.5, 0.0),
+        ];
+        for (k, d) in dirs.into_iter().enumerate() {
+            for (t0, t1) in [(0.0, 0.3), (0.2, 2.5), (0.0, 40.0)] {
+                let o = Vec3::new(0.1 * k as f64, -0.2, 0.7);
+                let ray = Ray::new(o, d, t1).segment(t0, t1);
+                let u = d.try_normalize().unwrap();
+                let (a, b) = (o + u * t0, o + u * t1);
+                let lo =
+                    Vec3::new(a.x.min(b.x), a.y.min(b.y), a.z.min(b.z)) - Vec3::new(1.0, 1.0, 1.0);
+                let hi =
+                    Vec3::new(a.x.max(b.x), a.y.max(b.y), a.z.max(b.z)) + Vec3::new(1.0, 1.0, 1.0);
+                let sigma = [2.0f64];
+                let cell = Majorants::from_parts(&sigma, [1; 3], lo, hi).unwrap();
+                for seed in 0..200u64 {
+                    let mut r1 = Xoshiro256PlusPlus::seed_from_u64(seed);
+                    let mut r2 = Xoshiro256PlusPlus::seed_from_u64(seed);
+                    let x = Walker::One(2.0)
+                        .delta_track_fn(coef, ray, 1000, &mut r1)
+                        .unwrap();
+                    let y = cell.delta_track_fn(coef, ray, 1000, &mut r2).unwrap();
+                    assert_eq!(
+                        (x.t.to_bits(), x.event, x.steps),
+                        (y.t.to_bits(), y.event, y.steps)
+                    );
+                    let x = Walker::One(2.0)
+                        .ratio_track_fn(coef, ray, 1000, &mut r1)
+                        .unwrap();
+                    let y = cell.ratio_track_fn(coef, ray, 1000, &mut r2).unwrap();
+                    assert_eq!((x.tr.to_bits(), x.steps), (y.tr.to_bits(), y.steps));
+                }
+            }
+        }
+        // Refused as the one-cell grid was: an infinite segment, a bad
+        // majorant; the budget is its own error.
+        let mut r = Xoshiro256PlusPlus::seed_from_u64(1);
+        let ray = Ray::new(
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, 1.0),
+            f64::INFINITY,
+        );
+        assert_eq!(
+            Walker::One(2.0).delta_track_fn(coef, ray, 10, &mut r).err(),
+            Some(Error::Domain)
+        );
+        let ray = Ray::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0), 1.0);
+        assert_eq!(
+            Walker::One(-1.0)
+                .delta_track_fn(coef, ray, 10, &mut r)
+                .err(),
+            Some(Error::Domain)
+        );
+        assert_eq!(
+            Walker::One(f64::NAN)
+                .ratio_track_fn(coef, ray, 10, &mut r)
+                .err(),
+            Some(Error::Domain)
+        );
+        let long = Ray::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0), 1e6);
+        let thin = |_: Vec3<f64>| (0.0, 1e-9);
+        assert_eq!(
+            Walker::One(2.0)
+                .delta_track_fn(thin, long, 10, &mut r)
+                .err(),
+            Some(Error::Budget)
+        );
     }
 }

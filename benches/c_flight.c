@@ -1,0 +1,255 @@
+/* One tracking call per flight, as MCML-style slab codes make them: the
+ * photon's own loop decides absorption and scattering, and asks the library
+ * only where the next collision is (one call per flight, a short ray to the
+ * slab's boundary). A slab z in [0, 1] of optical depth tau = 2 (sigma_t = 2),
+ * albedo 0.9 (the photon's weight times 0.9 at each collision, Russian
+ * roulette below 1e-4), HG g = 0.75 by the textbook inverse inline,
+ * index-matched boundaries, 10^6 photons entering at z = 0 along +z.
+ *
+ * Modes (argv[1]; all run when none is given or it is "all"; argv[2], if
+ * given, the number of photons):
+ *   cb64     sk_delta_track_f64 through a callback medium with one majorant
+ *   cb32     the same in float (sk_delta_track)
+ *   cbratio  cb64 plus a ratio-tracking estimate of the transmittance to
+ *            the boundary along each new direction (an exit estimator)
+ *   grid64   sk_delta_track_f64 through a 1 x 1 x 64 density grid
+ *   free64   sk_free_path_f64 (no tracking call): the floor
+ * Each prints "mode seconds ns_per_photon R T"; R and T (the reflected and
+ * transmitted weight per photon) agree between modes within their noise
+ * (the modes draw their uniforms differently: a grid walk draws afresh in
+ * each cell), and between the two libraries to the digits printed, which
+ * checks that they do the same work.
+ *
+ * Built against the current C API by default, or against the 0.1 API
+ * (commit 950c067, per-estimator functions) with -DSK_API_0_1, so that one
+ * file times both libraries: scripts/flight_vs_0_1.sh builds both and runs
+ * them alternately. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "scatterkit.h"
+
+#define PHOTONS_DEFAULT 1000000
+static long PHOTONS = PHOTONS_DEFAULT;
+#define SIGMA_T 2.0
+#define ALBEDO 0.9
+#define G 0.75
+#define NZ 64
+
+/* xoshiro256++, behind sk_rng. */
+typedef struct {
+    uint64_t s[4];
+} xo;
+static uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+static uint64_t xo_next(void *state) {
+    uint64_t *s = ((xo *)state)->s;
+    uint64_t r = rotl(s[0] + s[3], 23) + s[0], t = s[1] << 17;
+    s[2] ^= s[0], s[3] ^= s[1], s[1] ^= s[2], s[0] ^= s[3], s[2] ^= t, s[3] = rotl(s[3], 45);
+    return r;
+}
+static double xo_u(xo *x) { return (double)(xo_next(x) >> 11) * 0x1p-53; }
+static xo xo_seed(uint64_t seed) {
+    xo x;
+    int i;
+    for (i = 0; i < 4; i++) {
+        uint64_t z = (seed += 0x9e3779b97f4a7c15ull);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        x.s[i] = z ^ (z >> 31);
+    }
+    return x;
+}
+
+static double now_s(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The medium as the code's callback: sigma_t = 2 everywhere (the code asks
+   for scattering only and decides absorption itself). */
+#ifdef SK_API_0_1
+static double sigma_t64(void *ctx, sk_vec3_f64 p) { (void)ctx, (void)p; return SIGMA_T; }
+static float sigma_t32(void *ctx, sk_vec3 p) { (void)ctx, (void)p; return (float)SIGMA_T; }
+#else
+static sk_coefficients_f64 coef64(void *ctx, sk_vec3_f64 p) {
+    sk_coefficients_f64 c = {0.0, SIGMA_T};
+    (void)ctx, (void)p;
+    return c;
+}
+static sk_coefficients coef32(void *ctx, sk_vec3 p) {
+    sk_coefficients c = {0.0f, (float)SIGMA_T};
+    (void)ctx, (void)p;
+    return c;
+}
+#endif
+
+enum mode { CB64, CB32, CBRATIO, GRID64, FREE64, MODES };
+static const char *NAMES[MODES] = {"cb64", "cb32", "cbratio", "grid64", "free64"};
+
+static sk_grid_f64 grid;
+static double density[NZ];
+
+/* One flight from (x, y, z) along d to the boundary at distance t_max: the
+   distance to the next collision (>= t_max: none). */
+static double flight(enum mode m, const double o[3], const double d[3], double t_max, sk_rng *rng,
+                     xo *x) {
+    double t = t_max;
+    uint32_t ev = 0;
+    sk_vec3_f64 o64 = {o[0], o[1], o[2]}, d64 = {d[0], d[1], d[2]};
+    sk_vec3 o32 = {(float)o[0], (float)o[1], (float)o[2]}, d32 = {(float)d[0], (float)d[1], (float)d[2]};
+    float t32 = 0.0f;
+    switch (m) {
+    case FREE64:
+        t = sk_free_path_f64(SIGMA_T, xo_u(x));
+        return t;
+#ifdef SK_API_0_1
+    case CB64:
+    case CBRATIO:
+        if (sk_delta_track_fn_f64(sigma_t64, NULL, SIGMA_T, o64, d64, 0.0, t_max, rng, &t, &ev)) exit(3);
+        return ev == SK_TRACK_ESCAPED ? t_max : t;
+    case CB32:
+        if (sk_delta_track_fn(sigma_t32, NULL, (float)SIGMA_T, o32, d32, 0.0f, (float)t_max, rng, &t32, &ev))
+            exit(3);
+        return ev == SK_TRACK_ESCAPED ? t_max : (double)t32;
+    case GRID64:
+        if (sk_delta_track_f64(&grid, o64, d64, t_max, rng, &t, &ev)) exit(3);
+        return ev == SK_TRACK_ESCAPED ? t_max : t;
+#else
+    case CB64:
+    case CBRATIO:
+    case GRID64: {
+        sk_track_args_f64 a;
+        sk_track_result_f64 r;
+        memset(&a, 0, sizeof a);
+        if (m == GRID64) {
+            a.medium.grid = &grid;
+        } else {
+            a.medium.coefficients = coef64;
+            a.medium.sigma_maj = SIGMA_T;
+        }
+        a.o = o64, a.d = d64, a.t_max = t_max, a.rng = rng;
+        if (sk_delta_track_f64(&a, &r)) exit(3);
+        return r.event == SK_TRACK_ESCAPED ? t_max : r.t;
+    }
+    case CB32: {
+        sk_track_args a;
+        sk_track_result r;
+        memset(&a, 0, sizeof a);
+        a.medium.coefficients = coef32;
+        a.medium.sigma_maj = (float)SIGMA_T;
+        a.o = o32, a.d = d32, a.t_max = (float)t_max, a.rng = rng;
+        if (sk_delta_track(&a, &r)) exit(3);
+        (void)t32;
+        return r.event == SK_TRACK_ESCAPED ? t_max : (double)r.t;
+    }
+#endif
+    default:
+        (void)o32, (void)d32, (void)t32, (void)ev;
+        exit(2);
+    }
+}
+
+/* The transmittance to the boundary along d by ratio tracking (the exit
+   estimator of mode cbratio). */
+static double exit_estimate(const double o[3], const double d[3], double t_max, sk_rng *rng) {
+    sk_vec3_f64 o64 = {o[0], o[1], o[2]}, d64 = {d[0], d[1], d[2]};
+#ifdef SK_API_0_1
+    return sk_ratio_track_fn_f64(sigma_t64, NULL, SIGMA_T, o64, d64, 0.0, t_max, rng);
+#else
+    sk_track_args_f64 a;
+    sk_track_result_f64 r;
+    memset(&a, 0, sizeof a);
+    a.medium.coefficients = coef64;
+    a.medium.sigma_maj = SIGMA_T;
+    a.o = o64, a.d = d64, a.t_max = t_max, a.rng = rng;
+    if (sk_ratio_track_f64(&a, &r)) exit(3);
+    return r.tr;
+#endif
+}
+
+/* The distance to the slab's boundary along d from height z. */
+static double to_boundary(double z, double dz) {
+    if (dz > 0.0) return (1.0 - z) / dz;
+    if (dz < 0.0) return -z / dz;
+    return 1e30;
+}
+
+/* HG by the textbook inverse (MCML's), and the new direction. */
+static void scatter(double d[3], xo *x) {
+    double s = (1.0 - G * G) / (1.0 - G + 2.0 * G * xo_u(x));
+    double ct = (1.0 + G * G - s * s) / (2.0 * G), st = sqrt(fmax(0.0, 1.0 - ct * ct));
+    double phi = 2.0 * 3.14159265358979323846 * xo_u(x), cp = cos(phi), sp = sin(phi);
+    double ux = d[0], uy = d[1], uz = d[2];
+    if (fabs(uz) > 0.99999) {
+        d[0] = st * cp, d[1] = st * sp, d[2] = uz > 0.0 ? ct : -ct;
+    } else {
+        double t = sqrt(1.0 - uz * uz);
+        d[0] = st * (ux * uz * cp - uy * sp) / t + ux * ct;
+        d[1] = st * (uy * uz * cp + ux * sp) / t + uy * ct;
+        d[2] = -st * cp * t + uz * ct;
+    }
+}
+
+static void run(enum mode m, uint64_t seed) {
+    xo state = xo_seed(seed);
+    sk_rng rng;
+    double r_w = 0.0, t_w = 0.0, exits = 0.0, t0, secs;
+    long i;
+    rng.state = &state;
+    rng.next_u64 = xo_next;
+    t0 = now_s();
+    for (i = 0; i < PHOTONS; i++) {
+        double o[3] = {0.0, 0.0, 0.0}, d[3] = {0.0, 0.0, 1.0}, w = 1.0;
+        for (;;) {
+            double tb = to_boundary(o[2], d[2]), t = flight(m, o, d, tb, &rng, &state);
+            if (t >= tb) {
+                if (d[2] > 0.0)
+                    t_w += w;
+                else
+                    r_w += w;
+                break;
+            }
+            o[0] += t * d[0], o[1] += t * d[1], o[2] += t * d[2];
+            w *= ALBEDO;
+            if (w < 1e-4) {
+                if (xo_u(&state) < 0.1)
+                    w *= 10.0;
+                else
+                    break;
+            }
+            scatter(d, &state);
+            if (m == CBRATIO) exits += w * exit_estimate(o, d, to_boundary(o[2], d[2]), &rng);
+        }
+    }
+    secs = now_s() - t0;
+    printf("%s %.4f %.1f %.8f %.8f", NAMES[m], secs, 1e9 * secs / PHOTONS, r_w / PHOTONS, t_w / PHOTONS);
+    if (m == CBRATIO) printf(" exit %.6f", exits / PHOTONS);
+    printf("\n");
+}
+
+int main(int argc, char **argv) {
+    int k;
+    for (k = 0; k < NZ; k++) density[k] = 1.0;
+    if (argc > 2) PHOTONS = atol(argv[2]);
+    if (PHOTONS <= 0) return 2;
+#ifdef SK_API_0_1
+    if (sk_grid_new_f64(density, 1, 1, NZ, 0.0, SIGMA_T, &grid)) return 4;
+#else
+    if (sk_grid_new_f64(density, 1, 1, NZ, 0.0, SIGMA_T, &grid)) return 4;
+#endif
+    {
+        /* The grid spans the slab, and far beyond it sideways. */
+        sk_vec3_f64 lo = {-1e6, -1e6, 0.0}, hi = {1e6, 1e6, 1.0};
+        if (sk_grid_set_box_f64(&grid, lo, hi)) return 4;
+    }
+    for (k = 0; k < MODES; k++) {
+        if (argc > 1 && strcmp(argv[1], "all") != 0 && strcmp(argv[1], NAMES[k]) != 0) continue;
+        run((enum mode)k, 42);
+    }
+    return 0;
+}

@@ -348,10 +348,12 @@ trait Prec: Copy {
     /// The fields (the spectrum read through its non-NULL pointer).
     unsafe fn parts(&self) -> Parts<Self>;
     /// Delta or ratio tracking by the short route, reading only the fields
-    /// it needs, where the call is the common one (no flags, spectrum or
-    /// majorants; a callback medium with one majorant, or a grid); `None`
-    /// for every other call, which takes [`found`].
-    unsafe fn quick(&self, e: Estimator) -> Option<Result<Found<Self::T>, sk_status>>;
+    /// it needs and writing `*out` (non-NULL) itself, where the call is the
+    /// common one (no flags, spectrum or majorants; a callback medium with
+    /// one majorant, or a grid): its status, or `None` for every other
+    /// call, which takes [`found`]. One call per flight pays this route
+    /// on every flight.
+    unsafe fn quick(&self, e: Estimator, out: *mut Self::Result) -> Option<sk_status>;
     fn result(f: Found<Self::T>) -> Self::Result;
 }
 
@@ -395,13 +397,14 @@ macro_rules! impl_prec {
                     spectrum,
                 }
             }
-            unsafe fn quick(&self, e: Estimator) -> Option<Result<Found<$t>, sk_status>> {
+            #[inline(always)]
+            unsafe fn quick(&self, e: Estimator, out: *mut $res) -> Option<sk_status> {
                 let m = &self.medium;
                 let plain = self.flags == 0 && self.spectrum.is_null() && m.majorants.is_null();
                 if !(plain && matches!(e, Estimator::Delta | Estimator::Ratio)) {
                     return None;
                 }
-                let ray = Ray::new(self.o.to_vec(), self.d.to_vec(), self.t_max)
+                let ray = Ray::new(self.o.read_each(), self.d.read_each(), self.t_max)
                     .segment(self.t_min, self.t_max);
                 let budget = if self.budget == 0 {
                     SK_TRACK_BUDGET
@@ -412,7 +415,7 @@ macro_rules! impl_prec {
                 // SAFETY: a non-NULL rng points to an sk_rng (module contract).
                 let rng = unsafe { CRng::from_ptr(self.rng) };
                 let delta = e == Estimator::Delta;
-                Some(match (m.grid.is_null(), coefficients, rng) {
+                let r = match (m.grid.is_null(), coefficients, rng) {
                     (_, _, None) => Err(sk_status::SK_ERR_NULL),
                     (true, Some(f), Some(mut rng)) => {
                         let coef = |p: Vec3<$t>| Self::pair(f(<$v>::from_vec(p)));
@@ -423,6 +426,14 @@ macro_rules! impl_prec {
                         Err(s) => Err(s),
                     },
                     _ => return None,
+                };
+                Some(match r {
+                    // SAFETY: the caller checked out non-NULL.
+                    Ok(f) => unsafe {
+                        out.write(Self::result(f));
+                        sk_status::SK_OK
+                    },
+                    Err(s) => s,
                 })
             }
             fn result(f: Found<$t>) -> $res {
@@ -517,6 +528,7 @@ fn grid_depth<T: Real>(grid: &Grid<'_, T>, ray: Ray<T>) -> Result<T, Error> {
 
 /// Delta (`delta`) or ratio tracking through a caller's medium with one
 /// majorant: the walk at that majorant over the segment.
+#[inline(always)]
 fn quick_one<T: Real>(
     sigma_maj: T,
     delta: bool,
@@ -536,6 +548,7 @@ fn quick_one<T: Real>(
 }
 
 /// Delta or ratio tracking through a grid at its one majorant.
+#[inline(always)]
 fn quick_grid<T: Real>(
     g: &Grid<'static, T>,
     delta: bool,
@@ -559,11 +572,10 @@ unsafe fn run<P: Prec>(e: Estimator, a: *const P, out: *mut P::Result) -> sk_sta
     }
     // SAFETY: a non-NULL a points to arguments (module contract).
     let args = unsafe { &*a };
-    let r = match unsafe { args.quick(e) } {
-        Some(r) => r,
-        None => unsafe { found(e, args.parts()) },
-    };
-    match r {
+    if let Some(status) = unsafe { args.quick(e, out) } {
+        return status;
+    }
+    match unsafe { found(e, args.parts()) } {
         // SAFETY: out checked non-NULL above.
         Ok(f) => unsafe {
             out.write(P::result(f));
@@ -573,7 +585,9 @@ unsafe fn run<P: Prec>(e: Estimator, a: *const P, out: *mut P::Result) -> sk_sta
     }
 }
 
-/// What estimator `e` finds through the medium the parts describe.
+/// What estimator `e` finds through the medium the parts describe. Kept
+/// out of [`run`], so that the short route's frame stays small.
+#[inline(never)]
 unsafe fn found<P: Prec>(e: Estimator, a: Parts<P>) -> Result<Found<P::T>, sk_status> {
     if a.flags & !SK_TRACK_NONBOUNDING != 0 {
         return Err(sk_status::SK_ERR_METHOD);

@@ -57,6 +57,9 @@ impl<T: Real> Vec3<T> {
     /// The vector scaled to unit length, or `None` if it is zero or not
     /// finite. Scaled by its largest component first, so huge and subnormal
     /// vectors normalise too (their squared length would overflow or vanish).
+    /// Inlined: returned through memory, its result was read back with
+    /// loads wider than the stores that wrote it, which stall.
+    #[inline(always)]
     pub fn try_normalize(self) -> Option<Self> {
         let m = self.x.abs().max_of(self.y.abs()).max_of(self.z.abs());
         if !(m > T::ZERO && self.is_finite()) {

@@ -473,6 +473,7 @@ struct Span<T> {
 /// ends the walk. The value is checked here, per cell crossed, not when
 /// the caller's array is loaded (`from_parts`): the cost of a call does
 /// not grow with the grid.
+#[inline(always)]
 fn walk_span<T: Real, R: Rng + ?Sized, X>(
     s: Span<T>,
     walk: &mut Walk<T, X>,
@@ -528,6 +529,9 @@ impl<T: Real> Walker<'_, '_, T> {
     /// The walk along `ray` (`visit(p, σ_maj, rng)` as in
     /// [`Majorants::walk`]). `One` needs a finite segment and a majorant
     /// `≥ 0` and finite ([`Error::Domain`]), as the one-cell grid did.
+    /// Inlined, so that what its caller does not read (the tail) is not
+    /// computed on the one-majorant route.
+    #[inline(always)]
     fn walk<R: Rng + ?Sized, X>(
         &self,
         ray: Ray<T>,
@@ -544,29 +548,40 @@ impl<T: Real> Walker<'_, '_, T> {
         if !finite {
             return Err(Error::Domain);
         }
+        // `walk_span`'s loop for one span, without what delta and ratio
+        // tracking do not read (the cell, the integral since the last
+        // tentative collision, the tail): its draws and decisions are those
+        // of `walk_span`, checked bit for bit against a one-cell grid.
         let mut walk = Walk {
             found: None,
             exit: ray.t_max,
             steps: 0,
             tail: T::ZERO,
         };
-        let mut since = T::ZERO;
-        let span = Span {
-            o,
-            d,
-            cell: [0; 3],
-            value: sigma,
-            rate: T::ONE,
-            t: (ray.t_min, ray.t_max),
-            budget,
-        };
-        let mut v = |c: Tentative<T>, r: &mut R| visit(c.p, c.value, r);
-        walk_span(span, &mut walk, &mut since, rng, &mut v)?;
-        walk.tail = if walk.found.is_none() { since } else { T::ZERO };
+        let mut t = ray.t_min;
+        while sigma > T::ZERO && t < ray.t_max {
+            let next = t + exponential_step(sigma, T::uniform(rng));
+            if next >= ray.t_max || next.is_nan() {
+                break;
+            }
+            if walk.steps >= budget {
+                return Err(Error::Budget);
+            }
+            walk.steps += 1;
+            t = next;
+            if let Some(x) = visit(o + d * t, sigma, rng)? {
+                walk.found = Some((t, x));
+                break;
+            }
+        }
         Ok(walk)
     }
 
-    /// Delta tracking (see [`Majorants::delta_track_fn`]).
+    /// Delta tracking (see [`Majorants::delta_track_fn`]). Inlined into its
+    /// caller, so that the ray stays in registers: passed through memory
+    /// just after the caller stored it, its loads waited on those stores
+    /// (a short call's largest cost, measured from C).
+    #[inline(always)]
     pub(crate) fn delta_track_fn<R: Rng + ?Sized>(
         &self,
         coefficients: impl Fn(Vec3<T>) -> (T, T),
@@ -594,7 +609,9 @@ impl<T: Real> Walker<'_, '_, T> {
         })
     }
 
-    /// Ratio tracking (see [`Majorants::ratio_track_fn`]).
+    /// Ratio tracking (see [`Majorants::ratio_track_fn`]), inlined as
+    /// [`delta_track_fn`](Self::delta_track_fn) is.
+    #[inline(always)]
     pub(crate) fn ratio_track_fn<R: Rng + ?Sized>(
         &self,
         coefficients: impl Fn(Vec3<T>) -> (T, T),

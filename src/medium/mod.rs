@@ -181,6 +181,9 @@ impl<T: Real> Ray<T> {
     /// The origin and unit direction, with the interval checked:
     /// [`Error::Domain`] unless the origin is finite, the direction finite
     /// and non-zero, `t_min` finite and `≥ 0`, and `t_max ≥ t_min`.
+    /// Inlined, so that a ray its caller has just built is not read back
+    /// from memory (wide loads over narrower stores stall).
+    #[inline(always)]
     pub(crate) fn checked(&self) -> Result<(Vec3<T>, Vec3<T>), Error> {
         let d = self.dir.try_normalize().ok_or(Error::Domain)?;
         let interval = self.t_min >= T::ZERO && self.t_min.is_finite() && self.t_max >= self.t_min;

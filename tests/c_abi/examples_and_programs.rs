@@ -129,6 +129,57 @@ fn bad_input_from_c() {
     assert!(out.contains(" 0 failed"), "{out}");
 }
 
+/// The one-call-per-flight slab benchmark (`benches/c_flight.c`) builds
+/// strictly and runs every mode on 20 000 photons: the reflected and
+/// transmitted weights of each mode match the slab's adding-doubling
+/// values within 5 standard errors (τ = 2, ω = 0.9, g = 0.75, matched
+/// boundaries, normal incidence: R 0.097395, T 0.660958 with the
+/// unscattered e⁻², iadpython 0.5.3 `Sample(a=0.9, b=2, g=0.75, d=1,
+/// n=1, quad_pts=24).rt()`, converged to 10⁻⁶ from 16 to 28 points).
+#[test]
+fn the_flight_benchmark_runs() {
+    if !crate::common::repository("the_flight_benchmark_runs") {
+        return;
+    }
+    let exe = common::cbuild::build_program_with(
+        &root().join("benches/c_flight.c"),
+        false,
+        &["-D_POSIX_C_SOURCE=199309L"],
+        "",
+    );
+    let out = std::process::Command::new(&exe)
+        .args(["all", "20000"])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}");
+    let rows: Vec<(String, f64, f64)> = text
+        .lines()
+        .map(|l| {
+            let f: Vec<&str> = l.split_whitespace().collect();
+            (
+                f[0].to_string(),
+                f[3].parse().unwrap(),
+                f[4].parse().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(rows.len(), 6, "{text}");
+    // Binomial-like standard errors of a weight fraction over 20 000
+    // photons, generous: sqrt(p (1 - p) / n).
+    let se = |p: f64| (p * (1.0 - p) / 20_000.0).sqrt();
+    for (mode, r, t) in &rows {
+        assert!(
+            (r - 0.097395).abs() < 5.0 * se(0.097395),
+            "{mode}: R {r}\n{text}"
+        );
+        assert!(
+            (t - 0.660958).abs() < 5.0 * se(0.660958),
+            "{mode}: T {t}\n{text}"
+        );
+    }
+}
+
 /// `|g| = 1` through the C ABI and the portable header alike
 /// (`tests/c/dirac.c`).
 #[test]

@@ -202,6 +202,18 @@ int main(void) {
         free(max);
         free(min);
     }
+    {
+        /* The miss with one majorant cell: what the cost of a call owes to
+           the size of the majorant grid (nothing, where it is checked once). */
+        float max1[1], min1[1];
+        if (sk_majorants_new_from_grid(&grid, 1, 1, 1, max1, min1, 1, &ext) != SK_OK) {
+            fprintf(stderr, "c_media: extrema at 1 failed\n");
+            return 1;
+        }
+        for (e = DELTA; e <= MARCH; e++) {
+            printf("miss.%s.1\t%.2f\t0\n", NAMES[e], miss((enum estimator)e));
+        }
+    }
     printf("mix_exact\t%.2f\t0\n", mixture_exact());
     return 0;
 }

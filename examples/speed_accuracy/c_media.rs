@@ -212,6 +212,25 @@ pub(crate) fn c_media_report() -> String {
             .unwrap();
         }
     }
+    // The miss against one majorant cell: the cost of a call does not
+    // grow with the majorant grid (checked once, when built).
+    let ratios: Vec<String> = ESTIMATORS
+        .iter()
+        .map(|name| {
+            let (one, big) = (c[&format!("miss.{name}.1")], c[&format!("miss.{name}.64")]);
+            format!(
+                "{name} {big:.1} vs {one:.1} ns, {:.2}× ({})",
+                big / one,
+                mark(big <= 1.1 * one && big <= 200.0)
+            )
+        })
+        .collect();
+    writeln!(
+        md,
+        "\nA missing ray with 64³ majorants against one majorant cell (target ≤ 1.1× and ≤ 200 ns): {}.",
+        ratios.join("; ")
+    )
+    .unwrap();
     let (r, from_c) = (rust["mix_exact"], c["mix_exact"]);
     writeln!(
         md,

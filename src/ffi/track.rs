@@ -14,7 +14,7 @@ use crate::error::Error;
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
 use crate::medium::emission::{Emission, emission_cells};
-use crate::medium::majorant::{Majorants, Walker};
+use crate::medium::majorant::{Majorants, one_majorant_delta_track, one_majorant_ratio_track};
 use crate::medium::nonbounding::Exceeded;
 use crate::medium::ray_march::{
     Placement, Series, march_within, ray_march_transmittance, ray_march_transmittance_fn,
@@ -536,12 +536,11 @@ fn quick_one<T: Real>(
     (ray, budget): (Ray<T>, u32),
     rng: &mut CRng,
 ) -> Result<Found<T>, sk_status> {
-    let one = Walker::One(sigma_maj);
     let found = if delta {
-        one.delta_track_fn(coef, ray, budget, rng)
+        one_majorant_delta_track(coef, sigma_maj, ray, budget, rng)
             .map(|x| Found::track(x.t, x.event, x.steps))
     } else {
-        one.ratio_track_fn(coef, ray, budget, rng)
+        one_majorant_ratio_track(coef, sigma_maj, ray, budget, rng)
             .map(|x| Found::transmittance(x.tr, x.steps))
     };
     found.map_err(Into::into)
@@ -721,13 +720,10 @@ fn estimate<P: Prec>(
     // the segment, without the one-cell box the other estimators walk (the
     // same draws and results, at a fraction of the cost of a short call).
     if let (None, None, Estimator::Delta | Estimator::Ratio) = (bounds, grid, e) {
-        let one = Walker::One(one[0]);
         return match e {
-            Estimator::Delta => one
-                .delta_track_fn(coef, ray, budget, rng)
+            Estimator::Delta => one_majorant_delta_track(coef, one[0], ray, budget, rng)
                 .map(|x| Found::track(x.t, x.event, x.steps)),
-            _ => one
-                .ratio_track_fn(coef, ray, budget, rng)
+            _ => one_majorant_ratio_track(coef, one[0], ray, budget, rng)
                 .map(|x| Found::transmittance(x.tr, x.steps)),
         };
     }

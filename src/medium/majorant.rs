@@ -633,6 +633,39 @@ impl<T: Real> Walker<'_, '_, T> {
     }
 }
 
+/// Delta tracking through a caller's medium, `coefficients(p) = (σ_a, σ_s)`
+/// at a world point (both `≥ 0`, their sum at most `sigma_maj`, else
+/// [`Error::Domain`]), at one majorant `sigma_maj` over the whole segment
+/// of `ray`, which must be finite: the walk a one-cell [`Majorants`] around
+/// the segment gives, draw for draw, without building its box (for codes
+/// that make one call per flight). Events and budget as
+/// [`Majorants::delta_track`]; [`Error::Domain`] also for a majorant that
+/// is negative, NaN or infinite.
+#[inline(always)]
+pub fn one_majorant_delta_track<T: Real, R: Rng + ?Sized>(
+    coefficients: impl Fn(Vec3<T>) -> (T, T),
+    sigma_maj: T,
+    ray: Ray<T>,
+    budget: u32,
+    rng: &mut R,
+) -> Result<Track<T>, Error> {
+    Walker::One(sigma_maj).delta_track_fn(coefficients, ray, budget, rng)
+}
+
+/// Ratio tracking at one majorant (arguments as
+/// [`one_majorant_delta_track`]): the transmittance along `ray`, with the
+/// Russian roulette of [`Grid::ratio_track`].
+#[inline(always)]
+pub fn one_majorant_ratio_track<T: Real, R: Rng + ?Sized>(
+    coefficients: impl Fn(Vec3<T>) -> (T, T),
+    sigma_maj: T,
+    ray: Ray<T>,
+    budget: u32,
+    rng: &mut R,
+) -> Result<Transmittance<T>, Error> {
+    Walker::One(sigma_maj).ratio_track_fn(coefficients, ray, budget, rng)
+}
+
 /// The outcome of a walk: what ended it and where, or where the ray left.
 pub(crate) struct Walk<T, X> {
     pub(crate) found: Option<(T, X)>,

@@ -93,7 +93,7 @@ pub(crate) fn mie_entries(out: &mut Vec<Entry>) {
     let ns = time_ns(|| hg.sample_cos(f32::uniform(&mut r)));
     out.push(Entry::new(
         "Mie",
-        format!("HG with Mie's g = {g:.3} (f32)"),
+        format!("peer: HG with Mie's g = {g:.3} (renderers' stand-in)"),
         ns,
         both(cdf.error(|u| f64::from(hg.sample_cos(u as f32)))),
     ));
@@ -102,7 +102,7 @@ pub(crate) fn mie_entries(out: &mut Vec<Entry>) {
     let ns = time_ns(|| fog.sample_cos(f32::uniform(&mut r)));
     out.push(Entry::new(
         "Mie",
-        format!("fog fit for d = {d} µm (f32)"),
+        format!("peer: fog fit for d = {d} µm (renderers' stand-in)"),
         ns,
         both(cdf.error(|u| f64::from(fog.sample_cos(u as f32)))),
     ));

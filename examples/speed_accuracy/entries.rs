@@ -390,24 +390,16 @@ pub(crate) fn cbrt_entries(out: &mut Vec<Entry>) {
             })
             .fold(0.0, f64::max)
     };
-    let ulp_error = |f: &dyn Fn(f32) -> f32| {
-        (1u32..0x7f80_0000)
-            .step_by(101)
-            .map(|b| {
-                let x = f32::from_bits(b);
-                let exact = libm::cbrt(x as f64);
-                let ulp = 2f64.powi(((exact as f32).to_bits() >> 23) as i32 - 150);
-                (f(x) as f64 - exact).abs() / ulp
-            })
-            .fold(0.0, f64::max)
-    };
-    let time = |f: &dyn Fn(f32) -> f32| {
+    // Every positive finite float.
+    let ulp_error = |f: &dyn Fn(f32) -> f32| ulp_over(f, f32::from_bits(1), f32::MAX);
+    let time_on = |f: &dyn Fn(f32) -> f32, inputs: &[f32]| {
         let mut i = 0usize;
         time_ns(|| {
             i = (i + 1) & 4095;
-            f(black_box(xs[i]))
+            f(black_box(inputs[i]))
         })
     };
+    let time = |f: &dyn Fn(f32) -> f32| time_on(f, &xs);
     let cases: [(&str, &dyn Fn(f32) -> f32); 3] = [
         ("libm cbrtf", &libm::cbrtf),
         ("powf(x, 1/3)", &|x| libm::powf(x, 1.0 / 3.0)),
@@ -421,11 +413,7 @@ pub(crate) fn cbrt_entries(out: &mut Vec<Entry>) {
         out.push(Entry::new("cbrt", name, ns, (ulp_error(f), f64::NAN)));
     }
     let cycles = |x: f32| 1.0 / peers::fast_inv_cbrt(x);
-    let mut i = 0usize;
-    let ns = time_ns(|| {
-        i = (i + 1) & 4095;
-        cycles(black_box(home[i]))
-    });
+    let ns = time_on(&cycles, &home);
     out.push(Entry::new(
         "cbrt",
         "peer: Cycles 1/fast_inv_cbrt on [1, 4.3], its domain",

@@ -166,6 +166,22 @@ pub unsafe extern "C" fn sk_phase_sample_cos_n(
     unsafe { sample_cos_n(p, u, cos_out, n) }
 }
 
+/// The portable tier's model of the phase at `p`, checked as a batch
+/// checks it ([`load_batch`], then [`portable_model`]).
+unsafe fn portable_at(p: *const sk_phase) -> Result<crate::portable::Model, sk_status> {
+    portable_model(unsafe { load_batch(p) }?)
+}
+
+/// The portable tier's cosines for uniforms in `[0, 1]`, the header's bits.
+fn portable_cos_n(phase: &crate::portable::Model, u: &[f32], out: &mut [f32]) {
+    use crate::portable::{self, Model};
+    match phase {
+        Model::Hg(h) => portable::hg_sample_cos_n_in_range(h, u, out),
+        Model::Rayleigh => portable::rayleigh_sample_cos_n(u, out),
+        Model::Isotropic => portable::isotropic_sample_cos_n(u, out),
+    }
+}
+
 /// The portable tier's model for a phase, chosen once per batch:
 /// SK_ERR_METHOD for a model the tier has no batch for.
 fn portable_model(ph: &Phase<f32>) -> Result<crate::portable::Model, sk_status> {
@@ -195,22 +211,13 @@ pub unsafe extern "C" fn sk_phase_sample_cos_n_portable(
     cos_out: *mut f32,
     n: usize,
 ) -> sk_status {
-    use crate::portable;
-    let ph = match unsafe { load_batch(p) } {
-        Ok(ph) => ph,
-        Err(e) => return e,
-    };
-    let phase = match portable_model(ph) {
+    let phase = match unsafe { portable_at(p) } {
         Ok(m) => m,
         Err(e) => return e,
     };
     unsafe {
         map_arrays(u, cos_out, n, check_uniforms, |u, out| {
-            match &phase {
-                portable::Model::Hg(h) => portable::hg_sample_cos_n_in_range(h, u, out),
-                portable::Model::Rayleigh => portable::rayleigh_sample_cos_n(u, out),
-                portable::Model::Isotropic => portable::isotropic_sample_cos_n(u, out),
-            }
+            portable_cos_n(&phase, u, out);
             Ok(())
         })
     }
@@ -282,11 +289,7 @@ pub unsafe extern "C" fn sk_phase_sample_dir_n_portable(
     n: usize,
 ) -> sk_status {
     use crate::portable::sample_dir_n;
-    let ph = match unsafe { load_batch(p) } {
-        Ok(ph) => ph,
-        Err(e) => return e,
-    };
-    let phase = match portable_model(ph) {
+    let phase = match unsafe { portable_at(p) } {
         Ok(m) => m,
         Err(e) => return e,
     };
@@ -367,11 +370,7 @@ pub unsafe extern "C" fn sk_phase_sample_dir_cos_n_portable(
     n: usize,
 ) -> sk_status {
     use crate::portable;
-    let ph = match unsafe { load_batch(p) } {
-        Ok(ph) => ph,
-        Err(e) => return e,
-    };
-    let phase = match portable_model(ph) {
+    let phase = match unsafe { portable_at(p) } {
         Ok(m) => m,
         Err(e) => return e,
     };
@@ -383,11 +382,7 @@ pub unsafe extern "C" fn sk_phase_sample_dir_cos_n_portable(
             n,
             |w, u, o, cos, pdf| {
                 portable::sample_dir_n(&phase, w, u, o, pdf);
-                match &phase {
-                    portable::Model::Hg(h) => portable::hg_sample_cos_n_in_range(h, u[0], cos),
-                    portable::Model::Rayleigh => portable::rayleigh_sample_cos_n(u[0], cos),
-                    portable::Model::Isotropic => portable::isotropic_sample_cos_n(u[0], cos),
-                }
+                portable_cos_n(&phase, u[0], cos);
             },
         )
     }

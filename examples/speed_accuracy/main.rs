@@ -45,6 +45,7 @@ mod entries;
 mod measure;
 mod media;
 mod mie;
+mod photon;
 mod polarization;
 mod report;
 mod suite;
@@ -57,6 +58,7 @@ pub(crate) use entries::*;
 pub(crate) use measure::*;
 pub(crate) use media::*;
 pub(crate) use mie::*;
+pub(crate) use photon::*;
 pub(crate) use polarization::*;
 pub(crate) use report::*;
 pub(crate) use suite::*;
@@ -263,6 +265,8 @@ fn main() -> std::io::Result<()> {
     show(&mie_md);
     let pol_md = polarization_report();
     show(&pol_md);
+    let photon_md = photon_report();
+    show(&photon_md);
     let perf = performance(&es, rayleigh_batch, hg_batch, &pairs)
         + &c_md
         + &native_md
@@ -270,7 +274,8 @@ fn main() -> std::io::Result<()> {
         + &media_md
         + &transmittance_md
         + &mie_md
-        + &pol_md;
+        + &pol_md
+        + &photon_md;
     std::fs::write(docs.join("PERFORMANCE.md"), &perf)?;
     // The summary: every target row of the report, met or missed, counted.
     let rows: Vec<&str> = perf

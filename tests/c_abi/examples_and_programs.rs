@@ -180,6 +180,44 @@ fn the_flight_benchmark_runs() {
     }
 }
 
+/// The whole photon loop of the main job (`benches/c_photon.c`) builds
+/// strictly and runs: on 20 000 photons every mode (library and inline,
+/// three media) reflects and transmits within 5 of its standard errors of
+/// the adding-doubling values above.
+#[test]
+fn the_photon_loop_agrees_with_adding_doubling() {
+    if !crate::common::repository("the_photon_loop_agrees_with_adding_doubling") {
+        return;
+    }
+    let exe = common::cbuild::build_program_with(
+        &root().join("benches/c_photon.c"),
+        false,
+        &["-D_POSIX_C_SOURCE=199309L"],
+        "",
+    );
+    let out = std::process::Command::new(&exe)
+        .arg("20000")
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}");
+    let mut checked = 0;
+    for l in text.lines() {
+        let f: Vec<&str> = l.split('\t').collect();
+        let want = if f[0].ends_with(".R") {
+            0.097395
+        } else if f[0].ends_with(".T") {
+            0.660958
+        } else {
+            continue;
+        };
+        let (v, se): (f64, f64) = (f[1].parse().unwrap(), f[2].parse().unwrap());
+        assert!((v - want).abs() <= 5.0 * se, "{l}\n{text}");
+        checked += 1;
+    }
+    assert_eq!(checked, 12, "{text}");
+}
+
 /// `|g| = 1` through the C ABI and the portable header alike
 /// (`tests/c/dirac.c`).
 #[test]

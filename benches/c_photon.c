@@ -1,0 +1,200 @@
+/* A whole photon loop, the library's system-level figure: a slab of optical
+ * depth 2 (z in [0, 1]), albedo 0.9 as a weight, HG g = 0.75, matched
+ * boundaries, photons entering at z = 0 along +z, written twice:
+ *   lib.*    through the C ABI, one call per flight: sk_delta_track_f64 for
+ *            the next collision (the arguments filled once per medium, the
+ *            ray per flight) and sk_phase_sample_dir_f64 for the new
+ *            direction;
+ *   inline.* the peers' formulas inline: MCML's free path -ln(xi)/mu_t and
+ *            its HG inverse and direction update (Wang, Jacques & Zheng
+ *            1995), and for the heterogeneous media pbrt-v4's delta
+ *            tracking (exponential steps at the majorant, a collision kept
+ *            with probability sigma_t/sigma_maj).
+ * Media: hom (sigma_t = 2), cb (a callback, sigma_t(z) = 1 + 2z, majorant
+ * 3) and grid (the same density on a 1 x 1 x 64 node grid, linear in z:
+ * exact). The three have the same optical depth, albedo and g, so one
+ * adding-doubling answer serves them all.
+ * Prints per mode "name<TAB>ns per photon<TAB>0", then "name.R" and
+ * "name.T" lines with the reflected and transmitted weight per photon and
+ * its standard error. argv[1]: photons (default 10^6). */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "scatterkit.h"
+
+#define ALBEDO 0.9
+#define G 0.75
+#define NZ 64
+#define PI 3.14159265358979323846
+
+typedef struct {
+    uint64_t s[4];
+} xo;
+static uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+static uint64_t xo_next(void *state) {
+    uint64_t *s = ((xo *)state)->s;
+    uint64_t r = rotl(s[0] + s[3], 23) + s[0], t = s[1] << 17;
+    s[2] ^= s[0], s[3] ^= s[1], s[1] ^= s[2], s[0] ^= s[3], s[2] ^= t, s[3] = rotl(s[3], 45);
+    return r;
+}
+static double xo_u(xo *x) { return (double)(xo_next(x) >> 11) * 0x1p-53; }
+
+static double now_s(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+enum medium { HOM, CB, GRID };
+static double sigma_t(enum medium m, double z) { return m == HOM ? 2.0 : 1.0 + 2.0 * z; }
+static sk_coefficients_f64 het(void *ctx, sk_vec3_f64 p) {
+    sk_coefficients_f64 c;
+    (void)ctx;
+    c.sigma_a = 0.0, c.sigma_s = 1.0 + 2.0 * p.z;
+    return c;
+}
+static sk_coefficients_f64 hom(void *ctx, sk_vec3_f64 p) {
+    sk_coefficients_f64 c = {0.0, 2.0};
+    (void)ctx, (void)p;
+    return c;
+}
+
+static double to_boundary(double z, double dz) {
+    if (dz > 0.0) return (1.0 - z) / dz;
+    if (dz < 0.0) return -z / dz;
+    return 1e30;
+}
+
+/* MCML's HG inverse and direction update. */
+static void mcml_scatter(double d[3], xo *x) {
+    double s = (1.0 - G * G) / (1.0 - G + 2.0 * G * xo_u(x));
+    double ct = (1.0 + G * G - s * s) / (2.0 * G), st = sqrt(1.0 - ct * ct);
+    double phi = 2.0 * PI * xo_u(x), cp = cos(phi), sp = sin(phi);
+    double ux = d[0], uy = d[1], uz = d[2];
+    if (fabs(uz) > 0.99999) {
+        d[0] = st * cp, d[1] = st * sp, d[2] = uz > 0.0 ? ct : -ct;
+    } else {
+        double t = sqrt(1.0 - uz * uz);
+        d[0] = st * (ux * uz * cp - uy * sp) / t + ux * ct;
+        d[1] = st * (uy * uz * cp + ux * sp) / t + uy * ct;
+        d[2] = -st * cp * t + uz * ct;
+    }
+}
+
+static double density[NZ];
+
+/* sigma_t of the grid medium: the node values interpolated linearly in z,
+   as a code reading its own 1-D grid would. */
+static double grid_sigma(double z) {
+    double x = z * (NZ - 1);
+    int i = x <= 0.0 ? 0 : (x >= NZ - 1 ? NZ - 2 : (int)x);
+    double f = x - i;
+    return density[i] + f * (density[i + 1] - density[i]);
+}
+
+/* The inline flight: MCML's step in the homogeneous slab, pbrt-v4's delta
+   tracking at the majorant 3 in the heterogeneous ones. */
+static double inline_flight(enum medium m, const double o[3], const double d[3], double tb, xo *x) {
+    double t = 0.0;
+    if (m == HOM) return -log(1.0 - xo_u(x)) / 2.0;
+    for (;;) {
+        t += -log(1.0 - xo_u(x)) / 3.0;
+        if (t >= tb) return t;
+        if (xo_u(x) * 3.0 < (m == GRID ? grid_sigma(o[2] + t * d[2]) : sigma_t(m, o[2] + t * d[2]))) return t;
+    }
+}
+
+typedef struct {
+    double sum, sum2;
+} tally;
+static void add(tally *t, double w) { t->sum += w, t->sum2 += w * w; }
+static double se(const tally *t, long n) {
+    double m = t->sum / n;
+    return sqrt((t->sum2 / n - m * m) / n);
+}
+
+static sk_grid_f64 grid;
+static sk_phase_f64 hg;
+
+static void run(const char *name, enum medium m, int lib, long photons) {
+    static xo state;
+    static sk_rng rng;
+    sk_track_args_f64 a;
+    tally r_w = {0, 0}, t_w = {0, 0};
+    long i;
+    double t0;
+    state.s[0] = 0x9e3779b97f4a7c15ull, state.s[1] = 0xbf58476d1ce4e5b9ull;
+    state.s[2] = 0x94d049bb133111ebull, state.s[3] = 42;
+    rng.state = &state, rng.next_u64 = xo_next;
+    memset(&a, 0, sizeof a);
+    if (m == GRID) {
+        a.medium.grid = &grid;
+    } else {
+        a.medium.coefficients = m == HOM ? hom : het;
+        a.medium.sigma_maj = m == HOM ? 2.0 : 3.0;
+    }
+    a.rng = &rng;
+    t0 = now_s();
+    for (i = 0; i < photons; i++) {
+        double o[3] = {0.0, 0.0, 0.0}, d[3] = {0.0, 0.0, 1.0}, w = 1.0;
+        for (;;) {
+            double tb = to_boundary(o[2], d[2]), t;
+            if (lib) {
+                sk_track_result_f64 res;
+                a.o.x = o[0], a.o.y = o[1], a.o.z = o[2];
+                a.d.x = d[0], a.d.y = d[1], a.d.z = d[2];
+                a.t_max = tb;
+                if (sk_delta_track_f64(&a, &res) != SK_OK) exit(3);
+                t = res.event == SK_TRACK_ESCAPED ? tb : res.t;
+            } else {
+                t = inline_flight(m, o, d, tb, &state);
+            }
+            if (t >= tb) {
+                if (d[2] > 0.0) add(&t_w, w);
+                else add(&r_w, w);
+                break;
+            }
+            o[0] += t * d[0], o[1] += t * d[1], o[2] += t * d[2];
+            w *= ALBEDO;
+            if (w < 1e-4) {
+                if (xo_u(&state) < 0.1) w *= 10.0;
+                else break;
+            }
+            if (lib) {
+                sk_vec3_f64 win = {d[0], d[1], d[2]}, out;
+                out = sk_phase_sample_dir_f64(&hg, win, xo_u(&state), xo_u(&state), NULL);
+                d[0] = out.x, d[1] = out.y, d[2] = out.z;
+            } else {
+                mcml_scatter(d, &state);
+            }
+        }
+    }
+    t0 = now_s() - t0;
+    printf("%s\t%.1f\t0\n", name, 1e9 * t0 / photons);
+    printf("%s.R\t%.6f\t%.6f\n", name, r_w.sum / photons, se(&r_w, photons));
+    printf("%s.T\t%.6f\t%.6f\n", name, t_w.sum / photons, se(&t_w, photons));
+}
+
+int main(int argc, char **argv) {
+    long photons = argc > 1 ? atol(argv[1]) : 1000000;
+    int k;
+    if (photons <= 0) return 2;
+    for (k = 0; k < NZ; k++) density[k] = 1.0 + 2.0 * k / (NZ - 1.0);
+    if (sk_grid_new_f64(density, 1, 1, NZ, 0.0, 1.0, &grid) != SK_OK) return 4;
+    {
+        sk_vec3_f64 lo = {-1e6, -1e6, 0.0}, hi = {1e6, 1e6, 1.0};
+        if (sk_grid_set_box_f64(&grid, lo, hi) != SK_OK) return 4;
+    }
+    if (sk_phase_new_hg_f64(G, &hg) != SK_OK) return 4;
+    run("inline.hom", HOM, 0, photons);
+    run("lib.hom", HOM, 1, photons);
+    run("inline.cb", CB, 0, photons);
+    run("lib.cb", CB, 1, photons);
+    run("inline.grid", GRID, 0, photons);
+    run("lib.grid", GRID, 1, photons);
+    return 0;
+}

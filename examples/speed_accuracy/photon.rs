@@ -35,7 +35,11 @@ pub(crate) fn photon_report() -> String {
     )
     .unwrap();
     let mark = |ok: bool| if ok { "met" } else { "**missed**" };
-    for medium in ["hom", "cb", "grid"] {
+    for (medium, label) in [
+        ("hom", "photon loop, homogeneous"),
+        ("cb", "photon loop, callback σ_t = 1 + 2z"),
+        ("grid", "photon loop, 1×1×64 grid"),
+    ] {
         let (lib, inl) = (
             c[&format!("lib.{medium}")].0,
             c[&format!("inline.{medium}")].0,
@@ -48,7 +52,7 @@ pub(crate) fn photon_report() -> String {
         });
         writeln!(
             s,
-            "| {medium} | {lib:.0} | {inl:.0} | {:.5} ({:.5}) | {:.5} ({:.5}) | {} | {:.2}× | {} |",
+            "| {label} | {lib:.0} | {inl:.0} | {:.5} ({:.5}) | {:.5} ({:.5}) | {} | {:.2}× | {} |",
             r.0,
             r.1,
             t.0,

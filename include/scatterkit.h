@@ -53,7 +53,9 @@
  tracking then keeps signed weights and delta tracking weights its path
  (unbiased, where the strict estimators refuse with SK_ERR_DOMAIN), and
  the result reports the worst sigma_t/sigma_maj met and its cell. Needs
- majorants.
+ majorants. Delta and ratio tracking only: sk_residual_ratio_track,
+ sk_ray_march, sk_telescoping_march and sk_emission_track refuse it with
+ SK_ERR_DOMAIN (their estimators assume bounding majorants).
  */
 #define SK_TRACK_NONBOUNDING 1
 
@@ -1295,7 +1297,9 @@ typedef struct {
      */
     uint32_t strata;
     /*
-     SK_TRACK_NONBOUNDING or 0; other bits are SK_ERR_METHOD.
+     SK_TRACK_NONBOUNDING (delta and ratio tracking only; the other
+     estimators refuse it with SK_ERR_DOMAIN) or 0; other bits are
+     SK_ERR_METHOD.
      */
     uint32_t flags;
     /*

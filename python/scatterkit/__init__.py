@@ -268,9 +268,9 @@ class Phase:
                    size=None, out: Optional[np.ndarray] = None) -> FloatOrArray:
         """Scattering cosines: the inverse CDF at uniforms ``u`` in ``[0, 1]``
         (monotone: ``u = 0`` gives -1), or at ``size`` uniforms drawn from ``rng``
-        (a ``numpy.random.Generator``). ``out``, a C-contiguous float64 array of
-        the uniforms' shape, receives them without a new allocation (and is
-        returned). ``ValueError`` for a uniform outside ``[0, 1]`` or NaN (with
+        (a ``numpy.random.Generator``). ``out``, a C-contiguous, writeable
+        float64 array of the uniforms' shape that shares no memory with them,
+        receives them without a new allocation (and is returned). ``ValueError`` for a uniform outside ``[0, 1]`` or NaN (with
         ``out``, part of it may have been written then). Long arrays are split
         over the processor's cores, with the same results as one pass."""
         u = _uniforms(u, rng, size, "sample_cos")
@@ -279,6 +279,12 @@ class Phase:
             if not (isinstance(out, np.ndarray) and out.dtype == np.float64
                     and out.flags.c_contiguous and out.shape == tuple(shape)):
                 raise ValueError("sample_cos: out must be a C-contiguous float64 array of u's shape")
+            if not out.flags.writeable:
+                raise ValueError("sample_cos: out must be writeable")
+            # The uniforms are read while out is written: they may not share
+            # memory (bounds are compared, so an overlap is never missed).
+            if np.may_share_memory(out, x):
+                raise ValueError("sample_cos: out must not share memory with u")
             self._p.sample_cos_into(x, out.reshape(-1))
             return out
         return _shaped(self._p.sample_cos(x), shape, scalar)

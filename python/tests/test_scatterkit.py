@@ -130,6 +130,23 @@ class PhaseTest(unittest.TestCase):
         np.testing.assert_allclose(np.linalg.norm(d, axis=-1), 1.0, atol=1e-14)
         np.testing.assert_allclose(pdf, p.pdf(d @ w), rtol=1e-9)
 
+    def test_out_that_aliases_or_cannot_be_written_is_a_value_error(self):
+        # These raised pyo3's PanicException (a BaseException) before.
+        p = sk.Phase.henyey_greenstein(0.5)
+        u = np.linspace(0.0, 1.0, 11)
+        with self.assertRaises(ValueError):
+            p.sample_cos(u, out=u)
+        ro = np.empty(11)
+        ro.flags.writeable = False
+        with self.assertRaises(ValueError):
+            p.sample_cos(u, out=ro)
+        view = u.reshape(1, 11)
+        with self.assertRaises(ValueError):
+            p.sample_cos(view, out=u.reshape(1, 11))
+        out = np.empty(11)
+        self.assertIs(p.sample_cos(u, out=out), out)
+        np.testing.assert_array_equal(out, p.sample_cos(u))
+
     def test_bad_input_is_a_value_error(self):
         for make in (
             lambda: sk.Phase.henyey_greenstein(1.5),

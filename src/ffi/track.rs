@@ -34,7 +34,9 @@ const _: () = assert!(SK_TRACK_BUDGET == MAX_STEPS);
 /// tracking then keeps signed weights and delta tracking weights its path
 /// (unbiased, where the strict estimators refuse with SK_ERR_DOMAIN), and
 /// the result reports the worst sigma_t/sigma_maj met and its cell. Needs
-/// majorants.
+/// majorants. Delta and ratio tracking only: sk_residual_ratio_track,
+/// sk_ray_march, sk_telescoping_march and sk_emission_track refuse it with
+/// SK_ERR_DOMAIN (their estimators assume bounding majorants).
 pub const SK_TRACK_NONBOUNDING: u32 = 1;
 
 /// The medium a tracking call walks. Its coefficients come from exactly
@@ -165,7 +167,9 @@ pub struct sk_track_args {
     /// the library choose 2 (1 is Novak et al.'s estimator). Otherwise
     /// unused.
     pub strata: u32,
-    /// SK_TRACK_NONBOUNDING or 0; other bits are SK_ERR_METHOD.
+    /// SK_TRACK_NONBOUNDING (delta and ratio tracking only; the other
+    /// estimators refuse it with SK_ERR_DOMAIN) or 0; other bits are
+    /// SK_ERR_METHOD.
     pub flags: u32,
     /// The caller's generator.
     pub rng: *mut sk_rng,

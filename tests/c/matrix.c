@@ -1454,7 +1454,10 @@ static void majorants(void) {
         ad = targs64(NULL, coeff64, NULL, &bigd, od, dd, 0, 3, 100000, &rng);
         ad.flags = SK_TRACK_NONBOUNDING;
         CHECK(sk_delta_track_f64(&ad, &trd) == SK_OK && trd.weight == 1.0 && trd.exceeded == 0.0);
+        /* The other estimators refuse the flag, as the header says. */
         CHECK(sk_residual_ratio_track(&a, &tr) == SK_ERR_DOMAIN); /* no signed residual tracking */
+        CHECK(sk_ray_march(&a, &tr) == SK_ERR_DOMAIN && sk_telescoping_march(&a, &tr) == SK_ERR_DOMAIN);
+        CHECK(sk_emission_track(&a, &tr) == SK_ERR_DOMAIN);
         for (i = 0; i < NS; i++) {
             ctxf = FS[i];
             a = targs(NULL, coeff32, &ctxf, &big, o, d, 0, 3, 100000, &rng);

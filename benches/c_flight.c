@@ -39,6 +39,7 @@
 #include <time.h>
 
 #include "scatterkit.h"
+#include "slab.h"
 
 #define PHOTONS_DEFAULT 1000000
 static long PHOTONS = PHOTONS_DEFAULT;
@@ -46,36 +47,6 @@ static long PHOTONS = PHOTONS_DEFAULT;
 #define ALBEDO 0.9
 #define G 0.75
 #define NZ 64
-
-/* xoshiro256++, behind sk_rng. */
-typedef struct {
-    uint64_t s[4];
-} xo;
-static uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-static uint64_t xo_next(void *state) {
-    uint64_t *s = ((xo *)state)->s;
-    uint64_t r = rotl(s[0] + s[3], 23) + s[0], t = s[1] << 17;
-    s[2] ^= s[0], s[3] ^= s[1], s[1] ^= s[2], s[0] ^= s[3], s[2] ^= t, s[3] = rotl(s[3], 45);
-    return r;
-}
-static double xo_u(xo *x) { return (double)(xo_next(x) >> 11) * 0x1p-53; }
-static xo xo_seed(uint64_t seed) {
-    xo x;
-    int i;
-    for (i = 0; i < 4; i++) {
-        uint64_t z = (seed += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        x.s[i] = z ^ (z >> 31);
-    }
-    return x;
-}
-
-static double now_s(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* The medium as the code's callback: sigma_t = 2 everywhere (the code asks
    for scattering only and decides absorption itself). */
@@ -202,29 +173,6 @@ static double exit_estimate(const double o[3], const double d[3], double t_max, 
 #endif
 }
 
-/* The distance to the slab's boundary along d from height z. */
-static double to_boundary(double z, double dz) {
-    if (dz > 0.0) return (1.0 - z) / dz;
-    if (dz < 0.0) return -z / dz;
-    return 1e30;
-}
-
-/* HG by the textbook inverse (MCML's), and the new direction. */
-static void scatter(double d[3], xo *x) {
-    double s = (1.0 - G * G) / (1.0 - G + 2.0 * G * xo_u(x));
-    double ct = (1.0 + G * G - s * s) / (2.0 * G), st = sqrt(fmax(0.0, 1.0 - ct * ct));
-    double phi = 2.0 * 3.14159265358979323846 * xo_u(x), cp = cos(phi), sp = sin(phi);
-    double ux = d[0], uy = d[1], uz = d[2];
-    if (fabs(uz) > 0.99999) {
-        d[0] = st * cp, d[1] = st * sp, d[2] = uz > 0.0 ? ct : -ct;
-    } else {
-        double t = sqrt(1.0 - uz * uz);
-        d[0] = st * (ux * uz * cp - uy * sp) / t + ux * ct;
-        d[1] = st * (uy * uz * cp + ux * sp) / t + uy * ct;
-        d[2] = -st * cp * t + uz * ct;
-    }
-}
-
 static void run(enum mode m, uint64_t seed) {
     /* Static: the argument structs filled once keep pointing at them. */
     static xo state;
@@ -254,7 +202,7 @@ static void run(enum mode m, uint64_t seed) {
                 else
                     break;
             }
-            scatter(d, &state);
+            mcml_scatter(d, G, &state);
             if (m == CBRATIO) exits += w * exit_estimate(o, d, to_boundary(o[2], d[2]), &rng);
         }
     }

@@ -25,29 +25,11 @@
 #include <time.h>
 
 #include "scatterkit.h"
+#include "slab.h"
 
 #define ALBEDO 0.9
 #define G 0.75
 #define NZ 64
-#define PI 3.14159265358979323846
-
-typedef struct {
-    uint64_t s[4];
-} xo;
-static uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-static uint64_t xo_next(void *state) {
-    uint64_t *s = ((xo *)state)->s;
-    uint64_t r = rotl(s[0] + s[3], 23) + s[0], t = s[1] << 17;
-    s[2] ^= s[0], s[3] ^= s[1], s[1] ^= s[2], s[0] ^= s[3], s[2] ^= t, s[3] = rotl(s[3], 45);
-    return r;
-}
-static double xo_u(xo *x) { return (double)(xo_next(x) >> 11) * 0x1p-53; }
-
-static double now_s(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 enum medium { HOM, CB, GRID };
 static double sigma_t(enum medium m, double z) { return m == HOM ? 2.0 : 1.0 + 2.0 * z; }
@@ -61,28 +43,6 @@ static sk_coefficients_f64 hom(void *ctx, sk_vec3_f64 p) {
     sk_coefficients_f64 c = {0.0, 2.0};
     (void)ctx, (void)p;
     return c;
-}
-
-static double to_boundary(double z, double dz) {
-    if (dz > 0.0) return (1.0 - z) / dz;
-    if (dz < 0.0) return -z / dz;
-    return 1e30;
-}
-
-/* MCML's HG inverse and direction update. */
-static void mcml_scatter(double d[3], xo *x) {
-    double s = (1.0 - G * G) / (1.0 - G + 2.0 * G * xo_u(x));
-    double ct = (1.0 + G * G - s * s) / (2.0 * G), st = sqrt(1.0 - ct * ct);
-    double phi = 2.0 * PI * xo_u(x), cp = cos(phi), sp = sin(phi);
-    double ux = d[0], uy = d[1], uz = d[2];
-    if (fabs(uz) > 0.99999) {
-        d[0] = st * cp, d[1] = st * sp, d[2] = uz > 0.0 ? ct : -ct;
-    } else {
-        double t = sqrt(1.0 - uz * uz);
-        d[0] = st * (ux * uz * cp - uy * sp) / t + ux * ct;
-        d[1] = st * (uy * uz * cp + ux * sp) / t + uy * ct;
-        d[2] = -st * cp * t + uz * ct;
-    }
 }
 
 static double density[NZ];
@@ -127,8 +87,7 @@ static void run(const char *name, enum medium m, int lib, long photons) {
     tally r_w = {0, 0}, t_w = {0, 0};
     long i;
     double t0;
-    state.s[0] = 0x9e3779b97f4a7c15ull, state.s[1] = 0xbf58476d1ce4e5b9ull;
-    state.s[2] = 0x94d049bb133111ebull, state.s[3] = 42;
+    state = xo_seed(42);
     rng.state = &state, rng.next_u64 = xo_next;
     memset(&a, 0, sizeof a);
     if (m == GRID) {
@@ -169,7 +128,7 @@ static void run(const char *name, enum medium m, int lib, long photons) {
                 out = sk_phase_sample_dir_f64(&hg, win, xo_u(&state), xo_u(&state), NULL);
                 d[0] = out.x, d[1] = out.y, d[2] = out.z;
             } else {
-                mcml_scatter(d, &state);
+                mcml_scatter(d, G, &state);
             }
         }
     }

@@ -231,8 +231,9 @@ pub(crate) trait CVec: Copy {
     /// The vector at `self`, each coordinate read by a load of its own: a
     /// caller's struct is stored with stores of its compiler's choosing,
     /// and a load the optimiser widens across two of them is not forwarded
-    /// from the store buffer, so it waits for both to retire (about 15 ns
-    /// on the one-call-per-flight path, measured from C on AMD Zen 5). For
+    /// from the store buffer, so it waits for both to retire (2–3 % of a
+    /// photon's time on the one-call-per-flight slab, 5–6 % with an exit
+    /// estimator per vertex: `benches/c_flight.c` on AMD Zen 5). For
     /// argument structs the caller has just written.
     fn read_each(&self) -> Vec3<Self::T>;
 }

@@ -383,7 +383,7 @@ macro_rules! impl_prec {
                     hero: s.hero,
                     out: [s.weight, s.r_u, s.r_l],
                 });
-                let ray = Ray::new(self.o.to_vec(), self.d.to_vec(), self.t_max);
+                let ray = Ray::new(self.o.read_each(), self.d.read_each(), self.t_max);
                 Parts {
                     grid: m.grid,
                     coefficients: m.coefficients,
@@ -588,9 +588,7 @@ unsafe fn run<P: Prec>(e: Estimator, a: *const P, out: *mut P::Result) -> sk_sta
     }
 }
 
-/// What estimator `e` finds through the medium the parts describe. Kept
-/// out of [`run`], so that the short route's frame stays small.
-#[inline(never)]
+/// What estimator `e` finds through the medium the parts describe.
 unsafe fn found<P: Prec>(e: Estimator, a: Parts<P>) -> Result<Found<P::T>, sk_status> {
     if a.flags & !SK_TRACK_NONBOUNDING != 0 {
         return Err(sk_status::SK_ERR_METHOD);
@@ -696,6 +694,11 @@ fn estimate<P: Prec>(
     let Walk { ray, budget, rng } = w;
     // The one majorant of a callback medium with no majorants.
     let one = [sigma_maj.unwrap_or(P::T::ZERO)];
+    let own = match (bounds, grid) {
+        (Some(b), _) => Some(b.max),
+        (None, Some(_)) => None,
+        (None, None) => Some(one_cell(&one, ray)?),
+    };
     if let (Some(b), Some(g)) = (bounds, grid) {
         if b.max.bounds() != g.bounds() {
             return Err(Error::Domain);
@@ -720,22 +723,6 @@ fn estimate<P: Prec>(
             _ => Err(Error::Domain),
         };
     }
-    // A caller's medium with one majorant: the walk at that majorant over
-    // the segment, without the one-cell box the other estimators walk (the
-    // same draws and results, at a fraction of the cost of a short call).
-    if let (None, None, Estimator::Delta | Estimator::Ratio) = (bounds, grid, e) {
-        return match e {
-            Estimator::Delta => one_majorant_delta_track(coef, one[0], ray, budget, rng)
-                .map(|x| Found::track(x.t, x.event, x.steps)),
-            _ => one_majorant_ratio_track(coef, one[0], ray, budget, rng)
-                .map(|x| Found::transmittance(x.tr, x.steps)),
-        };
-    }
-    let own = match (bounds, grid) {
-        (Some(b), _) => Some(b.max),
-        (None, Some(_)) => None,
-        (None, None) => Some(one_cell(&one, ray)?),
-    };
     match (e, own, grid) {
         (Estimator::Delta, None, Some(g)) => {
             let (t, event, steps) = g.delta_track_within(ray, budget, rng)?;

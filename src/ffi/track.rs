@@ -866,7 +866,10 @@ unsafe fn spectral_track<T: Real>(
 /// Delta (Woodcock) tracking: a free-flight distance through the medium.
 /// At each tentative collision one uniform xi decides absorption
 /// (xi sigma_maj < sigma_a), scattering (< sigma_a + sigma_s) or a null
-/// collision; writes t, event and steps (with SK_TRACK_NONBOUNDING: weighted
+/// collision; a grid without majorants instead keeps a collision when
+/// xi sigma_maj < sigma_t and then draws a second uniform, scattering
+/// below the grid's albedo (the draws of 0.1, so a seed gives what it
+/// gave); writes t, event and steps (with SK_TRACK_NONBOUNDING: weighted
 /// delta tracking, also weight, exceeded and cell; with a spectrum:
 /// hero-wavelength tracking, also the spectrum's outputs).
 /// SK_ERR_NULL for NULL args, out, rng or callback, or a medium with

@@ -10,6 +10,7 @@ pub mod cbrt;
 pub(crate) mod double_double;
 pub(crate) mod draine_eq6;
 pub mod geometry;
+pub(crate) mod log;
 pub(crate) mod numeric;
 pub mod rayleigh_table;
 pub mod real;

@@ -170,7 +170,10 @@ macro_rules! impl_real {
             }
             #[inline(always)]
             fn from_bits_uniform(x: u64) -> Self {
-                (x >> $shift) as $t * $scale
+                // Through i64 (the shifted word fits in 53 or 24 bits, so
+                // the value is the same): one signed conversion, where an
+                // unsigned one takes a branch and several instructions.
+                ((x >> $shift) as i64) as $t * $scale
             }
             #[inline(always)]
             fn sqrt(self) -> Self {

@@ -394,10 +394,10 @@ impl<'a, T: Real> Majorants<'a, T> {
                 return Err(Error::Domain);
             }
             let sigma_maj = rate * value;
-            let mut t = t_cell;
+            let (mut t, inv) = (t_cell, T::ONE / sigma_maj);
             // An empty cell (majorant 0) is crossed without a draw.
             while sigma_maj > T::ZERO && t < t_end {
-                let next = t + exponential_step(sigma_maj, T::uniform(rng));
+                let next = t + exponential_step(inv, T::uniform(rng));
                 if next >= t_end || next.is_nan() {
                     break;
                 }
@@ -501,10 +501,10 @@ impl<T: Real> Walker<'_, '_, T> {
         ray: Ray<T>,
         budget: u32,
         rng: &mut R,
-        mut visit: impl FnMut(Vec3<T>, T, &mut R) -> Result<Option<X>, Error>,
+        mut visit: impl Visit<T, R, X>,
     ) -> Result<Walk<T, X>, Error> {
         let sigma = match self {
-            Walker::Cells(m) => return m.walk(ray, budget, rng, visit),
+            Walker::Cells(m) => return m.walk(ray, budget, rng, |p, s, r| visit.at(p, s, r)),
             Walker::One(sigma) => *sigma,
         };
         let (o, d) = ray.checked()?;
@@ -523,9 +523,9 @@ impl<T: Real> Walker<'_, '_, T> {
             steps: 0,
             tail: T::ZERO,
         };
-        let mut t = ray.t_min;
+        let (mut t, inv) = (ray.t_min, T::ONE / sigma);
         while sigma > T::ZERO && t < ray.t_max {
-            let next = t + exponential_step(sigma, T::uniform(rng));
+            let next = t + exponential_step(inv, T::uniform(rng));
             if next >= ray.t_max || next.is_nan() {
                 break;
             }
@@ -534,7 +534,7 @@ impl<T: Real> Walker<'_, '_, T> {
             }
             walk.steps += 1;
             t = next;
-            if let Some(x) = visit(o + d * t, sigma, rng)? {
+            if let Some(x) = visit.at(o + d * t, sigma, rng)? {
                 walk.found = Some((t, x));
                 break;
             }
@@ -554,18 +554,7 @@ impl<T: Real> Walker<'_, '_, T> {
         budget: u32,
         rng: &mut R,
     ) -> Result<Track<T>, Error> {
-        let real = |p: Vec3<T>, sigma_maj: T, r: &mut R| {
-            let st = within(coefficients(p), sigma_maj)?;
-            let x = T::uniform(r) * sigma_maj;
-            Ok(if x < st.0 {
-                Some(Event::Absorbed)
-            } else if x < st.0 + st.1 {
-                Some(Event::Scattered)
-            } else {
-                None
-            })
-        };
-        let walk = self.walk(ray, budget, rng, real)?;
+        let walk = self.walk(ray, budget, rng, Decide(coefficients))?;
         let (t, event) = walk.found.unwrap_or((walk.exit, Event::Escaped));
         Ok(Track {
             t,
@@ -584,17 +573,70 @@ impl<T: Real> Walker<'_, '_, T> {
         budget: u32,
         rng: &mut R,
     ) -> Result<Transmittance<T>, Error> {
-        let mut tr = T::ONE;
-        let visit = |p: Vec3<T>, sigma_maj: T, r: &mut R| {
-            let (sa, ss) = within(coefficients(p), sigma_maj)?;
-            tr = roulette(tr * (T::ONE - (sa + ss) / sigma_maj), r);
-            Ok((tr == T::ZERO).then_some(()))
+        let mut visit = Ratio {
+            coefficients,
+            tr: T::ONE,
         };
-        let walk = self.walk(ray, budget, rng, visit)?;
+        let walk = self.walk(ray, budget, rng, &mut visit)?;
         Ok(Transmittance {
-            tr: if walk.found.is_some() { T::ZERO } else { tr },
+            tr: if walk.found.is_some() {
+                T::ZERO
+            } else {
+                visit.tr
+            },
             steps: walk.steps,
         })
+    }
+}
+
+/// What a walk does at a tentative collision `p` under majorant `σ_maj`:
+/// end there with a result, or go on. A trait with an inlined method,
+/// not a closure: the closure was left out of line on the one-majorant
+/// route, so each point went through memory with a wide load over
+/// narrower stores, which stalls (a sixth of a short C call's time).
+pub(crate) trait Visit<T, R: ?Sized, X> {
+    fn at(&mut self, p: Vec3<T>, sigma_maj: T, rng: &mut R) -> Result<Option<X>, Error>;
+}
+
+impl<T, R: ?Sized, X, V: Visit<T, R, X>> Visit<T, R, X> for &mut V {
+    #[inline(always)]
+    fn at(&mut self, p: Vec3<T>, sigma_maj: T, rng: &mut R) -> Result<Option<X>, Error> {
+        (**self).at(p, sigma_maj, rng)
+    }
+}
+
+/// Delta tracking's decision: one uniform `ξ` gives absorption (`ξσ_maj <
+/// σ_a`), scattering (`< σ_a + σ_s`) or a null collision.
+struct Decide<F>(F);
+
+impl<T: Real, R: Rng + ?Sized, F: Fn(Vec3<T>) -> (T, T)> Visit<T, R, Event> for Decide<F> {
+    #[inline(always)]
+    fn at(&mut self, p: Vec3<T>, sigma_maj: T, r: &mut R) -> Result<Option<Event>, Error> {
+        let st = within((self.0)(p), sigma_maj)?;
+        let x = T::uniform(r) * sigma_maj;
+        Ok(if x < st.0 {
+            Some(Event::Absorbed)
+        } else if x < st.0 + st.1 {
+            Some(Event::Scattered)
+        } else {
+            None
+        })
+    }
+}
+
+/// Ratio tracking's weight `tr`, times `1 − σ_t/σ_maj` at each tentative
+/// collision, with the roulette; the walk ends once it is 0.
+struct Ratio<F, T> {
+    coefficients: F,
+    tr: T,
+}
+
+impl<T: Real, R: Rng + ?Sized, F: Fn(Vec3<T>) -> (T, T)> Visit<T, R, ()> for Ratio<F, T> {
+    #[inline(always)]
+    fn at(&mut self, p: Vec3<T>, sigma_maj: T, r: &mut R) -> Result<Option<()>, Error> {
+        let (sa, ss) = within((self.coefficients)(p), sigma_maj)?;
+        self.tr = roulette(self.tr * (T::ONE - (sa + ss) / sigma_maj), r);
+        Ok((self.tr == T::ZERO).then_some(()))
     }
 }
 

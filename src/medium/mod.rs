@@ -32,8 +32,10 @@ use rand_core::Rng;
 pub const MAX_STEPS: u32 = 1 << 20;
 
 /// Distance to the next interaction in a homogeneous medium of extinction
-/// `sigma_t` (≥ 0, finite): `t = −ln(1 − u)/σ_t`, evaluated as
-/// `−ln1p(−u)/σ_t` (no rounding of `1 − u` for small u). `u` is clamped to
+/// `sigma_t` (≥ 0, finite): `t = −ln(1 − u)/σ_t`, the logarithm within 1
+/// ulp for every `u` (the crate's table-driven one where `1 − u` is exact,
+/// as for every generator's `k·2⁻⁵³`; `ln_1p(−u)` where it would round,
+/// so small `u` keep their relative precision). `u` is clamped to
 /// `[0, 1]`; `u = 1` or `σ_t = 0` gives +∞ (no interaction). NaN for a
 /// negative or non-finite `sigma_t`, or NaN `u`.
 #[inline]
@@ -45,14 +47,27 @@ pub fn free_path<T: Real>(sigma_t: T, u: T) -> T {
     if sigma_t == T::ZERO {
         return if u.is_nan() { T::NAN } else { T::INFINITY };
     }
-    exponential_step(sigma_t, u)
+    -ln_1m(u) / sigma_t
 }
 
-/// `−ln1p(−u)/σ_t` without [`free_path`]'s checks, for the tracking loops,
-/// whose majorant is checked once (`σ_t > 0`, finite) and whose `u ∈ [0, 1)`.
+/// `−ln(1 − u)·(1/σ)` without [`free_path`]'s checks, for the tracking
+/// loops, whose majorant is checked once (`σ > 0`, finite), whose `u ∈ [0,
+/// 1)`, and which take `inv_sigma = 1/σ` once per majorant: a division on
+/// every step's dependency chain cost more than the ulp it saves.
 #[inline(always)]
-pub(crate) fn exponential_step<T: Real>(sigma_t: T, u: T) -> T {
-    -(-u).ln_1p() / sigma_t
+pub(crate) fn exponential_step<T: Real>(inv_sigma: T, u: T) -> T {
+    -ln_1m(u) * inv_sigma
+}
+
+/// `ln(1 − u)`: the crate's table-driven logarithm in f64 (for f32 too
+/// where doubles run in hardware), else libm's `log1pf`.
+#[inline(always)]
+fn ln_1m<T: Real>(u: T) -> T {
+    if core::mem::size_of::<T>() == 8 || crate::math::log::WIDE {
+        T::from_f64(crate::math::log::ln_1m(u.to_f64()))
+    } else {
+        (-u).ln_1p()
+    }
 }
 
 /// Beer–Lambert transmittance `e^{−σ_t d}` for `sigma_t ≥ 0` and
@@ -185,7 +200,18 @@ impl<T: Real> Ray<T> {
     /// from memory (wide loads over narrower stores stall).
     #[inline(always)]
     pub(crate) fn checked(&self) -> Result<(Vec3<T>, Vec3<T>), Error> {
-        let d = self.dir.try_normalize().ok_or(Error::Domain)?;
+        // A direction already unit to within 4 ulp of |d|² (|d| within 2
+        // ulp of 1, which is what a caller's own normalisation leaves) is
+        // taken as it is: rescaling it would move the distances by no more
+        // than that, and its two divisions and square root were a fifth of
+        // a one-call-per-flight photon's tracking time, measured from C.
+        // NaN and ±∞ components fail the test and take the full check.
+        let n2 = self.dir.dot(self.dir);
+        let d = if (n2 - T::ONE).abs() <= T::from_f64(4.0) * T::EPSILON {
+            self.dir
+        } else {
+            self.dir.try_normalize().ok_or(Error::Domain)?
+        };
         let interval = self.t_min >= T::ZERO && self.t_min.is_finite() && self.t_max >= self.t_min;
         if self.origin.is_finite() && interval {
             Ok((self.origin, d))
@@ -256,7 +282,34 @@ pub struct Grid<'a, T> {
     max_density: T,
     lo: Vec3<T>,
     hi: Vec3<T>,
+    /// `1/(hi − lo)` per axis, so that a density lookup multiplies.
+    scale: Vec3<T>,
+    /// What every tracking call reads: taken once here, not per call.
+    derived: Derived<T>,
     sampling: Sampling,
+}
+
+/// A grid's majorant, its reciprocal and its albedo.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Derived<T> {
+    majorant: T,
+    inv_majorant: T,
+    albedo: T,
+}
+
+impl<T: Real> Derived<T> {
+    /// The majorant `(σ_a + σ_s) max(density)`, raised by 4 ulp so the
+    /// interpolation's rounding never exceeds it; the albedo `σ_s/(σ_a +
+    /// σ_s)` (0 for a vacuum).
+    fn of(sigma_a: T, sigma_s: T, max_density: T) -> Self {
+        let st = sigma_a + sigma_s;
+        let majorant = st * max_density * (T::ONE + T::from_f64(4.0) * T::EPSILON);
+        Derived {
+            majorant,
+            inv_majorant: T::ONE / majorant,
+            albedo: if st > T::ZERO { sigma_s / st } else { T::ZERO },
+        }
+    }
 }
 
 impl<'a, T: Real> Grid<'a, T> {
@@ -306,6 +359,8 @@ impl<'a, T: Real> Grid<'a, T> {
             max_density,
             lo: Vec3::new(T::ZERO, T::ZERO, T::ZERO),
             hi: Vec3::new(T::ONE, T::ONE, T::ONE),
+            scale: Vec3::new(T::ONE, T::ONE, T::ONE),
+            derived: Derived::of(sigma_a, sigma_s, max_density),
             sampling: Sampling::Nodes,
         };
         if !grid.majorant().is_finite() {
@@ -345,6 +400,8 @@ impl<'a, T: Real> Grid<'a, T> {
             max_density,
             lo,
             hi,
+            scale: inverse_extent(lo, hi),
+            derived: Derived::of(sigma_a, sigma_s, max_density),
             sampling,
         })
     }
@@ -354,7 +411,12 @@ impl<'a, T: Real> Grid<'a, T> {
     /// every axis with a finite extent whose reciprocal is finite.
     pub fn with_box(self, lo: Vec3<T>, hi: Vec3<T>) -> Result<Self, Error> {
         if valid_box(lo, hi) {
-            Ok(Grid { lo, hi, ..self })
+            Ok(Grid {
+                lo,
+                hi,
+                scale: inverse_extent(lo, hi),
+                ..self
+            })
         } else {
             Err(Error::Domain)
         }
@@ -411,15 +473,39 @@ impl<'a, T: Real> Grid<'a, T> {
     /// The interpolated density at `p` (0 outside the box, NaN for a NaN
     /// coordinate).
     pub fn density(&self, p: Vec3<T>) -> T {
+        self.density_at(p)
+    }
+
+    /// [`density`](Self::density), inlined where tracking reads it once
+    /// per tentative collision: called, its point went through memory
+    /// and its loads waited on the stores (measured from C).
+    #[inline(always)]
+    pub(crate) fn density_at(&self, p: Vec3<T>) -> T {
         if p.x.is_nan() || p.y.is_nan() || p.z.is_nan() {
             return T::NAN;
         }
-        let l = to_local(p, self.lo, self.hi);
-        let inside = |x: T| x >= T::ZERO && x <= T::ONE;
-        if !(inside(l.x) && inside(l.y) && inside(l.z)) {
+        let (lo, hi) = (self.lo, self.hi);
+        let inside = |x: T, l: T, h: T| x >= l && x <= h;
+        if !(inside(p.x, lo.x, hi.x) && inside(p.y, lo.y, hi.y) && inside(p.z, lo.z, hi.z)) {
             return T::ZERO;
         }
+        // Local coordinates by the stored reciprocal extents (three
+        // divisions per lookup were a third of a grid lookup's time);
+        // `p ≥ lo` makes each `≥ 0`, and `min` keeps a point on the far
+        // face, rounded just past it, at 1.
+        let local = |x: T, l: T, k: T| ((x - l) * k).min_of(T::ONE);
+        let l = Vec3::new(
+            local(p.x, lo.x, self.scale.x),
+            local(p.y, lo.y, self.scale.y),
+            local(p.z, lo.z, self.scale.z),
+        );
         let [nx, ny, nz] = self.n;
+        if nx == 1 && ny == 1 {
+            // A column (a layered medium): two values, not eight.
+            let (iz, fz) = node(self.lattice(l.z, nz), nz);
+            let (a, b) = (self.value(0, 0, iz), self.value(0, 0, (iz + 1).min(nz - 1)));
+            return a + (b - a) * fz;
+        }
         let (ix, fx) = node(self.lattice(l.x, nx), nx);
         let (iy, fy) = node(self.lattice(l.y, ny), ny);
         let (iz, fz) = node(self.lattice(l.z, nz), nz);
@@ -457,18 +543,15 @@ impl<'a, T: Real> Grid<'a, T> {
     /// The majorant `(σ_a + σ_s) max(density)`, raised by a few ULP so the
     /// rounding of the interpolation can never exceed it (any majorant at or
     /// above σ_t keeps tracking unbiased).
+    #[inline(always)]
     pub fn majorant(&self) -> T {
-        (self.sigma_a + self.sigma_s) * self.max_density * (T::ONE + T::from_f64(4.0) * T::EPSILON)
+        self.derived.majorant
     }
 
     /// The single-scattering albedo `σ_s/(σ_a + σ_s)` (0 for a vacuum).
+    #[inline(always)]
     pub fn albedo(&self) -> T {
-        let st = self.sigma_a + self.sigma_s;
-        if st > T::ZERO {
-            self.sigma_s / st
-        } else {
-            T::ZERO
-        }
+        self.derived.albedo
     }
 
     /// Delta (Woodcock) tracking along `ray`, first clipped to the grid's
@@ -489,6 +572,7 @@ impl<'a, T: Real> Grid<'a, T> {
     /// [`delta_track`](Self::delta_track) with at most `budget` tentative
     /// collisions ([`Error::Budget`] beyond), also returning how many it
     /// drew.
+    #[inline(always)]
     pub(crate) fn delta_track_within<R: Rng + ?Sized>(
         &self,
         ray: Ray<T>,
@@ -497,20 +581,42 @@ impl<'a, T: Real> Grid<'a, T> {
     ) -> Result<(T, Event, u32), Error> {
         let (o, d) = ray.checked()?;
         let t_max = ray.t_max;
-        let Some((t0, t1)) = clip_box(o, d, self.lo, self.hi, ray.t_min, t_max) else {
+        let Some((t0, t1)) = clip(o, d, (self.lo, self.hi), ray.t_min, t_max) else {
             return Ok((t_max, Event::Escaped, 0));
         };
-        let span = (t0, t1, budget);
-        let (t, hit, steps) = delta(|p| self.sigma_t(p), self.majorant(), o, d, span, rng)?;
-        if !hit {
-            return Ok((t_max, Event::Escaped, steps));
+        let maj = self.majorant();
+        // A vacuum (or a NaN majorant from parts taken as given) draws
+        // nothing.
+        if maj.is_nan() || maj <= T::ZERO {
+            return Ok((t_max, Event::Escaped, 0));
         }
-        let event = if T::uniform(rng) < self.albedo() {
-            Event::Scattered
-        } else {
-            Event::Absorbed
-        };
-        Ok((t, event, steps))
+        // Delta tracking at the grid's one majorant: a uniform per
+        // tentative collision keeps it with probability σ_t/σ_maj, and a
+        // second picks scattering with probability σ_s/σ_t (the grid's
+        // albedo), the draws 0.1 made, so a seed gives what it gave.
+        let (mut t, inv, mut steps) = (t0, self.derived.inv_majorant, 0);
+        loop {
+            t += exponential_step(inv, T::uniform(rng));
+            if t.is_nan() || t >= t1 {
+                return Ok((t_max, Event::Escaped, steps));
+            }
+            if steps == budget {
+                return Err(Error::Budget);
+            }
+            steps += 1;
+            let st = checked(
+                (self.sigma_a + self.sigma_s) * self.density_at(o + d * t),
+                maj,
+            )?;
+            if T::uniform(rng) * maj < st {
+                let event = if T::uniform(rng) < self.albedo() {
+                    Event::Scattered
+                } else {
+                    Event::Absorbed
+                };
+                return Ok((t, event, steps));
+            }
+        }
     }
 
     /// Ratio tracking: an unbiased estimate of the transmittance along
@@ -567,6 +673,15 @@ fn node<T: Real>(s: T, n: usize) -> (usize, T) {
     (i, s - T::from_index(i))
 }
 
+/// `1/(hi − lo)` per axis.
+fn inverse_extent<T: Real>(lo: Vec3<T>, hi: Vec3<T>) -> Vec3<T> {
+    Vec3::new(
+        T::ONE / (hi.x - lo.x),
+        T::ONE / (hi.y - lo.y),
+        T::ONE / (hi.z - lo.z),
+    )
+}
+
 /// `p` in the coordinates of the box `[lo, hi]` (the box is `[0, 1]³`
 /// there; exact at the faces).
 #[inline(always)]
@@ -612,6 +727,20 @@ pub fn clip_box<T: Real>(
     d: Vec3<T>,
     lo: Vec3<T>,
     hi: Vec3<T>,
+    t_min: T,
+    t_max: T,
+) -> Option<(T, T)> {
+    clip(o, d, (lo, hi), t_min, t_max)
+}
+
+/// [`clip_box`], inlined where tracking clips each call's ray: called,
+/// its vectors went through memory (a fifth of a short grid call's time,
+/// measured from C).
+#[inline(always)]
+pub(crate) fn clip<T: Real>(
+    o: Vec3<T>,
+    d: Vec3<T>,
+    (lo, hi): (Vec3<T>, Vec3<T>),
     t_min: T,
     t_max: T,
 ) -> Option<(T, T)> {
@@ -662,11 +791,11 @@ fn tentative<T: Real, R: Rng + ?Sized, X>(
     rng: &mut R,
     mut visit: impl FnMut(T, T, &mut R) -> Option<X>,
 ) -> Result<(Option<X>, u32), Error> {
-    let mut t = t0;
+    let (mut t, inv) = (t0, T::ONE / sigma_maj);
     // Bounded: every pass that does not return counts a step, and the
     // walk ends once `budget` of them are taken (as the majorant walk's).
     for steps in 0..=budget {
-        t += exponential_step(sigma_maj, T::uniform(rng));
+        t += exponential_step(inv, T::uniform(rng));
         if t.is_nan() || t >= t1 {
             return Ok((None, steps));
         }

@@ -565,3 +565,59 @@ fn no_valid_ray_yields_nan() {
         }
     }
 }
+
+/// A column (1×1×n, a layered medium) reads two values, not eight: the
+/// same densities as the same column repeated on a 2×2×n grid, bit for
+/// bit, at random points, on the faces and outside the box, for node and
+/// cell-centre sampling; and the grid in a world box gives 0 just outside
+/// each face and the face's value on it.
+#[test]
+fn a_column_reads_as_the_full_interpolation() {
+    use scatterkit::medium::Sampling;
+    let col: Vec<f64> = (0..17)
+        .map(|k| 0.5 + (k as f64 * 0.37).sin().abs())
+        .collect();
+    let wide: Vec<f64> = col.iter().flat_map(|&v| [v; 4]).collect();
+    let (lo, hi) = (Vec3::new(-2.0, 0.5, -1.0), Vec3::new(3.0, 0.75, 4.0));
+    for sampling in [Sampling::Nodes, Sampling::Cells] {
+        let a = Grid::new(&col, 1, 1, 17, 0.3, 1.1)
+            .and_then(|g| g.with_box(lo, hi))
+            .unwrap()
+            .with_sampling(sampling);
+        let b = Grid::new(&wide, 2, 2, 17, 0.3, 1.1)
+            .and_then(|g| g.with_box(lo, hi))
+            .unwrap()
+            .with_sampling(sampling);
+        let mut r = rng(5);
+        for _ in 0..100_000 {
+            let p = Vec3::new(
+                -2.5 + 6.0 * f64::uniform(&mut r),
+                0.45 + 0.35 * f64::uniform(&mut r),
+                -1.5 + 6.0 * f64::uniform(&mut r),
+            );
+            assert_eq!(a.density(p).to_bits(), b.density(p).to_bits(), "{p:?}");
+        }
+        for (p, inside) in [
+            (lo, true),
+            (hi, true),
+            (Vec3::new(3.0, 0.6, 4.0), true),
+            (
+                Vec3::new(f64::from_bits(3f64.to_bits() + 1), 0.6, 1.0),
+                false,
+            ),
+            (
+                Vec3::new(0.0, f64::from_bits(0.5f64.to_bits() - 1), 1.0),
+                false,
+            ),
+            (
+                Vec3::new(0.0, 0.6, f64::from_bits(4f64.to_bits() + 1)),
+                false,
+            ),
+        ] {
+            assert_eq!(a.density(p).to_bits(), b.density(p).to_bits(), "{p:?}");
+            assert_eq!(a.density(p) > 0.0, inside, "{p:?}");
+        }
+        assert_eq!(a.density(hi), col[16]);
+        assert_eq!(a.density(lo), col[0]);
+    }
+}

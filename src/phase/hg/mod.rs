@@ -51,11 +51,7 @@ use crate::math::real::{PackedF64, Real};
 
 /// Whether the f32 sampler computes in f64 (module docs): on processors whose
 /// double precision runs in hardware at the speed of single.
-const WIDE: bool = cfg!(any(
-    target_arch = "x86_64",
-    target_arch = "x86",
-    target_arch = "aarch64"
-));
+const WIDE: bool = crate::math::log::WIDE;
 
 /// How many f64 constants the model keeps for that path: none where the f32
 /// sampler does not take it, so firmware builds neither store nor clear them.

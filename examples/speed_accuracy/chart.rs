@@ -190,7 +190,7 @@ fn text_width(text: &str) -> f64 {
 /// error (y). Blue is this library, orange the peers' formulas; circles are
 /// calls from Rust, triangles calls from C (through the C ABI for the
 /// library, written inline for the peers); hollow markers are exact in
-/// distribution and drawn at f32's rounding floor; dashed lines join a
+/// distribution and sit in a strip under the error axis; dashed lines join a
 /// curve's points (tables by size, cube-root steps); the black line is the
 /// Pareto frontier. Every point carries one label, placed so that it covers
 /// no other label, point or line (with a leader line where it had to move
@@ -267,7 +267,7 @@ fn legend(s: &mut String, x: f64, y: f64) {
     marker(s, "circle", x, y2, OURS, false, false);
     writeln!(
         s,
-        "<text x=\"{}\" y=\"{}\" font-size=\"11\">hollow: exact in distribution (rejection), drawn at f32's rounding floor</text>\
+        "<text x=\"{}\" y=\"{}\" font-size=\"11\">hollow: exact in distribution (rejection), in the strip under the error axis</text>\
          <line x1=\"{}\" y1=\"{y2}\" x2=\"{}\" y2=\"{y2}\" stroke=\"black\" stroke-width=\"1.5\" opacity=\"0.6\"/>\
          <text x=\"{}\" y=\"{}\" font-size=\"11\">Pareto frontier</text>\
          <line x1=\"{}\" y1=\"{y2}\" x2=\"{}\" y2=\"{y2}\" stroke=\"#555\" stroke-dasharray=\"4,3\"/>\
@@ -358,6 +358,11 @@ fn distance_to(p: (f64, f64), r: Rect) -> f64 {
 }
 
 /// A panel's frame and its log-log scales.
+/// The height of the strip at the foot of a panel where samplers exact in
+/// distribution sit, below the error axis (their error is not a number on
+/// it: rejection draws another sample for the same u).
+const EXACT_STRIP: f64 = 40.0;
+
 pub(crate) struct Axes {
     frame: Rect,
     lx: (f64, f64),
@@ -381,13 +386,23 @@ impl Axes {
         let (x0, _, x1, _) = self.frame;
         x0 + (ns.log10() - self.lx.0) / (self.lx.1 - self.lx.0) * (x1 - x0)
     }
+    /// The error axis, above the strip of exact samplers.
     fn py(&self, e: f64) -> f64 {
         let (_, y0, _, y1) = self.frame;
+        let y1 = y1 - EXACT_STRIP;
         let e = e.clamp(self.y_range.0, self.y_range.1);
         y1 - (e.log10() - self.ly.0) / (self.ly.1 - self.ly.0) * (y1 - y0)
     }
+    /// A point's place: on the error axis, or, for a sampler exact in
+    /// distribution (which has no per-u error to plot), in the strip
+    /// under it.
     fn at(&self, e: &Entry) -> (f64, f64) {
-        (self.px(e.ns), self.py(e.err))
+        let y = if e.rejection {
+            self.frame.3 - EXACT_STRIP / 2.0
+        } else {
+            self.py(e.err)
+        };
+        (self.px(e.ns), y)
     }
 }
 
@@ -451,6 +466,24 @@ fn panel(s: &mut String, pts: &[&Entry], ax: &Axes, title: &str, xl: &str, yl: &
     );
     // Markers; every marker's box is taken before any label is placed.
     let mut taken: Vec<Rect> = Vec::new();
+    if pts.iter().any(|e| e.rejection) {
+        let ys = y1 - EXACT_STRIP;
+        let note = "exact in distribution";
+        writeln!(
+            s,
+            "<line x1=\"{x0}\" y1=\"{ys}\" x2=\"{x1}\" y2=\"{ys}\" stroke=\"#999\" stroke-dasharray=\"2,3\"/>\
+             <text x=\"{}\" y=\"{}\" font-size=\"10\" fill=\"#666\">{note}</text>",
+            x0 + 4.0,
+            y1 - 4.0
+        )
+        .unwrap();
+        taken.push((
+            x0 + 2.0,
+            y1 - 14.0,
+            x0 + 6.0 + text_width(note) * 10.0 / FONT,
+            y1,
+        ));
+    }
     for e in pts {
         let (x, y) = ax.at(e);
         taken.push((x - 5.0, y - 5.0, x + 5.0, y + 5.0));

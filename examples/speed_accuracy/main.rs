@@ -20,8 +20,10 @@
 //! `rand()`). Accuracy: max |cos θ − exact| and max |F(μ(u)) − u| over 2²⁰ + 1
 //! evenly spaced u including 0 and 1, against an f64 evaluation of the exact
 //! inverse (itself within 10⁻¹³ of double-double; see the tests). Rejection
-//! methods are exact in distribution; they are plotted at f32's rounding
-//! floor (half an ULP of 1) and marked so.
+//! methods are exact in distribution: the chart draws them hollow in a strip
+//! under each panel's error axis, and the frontier counts them as more
+//! accurate than any inverse (their tables give f32's rounding floor, half
+//! an ULP of 1).
 //!
 //! Layout: `measure` (timing and accuracy), `entries` (the measured
 //! points), `c_view` (the C benchmarks), `chart` (CSV and SVG), `report`
@@ -88,6 +90,8 @@ Environment:
                      copies the README and the guides show)
   SK_MEDIA_ONLY=1    run the two transmittance sections alone (about a
                      minute), print them, write nothing
+  SK_PHOTON_ONLY=1   run the whole-photon-loop section alone (C and Rust,
+                     about 20 seconds), print it, write nothing
   SK_MEDIA_DATA=path used by the run itself: the 128^3 cloud and rays it
                      hands to benches/c_media.c (not set by hand)
   SK_REPORT=full     print the whole report on the terminal too
@@ -105,6 +109,10 @@ fn main() -> std::io::Result<()> {
     let start = Instant::now();
     if std::env::var_os("SK_MEDIA_ONLY").is_some() {
         print!("{}{}", transmittance_report(), suite_report());
+        return Ok(());
+    }
+    if std::env::var_os("SK_PHOTON_ONLY").is_some() {
+        print!("{}", photon_report());
         return Ok(());
     }
     println!("Measured on {}.\n", machine());

@@ -233,17 +233,43 @@ impl Params {
         Real::sqrt(d)
     }
 
-    /// Density of `μ = cos θ` (that is, `2π p(μ)`): `N (1 + αμ²)/s³`.
+    /// Density of `μ = cos θ` (that is, `2π p(μ)`): `N (1 + αμ²)/s³`, with
+    /// `s² = (1 − g)² + 2g(1 − μ)` for `g ≥ 0` (`(1 + g)² − 2g(1 + μ)`
+    /// for `g < 0`) from `μ` itself: through `y = 1 + μ`, which rounds near
+    /// `μ = 1`, the `1 − μ` a forward lobe with `g → 1` lives on was lost
+    /// (130× at `1 − g = 3·10⁻⁹`, `μ = 1 − 2⁻⁵³`).
     #[inline(always)]
     pub(crate) fn density(&self, mu: f64) -> f64 {
-        let s = self.s(1.0 + mu);
+        let s = self.s_mu(mu);
         self.n * (1.0 + self.alpha * mu * mu) / (s * s * s)
     }
 
-    /// `F(μ) = P(cos θ ≤ μ)` alone.
+    /// [`s`](Self::s) from `μ` itself: the difference `1 ∓ μ` it needs is
+    /// exact near the pole the lobe faces.
     #[inline(always)]
+    fn s_mu(&self, mu: f64) -> f64 {
+        let g = self.g;
+        let d = if g >= 0.0 {
+            (1.0 - g) * (1.0 - g) + 2.0 * g * (1.0 - mu)
+        } else {
+            (1.0 + g) * (1.0 + g) - 2.0 * g * (1.0 + mu)
+        };
+        Real::sqrt(d)
+    }
+
+    /// `F(μ) = P(cos θ ≤ μ)` alone, the smaller of `F` and `1 − F` to
+    /// its own relative precision: `F` from `μ` itself
+    /// ([`s_mu`](Self::s_mu)), and where it exceeds ½, one minus the
+    /// mirrored tail `P(cos θ ≥ μ)`. (Through `y = 1 + μ`, `F` near
+    /// `μ = 1` of a lobe with `g → 1` was 1.0 where it is 0.197.)
     pub(crate) fn cdf(&self, mu: f64) -> f64 {
-        self.eval_y(1.0 + mu).cdf
+        let f = self.eval_at(1.0 + mu, self.s_mu(mu), mu).cdf;
+        if f > 0.5 {
+            let m = self.mirrored();
+            1.0 - m.eval_at(1.0 - mu, m.s_mu(-mu), -mu).cdf
+        } else {
+            f
+        }
     }
 
     /// `F`, `F'` and `F''` at `y = 1 + μ` (the variable the solver works in,
@@ -255,9 +281,14 @@ impl Params {
     /// `F' = N (1 + αμ²)/s³`, `F'' = N/s³ (2αμ + 3g (1 + αμ²)/s²)`.
     #[inline(always)]
     pub(crate) fn eval_y(&self, y: f64) -> Eval {
+        self.eval_at(y, self.s(y), y - 1.0)
+    }
+
+    /// [`eval_y`](Self::eval_y) with `s` and `μ` given (`y = 1 + μ` may
+    /// then be rounded: it enters only as a factor).
+    #[inline(always)]
+    fn eval_at(&self, y: f64, s: f64, mu: f64) -> Eval {
         let g = self.g;
-        let mu = y - 1.0;
-        let s = self.s(y);
         let sum = s + (1.0 + g);
         let q = 1.0 / (s * sum);
         let inv_s = q * sum;
@@ -482,6 +513,41 @@ fn inverse_cos<T: Real>(g: f64, alpha: f64, aux: &Aux, u: f64) -> f64 {
 /// starts from it; without, from eq. 6 (or the `g = 0` root).
 #[inline(always)]
 fn inverse_tail_of<T: Real>(g: f64, alpha: f64, aux: &Aux, u: f64) -> (f64, u64) {
+    let (y, flip) = oriented_tail_of::<T>(g, alpha, aux, u);
+    if y > 2.0 - FAR_POLE {
+        return far_pole::<T>(g, alpha, u, flip, y);
+    }
+    (y, flip)
+}
+
+/// Within this of the far pole (`y = 1 + μ > 2 − FAR_POLE`), the tail
+/// frame's `y` cannot resolve `1 − μ` (its ulp there is `2⁻⁵²`, four of
+/// `μ`'s): [`far_pole`] solves again in the other frame. Only lobes whose
+/// median lies within about 10⁻⁶ of a pole (`1 − |g| ≲ 10⁻³`) get there.
+const FAR_POLE: f64 = 1.0 / 1_048_576.0;
+
+/// The solution of a tail problem that landed at its far pole, solved
+/// again in the mirrored frame, where `y' = 1 ∓ μ` is small and exact:
+/// target `1 − t` (`t = min(u, 1 − u)`), seeded from `2 − y`. At
+/// `1 − g = 3·10⁻⁹` the tail frame gave `1 − 2⁻⁵¹` for `u = ½`, where the
+/// answer rounds to 1.
+#[cold]
+#[inline(never)]
+fn far_pole<T: Real>(g: f64, alpha: f64, u: f64, flip: u64, y: f64) -> (f64, u64) {
+    let flip = flip ^ (1 << 63);
+    let p = Params::new(f64::from_bits(g.to_bits() ^ flip), alpha);
+    let t = if u < 1.0 - u { u } else { 1.0 - u };
+    let y = if alpha == 0.0 {
+        HenyeyGreenstein::from_g(p.g).one_plus_minus_mu(1.0 - t).0
+    } else {
+        solve_bracketed::<T>(|y| p.eval_y(y), 1.0 - t, 2.0 - y, 0.0, 2.0)
+    };
+    (y, flip)
+}
+
+/// [`inverse_tail_of`] in the frame of the smaller tail.
+#[inline(always)]
+fn oriented_tail_of<T: Real>(g: f64, alpha: f64, aux: &Aux, u: f64) -> (f64, u64) {
     oriented(g, u, |g, target, mirrored| {
         // The parameters (four divisions) only if the solver runs: where
         // eq. 6 is the answer they would occupy the divider that eq. 6's own

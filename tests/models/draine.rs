@@ -479,7 +479,16 @@ fn pdf_and_cdf_near_the_poles_as_g_goes_to_one() {
 
 /// The neighbouring f64 of `v` (`k = ±1`), within [−1, 1].
 fn step64(v: f64, k: i32) -> f64 {
-    let w = if k > 0 { v.next_up() } else { v.next_down() };
+    // Through the bits (next_up is newer than the crate's MSRV): away
+    // from zero is +1 on the magnitude's bits.
+    let away = (k > 0) == (v > 0.0 || (v == 0.0 && k > 0));
+    let w = if v == 0.0 {
+        f64::from_bits(1).copysign(k as f64)
+    } else if away {
+        f64::from_bits(v.to_bits() + 1)
+    } else {
+        f64::from_bits(v.to_bits() - 1)
+    };
     w.clamp(-1.0, 1.0)
 }
 

@@ -117,13 +117,16 @@ impl<T: Real> Phase<T> {
     /// reach: `γ` between its value as `α → −½` (or where `g` is no longer
     /// reachable, `g_GK → 1`) and at `α = 1000`, less a sliver at the
     /// lower end where `g_GK` is so close to 1 that the kernel as stored
-    /// (`α` and `g_GK` rounded to `T`) does not reproduce `g` and `γ` to
+    /// (`α` and `g_GK` rounded to `T`) cannot reproduce `g` and `γ` to
     /// 10⁻¹¹ in f64 (16 ULP in f32): one ULP of `g_GK` there moves the mean
-    /// cosine by up to 10⁻⁴. Accepted, measured: `1.0912 ≤ γ ≤ 1.1044` at
-    /// `g = 0.1`; `1.33334 ≤ γ ≤ 1.8742` at `g = 0.6` (f32 from 1.33353);
-    /// `1.47464 ≤ γ ≤ 2.6997` at `g = 0.9` (f32 from 1.49889);
-    /// `1.50668 ≤ γ ≤ 2.8498` at `g = 0.95` (f32 from 1.54968). Outside
-    /// it: [`Error::Domain`].
+    /// cosine by up to 10⁻⁴. The sliver ends where one step of `α` or
+    /// `g_GK` in `T` moves the moments by half that tolerance, so the
+    /// accepted `γ` at each `g` are an interval (swept by 10⁻⁶ in
+    /// `tests/models/gegenbauer.rs`). Accepted, measured: `1.09112 ≤ γ ≤
+    /// 1.10441` at `g = 0.1`; `1.33334 ≤ γ ≤ 1.87420` at `g = 0.6` (f32
+    /// from 1.33553); `1.47231 ≤ γ ≤ 2.69969` at `g = 0.9` (f32 from
+    /// 1.53538); `1.50736 ≤ γ ≤ 2.84984` at `g = 0.95` (f32 from
+    /// 1.59935). Outside it: [`Error::Domain`].
     ///
     /// ```
     /// use scatterkit::Phase;
@@ -143,10 +146,10 @@ impl<T: Real> Phase<T> {
     /// `δ = (1 − χ_3)/(1 − χ_1)`, `0 < g < 1`, found as in
     /// [`gegenbauer_gamma`](Self::gegenbauer_gamma) (`δ` also rises with
     /// `α` at fixed `g`), with the same check of the stored kernel.
-    /// Accepted, measured: `1.10683 ≤ δ ≤ 1.11082` at `g = 0.1`;
-    /// `1.51283 ≤ δ ≤ 2.3022` at `g = 0.6` (f32 from 1.51356);
-    /// `1.77109 ≤ δ ≤ 4.6489` at `g = 0.9` (f32 from 1.83830). Outside the
-    /// reach: [`Error::Domain`].
+    /// Accepted, measured (an interval at each `g`, as for `γ`):
+    /// `1.10683 ≤ δ ≤ 1.11082` at `g = 0.1`; `1.51283 ≤ δ ≤ 2.30220` at
+    /// `g = 0.6` (f32 from 1.51679); `1.77744 ≤ δ ≤ 4.64894` at `g = 0.9`
+    /// (f32 from 1.90620). Outside the reach: [`Error::Domain`].
     pub fn gegenbauer_delta(g: T, delta: T) -> Result<Self, Error> {
         Self::gegenbauer_by(g, delta, 2)
     }
@@ -198,19 +201,89 @@ impl<T: Real> Phase<T> {
         let gk = gegenbauer_g_for(a, g).ok_or(Error::Domain)?;
         // The kernel as stored (α and g_GK rounded to T) must have the
         // moments asked for. Near the edge where g_GK → 1 with α < 0 the
-        // mean cosine moves by up to 10⁻⁴ per ULP of g_GK, so there it is
-        // not reproduced (in f64 as in f32): refused, not returned off.
-        let (a_t, gk_t) = (T::from_f64(a), T::from_f64(gk));
-        let (a_t64, gk_t64) = (a_t.to_f64(), gk_t.to_f64());
-        if gk_t64.is_nan() || gk_t64 >= 1.0 {
-            return Err(Error::Domain);
-        }
-        let chi = low_moments(a_t64, gk_t64);
+        // mean cosine moves by up to 10⁻⁴ per ULP of g_GK, so there no
+        // stored kernel reproduces them (in f64 as in f32): refused, not
+        // returned off. Whether one does depended on where the exact
+        // g_GK fell between two floats, so refusals alternated with
+        // acceptances over a stretch of γ (1014 of 3001 values at g =
+        // 0.85). Now the edge is where one step of α or g_GK in T moves
+        // the moments by a quarter of the tolerance, a smooth function of
+        // the target, and below it the nearest of three stored g_GK is
+        // always within the tolerance: the accepted set is an interval.
         let tol = MOMENT_TOLERANCE.max(16.0 * T::EPSILON.to_f64());
-        if (chi[0] - g).abs() > tol * g || (ratio(chi) - target).abs() > tol * target {
+        let a_t64 = T::from_f64(a).to_f64();
+        let gk_t64 = T::from_f64(gk).to_f64();
+        // The moments' change per step, measured over `k` steps each way
+        // so that the rounding of the moments themselves (a few 10⁻¹⁶ of
+        // them near g_GK → 1, against steps of 10⁻¹² at the edge) does not
+        // make the edge ragged.
+        let k = if core::mem::size_of::<T>() == 4 {
+            4
+        } else {
+            64
+        };
+        let (gk_lo, gk_hi) = neighbours::<T>(gk_t64, k);
+        let (a_lo, a_hi) = neighbours::<T>(a_t64, k);
+        if !(gk_lo > 0.0 && gk_hi < 1.0) {
             return Err(Error::Domain);
         }
+        let per_step = 2.0 * k as f64;
+        let spread = |x: [f64; 3], y: [f64; 3]| {
+            (
+                (x[0] - y[0]).abs() / per_step / g,
+                (ratio(x) - ratio(y)).abs() / per_step / target,
+            )
+        };
+        let (chi_hi, chi_lo) = (low_moments(a_t64, gk_hi), low_moments(a_t64, gk_lo));
+        let by_gk = spread(chi_hi, chi_lo);
+        let by_a = spread(low_moments(a_hi, gk_t64), low_moments(a_lo, gk_t64));
+        let half = tol / 2.0;
+        if !(by_gk.0 <= half && by_gk.1 <= half && by_a.0 <= half && by_a.1 <= half) {
+            return Err(Error::Domain);
+        }
+        let miss = |gk: f64| {
+            let chi = low_moments(a_t64, gk);
+            ((chi[0] - g).abs() / g).max((ratio(chi) - target).abs() / target)
+        };
+        // The root search leaves g_GK a few steps from the float that
+        // best gives g where one step moves the mean cosine by 10⁻¹²: one
+        // secant step in whole steps of T, then the best of that float
+        // and its two neighbours.
+        let slope = (chi_hi[0] - chi_lo[0]) / per_step;
+        let off = libm::round((g - low_moments(a_t64, gk_t64)[0]) / slope);
+        let gk_c = if off.is_finite() && off.abs() <= 1024.0 && off != 0.0 {
+            let (lo, hi) = neighbours::<T>(gk_t64, off.abs() as i64);
+            if off > 0.0 { hi } else { lo }
+        } else {
+            gk_t64
+        };
+        let (gk_down, gk_up) = neighbours::<T>(gk_c, 1);
+        let gk_best = [gk_down, gk_up]
+            .into_iter()
+            .filter(|&c| c > 0.0 && c < 1.0)
+            .fold(gk_c, |b, c| if miss(c) < miss(b) { c } else { b });
+        let missed = miss(gk_best);
+        if missed.is_nan() || missed > tol {
+            return Err(Error::Domain);
+        }
+        let (a_t, gk_t) = (T::from_f64(a_t64), T::from_f64(gk_best));
         Self::gegenbauer(a_t, gk_t)
+    }
+}
+
+/// The floats of `T` `k` steps below and above `x`, in f64 (`x` a
+/// non-zero float of `T` at least `k` steps from 0 and from the largest
+/// float; for the kernel's `α ∈ (−½, 1000]` and `g_GK ∈ (0, 1)` it is).
+fn neighbours<T: Real>(x: f64, k: i64) -> (f64, f64) {
+    let k = k * x.signum() as i64;
+    if core::mem::size_of::<T>() == 4 {
+        let b = (x as f32).to_bits() as i64;
+        let at = |k: i64| f32::from_bits((b + k) as u32) as f64;
+        (at(-k), at(k))
+    } else {
+        let b = x.to_bits() as i64;
+        let at = |k: i64| f64::from_bits((b + k) as u64);
+        (at(-k), at(k))
     }
 }
 

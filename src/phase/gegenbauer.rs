@@ -90,6 +90,10 @@ impl<T: Real> Gegenbauer<T> {
     }
 }
 
+/// Beyond this `|D|` or `|L_y|` the inverse takes a Newton step
+/// ([`K::route`]).
+const POLISH_LOG: f64 = 16.0;
+
 /// The model's constants in f64.
 #[derive(Clone, Copy, Debug)]
 struct K {
@@ -262,12 +266,34 @@ impl K {
         } else {
             self.s > 0.0
         };
-        let z = if by_d {
+        let (z, log) = if by_d {
             self.one_minus_mu(u)
         } else {
             self.one_plus_mu(u)
         };
-        Some((z.clamp(0.0, 2.0), by_d))
+        let z = z.clamp(0.0, 2.0);
+        // `z` comes from `expm1` of the route's logarithm, whose rounding
+        // (|log| ε absolute) it multiplies: beyond |log| = 16 (`1 − |g|`
+        // below about 7·10⁻⁴) that passed 8ε of backward error (18 ulp of
+        // μ at `1 − g = 2.4·10⁻¹⁰`, `α = −¼`). There one Newton step on
+        // the CDF, which is accurate to a few ε, takes it back.
+        if log.abs() > POLISH_LOG {
+            return Some((self.polish(z, by_d, u), by_d));
+        }
+        Some((z, by_d))
+    }
+    /// One Newton step of `F(μ) = u` from the route's `z` (`1 − μ` if
+    /// `by_d`, else `1 + μ`), kept in `[0, 2]`.
+    #[cold]
+    fn polish(&self, z: f64, by_d: bool, u: f64) -> f64 {
+        let mu = if by_d { 1.0 - z } else { z - 1.0 };
+        let f = self.density_mu(mu);
+        if !(f > 0.0 && f.is_finite()) {
+            return z;
+        }
+        let step = (u - self.cdf(mu)) / f;
+        let z = if by_d { z - step } else { z + step };
+        z.clamp(0.0, 2.0)
     }
     /// `(e^{±s}, expm1(±s))` (upper sign for `positive`) from the stored
     /// `(e^{∓s}, expm1(∓s))`: the mirrored pair is formed only where `|s|`
@@ -280,8 +306,8 @@ impl K {
         }
     }
     /// `1 − μ` from `e^{−αD} = u + (1 − u) e^{−s}`:
-    /// `1 − μ = (1 − g)² expm1(D)/(2g)`.
-    fn one_minus_mu(&self, u: f64) -> f64 {
+    /// `1 − μ = (1 − g)² expm1(D)/(2g)`; and `D`.
+    fn one_minus_mu(&self, u: f64) -> (f64, f64) {
         let (a, g) = (self.a, self.g);
         let d = if a == 0.0 {
             (1.0 - u) * self.l1
@@ -296,11 +322,11 @@ impl K {
                 -libm::log1p((1.0 - u) * m) / a
             }
         };
-        (1.0 - g) * (1.0 - g) * libm::expm1(d) / (2.0 * g)
+        ((1.0 - g) * (1.0 - g) * libm::expm1(d) / (2.0 * g), d)
     }
     /// `1 + μ` from `e^{αL_y} = (1 − u) + u e^{s}`:
-    /// `1 + μ = −(1 + g)² expm1(−L_y)/(2g)`.
-    fn one_plus_mu(&self, u: f64) -> f64 {
+    /// `1 + μ = −(1 + g)² expm1(−L_y)/(2g)`; and `L_y`.
+    fn one_plus_mu(&self, u: f64) -> (f64, f64) {
         let (a, g) = (self.a, self.g);
         let ly = if a == 0.0 {
             u * self.l1
@@ -313,7 +339,7 @@ impl K {
                 libm::log1p(u * m) / a
             }
         };
-        -(1.0 + g) * (1.0 + g) * libm::expm1(-ly) / (2.0 * g)
+        (-(1.0 + g) * (1.0 + g) * libm::expm1(-ly) / (2.0 * g), ly)
     }
 }
 

@@ -211,3 +211,118 @@ fn mean_cosine_against_40_digit_quadrature() {
         assert!((got - want).abs() <= tol, "α {a} g {g}: {got} vs {want}");
     }
 }
+
+/// `Phase::gegenbauer_gamma` or `gegenbauer_delta` (`j` = 1 or 2) in
+/// precision `T`: accepted or not.
+fn accepts(f32_: bool, j: usize, g: f64, t: f64) -> bool {
+    match (f32_, j) {
+        (false, 1) => Phase::<f64>::gegenbauer_gamma(g, t).is_ok(),
+        (false, _) => Phase::<f64>::gegenbauer_delta(g, t).is_ok(),
+        (true, 1) => Phase::<f32>::gegenbauer_gamma(g as f32, t as f32).is_ok(),
+        (true, _) => Phase::<f32>::gegenbauer_delta(g as f32, t as f32).is_ok(),
+    }
+}
+
+/// The kernels set by `(g, γ)` or `(g, δ)` accept an interval at every g:
+/// swept by 10⁻⁶ across 10⁻³ at the lower end of the band (where
+/// refusals used to alternate with acceptances: 1014 of 3001 values at
+/// g = 0.85 between 1.445 and 1.448) and by 10⁻² over the rest, for g =
+/// 0.5, 0.85 and 0.99, in f64 and f32: no refusal between two accepted
+/// values. And the bands the docs state hold: their ends accepted, 10⁻⁴
+/// beyond them refused. (The longer sweep, by 10⁻⁶ over every band, is
+/// `accepted_sets_are_intervals_everywhere`, ignored.)
+#[test]
+fn accepted_sets_are_intervals() {
+    for f32_ in [false, true] {
+        for j in [1, 2] {
+            for g in [0.5, 0.85, 0.99] {
+                let coarse: Vec<f64> = (0..=400).map(|i| 1.0 + i as f64 * 1e-2).collect();
+                let first = coarse
+                    .iter()
+                    .position(|&t| accepts(f32_, j, g, t))
+                    .expect("some value accepted");
+                // The edge lies within the coarse step below the first
+                // value accepted: bisected to 10⁻⁴, then swept by 10⁻⁶.
+                let (mut a, mut b) = (coarse[first] - 1e-2, coarse[first]);
+                while b - a > 1e-4 {
+                    let m = 0.5 * (a + b);
+                    if accepts(f32_, j, g, m) { b = m } else { a = m }
+                }
+                let lo = b - 5e-4;
+                let fine: Vec<f64> = (0..=1000).map(|i| lo + i as f64 * 1e-6).collect();
+                let mut values: Vec<f64> = fine.into_iter().chain(coarse).collect();
+                values.sort_by(f64::total_cmp);
+                let ok: Vec<bool> = values.iter().map(|&t| accepts(f32_, j, g, t)).collect();
+                let a = ok.iter().position(|&b| b).unwrap();
+                let b = ok.iter().rposition(|&b| b).unwrap();
+                let holes: Vec<f64> = (a..=b).filter(|&i| !ok[i]).map(|i| values[i]).collect();
+                assert!(
+                    holes.is_empty(),
+                    "f32 {f32_}, j {j}, g {g}: {} refused inside [{}, {}], first {:?}",
+                    holes.len(),
+                    values[a],
+                    values[b],
+                    holes.first()
+                );
+            }
+        }
+    }
+    // The documented bands: (f32, j, g, lower, upper).
+    let bands = [
+        (false, 1, 0.1, 1.09112, 1.10441),
+        (false, 1, 0.6, 1.33334, 1.87420),
+        (false, 1, 0.9, 1.47231, 2.69969),
+        (false, 1, 0.95, 1.50736, 2.84984),
+        (true, 1, 0.6, 1.33553, 1.87420),
+        (true, 1, 0.9, 1.53538, 2.69969),
+        (true, 1, 0.95, 1.59935, 2.84984),
+        (false, 2, 0.1, 1.10683, 1.11082),
+        (false, 2, 0.6, 1.51283, 2.30220),
+        (false, 2, 0.9, 1.77744, 4.64894),
+        (true, 2, 0.6, 1.51679, 2.30220),
+        (true, 2, 0.9, 1.90620, 4.64894),
+    ];
+    for (f32_, j, g, lo, hi) in bands {
+        assert!(
+            accepts(f32_, j, g, lo) && accepts(f32_, j, g, hi),
+            "{f32_} {j} {g}: [{lo}, {hi}]"
+        );
+        assert!(
+            !accepts(f32_, j, g, lo - 1e-4) && !accepts(f32_, j, g, hi + 1e-4),
+            "{f32_} {j} {g}: the band [{lo}, {hi}] is wider than stated"
+        );
+    }
+}
+
+/// The long sweep: by 10⁻⁶ over the first 10⁻² of each band (where the
+/// edge is) and by 10⁻⁴ over the rest, g = 0.5, 0.6, …, 0.9, 0.95, 0.97,
+/// 0.99, γ and δ, f64 and f32 (about 10⁶ constructions, three minutes on
+/// two cores; run with `--ignored`).
+#[test]
+#[ignore]
+fn accepted_sets_are_intervals_everywhere() {
+    for f32_ in [false, true] {
+        for j in [1, 2] {
+            for g in [0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 0.97, 0.99] {
+                let top = if j == 1 { 3.0 } else { 5.0 };
+                let coarse = (0..=((top - 1.0) / 1e-4) as usize).map(|i| 1.0 + i as f64 * 1e-4);
+                let first = coarse
+                    .clone()
+                    .find(|&t| accepts(f32_, j, g, t))
+                    .expect("some value accepted");
+                let fine = (0..=10_000).map(|i| first - 1e-4 + i as f64 * 1e-6);
+                let mut values: Vec<f64> = fine.chain(coarse).collect();
+                values.sort_by(f64::total_cmp);
+                let ok: Vec<bool> = values.iter().map(|&t| accepts(f32_, j, g, t)).collect();
+                let a = ok.iter().position(|&b| b).unwrap();
+                let b = ok.iter().rposition(|&b| b).unwrap();
+                let holes = (a..=b).filter(|&i| !ok[i]).count();
+                eprintln!(
+                    "f32 {f32_}, j {j}, g {g}: accepted {} ..= {}, holes {holes}",
+                    values[a], values[b]
+                );
+                assert_eq!(holes, 0, "f32 {f32_}, j {j}, g {g}");
+            }
+        }
+    }
+}

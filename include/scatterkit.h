@@ -2122,7 +2122,11 @@ float sk_phase_sample_cos_by_lobe(const sk_phase *p, float u);
 double sk_phase_sample_cos_by_lobe_f64(const sk_phase_f64 *p, double u);
 
 /*
- Density per steradian at cos_theta. NaN for a NULL or unconstructed phase.
+ Density per steradian at cos_theta in [-1, 1]; a cos_theta within 8 ulp
+ beyond +-1 (where a dot product of unit vectors rounds) is read at +-1,
+ and one further out has density 0 (the CDF is 0 or 1 there), in every
+ model (as the Rust `Phase` and the Python package). NaN for NaN, or a
+ NULL or unconstructed phase.
  */
 float sk_phase_pdf(const sk_phase *p, float cos_theta);
 
@@ -2144,7 +2148,8 @@ double sk_phase_mean_cosine_f64(const sk_phase_f64 *p);
 /*
  Inverse CDF: maps u in [0, 1] monotonically to cos theta in [-1, 1]
  (u = 0 gives -1). u outside [0, 1] is clamped; NaN gives NaN, as does a
- NULL or unconstructed phase.
+ NULL or unconstructed phase (as in Rust; the Python package raises
+ ValueError for u outside [0, 1] or NaN instead).
  */
 float sk_phase_sample_cos(const sk_phase *p, float u);
 

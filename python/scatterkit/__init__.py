@@ -35,6 +35,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _scatterkit as _sk
+from ._real import real_array
 from . import conventions
 
 __all__ = [
@@ -67,7 +68,7 @@ FloatOrArray = Union[float, np.ndarray]
 
 def _flat(x, name):
     """``x`` as a contiguous 1-D float64 array, its shape and scalarness."""
-    a = np.asarray(x, dtype=np.float64)
+    a = real_array(x, name)
     if a.dtype != np.float64:  # pragma: no cover - asarray converts or raises
         raise TypeError(f"{name}: expected real numbers")
     return np.ascontiguousarray(a.ravel()), a.shape, a.ndim == 0
@@ -254,7 +255,10 @@ class Phase:
         return self._p.mean_cosine
 
     def pdf(self, mu: ArrayLike) -> FloatOrArray:
-        """The density per steradian at each cosine ``mu`` in ``[-1, 1]``."""
+        """The density per steradian at each cosine ``mu`` in ``[-1, 1]``;
+        within 8 ulp beyond +-1 (a dot product's rounding) it is read at +-1,
+        and further out it is 0 (as the CDF is 0 or 1 there), as in C and
+        Rust. ``TypeError`` for complex input."""
         x, shape, scalar = _flat(mu, "pdf")
         return _shaped(self._p.pdf(x), shape, scalar)
 
@@ -271,7 +275,10 @@ class Phase:
         (a ``numpy.random.Generator``). ``out``, a C-contiguous, writeable
         float64 array of the uniforms' shape that shares no memory with them,
         receives them without a new allocation (and is returned). ``ValueError`` for a uniform outside ``[0, 1]`` or NaN (with
-        ``out``, part of it may have been written then). Long arrays are split
+        ``out``, part of it may have been written then), for scalars as for
+        arrays; C and Rust clamp such a ``u`` into ``[0, 1]`` and return NaN
+        for NaN instead (their docs say so too). ``TypeError`` for complex
+        input. Long arrays are split
         over the processor's cores, with the same results as one pass."""
         u = _uniforms(u, rng, size, "sample_cos")
         x, shape, scalar = _flat(u, "sample_cos")
@@ -309,7 +316,7 @@ class Phase:
         polar angle) and ``u2`` (the azimuth), of one shape, or ``size`` pairs from
         ``rng``."""
         u1, u2 = _uniform_pair(u1, u2, rng, size, "sample_dir")
-        w = np.asarray(w_in, dtype=np.float64)
+        w = real_array(w_in)
         if w.shape != (3,):
             raise ValueError("sample_dir: w_in must hold 3 values")
         a, shape, scalar = _flat(u1, "sample_dir")
@@ -484,7 +491,10 @@ class AlbedoCurve:
         return _shaped(self._c.albedo(x), shape, scalar)
 
     def std_error(self, omega: ArrayLike) -> FloatOrArray:
-        """The Monte-Carlo standard error of :meth:`albedo` (not the interpolation's)."""
+        """The error of :meth:`albedo` at ``omega`` as one standard deviation:
+        the Monte Carlo part and the interpolation's, in quadrature (as the C
+        header's ``sk_albedo_curve_std_error_f64`` and Rust's
+        ``AlbedoCurve::std_error``); NaN outside ``[0, 1]``."""
         x, shape, scalar = _flat(omega, "std_error")
         return _shaped(self._c.std_error(x), shape, scalar)
 
@@ -496,13 +506,13 @@ class AlbedoCurve:
 
 
 def _rays(origins, dirs, t_max):
-    o = np.asarray(origins, dtype=np.float64)
-    d = np.asarray(dirs, dtype=np.float64)
+    o = real_array(origins)
+    d = real_array(dirs)
     if o.shape[-1:] != (3,) or d.shape[-1:] != (3,):
         raise ValueError("origins and dirs must have a last axis of 3 values")
     o, d = np.broadcast_arrays(o, d)
     shape = o.shape[:-1]
-    t = np.broadcast_to(np.asarray(t_max, dtype=np.float64), shape)
+    t = np.broadcast_to(real_array(t_max), shape)
     flat = lambda a: np.ascontiguousarray(a, dtype=np.float64).ravel()
     return flat(o), flat(d), flat(t), shape
 
@@ -527,7 +537,7 @@ class Medium:
     def __init__(self, density: ArrayLike, sigma_a: float, sigma_s: float, *,
                  lo: Sequence[float] = (0.0, 0.0, 0.0), hi: Sequence[float] = (1.0, 1.0, 1.0),
                  sampling="nodes", majorant_cells=(16, 16, 16)):
-        d = np.asarray(density, dtype=np.float64)
+        d = real_array(density)
         if d.ndim != 3:
             raise ValueError("Medium: density must be a 3-D array indexed [x, y, z]")
         if sampling not in ("nodes", "cells"):
@@ -553,7 +563,7 @@ class Medium:
 
     def sigma_t(self, points: ArrayLike) -> FloatOrArray:
         """The extinction coefficient at world points (last axis 3 values)."""
-        p = np.asarray(points, dtype=np.float64)
+        p = real_array(points)
         if p.shape[-1:] != (3,):
             raise ValueError("sigma_t: points must have a last axis of 3 values")
         out = self._m.sigma_t(np.ascontiguousarray(p).ravel())
@@ -592,7 +602,7 @@ class Medium:
         emitted radiance ``L_e`` as a 3-D array indexed ``[x, y, z]`` over the
         medium's box, placed as the density is (any resolution), in the units
         of the result."""
-        src = np.asarray(source, dtype=np.float64)
+        src = real_array(source)
         if src.ndim != 3:
             raise ValueError("emission: source must be a 3-D array indexed [x, y, z]")
         o, d, t, shape = _rays(origins, dirs, t_max)
@@ -619,8 +629,8 @@ class Medium:
         tracking; ``weight / r_u.mean(-1)`` weighs delta tracking's events."""
         if estimator not in ("delta", "ratio"):
             raise ValueError('spectral_track: estimator is "delta" or "ratio"')
-        sa = [float(v) for v in np.atleast_1d(np.asarray(sigma_a, dtype=np.float64))]
-        ss = [float(v) for v in np.atleast_1d(np.asarray(sigma_s, dtype=np.float64))]
+        sa = [float(v) for v in np.atleast_1d(real_array(sigma_a))]
+        ss = [float(v) for v in np.atleast_1d(real_array(sigma_s))]
         o, d, t, shape = _rays(origins, dirs, t_max)
         n = t.size
         if hero is None:
@@ -651,7 +661,7 @@ class Medium:
 
 def _rows(shape, *parts):
     """Broadcasts (array, trailing width) pairs to one batch shape; flat copies."""
-    arrays = [np.asarray(a, dtype=np.float64) for a, _ in parts]
+    arrays = [real_array(a) for a, _ in parts]
     for a, (_, w) in zip(arrays, parts):
         if w and a.shape[-1:] != (w,):
             raise ValueError(f"expected a last axis of {w} values, got shape {a.shape}")
@@ -729,7 +739,9 @@ class Fit(NamedTuple):
     """The chosen model, ready to sample (``None`` when a table won: build it
     from the data)."""
     model: str
-    """The chosen model's name."""
+    """The chosen model's name, as the :class:`Phase` constructors and the keys
+    of ``distances`` spell it (``"two_lobe_hg"``, ...; ``"mie_table"`` when a
+    table won); ``repr(phase)`` names the same model."""
     distance: float
     """Its total-variation distance to the reference (0 to 1)."""
     within_tolerance: bool
@@ -851,7 +863,7 @@ def equiangular(origins: ArrayLike, dirs: ArrayLike, point: ArrayLike, u: ArrayL
 
 
 def _pair(x, v, name):
-    a, b = np.broadcast_arrays(np.asarray(x, dtype=np.float64), np.asarray(v, dtype=np.float64))
+    a, b = np.broadcast_arrays(real_array(x), real_array(v))
     shape = a.shape
     return np.ascontiguousarray(a).ravel(), np.ascontiguousarray(b).ravel(), shape
 

@@ -28,6 +28,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._real import real_array
+
 __all__ = [
     "legendre_with_2l1",
     "legendre_without_2l1",
@@ -46,13 +48,13 @@ _FACTORS = {"sr": 1.0, "4pi": 4.0 * np.pi, "mu": 2.0 * np.pi}
 
 def legendre_with_2l1(chi):
     """``beta_l = (2l + 1) chi_l``: moments ``<P_l>`` to expansion coefficients."""
-    chi = np.asarray(chi, dtype=np.float64)
+    chi = real_array(chi)
     return chi * (2.0 * np.arange(chi.shape[-1]) + 1.0)
 
 
 def legendre_without_2l1(beta):
     """``chi_l = beta_l / (2l + 1)``: expansion coefficients to moments ``<P_l>``."""
-    beta = np.asarray(beta, dtype=np.float64)
+    beta = real_array(beta)
     return beta / (2.0 * np.arange(beta.shape[-1]) + 1.0)
 
 
@@ -60,8 +62,8 @@ def legendre_moments_of(mu, weighted_pdf, n):
     """``chi_l = sum_j weighted_pdf_j P_l(mu_j)`` for ``l < n``: the moments from
     quadrature nodes ``mu`` and weights already multiplied by ``2 pi p(mu)``
     (so that ``chi_0`` is the quadrature of the normalisation, 1 when resolved)."""
-    mu = np.asarray(mu, dtype=np.float64)
-    wp = np.asarray(weighted_pdf, dtype=np.float64)
+    mu = real_array(mu)
+    wp = real_array(weighted_pdf)
     out = np.empty(int(n))
     p_prev, p = np.ones_like(mu), mu.copy()
     out[0] = wp.sum()
@@ -76,7 +78,7 @@ def legendre_moments_of(mu, weighted_pdf, n):
 def legendre_series(chi, mu):
     """The density per steradian ``sum (2l + 1) chi_l P_l(mu) / (4 pi)`` of moments ``chi``."""
     beta = legendre_with_2l1(chi)
-    return np.polynomial.legendre.legval(np.asarray(mu, dtype=np.float64), beta) / (4.0 * np.pi)
+    return np.polynomial.legendre.legval(real_array(mu), beta) / (4.0 * np.pi)
 
 
 def convert_normalization(values, source: str, target: str):
@@ -87,13 +89,13 @@ def convert_normalization(values, source: str, target: str):
         f = _FACTORS[target] / _FACTORS[source]
     except KeyError:
         raise ValueError(f"normalisations are {sorted(_FACTORS)}, not {source!r} -> {target!r}") from None
-    return np.asarray(values, dtype=np.float64) * f
+    return real_array(values) * f
 
 
 def mu_from_angle(angle, *, degrees: bool = False, backward: bool = False):
     """``mu = cos(theta)`` of a scattering angle measured from the forward
     direction, or from the backward one with ``backward=True`` (``mu = -cos``)."""
-    a = np.asarray(angle, dtype=np.float64)
+    a = real_array(angle)
     if degrees:
         a = np.radians(a)
     mu = np.cos(a)
@@ -103,7 +105,7 @@ def mu_from_angle(angle, *, degrees: bool = False, backward: bool = False):
 def angle_from_mu(mu, *, degrees: bool = False, backward: bool = False):
     """The scattering angle of ``mu`` (inverse of :func:`mu_from_angle`), in
     ``[0, pi]`` (or degrees)."""
-    m = np.clip(np.asarray(mu, dtype=np.float64), -1.0, 1.0)
+    m = np.clip(real_array(mu), -1.0, 1.0)
     a = np.arccos(-m if backward else m)
     return np.degrees(a) if degrees else a
 
@@ -147,7 +149,7 @@ def _mcx_table(invcdf):
     """The table MCX's kernel reads for ``cfg.invcdf`` (see
     :func:`to_mcx_invcdf`): -1, the values, 1, and one more 1 when the count
     so far is odd."""
-    values = np.asarray(invcdf, dtype=np.float64)
+    values = real_array(invcdf)
     nphase = values.size + 2
     nphase += nphase & 1
     table = np.ones(nphase)

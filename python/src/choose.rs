@@ -18,7 +18,7 @@ fn found(c: MieChoice) -> Found {
         c.phase.map(|p| PyPhase {
             model: Model::One(p),
         }),
-        format!("{:?}", c.model),
+        snake(&format!("{:?}", c.model)),
         c.distance,
         c.within_tolerance,
         c.distances.to_vec(),
@@ -77,4 +77,21 @@ pub(crate) fn fit_mie(
     })
     .map(found)
     .map_err(|e| refused("fit_mie(diameter_um, wavelength_um, m, tolerance)", e))
+}
+
+/// A model's name as the `Phase` constructors and `Fit.distances` spell it:
+/// `TwoLobeHg` is `two_lobe_hg`.
+fn snake(camel: &str) -> String {
+    let mut s = String::new();
+    for (i, c) in camel.chars().enumerate() {
+        if c.is_ascii_uppercase() {
+            if i > 0 {
+                s.push('_');
+            }
+            s.push(c.to_ascii_lowercase());
+        } else {
+            s.push(c);
+        }
+    }
+    s
 }

@@ -5,9 +5,9 @@ use numpy::{IntoPyArray, PyReadonlyArray1, PyReadwriteArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use scatterkit::mixture::{Mixture, Part};
-use scatterkit::phase::check_uniforms;
 use scatterkit::phase::legendre::LegendreSeries;
 use scatterkit::phase::moments::{legendre_moments, legendre_moments_by_quadrature};
+use scatterkit::phase::{check_uniforms, support};
 use scatterkit::{HenyeyGreenstein, Phase, PhaseFunction, Table, TableKind, Vec3};
 
 /// A phase function: one of the library's models, a mixture of them, a
@@ -288,6 +288,7 @@ impl PyPhase {
     #[getter]
     fn name(&self) -> &'static str {
         match &self.model {
+            Model::One(p) if two_lobe(p).is_some() => "two_lobe_hg",
             Model::One(p) => p.name(),
             Model::Mix(_) => "mixture",
             Model::Series(_) => "Legendre series",
@@ -299,7 +300,9 @@ impl PyPhase {
         self.model.mean_cosine()
     }
     fn pdf<'py>(&self, py: Python<'py>, mu: PyReadonlyArray1<'py, f64>) -> PyResult<Array<'py>> {
-        self.model.with(|p| map(py, &mu, |x| p.pdf(x)))
+        // Outside [−1, 1] as the library's Phase: 0 (within 8 ulp, ±1).
+        let at = |p: &dyn PhaseFunction<f64>, x: f64| support(x).map_or(0.0, |m| p.pdf(m));
+        self.model.with(|p| map(py, &mu, |x| at(p, x)))
     }
     fn cdf<'py>(&self, py: Python<'py>, mu: PyReadonlyArray1<'py, f64>) -> PyResult<Array<'py>> {
         self.model.with(|p| map(py, &mu, |x| p.cdf(x)))
@@ -446,6 +449,10 @@ impl PyPhase {
     }
     fn __repr__(&self) -> String {
         match &self.model {
+            Model::One(p) if two_lobe(p).is_some() => {
+                let [g1, g2, w] = two_lobe(p).unwrap_or_default();
+                format!("two_lobe_hg({g1}, {g2}, {w})")
+            }
             Model::One(p) => {
                 let (_, n, v) = p.params();
                 let v: Vec<String> = v.iter().take(n).map(|x| format!("{x}")).collect();
@@ -456,4 +463,12 @@ impl PyPhase {
             Model::Table(_, n, kind) => format!("table ({kind:?}, {n} intervals)"),
         }
     }
+}
+
+/// `(g1, g2, w)` of a two-lobe HG, which the library keeps as a fog with
+/// `α = 0` (`fog(g_hg, g_d, 0, w_d)` is `two_lobe_hg(g_d, g_hg, w_d)`), so
+/// that it prints and names itself as it was built (and as `fit` reports it).
+fn two_lobe(p: &scatterkit::Phase<f64>) -> Option<[f64; 3]> {
+    let (_, _, v) = p.params();
+    (p.name() == "fog" && v[2] == 0.0).then_some([v[1], v[0], v[3]])
 }

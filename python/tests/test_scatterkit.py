@@ -187,14 +187,18 @@ class MieTest(unittest.TestCase):
         self.assertAlmostEqual(abs(s1 - s2), 0.0, places=9)
 
     # miepython 3.3.0 (Prahl), efficiencies_mx(m.conjugate(), x): its index is
-    # n - ik. (x, m, Q_ext, Q_sca, Q_back, g).
+    # n - ik. (x, m, Q_ext, Q_sca, Q_back, g). Except Q_back at x = 1000:
+    # miepython sums the backward series to Wiscombe's term count, which
+    # leaves it 1.7e-6 short there; the value is the series summed in 60
+    # digits (scripts/mie_backscatter_reference.py), which scattnlay agrees
+    # with to 2e-10.
     MIEPYTHON = [
         (0.1, 1.33 + 0j, 1.1090625362212142e-05, 1.1090625362212142e-05, 1.6562285601718563e-05, 0.0018319588208688515),
         (1.0, 1.5 + 0.1j, 0.48237045634695686, 0.20874001831483707, 0.17696221724921718, 0.20559668854091143),
         (5.213, 1.55 + 0j, 3.1049959150801865, 3.1049959150801865, 2.9242091271819697, 0.6331044159946938),
         (10.0, 1.33 + 0.01j, 2.2492409080622853, 1.8721120605427188, 0.3185671560529034, 0.7541410676033555),
         (100.0, 1.5 + 0.1j, 2.089821842804492, 1.13213397112475, 0.04153483549346657, 0.9503916728871667),
-        (1000.0, 1.33 + 1e-8j, 2.0165786280372187, 2.0165444217761195, 0.6759973111049635, 0.8830958857644496),
+        (1000.0, 1.33 + 1e-8j, 2.0165786280372187, 2.0165444217761195, 0.67599848295242736, 0.8830958857644496),
     ]
 
     def test_efficiencies_agree_with_miepython(self):
@@ -210,6 +214,11 @@ class MieTest(unittest.TestCase):
             self.skipTest("miepython is not installed (the efficiencies above are its values)")
         mu = np.cos(np.radians(np.linspace(0.0, 180.0, 37)))
         for x, m, *_ in self.MIEPYTHON:
+            # At x = 1000 miepython's truncated series (above) is off by up
+            # to 4.7e-7 where the phase function is small (90-140 degrees);
+            # scattnlay 2.4 agrees with this library there to 2e-11.
+            if x >= 1000:
+                continue
             want = miepython.i_unpolarized(m.conjugate(), x, mu, norm="one")
             np.testing.assert_allclose(sk.Mie(x, m).phase(mu), want, rtol=1e-7, err_msg=f"x = {x}")
 
@@ -404,12 +413,12 @@ class FitTest(unittest.TestCase):
         mu = np.linspace(-1, 1, 2001)
         hg = sk.Phase.henyey_greenstein(0.6)
         found = sk.fit(mu, 3.0 * hg.pdf(mu), 0.01)  # any scale
-        self.assertEqual(found.model, "HenyeyGreenstein")
+        self.assertEqual(found.model, "henyey_greenstein")
         self.assertTrue(found.within_tolerance)
         self.assertAlmostEqual(found.phase.mean_cosine, 0.6, delta=2e-3)
         self.assertEqual(set(found.distances), set(sk._CANDIDATES))
         ray = sk.fit(mu, sk.Phase.rayleigh().pdf(mu), 0.01)
-        self.assertEqual(ray.model, "Rayleigh")
+        self.assertEqual(ray.model, "rayleigh")
         with self.assertRaises(ValueError):
             sk.fit([0.0], [1.0])
         with self.assertRaises(ValueError):
@@ -424,7 +433,41 @@ class FitTest(unittest.TestCase):
         fitted = [d for d in found.distances.values() if not math.isnan(d)]
         self.assertEqual(found.distance, min(fitted))
         table = sk.fit_mie(10.0, 0.55, tolerance=0.05, allow_table=True)
-        self.assertEqual((table.model, table.phase), ("MieTable", None))
+        self.assertEqual((table.model, table.phase), ("mie_table", None))
+
+
+class ConsistencyTest(unittest.TestCase):
+    def test_complex_input_is_a_type_error(self):
+        hg = sk.Phase.henyey_greenstein(0.5)
+        for f, x in ((hg.pdf, [0.5 + 1j]), (hg.cdf, 0.5j), (hg.sample_cos, np.array([0.5 + 0j])),
+                     (sk.conventions.mu_from_angle, [30 + 1j])):
+            with self.assertRaises(TypeError):
+                f(x)
+
+    def test_pdf_outside_the_cosines_is_zero_on_both_sides(self):
+        for p in (sk.Phase.henyey_greenstein(0.7), sk.Phase.rayleigh(), sk.Phase.draine(0.5, 1.0),
+                  sk.Phase.mixture([(sk.Phase.isotropic(), 1.0)])):
+            self.assertEqual(list(p.pdf([1.5, -3.0])), [0.0, 0.0])
+            self.assertEqual(p.pdf(1.0 + 2e-16), p.pdf(1.0))  # a dot product's rounding
+            self.assertEqual(p.pdf(1.5), 0.0)
+            self.assertTrue(math.isnan(p.pdf(math.nan)))
+
+    def test_scalars_behave_as_arrays(self):
+        hg = sk.Phase.henyey_greenstein(0.7)
+        for u in (1.5, -0.5, math.nan):
+            with self.assertRaises(ValueError):
+                hg.sample_cos(u)
+            with self.assertRaises(ValueError):
+                hg.sample_cos([u])
+        self.assertEqual(hg.sample_cos(0.3), hg.sample_cos([0.3])[0])
+
+    def test_fit_names_the_model_it_returns(self):
+        mu = np.linspace(-1, 1, 2001)
+        found = sk.fit(mu, sk.Phase.two_lobe_hg(0.8, -0.3, 0.9).pdf(mu), 0.01)
+        self.assertEqual(found.model, "two_lobe_hg")
+        self.assertEqual(found.phase.name, "two_lobe_hg")
+        self.assertTrue(repr(found.phase).startswith("Phase.two_lobe_hg("), repr(found.phase))
+        self.assertEqual(repr(sk.Phase.two_lobe_hg(0.8, -0.3, 0.9)), "Phase.two_lobe_hg(0.8, -0.3, 0.9)")
 
 
 class ConventionsTest(unittest.TestCase):

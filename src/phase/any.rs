@@ -253,9 +253,14 @@ impl<T: Real> Phase<T> {
 }
 
 impl<T: Real> PhaseFunction<T> for Phase<T> {
+    /// The model's density, read where [`support`](super::support) puts
+    /// `cos_theta` (0 beyond 8 ulp outside `[−1, 1]`).
     #[inline]
     fn pdf(&self, cos_theta: T) -> T {
-        dispatch!(self, m => m.pdf(cos_theta))
+        match super::support(cos_theta) {
+            Some(mu) => dispatch!(self, m => m.pdf(mu)),
+            None => T::ZERO,
+        }
     }
     #[inline]
     fn cdf(&self, cos_theta: T) -> T {

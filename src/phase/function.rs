@@ -8,13 +8,15 @@ use crate::math::real::Real;
 /// A phase function over the cosine of the scattering angle.
 pub trait PhaseFunction<T: Real> {
     /// Density per steradian at `cos_theta` (domain `[-1, 1]`; outside it
-    /// the formula is evaluated as is).
+    /// a model's own formula is evaluated as is, while [`Phase`](crate::Phase)
+    /// reads it where [`support`] says: 0 beyond 8 ulp outside).
     fn pdf(&self, cos_theta: T) -> T;
     /// `P(cos θ ≤ cos_theta)`, in `[0, 1]`; arguments outside `[-1, 1]` are
     /// clamped.
     fn cdf(&self, cos_theta: T) -> T;
     /// The inverse of [`cdf`](Self::cdf): maps `u ∈ [0, 1]` to `cos θ`.
-    /// `u` outside `[0, 1]` is clamped, NaN gives NaN.
+    /// `u` outside `[0, 1]` is clamped, NaN gives NaN (as in C; the Python
+    /// package raises `ValueError` for both instead).
     fn sample_cos(&self, u: T) -> T;
     /// Mean cosine `⟨cos θ⟩ = 2π ∫ μ p(μ) dμ` (the asymmetry parameter).
     fn mean_cosine(&self) -> T;
@@ -283,5 +285,23 @@ mod tests {
                 }
             }
         }
+    }
+}
+
+/// Where a density of `μ = cos θ` is read ([`Phase`](crate::Phase)'s
+/// `pdf`, the C layer's `sk_phase_pdf`, the Python package's `pdf`):
+/// `μ` itself in `[−1, 1]` (and NaN); `±1` for a `μ` within 8 ulp beyond
+/// it, where the dot product of two unit vectors rounds; `None` further
+/// out, where the density is 0, as the CDF is 0 or 1 there. (Each model's
+/// own formula, read outside `[−1, 1]`, gave NaN on one side and a value
+/// on the other.)
+#[inline(always)]
+pub fn support<T: Real>(mu: T) -> Option<T> {
+    if mu.abs() <= T::ONE || mu.is_nan() {
+        Some(mu)
+    } else if mu.abs() <= T::ONE + T::from_f64(8.0) * T::EPSILON {
+        Some(T::ONE.copysign(mu))
+    } else {
+        None
     }
 }

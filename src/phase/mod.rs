@@ -32,7 +32,7 @@ pub use any::Phase;
 pub use draine::Draine;
 pub use fog::{Fog, FogParams, fog_fit};
 pub use fournier_forand::FournierForand;
-pub use function::{PhaseFunction, PhaseVisitor, check_uniforms};
+pub use function::{PhaseFunction, PhaseVisitor, check_uniforms, support};
 pub use gegenbauer::Gegenbauer;
 pub use hg::HenyeyGreenstein;
 pub use isotropic::Isotropic;

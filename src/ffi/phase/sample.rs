@@ -19,7 +19,11 @@ pub unsafe extern "C" fn sk_phase_sample_cos_by_lobe_f64(p: *const sk_phase_f64,
     unsafe { load(p) }.map_or(f64::NAN, |ph| ph.sample_cos_by_lobe(u))
 }
 
-/// Density per steradian at cos_theta. NaN for a NULL or unconstructed phase.
+/// Density per steradian at cos_theta in [-1, 1]; a cos_theta within 8 ulp
+/// beyond +-1 (where a dot product of unit vectors rounds) is read at +-1,
+/// and one further out has density 0 (the CDF is 0 or 1 there), in every
+/// model (as the Rust `Phase` and the Python package). NaN for NaN, or a
+/// NULL or unconstructed phase.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_phase_pdf(p: *const sk_phase, cos_theta: f32) -> f32 {
     unsafe { pdf(p, cos_theta) }
@@ -45,7 +49,8 @@ pub unsafe extern "C" fn sk_phase_mean_cosine_f64(p: *const sk_phase_f64) -> f64
 
 /// Inverse CDF: maps u in [0, 1] monotonically to cos theta in [-1, 1]
 /// (u = 0 gives -1). u outside [0, 1] is clamped; NaN gives NaN, as does a
-/// NULL or unconstructed phase.
+/// NULL or unconstructed phase (as in Rust; the Python package raises
+/// ValueError for u outside [0, 1] or NaN instead).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_phase_sample_cos(p: *const sk_phase, u: f32) -> f32 {
     unsafe { sample_cos(p, u) }

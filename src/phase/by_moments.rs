@@ -271,12 +271,21 @@ impl<T: Real> Phase<T> {
     }
 }
 
-/// The floats of `T` `k` steps below and above `x`, in f64 (`x` a
-/// non-zero float of `T` at least `k` steps from 0 and from the largest
-/// float; for the kernel's `α ∈ (−½, 1000]` and `g_GK ∈ (0, 1)` it is).
+/// The floats of `T` `k` steps below and above `x` (a float of `T` at
+/// least `k` steps from the largest), in f64: by the bits away from 0,
+/// and by multiples of the smallest subnormal at 0 (`α` may be 0).
 fn neighbours<T: Real>(x: f64, k: i64) -> (f64, f64) {
+    let f32_ = core::mem::size_of::<T>() == 4;
+    if x == 0.0 {
+        let tiny = if f32_ {
+            f32::from_bits(1) as f64
+        } else {
+            f64::from_bits(1)
+        };
+        return (-(k as f64) * tiny, k as f64 * tiny);
+    }
     let k = k * x.signum() as i64;
-    if core::mem::size_of::<T>() == 4 {
+    if f32_ {
         let b = (x as f32).to_bits() as i64;
         let at = |k: i64| f32::from_bits((b + k) as u32) as f64;
         (at(-k), at(k))
@@ -351,4 +360,33 @@ fn root_increasing(f: impl Fn(f64) -> Option<f64>, lo: f64, hi: f64) -> Option<f
         }
     }
     Some(hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::neighbours;
+
+    /// Steps away from 0 and across it: below, above, and at `α = 0`.
+    #[test]
+    fn neighbours_step_through_the_floats() {
+        assert_eq!(
+            neighbours::<f64>(1.0, 1),
+            (1.0 - f64::EPSILON / 2.0, 1.0 + f64::EPSILON)
+        );
+        assert_eq!(
+            neighbours::<f64>(-1.0, 1),
+            (-1.0 - f64::EPSILON, -1.0 + f64::EPSILON / 2.0)
+        );
+        assert_eq!(
+            neighbours::<f32>(0.5, 2),
+            (
+                0.5 - 2.0 * f32::EPSILON as f64 / 4.0,
+                0.5 + 2.0 * f32::EPSILON as f64 / 2.0
+            )
+        );
+        let (lo, hi) = neighbours::<f64>(0.0, 64);
+        assert!(lo < 0.0 && hi > 0.0 && hi == -lo && hi < 1e-300);
+        let (lo, hi) = neighbours::<f32>(0.0, 4);
+        assert!(lo < 0.0 && hi > 0.0 && (hi as f32) > 0.0);
+    }
 }

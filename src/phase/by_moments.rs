@@ -207,9 +207,10 @@ impl<T: Real> Phase<T> {
         // g_GK fell between two floats, so refusals alternated with
         // acceptances over a stretch of γ (1014 of 3001 values at g =
         // 0.85). Now the edge is where one step of α or g_GK in T moves
-        // the moments by a quarter of the tolerance, a smooth function of
-        // the target, and below it the nearest of three stored g_GK is
-        // always within the tolerance: the accepted set is an interval.
+        // the moments by half the tolerance, a smooth function of the
+        // target, and inside it the best of three stored g_GK is within
+        // the tolerance: the accepted set is an interval (swept by the
+        // tests).
         let tol = MOMENT_TOLERANCE.max(16.0 * T::EPSILON.to_f64());
         let a_t64 = T::from_f64(a).to_f64();
         let gk_t64 = T::from_f64(gk).to_f64();
@@ -253,7 +254,8 @@ impl<T: Real> Phase<T> {
         let off = libm::round((g - low_moments(a_t64, gk_t64)[0]) / slope);
         let gk_c = if off.is_finite() && off.abs() <= 1024.0 && off != 0.0 {
             let (lo, hi) = neighbours::<T>(gk_t64, off.abs() as i64);
-            if off > 0.0 { hi } else { lo }
+            let c = if off > 0.0 { hi } else { lo };
+            if c > 0.0 && c < 1.0 { c } else { gk_t64 }
         } else {
             gk_t64
         };

@@ -15,7 +15,7 @@ pub(crate) struct Dd {
 
 /// `a + b` exactly as `s + e` (Knuth's two-sum, any order of magnitude).
 #[inline(always)]
-fn two_sum(a: f64, b: f64) -> Dd {
+pub(crate) const fn two_sum(a: f64, b: f64) -> Dd {
     let s = a + b;
     let bb = s - a;
     let e = (a - (s - bb)) + (b - bb);
@@ -34,7 +34,7 @@ fn quick_two_sum(a: f64, b: f64) -> Dd {
 
 /// Dekker's split: `a = hi + lo` with each half holding 26 bits.
 #[inline(always)]
-fn split(a: f64) -> (f64, f64) {
+const fn split(a: f64) -> (f64, f64) {
     let c = 134_217_729.0 * a; // 2^27 + 1
     let hi = c - (c - a);
     (hi, a - hi)
@@ -43,7 +43,7 @@ fn split(a: f64) -> (f64, f64) {
 /// `a·b` exactly as `p + e` (Dekker's product; `|a·b|` well inside the
 /// f64 range).
 #[inline(always)]
-fn two_prod(a: f64, b: f64) -> Dd {
+pub(crate) const fn two_prod(a: f64, b: f64) -> Dd {
     let p = a * b;
     let ((ah, al), (bh, bl)) = (split(a), split(b));
     let e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;

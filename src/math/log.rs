@@ -22,6 +22,8 @@
 //! any `u ≥ ½`); where it is not, adding its rounding back cost a second
 //! rounding (1.47 ulp measured), so those `u` take libm's `log1p`.
 
+use crate::math::double_double::{Dd, two_prod, two_sum};
+
 /// Whether doubles run in hardware at the speed of single precision, so
 /// that f32 callers take the f64 route too (firmware FPUs are single).
 pub(crate) const WIDE: bool = cfg!(any(
@@ -87,28 +89,9 @@ fn ln_normal(v: f64) -> f64 {
     hi + (lo + r2 * q)
 }
 
-/// `a + b` as `(s, e)`, exactly (Knuth's two-sum).
-const fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    (s, (a - (s - bb)) + (b - bb))
-}
-
-/// `a · b` as `(p, e)`, exactly (Dekker's split product).
-const fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    const fn split(a: f64) -> (f64, f64) {
-        let c = 134_217_729.0 * a;
-        let hi = c - (c - a);
-        (hi, a - hi)
-    }
-    let p = a * b;
-    let ((ah, al), (bh, bl)) = (split(a), split(b));
-    (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
-}
-
 /// Double-double `a + b`.
 const fn dd_add(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
-    let (s, e) = two_sum(a.0, b.0);
+    let Dd { hi: s, lo: e } = two_sum(a.0, b.0);
     let e = e + a.1 + b.1;
     let h = s + e;
     (h, e - (h - s))
@@ -116,7 +99,7 @@ const fn dd_add(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
 
 /// Double-double `a · b`.
 const fn dd_mul(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
-    let (p, e) = two_prod(a.0, b.0);
+    let Dd { hi: p, lo: e } = two_prod(a.0, b.0);
     let e = e + (a.0 * b.1 + a.1 * b.0);
     let h = p + e;
     (h, e - (h - p))
@@ -195,7 +178,8 @@ mod tests {
             f64::from_bits(0x3c7a_bc9e_3b39_803f),
         );
         // m + 1 rounds for a full-width m: its two-sum keeps it exact.
-        let s = dd_div((m - 1.0, 0.0), two_sum(m, 1.0));
+        let sum = two_sum(m, 1.0);
+        let s = dd_div((m - 1.0, 0.0), (sum.hi, sum.lo));
         let s2 = dd_mul(s, s);
         let (mut power, mut sum) = (s, (0.0, 0.0));
         for j in 0..30 {

@@ -284,32 +284,7 @@ pub struct Grid<'a, T> {
     hi: Vec3<T>,
     /// `1/(hi − lo)` per axis, so that a density lookup multiplies.
     scale: Vec3<T>,
-    /// What every tracking call reads: taken once here, not per call.
-    derived: Derived<T>,
     sampling: Sampling,
-}
-
-/// A grid's majorant, its reciprocal and its albedo.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Derived<T> {
-    majorant: T,
-    inv_majorant: T,
-    albedo: T,
-}
-
-impl<T: Real> Derived<T> {
-    /// The majorant `(σ_a + σ_s) max(density)`, raised by 4 ulp so the
-    /// interpolation's rounding never exceeds it; the albedo `σ_s/(σ_a +
-    /// σ_s)` (0 for a vacuum).
-    fn of(sigma_a: T, sigma_s: T, max_density: T) -> Self {
-        let st = sigma_a + sigma_s;
-        let majorant = st * max_density * (T::ONE + T::from_f64(4.0) * T::EPSILON);
-        Derived {
-            majorant,
-            inv_majorant: T::ONE / majorant,
-            albedo: if st > T::ZERO { sigma_s / st } else { T::ZERO },
-        }
-    }
 }
 
 impl<'a, T: Real> Grid<'a, T> {
@@ -360,7 +335,6 @@ impl<'a, T: Real> Grid<'a, T> {
             lo: Vec3::new(T::ZERO, T::ZERO, T::ZERO),
             hi: Vec3::new(T::ONE, T::ONE, T::ONE),
             scale: Vec3::new(T::ONE, T::ONE, T::ONE),
-            derived: Derived::of(sigma_a, sigma_s, max_density),
             sampling: Sampling::Nodes,
         };
         if !grid.majorant().is_finite() {
@@ -401,7 +375,6 @@ impl<'a, T: Real> Grid<'a, T> {
             lo,
             hi,
             scale: inverse_extent(lo, hi),
-            derived: Derived::of(sigma_a, sigma_s, max_density),
             sampling,
         })
     }
@@ -543,15 +516,18 @@ impl<'a, T: Real> Grid<'a, T> {
     /// The majorant `(σ_a + σ_s) max(density)`, raised by a few ULP so the
     /// rounding of the interpolation can never exceed it (any majorant at or
     /// above σ_t keeps tracking unbiased).
-    #[inline(always)]
     pub fn majorant(&self) -> T {
-        self.derived.majorant
+        (self.sigma_a + self.sigma_s) * self.max_density * (T::ONE + T::from_f64(4.0) * T::EPSILON)
     }
 
     /// The single-scattering albedo `σ_s/(σ_a + σ_s)` (0 for a vacuum).
-    #[inline(always)]
     pub fn albedo(&self) -> T {
-        self.derived.albedo
+        let st = self.sigma_a + self.sigma_s;
+        if st > T::ZERO {
+            self.sigma_s / st
+        } else {
+            T::ZERO
+        }
     }
 
     /// Delta (Woodcock) tracking along `ray`, first clipped to the grid's
@@ -584,39 +560,22 @@ impl<'a, T: Real> Grid<'a, T> {
         let Some((t0, t1)) = clip(o, d, (self.lo, self.hi), ray.t_min, t_max) else {
             return Ok((t_max, Event::Escaped, 0));
         };
-        let maj = self.majorant();
-        // A vacuum (or a NaN majorant from parts taken as given) draws
-        // nothing.
-        if maj.is_nan() || maj <= T::ZERO {
-            return Ok((t_max, Event::Escaped, 0));
+        let span = (t0, t1, budget);
+        // σ_t read through the inlined lookup: called, the point went
+        // through memory (measured from C).
+        let sigma_t = |p| (self.sigma_a + self.sigma_s) * self.density_at(p);
+        let (t, hit, steps) = delta(sigma_t, self.majorant(), o, d, span, rng)?;
+        if !hit {
+            return Ok((t_max, Event::Escaped, steps));
         }
-        // Delta tracking at the grid's one majorant: a uniform per
-        // tentative collision keeps it with probability σ_t/σ_maj, and a
-        // second picks scattering with probability σ_s/σ_t (the grid's
-        // albedo), the draws 0.1 made, so a seed gives what it gave.
-        let (mut t, inv, mut steps) = (t0, self.derived.inv_majorant, 0);
-        loop {
-            t += exponential_step(inv, T::uniform(rng));
-            if t.is_nan() || t >= t1 {
-                return Ok((t_max, Event::Escaped, steps));
-            }
-            if steps == budget {
-                return Err(Error::Budget);
-            }
-            steps += 1;
-            let st = checked(
-                (self.sigma_a + self.sigma_s) * self.density_at(o + d * t),
-                maj,
-            )?;
-            if T::uniform(rng) * maj < st {
-                let event = if T::uniform(rng) < self.albedo() {
-                    Event::Scattered
-                } else {
-                    Event::Absorbed
-                };
-                return Ok((t, event, steps));
-            }
-        }
+        // A second uniform picks scattering with probability σ_s/σ_t (the
+        // grid's albedo): the draws 0.1 made, so a seed gives what it gave.
+        let event = if T::uniform(rng) < self.albedo() {
+            Event::Scattered
+        } else {
+            Event::Absorbed
+        };
+        Ok((t, event, steps))
     }
 
     /// Ratio tracking: an unbiased estimate of the transmittance along

@@ -1,10 +1,13 @@
 /* A whole photon loop, the library's system-level figure: a slab of optical
  * depth 2 (z in [0, 1]), albedo 0.9 as a weight, HG g = 0.75, matched
  * boundaries, photons entering at z = 0 along +z, written twice:
- *   lib.*    through the C ABI, one call per flight: sk_delta_track_f64 for
- *            the next collision (the arguments filled once per medium, the
- *            ray per flight) and sk_phase_sample_dir_f64 for the new
- *            direction;
+ *   lib.*    through the C ABI, one call per flight: sk_free_path_f64 in
+ *            the homogeneous slab (the call a homogeneous code makes, one
+ *            draw per flight as MCML's), sk_delta_track_f64 in the
+ *            heterogeneous ones (the arguments filled once per medium, the
+ *            ray per flight), and sk_phase_sample_dir_f64 for the new
+ *            direction; lib.homdt is the homogeneous slab through
+ *            sk_delta_track_f64 at its own majorant (two draws per flight);
  *   inline.* the peers' formulas inline (the medium read at run time): MCML's free path -ln(xi)/mu_t and
  *            its HG inverse and direction update (Wang, Jacques & Zheng
  *            1995), and for the heterogeneous media pbrt-v4's delta
@@ -35,8 +38,8 @@
 #define G 0.75
 #define NZ 64
 
-enum medium { HOM, CB, GRID };
-static double sigma_t(enum medium m, double z) { return m == HOM ? 2.0 : 1.0 + 2.0 * z; }
+enum medium { HOM, HOMDT, CB, GRID };
+static double sigma_t(enum medium m, double z) { return m == CB ? 1.0 + 2.0 * z : 2.0; }
 static sk_coefficients_f64 het(void *ctx, sk_vec3_f64 p) {
     sk_coefficients_f64 c;
     (void)ctx;
@@ -72,7 +75,7 @@ static volatile double input[3] = {2.0, 3.0, G};
 static double inline_flight(enum medium m, const layer *l, const double o[3], const double d[3], double tb,
                             xo *x) {
     double t = 0.0;
-    if (m == HOM) return -log(1.0 - xo_u(x)) / l->sigma_t;
+    if (m == HOM || m == HOMDT) return -log(1.0 - xo_u(x)) / l->sigma_t;
     for (;;) {
         t += -log(1.0 - xo_u(x)) / l->sigma_maj;
         if (t >= tb) return t;
@@ -119,8 +122,8 @@ ALWAYS_INLINE void run(const char *name, enum medium m, int lib, long photons) {
     if (m == GRID) {
         a.medium.grid = &grid;
     } else {
-        a.medium.coefficients = m == HOM ? hom : het;
-        a.medium.sigma_maj = m == HOM ? 2.0 : 3.0;
+        a.medium.coefficients = m == CB ? het : hom;
+        a.medium.sigma_maj = m == CB ? 3.0 : 2.0;
     }
     a.rng = &rng;
     t0 = now_s();
@@ -128,7 +131,9 @@ ALWAYS_INLINE void run(const char *name, enum medium m, int lib, long photons) {
         double o[3] = {0.0, 0.0, 0.0}, d[3] = {0.0, 0.0, 1.0}, w = 1.0;
         for (;;) {
             double tb = to_boundary(o[2], d[2]), t;
-            if (lib) {
+            if (lib && m == HOM) {
+                t = sk_free_path_f64(l.sigma_t, xo_u(&state));
+            } else if (lib) {
                 sk_track_result_f64 res;
                 a.o.x = o[0], a.o.y = o[1], a.o.z = o[2];
                 a.d.x = d[0], a.d.y = d[1], a.d.z = d[2];
@@ -180,6 +185,7 @@ int main(int argc, char **argv) {
     if (sk_phase_new_hg_f64(G, &hg) != SK_OK) return 4;
     run_inline("inline.hom", HOM, photons);
     run_lib("lib.hom", HOM, photons);
+    run_lib("lib.homdt", HOMDT, photons);
     run_inline("inline.cb", CB, photons);
     run_lib("lib.cb", CB, photons);
     run_inline("inline.grid", GRID, photons);

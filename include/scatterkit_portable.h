@@ -880,7 +880,10 @@ SKP_FN float skp_draine_side_sample_(skp_draine_side e, float u) {
     float t8 = SKP_MUL(e.t1 + c + e.t6 / c, e.two_inv_t0);
     float t9 = skp_sqrt(e.k + t8);
     float d = skp_sqrt(e.k - t8 + t4 * e.eight_inv_t0 / t9) - t9;
-    return e.half_g + SKP_MUL(1.0f - SKP_MUL(0.25f * d, d), e.inv_2g);
+    /* Rounded, the last step lands up to a few ulp past +-1, where sin
+       theta would be NaN: clamped, NaN kept. */
+    float mu = e.half_g + SKP_MUL(1.0f - SKP_MUL(0.25f * d, d), e.inv_2g);
+    return mu > 1.0f ? 1.0f : (mu < -1.0f ? -1.0f : mu);
 }
 
 /* Draine's cos theta = F^-1(u) (u clamped to [0, 1], NaN gives NaN): eq. 6

@@ -914,3 +914,27 @@ pub fn ratio_track_fn<T: Real, R: Rng + ?Sized>(
     let span = (ray.t_min, ray.t_max, MAX_STEPS);
     ratio(sigma_t, sigma_maj, o, d, span, rng).map(|(tr, _)| tr)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand_xoshiro::Xoshiro256PlusPlus;
+    use rand_xoshiro::rand_core::SeedableRng;
+
+    /// The step count the C API reports (`sk_track_result.steps`) is the
+    /// number of tentative collisions drawn: in a grid whose density sits
+    /// at its majorant every tentative collision is real, so delta
+    /// tracking ends at its first and counts 1 (a mutation test found no
+    /// test reading the count on a hit).
+    #[test]
+    fn a_hit_counts_its_tentative_collision() {
+        let density = [1.0f64; 8];
+        let g = Grid::new(&density, 2, 2, 2, 0.0, 50.0).unwrap();
+        let ray = Ray::new(Vec3::new(0.5, 0.5, 0.0), Vec3::new(0.0, 0.0, 1.0), 1.0);
+        for seed in 0..16 {
+            let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+            let (t, event, steps) = g.delta_track_within(ray, 100, &mut rng).unwrap();
+            assert_eq!((event, steps), (Event::Scattered, 1), "seed {seed}, t {t}");
+        }
+    }
+}

@@ -202,3 +202,29 @@ fn the_excess_is_reported_where_it_is() {
     }
     assert!(seen > 100, "seen {seen} times");
 }
+
+/// Coefficients of any finite size are taken, however far above the
+/// majorant: their sum must be finite, and a call is refused only when the
+/// weight it carries overflows. σ_a = σ_s = 10¹⁶⁰ under a majorant of 1
+/// multiply the weight by 4·10¹⁶⁰ at each tentative collision, so a walk
+/// with at most one of them (most, over a path of length 1) returns a
+/// finite weight; a walk with two overflows and is refused.
+#[test]
+fn huge_finite_coefficients_are_taken() {
+    let one = [1.0];
+    let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0));
+    let maj = Majorants::new(&one, [1; 3], lo, hi).unwrap();
+    let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 3.0);
+    let mut r = rng(5);
+    let mut taken = 0;
+    for _ in 0..64 {
+        match maj.delta_track_weighted_fn(|_| (1e160f64, 1e160f64), ray, 1 << 20, &mut r) {
+            Ok(t) => {
+                assert!(t.weight.is_finite() && t.steps <= 1, "{t:?}");
+                taken += 1;
+            }
+            Err(e) => assert_eq!(e, Error::Domain),
+        }
+    }
+    assert!(taken >= 32, "{taken} of 64 taken");
+}

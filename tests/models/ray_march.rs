@@ -307,3 +307,52 @@ fn placed_strata_refuse_bounds_that_do_not_hold() {
     let r = march_grid_within(Series::Power, place, &g, ray, 0, 1000, &mut rng(2));
     assert_eq!(r.unwrap_err(), Error::Domain);
 }
+
+/// The strata the library picks when the caller passes 0, exactly as
+/// documented: ⌈4τ⌉ for the power series, 16⌈τ⌉ for the telescoping sum,
+/// at least 1; a depth needing more than `u32::MAX` strata is refused.
+#[test]
+fn default_strata_are_the_documented_counts() {
+    for (depth, power, telescoping) in [
+        (0.0, 1, 1),
+        (0.1, 1, 16),
+        (0.25, 1, 16),
+        (1.0, 4, 16),
+        (1.01, 5, 32),
+        (2.6, 11, 48),
+        (100.0, 400, 1600),
+    ] {
+        assert_eq!(Series::Power.default_strata(depth), Ok(power), "τ {depth}");
+        assert_eq!(
+            Series::Telescoping.default_strata(depth),
+            Ok(telescoping),
+            "τ {depth}"
+        );
+    }
+    for bad in [-1.0, f64::NAN, 2e9] {
+        assert_eq!(
+            Series::Power.default_strata(bad),
+            Err(Error::Domain),
+            "τ {bad}"
+        );
+    }
+}
+
+/// A path whose majorant depth is not finite (an infinite majorant met on
+/// the way) is refused even when the caller fixes the strata, not marched.
+#[test]
+fn an_infinite_majorant_depth_is_refused() {
+    let values = [0.7f64; 27];
+    let g = Grid::new(&values, 3, 3, 3, 0.5, 1.5).unwrap();
+    let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0));
+    let ray = Ray::new(Vec3::new(-1.0, 0.3, 0.4), Vec3::new(1.0, 0.0, 0.0), 5.0);
+    let inf = [f64::INFINITY; 8];
+    let max = Majorants::from_parts(&inf, [2; 3], lo, hi).unwrap();
+    for strata in [0, 7] {
+        for series in [Series::Power, Series::Telescoping] {
+            let place = Placement { max, min: None };
+            let r = march_grid_within(series, place, &g, ray, strata, 1000, &mut rng(3));
+            assert_eq!(r.unwrap_err(), Error::Domain, "{strata} strata");
+        }
+    }
+}

@@ -621,3 +621,40 @@ fn a_column_reads_as_the_full_interpolation() {
         assert_eq!(a.density(lo), col[0]);
     }
 }
+
+/// Where the values sit: at the nodes (value k at `lo + (hi − lo) k/(n − 1)`)
+/// or at the cell centres (`lo + (hi − lo)(k + ½)/n`, clamped beyond the
+/// outer centres), checked at points where the two differ (a mutation test
+/// found no test telling them apart: every other test compares grids of
+/// the same sampling).
+#[test]
+fn nodes_and_cell_centres_place_the_values_where_documented() {
+    use scatterkit::medium::Sampling;
+    let values = [0.0, 1.0];
+    let grid = |s| {
+        Grid::new(&values, 1, 1, 2, 0.0, 1.0)
+            .unwrap()
+            .with_sampling(s)
+    };
+    let at = |z: f64| Vec3::new(0.5, 0.5, z);
+    let nodes = grid(Sampling::Nodes);
+    let cells = grid(Sampling::Cells);
+    for (z, want_nodes, want_cells) in [
+        (0.0, 0.0, 0.0),
+        (0.1, 0.1, 0.0),
+        (0.25, 0.25, 0.0),
+        (0.5, 0.5, 0.5),
+        (0.625, 0.625, 0.75),
+        (0.75, 0.75, 1.0),
+        (0.9, 0.9, 1.0),
+    ] {
+        assert!(
+            (nodes.density(at(z)) - want_nodes).abs() < 1e-15,
+            "nodes at {z}"
+        );
+        assert!(
+            (cells.density(at(z)) - want_cells).abs() < 1e-15,
+            "cells at {z}"
+        );
+    }
+}

@@ -91,13 +91,20 @@ int main(void) {
             double x = XS[i], best_sk = 1e300, best_bh = 1e300, diff;
             size_t len = sk_mie_len_f64(x, MS[j]);
             sk_complex_f64 *buf = malloc(len * sizeof *buf);
-            /* BHMIE's nmx + 1 = max(nstop, |mx|) + 16 values; nstop < 1.1 x + 20. */
-            double complex *d = malloc(((size_t)fmax(1.1 * x + 20.0, x * hypot(MS[j].re, MS[j].im)) + 16) * sizeof *d);
+            double complex *d;
             double complex m = MS[j].re + I * MS[j].im;
             sk_mie_f64 sphere;
             bh_result bh;
             int reps = x >= 10000.0 ? 20 : x >= 1000.0 ? 200 : 2000, k;
-            if (!buf || !d || sk_mie_new_f64(x, MS[j], buf, len, &sphere) != SK_OK) {
+            if (!buf || sk_mie_new_f64(x, MS[j], buf, len, &sphere) != SK_OK) {
+                fprintf(stderr, "setup failed\n");
+                return 1;
+            }
+            /* BHMIE's nmx + 1 = max(nstop, |mx|) + 16 values, nstop the
+               library's term count (sized from it: a bound guessed from x
+               fell short when the library's count grew). */
+            d = malloc(((size_t)fmax((double)sphere.terms, x * hypot(MS[j].re, MS[j].im)) + 16) * sizeof *d);
+            if (!d) {
                 fprintf(stderr, "setup failed\n");
                 return 1;
             }

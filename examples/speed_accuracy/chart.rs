@@ -542,8 +542,10 @@ fn panel(s: &mut String, pts: &[&Entry], ax: &Axes, title: &str, xl: &str, yl: &
         let names: Vec<&str> = site.iter().map(|l| l.0.as_str()).collect();
         footnotes.push(names.join("; "));
         let tag = vec![(format!("[{}]", footnotes.len()), site[0].1, site[0].2)];
-        let spot = radii()
-            .find_map(|r| place_at(site_size(&tag), site[0].1, r, ax.frame, &taken, &segments));
+        let tag_line = [(site[0].1, site_size(&tag).0)];
+        let at = (site[0].1, &tag_line[..]);
+        let spot =
+            radii().find_map(|r| place_at(site_size(&tag), at, r, ax.frame, &taken, &segments));
         if let Some(r) = spot {
             keep(tag, r, &mut taken, &mut segments, &mut placed);
         }
@@ -627,6 +629,9 @@ fn panel(s: &mut String, pts: &[&Entry], ax: &Axes, title: &str, xl: &str, yl: &
 /// A label site: one line per point, `(text, point, colour)`.
 type Site<'a> = Vec<(String, (f64, f64), &'a str)>;
 
+/// A label line's point and its width (px).
+type Line = ((f64, f64), f64);
+
 /// The label text's size of a site (px).
 fn site_size(site: &Site) -> (f64, f64) {
     let w = site.iter().fold(0.0f64, |a, l| a.max(text_width(&l.0)));
@@ -689,9 +694,11 @@ fn layout<'a>(
     for radius in radii() {
         let mut still = Vec::new();
         for site in left {
+            let points: Vec<((f64, f64), f64)> =
+                site.iter().map(|l| (l.1, text_width(&l.0))).collect();
             match place_at(
                 site_size(&site),
-                site[0].1,
+                (site[0].1, &points),
                 radius,
                 frame,
                 &taken,
@@ -753,13 +760,16 @@ fn radii() -> impl Iterator<Item = f64> {
 }
 
 /// A box of size `(w, h)` at distance `radius` from the point `p` that stays
-/// inside `frame`, covers no box in `taken` and no segment, and whose leader
-/// (if it needs one) crosses no taken box: 32 directions, the box's near
-/// edge or corner facing the point, and for the sideways, upward and
-/// downward directions the box also slid along its edge.
+/// inside `frame`, covers no box in `taken` and no segment, whose leader
+/// (if it needs one) crosses no taken box, and which lies within
+/// [`MAX_LABEL_DISTANCE`] of every point it names (`points`: each with its
+/// line's width, the line's own box measured, `p` the first): 32 directions, the box's near edge or corner facing the point,
+/// and for the sideways, upward and downward directions the box also slid
+/// along its edge (a short line of a site with several points had ended up
+/// 213 px from its point).
 fn place_at(
     (w, h): (f64, f64),
-    p: (f64, f64),
+    (p, points): ((f64, f64), &[Line]),
     radius: f64,
     frame: Rect,
     taken: &[Rect],
@@ -810,7 +820,11 @@ fn place_at(
         for &(sx, sy) in shifts {
             let x = bx + sx * (w - 12.0).max(0.0);
             let r = (x, by + sy * h, x + w, by + (1.0 + sy) * h);
-            if fits(r, p, &inside, taken, segments) {
+            let near = points.iter().enumerate().all(|(i, &(q, lw))| {
+                let top = r.1 + LINE * i as f64;
+                distance_to(q, (r.0, top, r.0 + lw, top + LINE)) <= MAX_LABEL_DISTANCE
+            });
+            if near && fits(r, p, &inside, taken, segments) {
                 return Some(r);
             }
         }

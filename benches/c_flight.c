@@ -13,6 +13,7 @@
  *   cbratio  cb64 plus a ratio-tracking estimate of the transmittance to
  *            the boundary along each new direction (an exit estimator)
  *   grid64   sk_delta_track_f64 through a 1 x 1 x 64 density grid
+ *   grid32   the same in float (sk_delta_track through an sk_grid)
  *   free64   sk_free_path_f64 (no tracking call): the floor
  *   cb64z    cb64 with the argument struct zeroed and filled at every call
  *            (the other modes fill it once and change the ray per flight)
@@ -66,11 +67,13 @@ static sk_coefficients coef32(void *ctx, sk_vec3 p) {
 }
 #endif
 
-enum mode { CB64, CB32, CBRATIO, GRID64, FREE64, CB64Z, MODES };
-static const char *NAMES[MODES] = {"cb64", "cb32", "cbratio", "grid64", "free64", "cb64z"};
+enum mode { CB64, CB32, CBRATIO, GRID64, FREE64, CB64Z, GRID32, MODES };
+static const char *NAMES[MODES] = {"cb64", "cb32", "cbratio", "grid64", "free64", "cb64z", "grid32"};
 
 static sk_grid_f64 grid;
+static sk_grid grid32;
 static double density[NZ];
+static float density32[NZ];
 
 /* One flight from (x, y, z) along d to the boundary at distance t_max: the
    distance to the next collision (>= t_max: none). */
@@ -98,6 +101,9 @@ static double flight(enum mode m, const double o[3], const double d[3], double t
     case GRID64:
         if (sk_delta_track_f64(&grid, o64, d64, t_max, rng, &t, &ev)) exit(3);
         return ev == SK_TRACK_ESCAPED ? t_max : t;
+    case GRID32:
+        if (sk_delta_track(&grid32, o32, d32, (float)t_max, rng, &t32, &ev)) exit(3);
+        return ev == SK_TRACK_ESCAPED ? t_max : (double)t32;
 #else
     case CB64:
     case CBRATIO:
@@ -130,6 +136,18 @@ static double flight(enum mode m, const double o[3], const double d[3], double t
         a.o = o64, a.d = d64, a.t_max = t_max, a.rng = rng;
         if (sk_delta_track_f64(&a, &r)) exit(3);
         return r.event == SK_TRACK_ESCAPED ? t_max : r.t;
+    }
+    case GRID32: {
+        static sk_track_args a;
+        sk_track_result r;
+        if (a.rng == NULL) {
+            memset(&a, 0, sizeof a);
+            a.medium.grid = &grid32;
+            a.rng = rng;
+        }
+        a.o = o32, a.d = d32, a.t_max = (float)t_max;
+        if (sk_delta_track(&a, &r)) exit(3);
+        return r.event == SK_TRACK_ESCAPED ? t_max : (double)r.t;
     }
     case CB32: {
         static sk_track_args a;
@@ -214,7 +232,7 @@ static void run(enum mode m, uint64_t seed) {
 
 int main(int argc, char **argv) {
     int k;
-    for (k = 0; k < NZ; k++) density[k] = 1.0;
+    for (k = 0; k < NZ; k++) density[k] = 1.0, density32[k] = 1.0f;
     if (argc > 2) PHOTONS = atol(argv[2]);
     if (PHOTONS <= 0) return 2;
 #ifdef SK_API_0_1
@@ -222,10 +240,13 @@ int main(int argc, char **argv) {
 #else
     if (sk_grid_new_f64(density, 1, 1, NZ, 0.0, SIGMA_T, &grid)) return 4;
 #endif
+    if (sk_grid_new(density32, 1, 1, NZ, 0.0f, (float)SIGMA_T, &grid32)) return 4;
     {
         /* The grid spans the slab, and far beyond it sideways. */
         sk_vec3_f64 lo = {-1e6, -1e6, 0.0}, hi = {1e6, 1e6, 1.0};
+        sk_vec3 lo32 = {-1e6f, -1e6f, 0.0f}, hi32 = {1e6f, 1e6f, 1.0f};
         if (sk_grid_set_box_f64(&grid, lo, hi)) return 4;
+        if (sk_grid_set_box(&grid32, lo32, hi32)) return 4;
     }
     for (k = 0; k < MODES; k++) {
         if (argc > 1 && strcmp(argv[1], "all") != 0 && strcmp(argv[1], NAMES[k]) != 0) continue;

@@ -27,7 +27,7 @@ cc -std=c99 -D_POSIX_C_SOURCE=199309L -O2 -I "$root/include" \
 echo "processor: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), family $(grep -m1 'cpu family' /proc/cpuinfo | cut -d: -f2 | tr -d ' ') model $(grep -m1 '^model\s' /proc/cpuinfo | cut -d: -f2 | tr -d ' ')"
 i=1
 while [ "$i" -le "$runs" ]; do
-  for mode in cb64 cb64z cb32 cbratio grid64 free64; do
+  for mode in cb64 cb64z cb32 cbratio grid64 grid32 free64; do
     # "mode seconds ns R T" from each (an exit estimate after it dropped).
     a=$("$bin/flight_0_1" "$mode" | cut -d' ' -f1-5)
     b=$("$bin/flight_main" "$mode" | cut -d' ' -f1-5)

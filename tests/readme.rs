@@ -14,7 +14,7 @@ use common::readme::{blocks, text};
 fn readme_is_short_and_for_users() {
     let text = text();
     let lines = text.lines().count();
-    assert!(lines <= 220, "README.md has {lines} lines (at most 220)");
+    assert!(lines <= 230, "README.md has {lines} lines (at most 230)");
     let lower = text.to_lowercase();
     // Whole words only ("tissue" is not "issue").
     let says = |word: &str| {

@@ -122,6 +122,12 @@ class Phase:
             raise TypeError("build a Phase with one of its class methods, e.g. Phase.isotropic()")
         self._p = compiled
 
+    def __reduce__(self):
+        # Pickles (for multiprocessing, Dask, joblib) as its model's
+        # parameters, a mixture's parts and weights as given, or a table's
+        # data: unpickled, it gives the same bits.
+        return (_phase_from_state, (self._p._state(),))
+
     # -- models -----------------------------------------------------------
     @classmethod
     def isotropic(cls) -> "Phase":
@@ -193,6 +199,51 @@ class Phase:
         """Fournier–Forand from the backscatter fraction ``b`` in ``(0, 1/2)`` and the
         index ``n`` in ``(1, 1.8]``, as oceanographers specify it (Mobley et al. 2002)."""
         return cls(_sk._Phase.fournier_forand_backscatter(float(b), float(n)))
+
+    @classmethod
+    def schlick(cls, k: float) -> "Phase":
+        """Schlick's rational stand-in for HG (Blasi, Le Saëc & Schlick 1993),
+        ``p = (1 - k^2) / (4 pi (1 - k mu)^2)``, ``k`` in ``(-1, 1)``; its mean
+        cosine is not ``k``."""
+        return cls(_sk._Phase.schlick(float(k)))
+
+    @classmethod
+    def modified_hg(cls, g: float, gamma: float) -> "Phase":
+        """Tissue optics' modified HG (Bevilacqua & Depeursinge 1999),
+        ``beta p_HG(g_HG) + (1 - beta) (3/4pi) cos^2``, set by its mean cosine
+        ``g`` in ``(0, 1)`` and ``gamma = (1 - chi_2)/(1 - chi_1)``,
+        ``0.6 < gamma <= 1 + g``; ``ValueError`` outside that reach."""
+        return cls(_sk._Phase.modified_hg(float(g), float(gamma)))
+
+    @classmethod
+    def modified_hg_delta(cls, g: float, delta: float) -> "Phase":
+        """:meth:`modified_hg` set by ``g`` and ``delta = (1 - chi_3)/(1 - chi_1)``,
+        ``1 < delta <= 1 + g + g^2``."""
+        return cls(_sk._Phase.modified_hg_delta(float(g), float(delta)))
+
+    @classmethod
+    def two_lobe_hg_gamma(cls, g: float, gamma: float) -> "Phase":
+        """HG with an isotropic lobe (Prahl's modified HG) set by ``g`` in
+        ``(0, 1)`` and ``gamma``, ``1 < gamma <= 1 + g``."""
+        return cls(_sk._Phase.two_lobe_hg_gamma(float(g), float(gamma)))
+
+    @classmethod
+    def two_lobe_hg_delta(cls, g: float, delta: float) -> "Phase":
+        """:meth:`two_lobe_hg_gamma` set by ``g`` and ``delta``,
+        ``1 < delta <= 1 + g + g^2``."""
+        return cls(_sk._Phase.two_lobe_hg_delta(float(g), float(delta)))
+
+    @classmethod
+    def gegenbauer_gamma(cls, g: float, gamma: float) -> "Phase":
+        """The Gegenbauer kernel with mean cosine ``g`` in ``(0, 1)`` and
+        ``gamma``; the band reached at each ``g`` is measured in
+        ``docs/guides/phase_functions.md``."""
+        return cls(_sk._Phase.gegenbauer_gamma(float(g), float(gamma)))
+
+    @classmethod
+    def gegenbauer_delta(cls, g: float, delta: float) -> "Phase":
+        """The Gegenbauer kernel with mean cosine ``g`` and ``delta``."""
+        return cls(_sk._Phase.gegenbauer_delta(float(g), float(delta)))
 
     @classmethod
     def mixture(cls, parts: Sequence[Tuple["Phase", float]]) -> "Phase":
@@ -337,6 +388,20 @@ class Phase:
         return f"Phase.{self._p!r}"
 
 
+def _phase_from_state(state) -> "Phase":
+    return Phase(_sk._Phase._from_state(state))
+
+
+def _albedo_from_state(state) -> "AlbedoCurve":
+    c = AlbedoCurve.__new__(AlbedoCurve)
+    c._c = _sk._AlbedoCurve._from_state(state)
+    return c
+
+
+def _rebuilt(cls, args, kwargs):
+    return cls(*args, **kwargs)
+
+
 class Mie:
     """One homogeneous sphere solved by Lorenz–Mie theory (exact; the library's
     series, no allocation beyond its coefficients).
@@ -357,6 +422,9 @@ class Mie:
         self.x = float(x)
         self.m = m
         self._s = _sk._Mie(self.x, m.real, m.imag)
+
+    def __reduce__(self):
+        return (Mie, (self.x, self.m))
 
     @property
     def q_ext(self) -> float:
@@ -480,6 +548,10 @@ class AlbedoCurve:
         m = None if mu0 is None else float(mu0)
         self._c = _sk._AlbedoCurve(phase._p, t, m, int(paths), int(seed))
 
+    def __reduce__(self):
+        # The traced nodes, not the tracing: unpickling costs nothing.
+        return (_albedo_from_state, (self._c._state(),))
+
     @property
     def paths(self) -> int:
         """The paths traced."""
@@ -532,7 +604,7 @@ class Medium:
     grid's cells per axis (pbrt-v4 uses 16; at most 2^24 cells in all).
     """
 
-    __slots__ = ("_m", "shape", "majorant_cells")
+    __slots__ = ("_m", "shape", "majorant_cells", "_args")
 
     def __init__(self, density: ArrayLike, sigma_a: float, sigma_s: float, *,
                  lo: Sequence[float] = (0.0, 0.0, 0.0), hi: Sequence[float] = (1.0, 1.0, 1.0),
@@ -552,6 +624,13 @@ class Medium:
         hi3 = [float(v) for v in hi]
         self._m = _sk._Medium(flat, list(d.shape), float(sigma_a), float(sigma_s), lo3, hi3,
                               sampling == "cells", list(cells))
+        self._args = ((d.copy(), float(sigma_a), float(sigma_s)),
+                      dict(lo=tuple(lo3), hi=tuple(hi3), sampling=sampling, majorant_cells=cells))
+
+    def __reduce__(self):
+        # Rebuilt from its density and settings (the majorants are
+        # recomputed, as they were built).
+        return (_rebuilt, (Medium,) + self._args)
 
     def majorants(self) -> np.ndarray:
         """The majorant grid (per length unit), indexed ``[i, j, k]``."""
@@ -690,6 +769,9 @@ class RayleighPolarized:
     def __init__(self, rho: float = 0.0):
         self.rho = float(rho)
         self._r = _sk._RayleighPolarized(self.rho)
+
+    def __reduce__(self):
+        return (RayleighPolarized, (self.rho,))
 
     def mueller(self, mu: ArrayLike) -> Tuple[FloatOrArray, ...]:
         """``(P11, P12, P22, P33, P44)`` at each cosine: the normalised Mueller
@@ -875,13 +957,17 @@ class Table2d:
     outside). The layout of ``sk_table2d``, which GPU kernels look up with
     ``include/scatterkit_portable.h``."""
 
-    __slots__ = ("_t",)
+    __slots__ = ("_t", "_args")
 
     def __init__(self, phases: Sequence[Phase], x0: float, dx: float, n: int = 256):
         ps = list(phases)
         if not all(isinstance(p, Phase) for p in ps):
             raise TypeError("Table2d: phases must be Phase values")
         self._t = _sk._Table2d([p._p for p in ps], float(x0), float(dx), int(n))
+        self._args = (ps, float(x0), float(dx), int(n))
+
+    def __reduce__(self):
+        return (Table2d, self._args)
 
     def _apply(self, f, x, v):
         a, b, shape = _pair(x, v, "Table2d")
@@ -917,13 +1003,17 @@ class SpectralPhase:
     hero channel with every channel's density ratio, as hero-wavelength
     renderers need (Wilkie et al. 2014)."""
 
-    __slots__ = ("_s",)
+    __slots__ = ("_s", "_channels")
 
     def __init__(self, channels: Sequence[Phase]):
         cs = list(channels)
         if not all(isinstance(p, Phase) for p in cs):
             raise TypeError("SpectralPhase: channels must be Phase values")
         self._s = _sk._SpectralPhase([p._p for p in cs])
+        self._channels = cs
+
+    def __reduce__(self):
+        return (SpectralPhase, (self._channels,))
 
     @property
     def channels(self) -> int:

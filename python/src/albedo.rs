@@ -39,6 +39,31 @@ impl PyAlbedo {
             .map_err(|e| refused("AlbedoCurve(phase, thickness, mu0, paths)", e))?;
         Ok(PyAlbedo { curve })
     }
+    /// What pickling keeps: the albedo and its standard error at each
+    /// node, and the paths traced.
+    fn _state(&self) -> (Vec<f64>, Vec<f64>, u64) {
+        let (rho, se) = self.curve.nodes();
+        (rho.to_vec(), se.to_vec(), self.curve.paths())
+    }
+    /// The curve of a [`_state`](Self::_state); `ValueError` for one that
+    /// is not a curve's (node count, values outside `[0, 1]` or not
+    /// finite).
+    #[staticmethod]
+    fn _from_state(state: (Vec<f64>, Vec<f64>, u64)) -> PyResult<Self> {
+        let (rho, se, paths) = state;
+        let ok = |v: &[f64]| v.iter().all(|x| x.is_finite() && (0.0..=1.0).contains(x));
+        match (
+            <[f64; _]>::try_from(rho.as_slice()),
+            <[f64; _]>::try_from(se.as_slice()),
+        ) {
+            (Ok(rho), Ok(se)) if ok(&rho) && ok(&se) => Ok(PyAlbedo {
+                curve: AlbedoCurve::from_nodes(rho, se, paths),
+            }),
+            _ => Err(pyo3::exceptions::PyValueError::new_err(
+                "AlbedoCurve: not a pickled albedo curve",
+            )),
+        }
+    }
     fn albedo<'py>(
         &self,
         py: Python<'py>,

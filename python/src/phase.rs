@@ -15,7 +15,9 @@ use scatterkit::{HenyeyGreenstein, Phase, PhaseFunction, Table, TableKind, Vec3}
 #[derive(Clone, Debug)]
 pub(crate) enum Model {
     One(Phase<f64>),
-    Mix(Box<Mixture<'static, f64>>),
+    /// The mixture and the weights as given (pickling rebuilds from them,
+    /// so that the normalised weights come out bit for bit).
+    Mix(Box<Mixture<'static, f64>>, Vec<f64>),
     /// Legendre moments `χ_0 … χ_{n−1}`, checked when built.
     Series(Vec<f64>),
     /// A table's data, its resolution and kind, checked when built.
@@ -68,7 +70,7 @@ impl Model {
     pub(crate) fn with<R>(&self, f: impl FnOnce(&(dyn PhaseFunction<f64> + Sync)) -> R) -> R {
         match self {
             Model::One(p) => f(p),
-            Model::Mix(m) => f(&**m),
+            Model::Mix(m, _) => f(&**m),
             Model::Series(chi) => {
                 let s = LegendreSeries::unchecked(chi).expect("checked when built");
                 f(&s)
@@ -122,6 +124,17 @@ fn hg_cos_each_avx2(h: &HenyeyGreenstein<f64>, u: &[f64], out: &mut [f64]) {
         *o = h.sample_cos_in_range(x);
     }
 }
+
+/// What pickling keeps of a phase function (see `PyPhase::_state`).
+type State = (
+    String,
+    Vec<u32>,
+    Vec<Vec<f64>>,
+    Vec<f64>,
+    Vec<f64>,
+    usize,
+    u8,
+);
 
 /// The compiled phase function behind `scatterkit.Phase`.
 #[pyclass(
@@ -263,6 +276,52 @@ impl PyPhase {
             _ => None,
         }
     }
+    #[staticmethod]
+    fn schlick(k: f64) -> PyResult<Self> {
+        phase(
+            scatterkit::phase::schlick::Schlick::new(k).map(Phase::Schlick),
+            "schlick(k)",
+        )
+    }
+    #[staticmethod]
+    fn modified_hg(g: f64, gamma: f64) -> PyResult<Self> {
+        phase(Phase::modified_hg(g, gamma), "modified_hg(g, gamma)")
+    }
+    #[staticmethod]
+    fn modified_hg_delta(g: f64, delta: f64) -> PyResult<Self> {
+        phase(
+            Phase::modified_hg_delta(g, delta),
+            "modified_hg_delta(g, delta)",
+        )
+    }
+    #[staticmethod]
+    fn two_lobe_hg_gamma(g: f64, gamma: f64) -> PyResult<Self> {
+        phase(
+            Phase::two_lobe_hg_gamma(g, gamma),
+            "two_lobe_hg_gamma(g, gamma)",
+        )
+    }
+    #[staticmethod]
+    fn two_lobe_hg_delta(g: f64, delta: f64) -> PyResult<Self> {
+        phase(
+            Phase::two_lobe_hg_delta(g, delta),
+            "two_lobe_hg_delta(g, delta)",
+        )
+    }
+    #[staticmethod]
+    fn gegenbauer_gamma(g: f64, gamma: f64) -> PyResult<Self> {
+        phase(
+            Phase::gegenbauer_gamma(g, gamma),
+            "gegenbauer_gamma(g, gamma)",
+        )
+    }
+    #[staticmethod]
+    fn gegenbauer_delta(g: f64, delta: f64) -> PyResult<Self> {
+        phase(
+            Phase::gegenbauer_delta(g, delta),
+            "gegenbauer_delta(g, delta)",
+        )
+    }
     /// A mixture of single models (not of mixtures) with weights.
     #[staticmethod]
     fn mixture(parts: Vec<(PyRef<'_, PyPhase>, f64)>) -> PyResult<Self> {
@@ -277,9 +336,10 @@ impl PyPhase {
                 }
             }
         }
+        let weights = parts.iter().map(|(_, w)| *w).collect();
         Mixture::new(&held)
             .map(|m| PyPhase {
-                model: Model::Mix(Box::new(m)),
+                model: Model::Mix(Box::new(m), weights),
             })
             .map_err(|e| refused("mixture(parts)", e))
     }
@@ -290,7 +350,7 @@ impl PyPhase {
         match &self.model {
             Model::One(p) if two_lobe(p).is_some() => "two_lobe_hg",
             Model::One(p) => p.name(),
-            Model::Mix(_) => "mixture",
+            Model::Mix(..) => "mixture",
             Model::Series(_) => "Legendre series",
             Model::Table(..) => "table",
         }
@@ -447,6 +507,86 @@ impl PyPhase {
         });
         Ok(out.into_pyarray(py))
     }
+    /// What pickling keeps: `(kind, tags, params, weights, data, n,
+    /// table kind)`, `kind` one of "one" (a model: its tag and parameters),
+    /// "mix" (each part's tag and parameters, and the weights as given),
+    /// "series" (the moments in `data`) or "table" (`data`, `n` and the
+    /// table kind). [`_from_state`](Self::_from_state) rebuilds it.
+    fn _state(&self) -> State {
+        let one = |p: &Phase<f64>| {
+            let (tag, n, v) = p.params();
+            (tag, v[..n].to_vec())
+        };
+        match &self.model {
+            Model::One(p) => {
+                let (tag, v) = one(p);
+                ("one".into(), vec![tag], vec![v], vec![], vec![], 0, 0)
+            }
+            Model::Mix(m, weights) => {
+                let (tags, params) = (0..m.len())
+                    .filter_map(|i| match m.part(i) {
+                        Some(Part::Phase(p)) => Some(one(&p)),
+                        _ => None,
+                    })
+                    .unzip();
+                ("mix".into(), tags, params, weights.clone(), vec![], 0, 0)
+            }
+            Model::Series(chi) => ("series".into(), vec![], vec![], vec![], chi.clone(), 0, 0),
+            Model::Table(data, n, kind) => {
+                let data = data.clone();
+                (
+                    "table".into(),
+                    vec![],
+                    vec![],
+                    vec![],
+                    data,
+                    *n,
+                    *kind as u8,
+                )
+            }
+        }
+    }
+    /// The phase function of a [`_state`](Self::_state), through the same
+    /// checks as building it; `ValueError` for a state that is not one.
+    #[staticmethod]
+    fn _from_state(state: State) -> PyResult<Self> {
+        let (kind, tags, params, weights, data, n, table_kind) = state;
+        let bad = || PyValueError::new_err("Phase: not a pickled phase function");
+        let model = |tag: u32, p: &[f64]| {
+            Phase::from_params(tag, p).map_err(|e| refused("Phase (unpickled)", e))
+        };
+        let model = match kind.as_str() {
+            "one" if tags.len() == 1 && params.len() == 1 => {
+                Model::One(model(tags[0], &params[0])?)
+            }
+            "mix" if tags.len() == params.len() && tags.len() == weights.len() => {
+                let mut held = Vec::with_capacity(tags.len());
+                for ((&tag, p), &w) in tags.iter().zip(&params).zip(&weights) {
+                    held.push((Part::Phase(model(tag, p)?), w));
+                }
+                let m = Mixture::new(&held).map_err(|e| refused("Phase (unpickled)", e))?;
+                Model::Mix(Box::new(m), weights)
+            }
+            "series" => {
+                LegendreSeries::new(&data).map_err(|e| refused("Phase (unpickled)", e))?;
+                Model::Series(data)
+            }
+            "table" => {
+                let kind = match table_kind {
+                    1 => TableKind::Inverse,
+                    2 => TableKind::Measured,
+                    _ => return Err(bad()),
+                };
+                let whole = kind.len(n).is_some_and(|len| len == data.len()) && n <= 1 << 20;
+                if !(whole && data.iter().all(|x| x.is_finite())) {
+                    return Err(bad());
+                }
+                Model::Table(data, n, kind)
+            }
+            _ => return Err(bad()),
+        };
+        Ok(PyPhase { model })
+    }
     fn __repr__(&self) -> String {
         match &self.model {
             Model::One(p) if two_lobe(p).is_some() => {
@@ -458,7 +598,7 @@ impl PyPhase {
                 let v: Vec<String> = v.iter().take(n).map(|x| format!("{x}")).collect();
                 format!("{}({})", p.name(), v.join(", "))
             }
-            Model::Mix(m) => format!("mixture of {} parts", m.len()),
+            Model::Mix(m, _) => format!("mixture of {} parts", m.len()),
             Model::Series(chi) => format!("Legendre series of {} moments", chi.len()),
             Model::Table(_, n, kind) => format!("table ({kind:?}, {n} intervals)"),
         }

@@ -21,6 +21,7 @@ import numpy as np
 
 import scatterkit as sk
 from scatterkit import conventions as cv
+from scatterkit import mitsuba as skmi
 
 NAN, INF = math.nan, math.inf
 
@@ -130,6 +131,13 @@ def _calls():
         Call("SpectralPhase", sk.SpectralPhase, [[hg, P.isotropic()]]),
         Call("SpectralPhase.pdf", sp.pdf, [mu]),
         Call("SpectralPhase.sample_cos", sp.sample_cos, [0, u]),
+        Call("Phase.schlick", P.schlick, [0.5]),
+        Call("Phase.modified_hg", P.modified_hg, [0.6, 1.4]),
+        Call("Phase.modified_hg_delta", P.modified_hg_delta, [0.6, 1.8]),
+        Call("Phase.two_lobe_hg_gamma", P.two_lobe_hg_gamma, [0.6, 1.4]),
+        Call("Phase.two_lobe_hg_delta", P.two_lobe_hg_delta, [0.6, 1.8]),
+        Call("Phase.gegenbauer_gamma", P.gegenbauer_gamma, [0.6, 1.5]),
+        Call("Phase.gegenbauer_delta", P.gegenbauer_delta, [0.6, 2.0]),
         Call("conventions.legendre_with_2l1", cv.legendre_with_2l1, [[1.0, 1.5]]),
         Call("conventions.legendre_without_2l1", cv.legendre_without_2l1, [[1.0, 0.5]]),
         Call("conventions.legendre_moments_of", cv.legendre_moments_of, [mu, hg.pdf(mu), 3]),
@@ -139,6 +147,11 @@ def _calls():
         Call("conventions.angle_from_mu", cv.angle_from_mu, [0.5], {"degrees": True}),
         Call("conventions.to_mitsuba_tabphase", cv.to_mitsuba_tabphase, [hg], {"n": 9}),
         Call("conventions.to_mcx_invcdf", cv.to_mcx_invcdf, [hg], {"n": 10}),
+        # scatterkit.mitsuba's calls that need no Mitsuba (the rest register
+        # plugins; python/tests/test_mitsuba.py covers them).
+        Call("mitsuba.phase_from_properties", skmi.phase_from_properties, [{"model": "draine", "g": 0.5, "alpha": 1.0}]),
+        Call("mitsuba.native", skmi.native, [hg], {"n": 8, "density_points": 9}),
+        Call("mitsuba.register_phase", skmi.register_phase, ["x", hg]),
     ]
     return calls
 

@@ -87,6 +87,10 @@ public:
             m_table = parse_floats(std::string(props.get<std::string_view>("table")));
             m_density = parse_floats(std::string(props.get<std::string_view>("density")));
             ok = m_table.size() >= 4 && m_table.size() % 2 == 0 && m_density.size() >= 2;
+            for (float v : m_table)
+                ok = ok && std::isfinite(v);
+            for (float v : m_density)
+                ok = ok && std::isfinite(v) && v >= 0.0f;
             m_n = (skp_u32) (m_table.size() / 2 - 1);
         } else {
             Throw("scatterkit_native: unknown model \"%s\"", model);

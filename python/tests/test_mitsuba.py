@@ -90,6 +90,7 @@ SCRIPT = r'''
 import json, sys, time, contextlib
 import numpy as np
 import mitsuba as mi
+import scatterkit as sk
 variant, seeds, res, spp = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])
 kind, build = sys.argv[6], sys.argv[7]
 mi.set_variant(variant)
@@ -121,6 +122,13 @@ xml = ('<phase version="3.0.0" type="scatterkit"><string name="model" value="dra
        '<float name="g" value="0.5"/><float name="alpha" value="1"/></phase>')
 out["xml"] = [str(mi.load_string(xml))]
 if kind == "native":
+    # A table that is not one is refused with an exception, not rendered.
+    bad = dict(skmi.native(sk.Phase.mixture([(sk.Phase.rayleigh(), 1.0)])), density="1, nan, 2")
+    try:
+        mi.load_dict(bad)
+        out["xml"].append("not refused")
+    except Exception:
+        pass
     xml = ('<phase version="3.0.0" type="scatterkit_native"><string name="model" value="fog"/>'
            '<float name="g_hg" value="0.9"/><float name="g_d" value="0.5"/><float name="alpha" value="20"/>'
            '<float name="w_d" value="0.4"/></phase>')

@@ -164,7 +164,7 @@ fn the_flight_benchmark_runs() {
             )
         })
         .collect();
-    assert_eq!(rows.len(), 6, "{text}");
+    assert_eq!(rows.len(), 7, "{text}");
     // Binomial-like standard errors of a weight fraction over 20 000
     // photons, generous: sqrt(p (1 - p) / n).
     let se = |p: f64| (p * (1.0 - p) / 20_000.0).sqrt();
@@ -182,7 +182,8 @@ fn the_flight_benchmark_runs() {
 
 /// The whole photon loop of the main job (`benches/c_photon.c`) builds
 /// strictly and runs: on 20 000 photons every mode (library and inline,
-/// three media) reflects and transmits within 5 of its standard errors of
+/// three media, and the homogeneous medium through delta tracking)
+/// reflects and transmits within 5 of its standard errors of
 /// the adding-doubling values above.
 #[test]
 fn the_photon_loop_agrees_with_adding_doubling() {
@@ -215,7 +216,7 @@ fn the_photon_loop_agrees_with_adding_doubling() {
         assert!((v - want).abs() <= 5.0 * se, "{l}\n{text}");
         checked += 1;
     }
-    assert_eq!(checked, 12, "{text}");
+    assert_eq!(checked, 14, "{text}");
 }
 
 /// `|g| = 1` through the C ABI and the portable header alike

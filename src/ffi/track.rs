@@ -351,17 +351,17 @@ trait Prec: Copy {
     fn pair(c: Self::Coef) -> (Self::T, Self::T);
     /// The fields (the spectrum read through its non-NULL pointer).
     unsafe fn parts(&self) -> Parts<Self>;
+    /// The ray and segment, each coordinate and end read by a load of its
+    /// own (see [`CVec::read_each`]: the two ends, read as one 16-byte
+    /// load, waited for the caller's two stores on every call, 8 % of
+    /// `sk_delta_track_f64`'s samples in the C photon loop).
+    fn ray_each(&self) -> Ray<Self::T>;
     /// Delta or ratio tracking by the short route, reading only the fields
     /// it needs and writing `*out` (non-NULL) itself, where the call is the
     /// common one (no flags, spectrum or majorants; a callback medium with
     /// one majorant, or a grid): its status, or `None` for every other
     /// call, which takes [`found`]. One call per flight pays this route
     /// on every flight.
-    /// The ray and segment, each coordinate and end read by a load of its
-    /// own (see [`CVec::read_each`]: the two ends, read as one 16-byte
-    /// load, waited for the caller's two stores on every call, 8 % of
-    /// `sk_delta_track_f64`'s samples in the C photon loop).
-    fn ray_each(&self) -> Ray<Self::T>;
     unsafe fn quick(&self, e: Estimator, out: *mut Self::Result) -> Option<sk_status>;
     fn result(f: Found<Self::T>) -> Self::Result;
 }

@@ -145,12 +145,18 @@ def _mitsuba():
     return mi, dr
 
 
+def _forward_cosines(k: int):
+    """``k`` cosines crowded towards the forward peak, ``mu = 1 - 2 s^2`` at
+    ``s`` even in ``[0, 1]`` (``mu = 1`` first), and those ``s``: the grid of
+    the Mie table's values and of the native plugin's density table."""
+    s = np.linspace(0.0, 1.0, k)
+    return np.clip(1.0 - 2.0 * s * s, -1.0, 1.0), s
+
+
 def _mie_phase(x: float, m: complex, n: int) -> Phase:
     """One sphere's Mie phase function as an inverse-CDF table of ``n``
-    intervals, from its values at ``8 n + 1`` cosines clustered towards the
-    forward peak (``mu = 1 - 2 s^2``, ``s`` even in ``[0, 1]``)."""
-    s = np.linspace(0.0, 1.0, 8 * n + 1)
-    mu = np.clip(1.0 - 2.0 * s * s, -1.0, 1.0)[::-1]
+    intervals, from its values at ``8 n + 1`` of :func:`_forward_cosines`."""
+    mu = _forward_cosines(8 * n + 1)[0][::-1]
     return Phase.table_measured(mu, Mie(x, m).phase(mu), n)
 
 
@@ -222,17 +228,22 @@ def _plugin_class(mi, dr):
 
         def sample(self, ctx, mei, sample1, sample2, active=True):
             back = -mei.wi  # the direction of travel
+            # The density at the sampled cosine itself, in double: not
+            # through eval_pdf, which would rebuild the cosine from the
+            # rounded float direction (and, in JIT variants, copy both
+            # directions out again).
             if jit:
                 _check_not_symbolic(dr)
                 dr.eval(sample2)
                 u1 = _uniforms(np.asarray(sample2.x.numpy(), dtype=np.float64))
-                mu = mi.Float(np.asarray(self.phase.sample_cos(u1), dtype=np.float64))
+                mu64 = np.asarray(self.phase.sample_cos(u1), dtype=np.float64)
+                mu, pdf = mi.Float(mu64), mi.Float(np.asarray(self.phase.pdf(mu64), dtype=np.float64))
             else:
-                mu = mi.Float(float(self.phase.sample_cos(float(_uniforms(float(sample2.x))))))
+                mu64 = float(self.phase.sample_cos(float(_uniforms(float(sample2.x)))))
+                mu, pdf = mi.Float(mu64), mi.Float(float(self.phase.pdf(mu64)))
             sin_t = dr.safe_sqrt((1.0 - mu) * (1.0 + mu))
             s, c = dr.sincos(dr.two_pi * sample2.y)
             wo = mi.Frame3f(back).to_world(mi.Vector3f(sin_t * c, sin_t * s, mu))
-            _, pdf = self.eval_pdf(ctx, mei, wo, active)
             return wo, mi.Spectrum(1.0), pdf
 
         def eval_pdf(self, ctx, mei, wo, active=True):
@@ -389,8 +400,7 @@ def native(phase: Union[Phase, dict], n: int = 1024, density_points: int = 4097)
     if int(density_points) < 2:
         raise ValueError("native: density_points must be at least 2")
     table = phase if phase.table_data is not None else Phase.table(phase, int(n))
-    s = np.linspace(0.0, 1.0, int(density_points))
-    mu = np.clip(1.0 - 2.0 * s * s, -1.0, 1.0)
+    mu, s = _forward_cosines(int(density_points))
     density = np.asarray(phase.pdf(mu), dtype=np.float64)
     if not np.isfinite(density[0]):
         # A density infinite at mu = 1 (Fournier-Forand's): the first node

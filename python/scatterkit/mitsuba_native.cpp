@@ -40,6 +40,9 @@ std::vector<float> parse_floats(const std::string &s) {
     while (std::getline(ss, tok, ',')) {
         size_t used = 0;
         float v = std::stof(tok, &used);
+        // A number and nothing after it but spaces ("0.5x" is refused).
+        if (tok.find_first_not_of(" \t\n", used) != std::string::npos)
+            Throw("scatterkit_native: \"%s\" is not a number", tok);
         out.push_back(v);
     }
     return out;

@@ -123,12 +123,13 @@ xml = ('<phase version="3.0.0" type="scatterkit"><string name="model" value="dra
 out["xml"] = [str(mi.load_string(xml))]
 if kind == "native":
     # A table that is not one is refused with an exception, not rendered.
-    bad = dict(skmi.native(sk.Phase.mixture([(sk.Phase.rayleigh(), 1.0)])), density="1, nan, 2")
-    try:
-        mi.load_dict(bad)
-        out["xml"].append("not refused")
-    except Exception:
-        pass
+    for density in ("1, nan, 2", "1, 0.5x, 2"):
+        bad = dict(skmi.native(sk.Phase.mixture([(sk.Phase.rayleigh(), 1.0)])), density=density)
+        try:
+            mi.load_dict(bad)
+            out["xml"].append("not refused: " + density)
+        except Exception:
+            pass
     xml = ('<phase version="3.0.0" type="scatterkit_native"><string name="model" value="fog"/>'
            '<float name="g_hg" value="0.9"/><float name="g_d" value="0.5"/><float name="alpha" value="20"/>'
            '<float name="w_d" value="0.4"/></phase>')

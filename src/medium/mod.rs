@@ -597,17 +597,11 @@ impl<'a, T: Real> Grid<'a, T> {
         rng: &mut R,
     ) -> Result<(T, u32), Error> {
         let (o, d) = ray.checked()?;
-        let Some((t0, t1)) = clip_box(o, d, self.lo, self.hi, ray.t_min, ray.t_max) else {
+        let Some((t0, t1)) = clip(o, d, (self.lo, self.hi), ray.t_min, ray.t_max) else {
             return Ok((T::ONE, 0));
         };
-        ratio(
-            |p| self.sigma_t(p),
-            self.majorant(),
-            o,
-            d,
-            (t0, t1, budget),
-            rng,
-        )
+        let span = (t0, t1, budget);
+        ratio(GridSigmaT(self), self.majorant(), o, d, span, rng)
     }
 }
 

@@ -17,6 +17,10 @@
  * run time, as MCML reads its layer records and pbrt-v4 its medium: compiled
  * in as constants, they were folded (1 - g^2, 1/2g, a division by 2 turned
  * into a product), which no code reading its input gets.
+ * inline.cbfn is the inline loop reading the callback medium through a
+ * function pointer it cannot see into (the library's callback, het, as a
+ * code keeps a medium its user supplies): what the callback itself costs,
+ * whoever calls it.
  * Media: hom (sigma_t = 2), cb (a callback, sigma_t(z) = 1 + 2z, majorant
  * 3) and grid (the same density on a 1 x 1 x 64 node grid, linear in z:
  * exact). The three have the same optical depth, albedo and g, so one
@@ -69,6 +73,7 @@ typedef struct {
     double sigma_t, sigma_maj, g;
 } layer;
 static volatile double input[3] = {2.0, 3.0, G};
+static sk_medium_fn_f64 volatile supplied = het;
 
 /* The inline flight: MCML's step in the homogeneous slab, pbrt-v4's delta
    tracking at the majorant in the heterogeneous ones. */
@@ -84,6 +89,22 @@ static double inline_flight(enum medium m, const layer *l, const double o[3], co
     }
 }
 
+/* pbrt-v4's delta tracking with the medium behind a pointer the code was
+   given (loaded once per flight, as from the code's own records). */
+static double inline_flight_fn(const layer *l, const double o[3], const double d[3], double tb, xo *x) {
+    sk_medium_fn_f64 medium = supplied;
+    double t = 0.0;
+    for (;;) {
+        sk_vec3_f64 p;
+        sk_coefficients_f64 c;
+        t += -log(1.0 - xo_u(x)) / l->sigma_maj;
+        if (t >= tb) return t;
+        p.x = o[0] + t * d[0], p.y = o[1] + t * d[1], p.z = o[2] + t * d[2];
+        c = medium(NULL, p);
+        if (xo_u(x) * l->sigma_maj < c.sigma_a + c.sigma_s) return t;
+    }
+}
+
 typedef struct {
     double sum, sum2;
 } tally;
@@ -96,8 +117,9 @@ static double se(const tally *t, long n) {
 static sk_grid_f64 grid;
 static sk_phase_f64 hg;
 
-/* The loop, written once; inlined into the two wrappers below with `lib`
-   a constant, so each mode is compiled on its own (sharing one body, the
+/* The loop, written once; inlined into the wrappers below with `lib` a
+   constant (1 the library, 0 inline, 2 inline with the callback medium
+   behind its pointer), so each kind is compiled on its own (sharing one body, the
    two modes' registers and layout moved each other's times by up to 8 %). */
 #if defined(__GNUC__)
 #define ALWAYS_INLINE static inline __attribute__((always_inline))
@@ -131,15 +153,17 @@ ALWAYS_INLINE void run(const char *name, enum medium m, int lib, long photons) {
         double o[3] = {0.0, 0.0, 0.0}, d[3] = {0.0, 0.0, 1.0}, w = 1.0;
         for (;;) {
             double tb = to_boundary(o[2], d[2]), t;
-            if (lib && m == HOM) {
+            if (lib == 1 && m == HOM) {
                 t = sk_free_path_f64(l.sigma_t, xo_u(&state));
-            } else if (lib) {
+            } else if (lib == 1) {
                 sk_track_result_f64 res;
                 a.o.x = o[0], a.o.y = o[1], a.o.z = o[2];
                 a.d.x = d[0], a.d.y = d[1], a.d.z = d[2];
                 a.t_max = tb;
                 if (sk_delta_track_f64(&a, &res) != SK_OK) exit(3);
                 t = res.event == SK_TRACK_ESCAPED ? tb : res.t;
+            } else if (lib == 2) {
+                t = inline_flight_fn(&l, o, d, tb, &state);
             } else {
                 t = inline_flight(m, &l, o, d, tb, &state);
             }
@@ -154,7 +178,7 @@ ALWAYS_INLINE void run(const char *name, enum medium m, int lib, long photons) {
                 if (xo_u(&state) < 0.1) w *= 10.0;
                 else break;
             }
-            if (lib) {
+            if (lib == 1) {
                 sk_vec3_f64 win = {d[0], d[1], d[2]}, out;
                 out = sk_phase_sample_dir_f64(&hg, win, xo_u(&state), xo_u(&state), NULL);
                 d[0] = out.x, d[1] = out.y, d[2] = out.z;
@@ -171,6 +195,7 @@ ALWAYS_INLINE void run(const char *name, enum medium m, int lib, long photons) {
 
 NOINLINE void run_lib(const char *name, enum medium m, long photons) { run(name, m, 1, photons); }
 NOINLINE void run_inline(const char *name, enum medium m, long photons) { run(name, m, 0, photons); }
+NOINLINE void run_inline_fn(const char *name, long photons) { run(name, CB, 2, photons); }
 
 int main(int argc, char **argv) {
     long photons = argc > 1 ? atol(argv[1]) : 1000000;
@@ -187,6 +212,7 @@ int main(int argc, char **argv) {
     run_lib("lib.hom", HOM, photons);
     run_lib("lib.homdt", HOMDT, photons);
     run_inline("inline.cb", CB, photons);
+    run_inline_fn("inline.cbfn", photons);
     run_lib("lib.cb", CB, photons);
     run_inline("inline.grid", GRID, photons);
     run_lib("lib.grid", GRID, photons);

@@ -49,8 +49,14 @@ static double to_boundary(double z, double dz) {
     return 1e30;
 }
 
-/* MCML's HG inverse for asymmetry g and its direction update of d. */
-static void mcml_scatter(double d[3], double g, xo *x) {
+/* MCML's HG inverse for asymmetry g and its direction update of d; always
+   inlined, as a code's own scattering step is, however many of a
+   benchmark's loops call it (with two callers gcc had left it out of line
+   and moved every inline loop's time). */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void mcml_scatter(double d[3], double g, xo *x) {
     double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * xo_u(x));
     double ct = (1.0 + g * g - s * s) / (2.0 * g), st = sqrt(fmax(0.0, 1.0 - ct * ct));
     double phi = 2.0 * 3.14159265358979323846 * xo_u(x), cp = cos(phi), sp = sin(phi);

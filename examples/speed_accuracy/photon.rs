@@ -28,7 +28,11 @@ pub(crate) fn photon_report() -> String {
          Media of one optical depth: homogeneous, a callback σ_t = 1 + 2z (majorant 3), the same on a 1×1×64 grid. \
          R and T against adding-doubling (iadpython 0.5.3: R 0.097395, T 0.660958). The row marked (no target) \
          tracks the homogeneous slab with delta tracking at its own majorant, two draws and a callback per flight: \
-         what it costs a code that sends every medium through one tracking call.\n\n",
+         what it costs a code that sends every medium through one tracking call. The row marked (like with like) \
+         sets the callback row against the inline loop reading the same callback through a function pointer it \
+         cannot see into, as a code holds a medium its user supplies: the rest of the callback row's ratio is what \
+         calling a medium through a pointer costs any loop (an opaque call in the flight's loop: every \
+         floating-point register saved around it).\n\n",
     );
     let Some(c) = run_c("benches/c_photon.c", &[]) else {
         writeln!(s, "SKIPPED: {C_SKIPPED}.").unwrap();
@@ -48,6 +52,12 @@ pub(crate) fn photon_report() -> String {
             None,
         ),
         ("cb", "cb", "photon loop, callback σ_t = 1 + 2z", Some(1.2)),
+        (
+            "cb",
+            "cbfn",
+            "photon loop, callback σ_t = 1 + 2z, against the inline loop calling the same callback (like with like, no target)",
+            None,
+        ),
         ("grid", "grid", "photon loop, 1×1×64 grid", Some(1.2)),
     ] {
         let (lib, inl) = (

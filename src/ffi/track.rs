@@ -584,6 +584,10 @@ fn quick_grid<T: Real>(
 }
 
 /// Runs estimator `e` with the arguments behind `a` and writes `*out`.
+/// Inlined into each entry point, so that each holds only its own
+/// estimator's short route (one loop, not four sharing one frame), and the
+/// general route stays out of line ([`general`]).
+#[inline(always)]
 unsafe fn run<P: Prec>(e: Estimator, a: *const P, out: *mut P::Result) -> sk_status {
     if a.is_null() || out.is_null() {
         return sk_status::SK_ERR_NULL;
@@ -593,6 +597,14 @@ unsafe fn run<P: Prec>(e: Estimator, a: *const P, out: *mut P::Result) -> sk_sta
     if let Some(status) = unsafe { args.quick(e, out) } {
         return status;
     }
+    unsafe { general(e, args, out) }
+}
+
+/// [`run`]'s general route (every estimator, flag and medium), out of
+/// line: inlined with the short route, its registers and frame were the
+/// short route's too.
+#[inline(never)]
+unsafe fn general<P: Prec>(e: Estimator, args: &P, out: *mut P::Result) -> sk_status {
     match unsafe { found(e, args.parts()) } {
         // SAFETY: out checked non-NULL above.
         Ok(f) => unsafe {

@@ -285,6 +285,31 @@ pub struct Grid<'a, T> {
     /// `1/(hi − lo)` per axis, so that a density lookup multiplies.
     scale: Vec3<T>,
     sampling: Sampling,
+    /// What tracking reads at every call, computed once: the majorant, its
+    /// reciprocal and the albedo (two divisions a short call paid each
+    /// time).
+    kept: Kept<T>,
+}
+
+/// A grid's majorant, its reciprocal and its albedo, from its
+/// coefficients and largest density (see [`Grid::majorant`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Kept<T> {
+    majorant: T,
+    inv_majorant: T,
+    albedo: T,
+}
+
+impl<T: Real> Kept<T> {
+    fn of(sigma_a: T, sigma_s: T, max_density: T) -> Self {
+        let st = sigma_a + sigma_s;
+        let majorant = st * max_density * (T::ONE + T::from_f64(4.0) * T::EPSILON);
+        Kept {
+            majorant,
+            inv_majorant: T::ONE / majorant,
+            albedo: if st > T::ZERO { sigma_s / st } else { T::ZERO },
+        }
+    }
 }
 
 impl<'a, T: Real> Grid<'a, T> {
@@ -336,6 +361,7 @@ impl<'a, T: Real> Grid<'a, T> {
             hi: Vec3::new(T::ONE, T::ONE, T::ONE),
             scale: Vec3::new(T::ONE, T::ONE, T::ONE),
             sampling: Sampling::Nodes,
+            kept: Kept::of(sigma_a, sigma_s, max_density),
         };
         if !grid.majorant().is_finite() {
             return Err(Error::Domain);
@@ -376,6 +402,7 @@ impl<'a, T: Real> Grid<'a, T> {
             hi,
             scale: inverse_extent(lo, hi),
             sampling,
+            kept: Kept::of(sigma_a, sigma_s, max_density),
         })
     }
 
@@ -517,17 +544,18 @@ impl<'a, T: Real> Grid<'a, T> {
     /// rounding of the interpolation can never exceed it (any majorant at or
     /// above σ_t keeps tracking unbiased).
     pub fn majorant(&self) -> T {
-        (self.sigma_a + self.sigma_s) * self.max_density * (T::ONE + T::from_f64(4.0) * T::EPSILON)
+        self.kept.majorant
     }
 
     /// The single-scattering albedo `σ_s/(σ_a + σ_s)` (0 for a vacuum).
     pub fn albedo(&self) -> T {
-        let st = self.sigma_a + self.sigma_s;
-        if st > T::ZERO {
-            self.sigma_s / st
-        } else {
-            T::ZERO
-        }
+        self.kept.albedo
+    }
+
+    /// The majorant and its reciprocal, as tracking steps by them.
+    #[inline(always)]
+    fn rate(&self) -> Rate<T> {
+        Rate(self.kept.majorant, self.kept.inv_majorant)
     }
 
     /// Delta (Woodcock) tracking along `ray`, first clipped to the grid's
@@ -561,7 +589,7 @@ impl<'a, T: Real> Grid<'a, T> {
             return Ok((t_max, Event::Escaped, 0));
         };
         let span = (t0, t1, budget);
-        let (t, hit, steps) = delta(GridSigmaT(self), self.majorant(), o, d, span, rng)?;
+        let (t, hit, steps) = delta(GridSigmaT(self), self.rate(), o, d, span, rng)?;
         if !hit {
             return Ok((t_max, Event::Escaped, steps));
         }
@@ -601,7 +629,7 @@ impl<'a, T: Real> Grid<'a, T> {
             return Ok((T::ONE, 0));
         };
         let span = (t0, t1, budget);
-        ratio(GridSigmaT(self), self.majorant(), o, d, span, rng)
+        ratio(GridSigmaT(self), self.rate(), o, d, span, rng)
     }
 }
 
@@ -763,13 +791,13 @@ impl<T: Real> SigmaT<T> for GridSigmaT<'_, '_, T> {
 #[inline(always)]
 fn tentative<T: Real, R: Rng + ?Sized, X>(
     sigma_t: impl SigmaT<T>,
-    sigma_maj: T,
+    Rate(sigma_maj, inv): Rate<T>,
     (o, d): (Vec3<T>, Vec3<T>),
     (t0, t1, budget): (T, T, u32),
     rng: &mut R,
     mut visit: impl FnMut(T, T, &mut R) -> Option<X>,
 ) -> Result<(Option<X>, u32), Error> {
-    let (mut t, inv) = (t0, T::ONE / sigma_maj);
+    let mut t = t0;
     // Bounded: every pass that does not return counts a step, and the
     // walk ends once `budget` of them are taken (as the majorant walk's).
     for steps in 0..=budget {
@@ -788,22 +816,34 @@ fn tentative<T: Real, R: Rng + ?Sized, X>(
     Err(Error::Budget)
 }
 
+/// A majorant `σ_maj` and its reciprocal `1/σ_maj` (computed as
+/// [`Rate::of`] does, so that a stored one steps as a fresh one).
+#[derive(Clone, Copy)]
+struct Rate<T>(T, T);
+
+impl<T: Real> Rate<T> {
+    fn of(sigma_maj: T) -> Self {
+        Rate(sigma_maj, T::ONE / sigma_maj)
+    }
+}
+
 /// Delta tracking over `[t0, t1]`: `(t, true)` at a real collision (chosen
 /// with probability `σ_t/σ_maj` at each tentative one), or `(t1, false)`.
 #[inline(always)]
 fn delta<T: Real, R: Rng + ?Sized>(
     sigma_t: impl SigmaT<T>,
-    sigma_maj: T,
+    rate: Rate<T>,
     o: Vec3<T>,
     d: Vec3<T>,
     (t0, t1, budget): (T, T, u32),
     rng: &mut R,
 ) -> Result<(T, bool, u32), Error> {
+    let sigma_maj = rate.0;
     if sigma_maj.is_nan() || sigma_maj <= T::ZERO {
         return Ok((t1, false, 0));
     }
     let real = |t: T, st: T, r: &mut R| (T::uniform(r) * sigma_maj < st).then_some(t);
-    let (hit, steps) = tentative(sigma_t, sigma_maj, (o, d), (t0, t1, budget), rng, real)?;
+    let (hit, steps) = tentative(sigma_t, rate, (o, d), (t0, t1, budget), rng, real)?;
     Ok(hit.map_or((t1, false, steps), |t| (t, true, steps)))
 }
 
@@ -843,17 +883,18 @@ pub(crate) fn roulette<T: Real, R: Rng + ?Sized>(tr: T, rng: &mut R) -> T {
 /// `1/(1 − 1/4)` roulette draws), and the estimate stays unbiased.
 fn ratio<T: Real, R: Rng + ?Sized>(
     sigma_t: impl SigmaT<T>,
-    sigma_maj: T,
+    rate: Rate<T>,
     o: Vec3<T>,
     d: Vec3<T>,
     span: (T, T, u32),
     rng: &mut R,
 ) -> Result<(T, u32), Error> {
+    let sigma_maj = rate.0;
     if sigma_maj.is_nan() || sigma_maj <= T::ZERO {
         return Ok((T::ONE, 0));
     }
     let mut tr = T::ONE;
-    let (_, steps) = tentative(sigma_t, sigma_maj, (o, d), span, rng, |_, st, r| {
+    let (_, steps) = tentative(sigma_t, rate, (o, d), span, rng, |_, st, r| {
         tr = roulette(tr * (T::ONE - st / sigma_maj), r);
         (tr == T::ZERO).then_some(())
     })?;
@@ -884,7 +925,8 @@ pub fn delta_track_fn<T: Real, R: Rng + ?Sized>(
     let (o, d) = ray.checked()?;
     check_majorant(sigma_maj)?;
     let (t_min, t_max) = (ray.t_min, ray.t_max);
-    let (t, hit, _) = delta(sigma_t, sigma_maj, o, d, (t_min, t_max, MAX_STEPS), rng)?;
+    let span = (t_min, t_max, MAX_STEPS);
+    let (t, hit, _) = delta(sigma_t, Rate::of(sigma_maj), o, d, span, rng)?;
     Ok(if hit {
         (t, Event::Collided)
     } else {
@@ -906,7 +948,7 @@ pub fn ratio_track_fn<T: Real, R: Rng + ?Sized>(
     let (o, d) = ray.checked()?;
     check_majorant(sigma_maj)?;
     let span = (ray.t_min, ray.t_max, MAX_STEPS);
-    ratio(sigma_t, sigma_maj, o, d, span, rng).map(|(tr, _)| tr)
+    ratio(sigma_t, Rate::of(sigma_maj), o, d, span, rng).map(|(tr, _)| tr)
 }
 
 #[cfg(test)]

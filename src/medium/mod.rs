@@ -973,4 +973,36 @@ mod tests {
             assert_eq!((event, steps), (Event::Scattered, 1), "seed {seed}, t {t}");
         }
     }
+
+    /// The kept majorant is `σ_t max(density)` raised by a few ULP (at
+    /// most 8ε relative), its reciprocal is `1/majorant`, and a vacuum's
+    /// albedo is 0, not 0/0 (mutation tests found a majorant raised by 1
+    /// and a NaN albedo unread: tracking stays unbiased with either).
+    #[test]
+    fn the_kept_majorant_and_albedo_are_as_documented() {
+        let density = [0.25f64, 3.0, 1.5];
+        for (sa, ss) in [(0.5, 2.0), (0.0, 1e-3), (7.0, 0.0), (1e3, 1e3)] {
+            let g = Grid::new(&density, 1, 1, 3, sa, ss).unwrap();
+            let floor = (sa + ss) * 3.0;
+            let m = g.majorant();
+            assert!(
+                m >= floor && m <= floor * (1.0 + 8.0 * f64::EPSILON),
+                "{sa} {ss}: {m}"
+            );
+            assert_eq!(g.rate().1, 1.0 / m);
+            assert_eq!(g.albedo(), ss / (sa + ss));
+            let parts = Grid::from_parts(
+                &density,
+                [1, 1, 3],
+                sa,
+                ss,
+                3.0,
+                g.bounds(),
+                Sampling::Nodes,
+            );
+            assert_eq!(parts.unwrap(), g);
+        }
+        let vacuum = Grid::new(&density, 1, 1, 3, 0.0, 0.0).unwrap();
+        assert_eq!((vacuum.majorant(), vacuum.albedo()), (0.0, 0.0));
+    }
 }

@@ -737,10 +737,14 @@ pub(crate) fn clip<T: Real>(
 /// ray parallel to the slab lies outside it.
 #[inline(always)]
 fn slab<T: Real>(oc: T, dc: T, (l, h): (T, T), (t0, t1): (T, T)) -> Option<(T, T)> {
-    if dc == T::ZERO {
+    let inv = T::ONE / dc;
+    if dc == T::ZERO || !inv.is_finite() {
+        // Parallel to the faces, or so nearly that 1/dc overflows (a
+        // subnormal component): the ray cannot cross the slab over any
+        // representable distance. With the overflow taken as a crossing,
+        // an origin on a face gave 0·∞ = NaN and a miss of the whole box.
         return (oc >= l && oc <= h).then_some((t0, t1));
     }
-    let inv = T::ONE / dc;
     let (a, b) = ((l - oc) * inv, (h - oc) * inv);
     let (near, far) = if a < b { (a, b) } else { (b, a) };
     Some((t0.max_of(near), if far < t1 { far } else { t1 }))
@@ -1004,5 +1008,35 @@ mod tests {
         }
         let vacuum = Grid::new(&density, 1, 1, 3, 0.0, 0.0).unwrap();
         assert_eq!((vacuum.majorant(), vacuum.albedo()), (0.0, 0.0));
+    }
+
+    /// A unit direction may have a subnormal component, whose reciprocal
+    /// overflows: from an origin on that axis's face, `0·∞` made the clip
+    /// miss the whole box (optical depth 0, every ray escaping). The ray
+    /// cannot leave the slab over any representable distance, so it is
+    /// taken as parallel to it.
+    #[test]
+    fn a_subnormal_direction_component_from_a_face_still_crosses_the_box() {
+        let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0));
+        for (x, dx) in [(0.0, 1e-310), (1.0, -1e-310), (0.0, -1e-310), (0.5, 1e-320)] {
+            let (o, d) = (Vec3::new(x, 0.5, 0.0), Vec3::new(dx, 0.0, 1.0));
+            assert_eq!(
+                clip_box(o, d, lo, hi, 0.0, 10.0),
+                Some((0.0, 1.0)),
+                "{x} {dx}"
+            );
+        }
+        let (lo32, hi32) = (Vec3::new(0.0f32, 0.0, 0.0), Vec3::new(1.0f32, 1.0, 1.0));
+        let (o, d) = (Vec3::new(0.0f32, 0.5, 0.0), Vec3::new(1e-40f32, 0.0, 1.0));
+        assert_eq!(clip_box(o, d, lo32, hi32, 0.0, 10.0), Some((0.0, 1.0)));
+        let density = [2.0f64];
+        let g = Grid::new(&density, 1, 1, 1, 0.0, 1.0).unwrap();
+        let ray = Ray::new(Vec3::new(0.0, 0.5, 0.0), Vec3::new(1e-310, 0.0, 1.0), 10.0);
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(5);
+        let hits = (0..1000)
+            .filter(|_| g.delta_track(ray, &mut rng).unwrap().1 != Event::Escaped)
+            .count();
+        // P(hit) = 1 − e⁻² ≈ 0.865; 1000 draws: σ ≈ 11.
+        assert!((800..=930).contains(&hits), "{hits}");
     }
 }

@@ -825,7 +825,8 @@ mod tests {
             Vec3::new(0.5, 0.5, 0.0),
         ];
         for (k, d) in dirs.into_iter().enumerate() {
-            for (t0, t1) in [(0.0, 0.3), (0.2, 2.5), (0.0, 40.0)] {
+            // With an empty segment (0.5, 0.5), which draws nothing.
+            for (t0, t1) in [(0.0, 0.3), (0.2, 2.5), (0.0, 40.0), (0.5, 0.5)] {
                 let o = Vec3::new(0.1 * k as f64, -0.2, 0.7);
                 let ray = Ray::new(o, d, t1).segment(t0, t1);
                 let u = d.try_normalize().unwrap();
@@ -852,6 +853,8 @@ mod tests {
                         .unwrap();
                     let y = cell.ratio_track_fn(coef, ray, 1000, &mut r2).unwrap();
                     assert_eq!((x.tr.to_bits(), x.steps), (y.tr.to_bits(), y.steps));
+                    // The generators are left in the same state.
+                    assert_eq!(r1, r2, "seed {seed}, segment ({t0}, {t1})");
                 }
             }
         }

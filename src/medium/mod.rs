@@ -1010,6 +1010,21 @@ mod tests {
         assert_eq!((vacuum.majorant(), vacuum.albedo()), (0.0, 0.0));
     }
 
+    /// A zero dimension on any axis is refused ([`Error::Size`]), alone or
+    /// beside others (a mutation test turned `||` into `&&` unnoticed: a
+    /// grid of no values was then built, and its lookups read past it).
+    #[test]
+    fn a_zero_dimension_is_refused_on_every_axis() {
+        let density = [1.0f64; 4];
+        for n in [[0, 2, 2], [2, 0, 2], [2, 2, 0], [0, 0, 1], [0, 0, 0]] {
+            assert_eq!(grid_len(n[0], n[1], n[2]), None, "{n:?}");
+            let g = Grid::new(&density, n[0], n[1], n[2], 0.0, 1.0);
+            assert_eq!(g.err(), Some(Error::Size), "{n:?}");
+        }
+        assert_eq!(grid_len(1, 2, 2), Some(4));
+        assert_eq!(grid_len(usize::MAX, 2, 1), None);
+    }
+
     /// A unit direction may have a subnormal component, whose reciprocal
     /// overflows: from an origin on that axis's face, `0·∞` made the clip
     /// miss the whole box (optical depth 0, every ray escaping). The ray

@@ -148,6 +148,32 @@ fn an_infinite_segment_and_bad_input() {
         Equiangular::new(Ray::new(o, Vec3::new(0.0, 0.0, 0.0), 2.0), c).err(),
         Some(Error::Domain)
     );
+    // Parts stored by a caller (the C layer's state) are checked, each
+    // condition on its own: a mutation test dropped `a < b` and a finite
+    // `a` beside a valid Δ unnoticed.
+    // A finite segment's (its b is finite; an infinite one's is +∞).
+    let good = Equiangular::new(Ray::new(o, d, 2.0), c).unwrap().parts();
+    assert!(Equiangular::from_parts(good).is_ok());
+    let bad = [
+        (3, f64::NAN),
+        (3, good[4]),
+        (3, good[4] + 1.0),
+        (0, f64::INFINITY),
+        (1, 0.0),
+        (1, 1e-200), // Δ² underflows to 0
+        (1, 1e200),  // Δ² overflows
+        (2, 0.0),    // θ_b − θ_a
+        (2, 3.2),
+    ];
+    for (k, v) in bad {
+        let mut p = good;
+        p[k] = v;
+        assert_eq!(
+            Equiangular::from_parts(p).err(),
+            Some(Error::Domain),
+            "part {k} = {v}"
+        );
+    }
     assert!(e.sample(f64::NAN).is_nan(), "NaN in, NaN out");
     assert_eq!(
         (e.sample(-1.0), e.sample(2.0)),

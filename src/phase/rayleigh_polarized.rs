@@ -401,6 +401,25 @@ pub(crate) fn kepler<T: Real>(e: T, m: T) -> T {
 mod tests {
     use super::*;
 
+    /// `cos_given` switches from the cubic's root to its series where
+    /// `b ≤ 10⁻⁸ a` (`q_φ` within about 10⁻⁸ of −1); the two sides agree
+    /// across the switch (a mutation of the series went unnoticed: the
+    /// branch covers a sliver of azimuths too thin for a χ² test).
+    #[test]
+    fn the_series_meets_the_cubic_where_they_switch() {
+        for rho in [0.0f64, 0.03, 0.3] {
+            let r = RayleighPolarized::new(rho).unwrap();
+            // b = 10⁻⁸ a at q = −1 + ε, with a ≈ 2 k34 + one_minus.
+            let eps = 1e-8 * (2.0 * r.k34 + r.one_minus) / r.k34;
+            let (series, cubic) = (-1.0 + 0.9 * eps, -1.0 + 1.1 * eps);
+            for i in 0..=100 {
+                let u = i as f64 / 100.0;
+                let (a, b) = (r.cos_given(series, u), r.cos_given(cubic, u));
+                assert!((a - b).abs() < 1e-7, "rho {rho} u {u}: {a} against {b}");
+            }
+        }
+    }
+
     #[test]
     fn kepler_residual_is_at_rounding_in_f32() {
         for &e in &[0.0f32, 1e-6, 0.1, 0.3, 0.5] {

@@ -292,3 +292,47 @@ fn chi2_table_samples_its_own_piecewise_density() {
     check::<f32>(10, 300);
     check::<f64>(25, 400);
 }
+
+/// A generator stuck on one word that every rejection method rejects.
+struct Stuck(u64);
+
+impl rand_xoshiro::rand_core::TryRng for Stuck {
+    type Error = core::convert::Infallible;
+    fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+        Ok((self.0 >> 32) as u32)
+    }
+    fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+        Ok(self.0)
+    }
+    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+        dst.fill(0);
+        Ok(())
+    }
+}
+
+/// The module's promise for a broken generator: after `MAX_TRIALS`
+/// rejections each rejection method finishes with the direct method on the
+/// next uniform, so it neither hangs nor answers something else (a
+/// mutation test replaced that fallback by 0 unnoticed). Every uniform is
+/// u ≈ 0.99 here, which the simplified, Baranoski's, the spherical and the
+/// cube methods all reject (the cube's point lies outside the ball).
+#[test]
+fn a_stuck_generator_ends_with_the_direct_method() {
+    let word = (0.99 * 9_007_199_254_740_992.0f64) as u64 * 2048;
+    let u = f64::from_bits_uniform(word);
+    let want = rayleigh::inverse_cdf_direct(u);
+    for m in [RayleighMethod::Simplified, RayleighMethod::Baranoski] {
+        let mu: f64 = rayleigh::sample_cos(m, &mut Stuck(word));
+        assert_eq!(mu, want, "{m:?}");
+    }
+    let z = Vec3::new(0.0f64, 0.0, 1.0);
+    for m in [
+        RayleighMethod::RejectCube,
+        RayleighMethod::RejectSpherical,
+        RayleighMethod::Simplified,
+        RayleighMethod::Baranoski,
+    ] {
+        let w = rayleigh::sample_dir(m, z, &mut Stuck(word));
+        assert!((w.z - want).abs() < 1e-12, "{m:?}: {} against {want}", w.z);
+    }
+}

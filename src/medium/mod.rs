@@ -494,11 +494,33 @@ impl<'a, T: Real> Grid<'a, T> {
         // `p ≥ lo` makes each `≥ 0`, and `min` keeps a point on the far
         // face, rounded just past it, at 1.
         let local = |x: T, l: T, k: T| ((x - l) * k).min_of(T::ONE);
-        let l = Vec3::new(
+        self.interpolate(Vec3::new(
             local(p.x, lo.x, self.scale.x),
             local(p.y, lo.y, self.scale.y),
             local(p.z, lo.z, self.scale.z),
-        );
+        ))
+    }
+
+    /// [`density_at`](Self::density_at) at a point tracking drew inside
+    /// the clipped box: finite (a checked origin and direction, a distance
+    /// below the clipped exit), and inside up to the rounding of `o + t d`,
+    /// so each local coordinate is clamped to `[0, 1]` (the face's value)
+    /// in place of the NaN and box tests, which were a tenth of a
+    /// 1 × 1 × 64 grid photon's time (measured from Rust).
+    #[inline(always)]
+    fn density_inside(&self, p: Vec3<T>) -> T {
+        let (lo, k) = (self.lo, self.scale);
+        let local = |x: T, l: T, k: T| ((x - l) * k).max_of(T::ZERO).min_of(T::ONE);
+        self.interpolate(Vec3::new(
+            local(p.x, lo.x, k.x),
+            local(p.y, lo.y, k.y),
+            local(p.z, lo.z, k.z),
+        ))
+    }
+
+    /// The interpolated density at local coordinates `l ∈ [0, 1]³`.
+    #[inline(always)]
+    fn interpolate(&self, l: Vec3<T>) -> T {
         let [nx, ny, nz] = self.n;
         if nx == 1 && ny == 1 {
             // A column (a layered medium): two values, not eight.
@@ -782,7 +804,7 @@ struct GridSigmaT<'g, 'a, T>(&'g Grid<'a, T>);
 impl<T: Real> SigmaT<T> for GridSigmaT<'_, '_, T> {
     #[inline(always)]
     fn at(&self, p: Vec3<T>) -> T {
-        (self.0.sigma_a + self.0.sigma_s) * self.0.density_at(p)
+        (self.0.sigma_a + self.0.sigma_s) * self.0.density_inside(p)
     }
 }
 

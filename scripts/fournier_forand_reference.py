@@ -1,7 +1,15 @@
-"""Fournier-Forand inverse CDF in 50-digit arithmetic (mpmath): the
-reference values of tests/fournier_forand.rs, written to
-tests/data/fournier_forand_reference.txt. Run:
+"""Fournier-Forand inverse CDF and density in 50-digit arithmetic
+(mpmath): the reference values of tests/models/fournier_forand.rs, written
+to tests/data/fournier_forand_reference.txt (inverse) and
+tests/data/fournier_forand_density.txt (density). Run:
 python3 scripts/fournier_forand_reference.py
+
+The density per steradian is the published one (Fournier & Forand 1994):
+p = [nu (1-delta) - (1 - delta^nu)
+     + (delta (1 - delta^nu) - nu (1-delta)) / s] / (4 pi (1-delta)^2 delta^nu)
+    + (d180^-nu - 1)/(d180 - 1) (3 mu^2 - 1) / (16 pi),
+at mu = 1 - 2s for s from 1e-16 to 1 (log-spaced), mu_J down to 3 + 2^-51
+(nu -> 0), every parameter the exact double the test passes.
 
 The published forward CDF (Fournier & Jonasz 1999), with s = sin^2(theta/2),
 delta = 4 s / (3 (n-1)^2), nu = (3 - mu_J)/2, c = (d180^-nu - 1)/(d180 - 1):
@@ -63,3 +71,31 @@ with open("tests/data/fournier_forand_reference.txt", "w") as f:
                 r64 = inverse(n, m, u)
                 r32 = inverse(f32(n), f32(m), f32(u))
                 f.write("%r %r %r %s %s\n" % (n, m, u, mp.nstr(r64, 20), mp.nstr(r32, 20)))
+
+
+NS_D = [1.01, 1.1, 1.2, 1.8]
+MUJ_D = [3.0 + 2.0**-51, 3.0 + 1e-9, 3.001, 3.5, 4.0, 4.5, 4.999]
+
+
+def density(n, muj, mu):
+    n, mu = mp.mpf(n), mp.mpf(mu)
+    nu = (3 - mp.mpf(muj)) / 2
+    s = (1 - mu) / 2
+    k = 4 / (3 * (n - 1) ** 2)
+    d = k * s
+    main = (nu * (1 - d) - (1 - d**nu) + (d * (1 - d**nu) - nu * (1 - d)) / s) / (
+        4 * mp.pi * (1 - d) ** 2 * d**nu
+    )
+    return main + (k ** (-nu) - 1) / (k - 1) * (3 * mu * mu - 1) / (16 * mp.pi)
+
+
+with open("tests/data/fournier_forand_density.txt", "w") as f:
+    f.write("# n mu_J mu pdf (per steradian; n, mu_J, mu exact doubles)\n")
+    for n in NS_D:
+        for m in MUJ_D:
+            k = 4 / (3 * (mp.mpf(n) - 1) ** 2)
+            for i in range(41):
+                mu = 1.0 - 2.0 * 10.0 ** (-16.0 + 16.0 * i / 40.0)
+                if mu < -1.0 or abs(k * (1 - mp.mpf(mu)) / 2 - 1) < mp.mpf(10) ** -30:
+                    continue
+                f.write("%r %r %r %s\n" % (n, m, mu, mp.nstr(density(n, m, mu), 20)))

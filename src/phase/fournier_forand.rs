@@ -190,6 +190,11 @@ impl Ff {
     }
     /// `R'(δ)`: `[−ν δ^{−ν−1}(δ − 1) − (δ^{−ν} − 1)] / (δ − 1)²`, whose
     /// numerator cancels to second order near `δ = 1`: there the series.
+    /// `δ^{−ν}` by `pow` and `δ^{−ν} − 1` by `expm1`, each where the other
+    /// cancels: as `pow − 1` the difference lost every digit as `ν → 0`
+    /// (`μ_J → 3`, or a backscatter fraction near 0; the density came out
+    /// negative, −1.5·10⁻²⁹ for `b = 10⁻³⁰`), and as `1 + expm1` the power
+    /// lost its digits where it is tiny (δ → 0 at the forward pole).
     fn r_prime(&self, delta: f64) -> f64 {
         let nu = self.nu;
         let e = delta - 1.0;
@@ -197,7 +202,8 @@ impl Ff {
             return self.near_one(e).1;
         }
         let p = libm::pow(delta, -nu);
-        (-nu * p / delta * e - (p - 1.0)) / (e * e)
+        let pm1 = libm::expm1(-nu * libm::log(delta));
+        (-nu * p / delta * e - pm1) / (e * e)
     }
     /// `(R, R')` at `δ = 1 + e`, `|e| < 10⁻³`, from `δ^{−ν} = Σ C(−ν, j) e^j`:
     /// `R = Σ_{j≥1} C(−ν, j) e^{j−1}`, `R' = Σ_{j≥2} (j − 1) C(−ν, j) e^{j−2}`;

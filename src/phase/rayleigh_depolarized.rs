@@ -69,10 +69,14 @@ impl<T: Real> PhaseFunction<T> for RayleighDepolarized<T> {
     }
     #[inline]
     fn cdf(&self, cos_theta: T) -> T {
+        // F = (1 + x)(3(1 + 3γ) + (1 − γ)(x² − x + 1)) / (8(1 + 2γ)), with
+        // 3(1 + 3γ) + (1 − γ) = 4(1 + 2γ) taken out: F = (1 + x)(½ − c x (1
+        // − x)), c = (1 − γ)/(8(1 + 2γ)). Exactly 0 at x = −1 and 1 at x = 1
+        // (the sum's rounding left F(1) = 1 − ε as γ → 1), and the bracket
+        // stays ≥ ½ − c/4 > 0, so nothing cancels.
         let (g, x) = (self.gamma, cos_theta.clamp_unit());
-        let three = T::from_f64(3.0);
-        let inner = three * (T::ONE + three * g) + (T::ONE - g) * (x * x - x + T::ONE);
-        ((T::ONE + x) * inner / (T::from_f64(8.0) * (T::ONE + T::TWO * g))).clamp01()
+        let c = (T::ONE - g) / (T::from_f64(8.0) * (T::ONE + T::TWO * g));
+        ((T::ONE + x) * (T::HALF - c * x * (T::ONE - x))).clamp01()
     }
     #[inline]
     fn sample_cos(&self, u: T) -> T {

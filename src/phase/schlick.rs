@@ -97,7 +97,17 @@ impl<T: Real> PhaseFunction<T> for Schlick<T> {
     #[inline]
     fn cdf(&self, cos_theta: T) -> T {
         let mu = cos_theta.clamp_unit();
-        (self.omk * (T::ONE + mu) / (T::TWO * self.one_minus_k_mu(mu))).clamp01()
+        let d = T::TWO * self.one_minus_k_mu(mu);
+        let f = self.omk * (T::ONE + mu) / d;
+        // Above ½, one minus the upper tail `(1 + k)(1 − μ)/(2(1 − kμ))`
+        // (the numerators sum to `2(1 − kμ)`): a product, so `1 − tail`
+        // rises with μ, where `f` stepped back by up to three ulps of 1
+        // as k → −1.
+        if f > T::HALF {
+            (T::ONE - self.opk * (T::ONE - mu) / d).clamp01()
+        } else {
+            f.clamp01()
+        }
     }
     #[inline]
     fn sample_cos(&self, u: T) -> T {

@@ -357,7 +357,25 @@ impl<T: Real> PhaseFunction<T> for HenyeyGreenstein<T> {
             return if mu >= g { T::ONE } else { T::ZERO };
         }
         let s = self.denom(mu).sqrt();
-        ((T::ONE - g) * (T::ONE + mu) / (s * (T::ONE + g + s))).clamp01()
+        let whole = s * (T::ONE + g + s);
+        let f = (T::ONE - g) * (T::ONE + mu) / whole;
+        if f > T::HALF {
+            // Above ½, one minus the upper tail: `whole − (1 − g)(1 + μ)`
+            // is `(1 + g)(s + g − μ)` (as `s² = (g − μ)² + 1 − μ²`), and
+            // for `μ > g` the factor `s + g − μ` is `(1 − μ²)/(s + μ − g)`,
+            // free of its cancellation. The tail is accurate to a few ulps
+            // of itself, so `1 − tail` rises with μ; `f` there stepped back
+            // by up to five ulps of 1 as g → −1 (one minus a product of
+            // roundings).
+            let gap = if mu > g {
+                (T::ONE - mu) * (T::ONE + mu) / (s + mu - g)
+            } else {
+                s + g - mu
+            };
+            (T::ONE - (T::ONE + g) * gap / whole).clamp01()
+        } else {
+            f.clamp01()
+        }
     }
     #[inline]
     fn sample_cos(&self, u: T) -> T {

@@ -1947,7 +1947,8 @@ sk_status sk_phase_new_two_lobe_hg_f64(double g1, double g2, double w, sk_phase_
  alpha = 2^70 (within 1e-21 of it), so the value is a fog mixture
  (sk_phase_get_params: g_hg = g_HG, g_d = 0, alpha = 2^70,
  w_d = 1 - beta). SK_ERR_DOMAIN unless 0 < g < 1 and
- 0.6 < gamma <= 1 + g (gamma = 1 + g is HG itself).
+ 0.6 < gamma <= 1 + g (gamma = 1 + g is HG itself; taken with 4 DBL_EPSILON
+ of relative slack, for a gamma rounded up from 1 + g).
  */
 sk_status sk_phase_new_modified_hg(float g, float gamma, sk_phase *out);
 
@@ -1960,7 +1961,8 @@ sk_status sk_phase_new_modified_hg_f64(double g, double gamma, sk_phase_f64 *out
  The modified Henyey-Greenstein function of sk_phase_new_modified_hg set by
  g and delta = (1 - chi_3)/(1 - chi_1): g_HG = sqrt((1 - delta (1 - g))/g),
  beta = g/g_HG. SK_ERR_DOMAIN unless 0 < g < 1 and
- 1 < delta <= 1 + g + g^2 (the top is HG itself).
+ 1 < delta <= 1 + g + g^2 (the top is HG itself; taken with 4 DBL_EPSILON
+ of relative slack).
  */
 sk_status sk_phase_new_modified_hg_delta(float g, float delta, sk_phase *out);
 
@@ -1974,7 +1976,8 @@ sk_status sk_phase_new_modified_hg_delta_f64(double g, double delta, sk_phase_f6
  (1 - beta) HG(g_HG) + beta/(4 pi) (Prahl's "modified HG", 1988), set by
  g and gamma = (1 - chi_2)/(1 - chi_1): g_HG = (1 - gamma (1 - g))/g,
  beta = 1 - g/g_HG; built as sk_phase_new_two_lobe_hg(g_HG, 0, 1 - beta).
- SK_ERR_DOMAIN unless 0 < g < 1 and 1 < gamma <= 1 + g.
+ SK_ERR_DOMAIN unless 0 < g < 1 and 1 < gamma <= 1 + g (the top, HG, taken
+ with 4 DBL_EPSILON of relative slack).
  */
 sk_status sk_phase_new_two_lobe_hg_gamma(float g, float gamma, sk_phase *out);
 
@@ -1986,7 +1989,8 @@ sk_status sk_phase_new_two_lobe_hg_gamma_f64(double g, double gamma, sk_phase_f6
 /*
  The two-lobe HG of sk_phase_new_two_lobe_hg_gamma set by g and
  delta = (1 - chi_3)/(1 - chi_1): g_HG = sqrt((1 - delta (1 - g))/g).
- SK_ERR_DOMAIN unless 0 < g < 1 and 1 < delta <= 1 + g + g^2.
+ SK_ERR_DOMAIN unless 0 < g < 1 and 1 < delta <= 1 + g + g^2 (the top, HG,
+ taken with 4 DBL_EPSILON of relative slack).
  */
 sk_status sk_phase_new_two_lobe_hg_delta(float g, float delta, sk_phase *out);
 

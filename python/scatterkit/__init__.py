@@ -212,25 +212,27 @@ class Phase:
         """Tissue optics' modified HG (Bevilacqua & Depeursinge 1999),
         ``beta p_HG(g_HG) + (1 - beta) (3/4pi) cos^2``, set by its mean cosine
         ``g`` in ``(0, 1)`` and ``gamma = (1 - chi_2)/(1 - chi_1)``,
-        ``0.6 < gamma <= 1 + g``; ``ValueError`` outside that reach."""
+        ``0.6 < gamma <= 1 + g`` (the top, HG itself, taken with 4 machine
+        epsilons of relative slack); ``ValueError`` outside that reach."""
         return cls(_sk._Phase.modified_hg(float(g), float(gamma)))
 
     @classmethod
     def modified_hg_delta(cls, g: float, delta: float) -> "Phase":
         """:meth:`modified_hg` set by ``g`` and ``delta = (1 - chi_3)/(1 - chi_1)``,
-        ``1 < delta <= 1 + g + g^2``."""
+        ``1 < delta <= 1 + g + g^2`` (the top with the same slack)."""
         return cls(_sk._Phase.modified_hg_delta(float(g), float(delta)))
 
     @classmethod
     def two_lobe_hg_gamma(cls, g: float, gamma: float) -> "Phase":
         """HG with an isotropic lobe (Prahl's modified HG) set by ``g`` in
-        ``(0, 1)`` and ``gamma``, ``1 < gamma <= 1 + g``."""
+        ``(0, 1)`` and ``gamma``, ``1 < gamma <= 1 + g`` (the top, HG itself,
+        taken with 4 machine epsilons of relative slack)."""
         return cls(_sk._Phase.two_lobe_hg_gamma(float(g), float(gamma)))
 
     @classmethod
     def two_lobe_hg_delta(cls, g: float, delta: float) -> "Phase":
         """:meth:`two_lobe_hg_gamma` set by ``g`` and ``delta``,
-        ``1 < delta <= 1 + g + g^2``."""
+        ``1 < delta <= 1 + g + g^2`` (the top with the same slack)."""
         return cls(_sk._Phase.two_lobe_hg_delta(float(g), float(delta)))
 
     @classmethod

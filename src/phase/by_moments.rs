@@ -11,6 +11,10 @@
 //! | two-lobe HG with an isotropic lobe | `1 < γ ≤ 1 + g`; `1 < δ ≤ 1 + g + g²` |
 //! | Gegenbauer kernel, `−½ < α ≤ 1000` | a band around HG's `γ = 1 + g`, `δ = 1 + g + g²`, reaching above them |
 //!
+//! The HG families take their top (`1 + g`, `1 + g + g²`, HG itself) with
+//! a relative slack of `4ε` (ε of f64): a `γ` or `δ` computed as `1 + g`
+//! and rounded up is HG, not an error.
+//!
 //! Every mixture of HG lobes (and the modified HG) has `χ_2 ≥ χ_1²`, so
 //! `γ ≤ 1 + g`: phase functions flatter than HG at the same `g`
 //! (`γ > 1 + g`) are the Gegenbauer kernel's with `α > ½`.
@@ -19,6 +23,13 @@ use super::gegenbauer::low_moments;
 use super::{Gegenbauer, Phase};
 use crate::error::Error;
 use crate::math::real::Real;
+
+/// The largest `γ` or `δ` taken for the top `hg` (HG's own value): `hg`
+/// with 4ε of slack, for a caller's value rounded up from it (the module
+/// docs).
+fn top_of(hg: f64) -> f64 {
+    hg * (1.0 + 4.0 * f64::EPSILON)
+}
 
 /// The Draine `α` that stands for the modified HG's `cos²θ` lobe: Draine
 /// with `g = 0` is `∝ 1 + αμ²`, which differs from `3μ²/2` by at most
@@ -59,7 +70,7 @@ impl<T: Real> Phase<T> {
     /// ```
     pub fn modified_hg(g: T, gamma: T) -> Result<Self, Error> {
         let (g, gamma) = (g.to_f64(), gamma.to_f64());
-        if !(g > 0.0 && g < 1.0 && gamma > 0.6 && gamma <= (1.0 + g) * (1.0 + 4.0 * f64::EPSILON)) {
+        if !(g > 0.0 && g < 1.0 && gamma > 0.6 && gamma <= top_of(1.0 + g)) {
             return Err(Error::Domain);
         }
         // The positive root of g x² + b x − 2g/5 = 0 without cancellation:
@@ -93,7 +104,7 @@ impl<T: Real> Phase<T> {
     /// `two_lobe_hg(g_HG, 0, 1 − β)`.
     pub fn two_lobe_hg_gamma(g: T, gamma: T) -> Result<Self, Error> {
         let (g, gamma) = (g.to_f64(), gamma.to_f64());
-        if !(g > 0.0 && g < 1.0 && gamma > 1.0 && gamma <= 1.0 + g) {
+        if !(g > 0.0 && g < 1.0 && gamma > 1.0 && gamma <= top_of(1.0 + g)) {
             return Err(Error::Domain);
         }
         Self::hg_and_lobe(g, (1.0 - gamma * (1.0 - g)) / g, 0.0)
@@ -178,9 +189,7 @@ impl<T: Real> Phase<T> {
     /// have no odd moments, so both share `g_HG = √((1 − δ(1 − g))/g)`.
     fn by_delta(g: T, delta: T, alpha: f64) -> Result<Self, Error> {
         let (g, delta) = (g.to_f64(), delta.to_f64());
-        // The top, 1 + g + g², with a few ULP for the caller's rounding.
-        let top = (1.0 + g + g * g) * (1.0 + 4.0 * f64::EPSILON);
-        if !(g > 0.0 && g < 1.0 && delta > 1.0 && delta <= top) {
+        if !(g > 0.0 && g < 1.0 && delta > 1.0 && delta <= top_of(1.0 + g + g * g)) {
             return Err(Error::Domain);
         }
         Self::hg_and_lobe(g, ((1.0 - delta * (1.0 - g)) / g).sqrt(), alpha)

@@ -236,7 +236,8 @@ pub unsafe extern "C" fn sk_phase_new_two_lobe_hg_f64(
 /// alpha = 2^70 (within 1e-21 of it), so the value is a fog mixture
 /// (sk_phase_get_params: g_hg = g_HG, g_d = 0, alpha = 2^70,
 /// w_d = 1 - beta). SK_ERR_DOMAIN unless 0 < g < 1 and
-/// 0.6 < gamma <= 1 + g (gamma = 1 + g is HG itself).
+/// 0.6 < gamma <= 1 + g (gamma = 1 + g is HG itself; taken with 4 DBL_EPSILON
+/// of relative slack, for a gamma rounded up from 1 + g).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_phase_new_modified_hg(
     g: f32,
@@ -259,7 +260,8 @@ pub unsafe extern "C" fn sk_phase_new_modified_hg_f64(
 /// The modified Henyey-Greenstein function of sk_phase_new_modified_hg set by
 /// g and delta = (1 - chi_3)/(1 - chi_1): g_HG = sqrt((1 - delta (1 - g))/g),
 /// beta = g/g_HG. SK_ERR_DOMAIN unless 0 < g < 1 and
-/// 1 < delta <= 1 + g + g^2 (the top is HG itself).
+/// 1 < delta <= 1 + g + g^2 (the top is HG itself; taken with 4 DBL_EPSILON
+/// of relative slack).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_phase_new_modified_hg_delta(
     g: f32,
@@ -283,7 +285,8 @@ pub unsafe extern "C" fn sk_phase_new_modified_hg_delta_f64(
 /// (1 - beta) HG(g_HG) + beta/(4 pi) (Prahl's "modified HG", 1988), set by
 /// g and gamma = (1 - chi_2)/(1 - chi_1): g_HG = (1 - gamma (1 - g))/g,
 /// beta = 1 - g/g_HG; built as sk_phase_new_two_lobe_hg(g_HG, 0, 1 - beta).
-/// SK_ERR_DOMAIN unless 0 < g < 1 and 1 < gamma <= 1 + g.
+/// SK_ERR_DOMAIN unless 0 < g < 1 and 1 < gamma <= 1 + g (the top, HG, taken
+/// with 4 DBL_EPSILON of relative slack).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_phase_new_two_lobe_hg_gamma(
     g: f32,
@@ -305,7 +308,8 @@ pub unsafe extern "C" fn sk_phase_new_two_lobe_hg_gamma_f64(
 
 /// The two-lobe HG of sk_phase_new_two_lobe_hg_gamma set by g and
 /// delta = (1 - chi_3)/(1 - chi_1): g_HG = sqrt((1 - delta (1 - g))/g).
-/// SK_ERR_DOMAIN unless 0 < g < 1 and 1 < delta <= 1 + g + g^2.
+/// SK_ERR_DOMAIN unless 0 < g < 1 and 1 < delta <= 1 + g + g^2 (the top, HG,
+/// taken with 4 DBL_EPSILON of relative slack).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_phase_new_two_lobe_hg_delta(
     g: f32,

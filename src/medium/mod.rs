@@ -1000,6 +1000,46 @@ mod tests {
         }
     }
 
+    /// Tracking's lookup (`density_inside`, no NaN or box tests) reads the
+    /// bits of [`Grid::density`] at every point inside a box away from
+    /// the origin and of extent other than 1 (where a wrong local
+    /// coordinate shows), for nodes and cell centres, columns and full
+    /// grids, and the face's value a rounding outside it (a mutation test
+    /// of the new lookup found no test reading it in such a box).
+    #[test]
+    fn tracking_reads_the_density_the_lookup_gives() {
+        let values: [f64; 30] = core::array::from_fn(|k| 0.5 + libm::sin(k as f64 * 0.61).abs());
+        let (lo, hi) = (Vec3::new(-2.0, 0.5, -1.0), Vec3::new(3.0, 0.75, 4.0));
+        let mut r = Xoshiro256PlusPlus::seed_from_u64(9);
+        for (n, len) in [([3, 2, 5], 30), ([1, 1, 5], 5)] {
+            for sampling in [Sampling::Nodes, Sampling::Cells] {
+                let g = Grid::new(&values[..len], n[0], n[1], n[2], 0.3, 1.1)
+                    .and_then(|g| g.with_box(lo, hi))
+                    .unwrap()
+                    .with_sampling(sampling);
+                let at = |a: f64, b: f64, u: f64| a + (b - a) * u;
+                for _ in 0..20_000 {
+                    let (u, v, w) = (
+                        f64::uniform(&mut r),
+                        f64::uniform(&mut r),
+                        f64::uniform(&mut r),
+                    );
+                    let p = Vec3::new(at(lo.x, hi.x, u), at(lo.y, hi.y, v), at(lo.z, hi.z, w));
+                    assert_eq!(
+                        g.density_inside(p).to_bits(),
+                        g.density(p).to_bits(),
+                        "{p:?}"
+                    );
+                }
+                let past = Vec3::new(hi.x.next_up(), lo.y.next_down(), hi.z.next_up());
+                assert_eq!(
+                    g.density_inside(past),
+                    g.density(Vec3::new(hi.x, lo.y, hi.z))
+                );
+            }
+        }
+    }
+
     /// The kept majorant is `σ_t max(density)` raised by a few ULP (at
     /// most 8ε relative), its reciprocal is `1/majorant`, and a vacuum's
     /// albedo is 0, not 0/0 (mutation tests found a majorant raised by 1

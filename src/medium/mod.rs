@@ -505,8 +505,8 @@ impl<'a, T: Real> Grid<'a, T> {
     /// the clipped box: finite (a checked origin and direction, a distance
     /// below the clipped exit), and inside up to the rounding of `o + t d`,
     /// so each local coordinate is clamped to `[0, 1]` (the face's value)
-    /// in place of the NaN and box tests, which were a tenth of a
-    /// 1 × 1 × 64 grid photon's time (measured from Rust).
+    /// in place of the NaN and box tests (8 of the 215 ns of a 1 × 1 × 64
+    /// grid photon from Rust, 6 of 270 from C).
     #[inline(always)]
     fn density_inside(&self, p: Vec3<T>) -> T {
         let (lo, k) = (self.lo, self.scale);

@@ -100,7 +100,11 @@ pub fn integrate(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
         };
         let (l, r) = (simpson(left), simpson(right));
         let delta = l + r - whole;
-        if depth == 0 || delta.abs() <= 15.0 * tol {
+        // (A span one float wide has no finer halves: its midpoint rounds
+        // onto an end. Halving it anyway, an infinite end value made both
+        // halves NaN down to the depth limit, 2³⁰ evaluations.)
+        let unresolved = !(s.a < m && m < s.b);
+        if depth == 0 || unresolved || delta.abs() <= 15.0 * tol {
             l + r + delta / 15.0
         } else {
             rec(f, left, l, tol / 2.0, depth - 1) + rec(f, right, r, tol / 2.0, depth - 1)

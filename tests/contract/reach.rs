@@ -15,7 +15,8 @@
 //! the integral of `pdf`, the inverse monotone and inverting `cdf`, the
 //! f32 model following the f64 one of its own stored parameters (the
 //! higher-precision oracle) at every f32 argument, and every sampler
-//! finite and inside `[−1, 1]`.
+//! finite and inside `[−1, 1]` (a density infinite at a pole takes the
+//! range checks alone: see `contract_at`).
 
 use crate::checks::{self, Check};
 use crate::common::{map_parallel, uniform_grid};

@@ -472,15 +472,8 @@ impl<'a, T: Real> Grid<'a, T> {
 
     /// The interpolated density at `p` (0 outside the box, NaN for a NaN
     /// coordinate).
+    #[inline]
     pub fn density(&self, p: Vec3<T>) -> T {
-        self.density_at(p)
-    }
-
-    /// [`density`](Self::density), inlined where tracking reads it once
-    /// per tentative collision: called, its point went through memory
-    /// and its loads waited on the stores (measured from C).
-    #[inline(always)]
-    pub(crate) fn density_at(&self, p: Vec3<T>) -> T {
         if p.x.is_nan() || p.y.is_nan() || p.z.is_nan() {
             return T::NAN;
         }
@@ -489,24 +482,19 @@ impl<'a, T: Real> Grid<'a, T> {
         if !(inside(p.x, lo.x, hi.x) && inside(p.y, lo.y, hi.y) && inside(p.z, lo.z, hi.z)) {
             return T::ZERO;
         }
-        // Local coordinates by the stored reciprocal extents (three
-        // divisions per lookup were a third of a grid lookup's time);
-        // `p ≥ lo` makes each `≥ 0`, and `min` keeps a point on the far
-        // face, rounded just past it, at 1.
-        let local = |x: T, l: T, k: T| ((x - l) * k).min_of(T::ONE);
-        self.interpolate(Vec3::new(
-            local(p.x, lo.x, self.scale.x),
-            local(p.y, lo.y, self.scale.y),
-            local(p.z, lo.z, self.scale.z),
-        ))
+        // Inside the box (faces included): the local coordinates clamp
+        // nothing but a point on the far face rounded just past it.
+        self.density_inside(p)
     }
 
-    /// [`density_at`](Self::density_at) at a point tracking drew inside
-    /// the clipped box: finite (a checked origin and direction, a distance
-    /// below the clipped exit), and inside up to the rounding of `o + t d`,
-    /// so each local coordinate is clamped to `[0, 1]` (the face's value)
-    /// in place of the NaN and box tests (8 of the 215 ns of a 1 × 1 × 64
-    /// grid photon from Rust, 6 of 270 from C).
+    /// [`density`](Self::density) without its NaN and box tests, as
+    /// tracking reads it: its points are finite (a checked origin and
+    /// direction, a distance below the clipped exit) and inside the
+    /// clipped box up to the rounding of `o + t d`, so each local
+    /// coordinate is clamped to `[0, 1]` (the face's value) instead (the
+    /// tests were 8 of the 215 ns of a 1 × 1 × 64 grid photon from Rust, 6
+    /// of 270 from C). Local coordinates by the stored reciprocal extents
+    /// (three divisions per lookup were a third of a grid lookup's time).
     #[inline(always)]
     fn density_inside(&self, p: Vec3<T>) -> T {
         let (lo, k) = (self.lo, self.scale);

@@ -22,9 +22,9 @@ pub const QUAD_TOL: f64 = 1e-9;
 /// singularity there (Fournier–Forand's `(1 − μ)^{−ν−1}`) are smooth
 /// functions of `t`. Each half to absolute tolerance `tol`; at a pole the
 /// span below `|1 − μ| = 2⁻⁶⁰` is added as the pole's value times its
-/// width (pass an end one float inside a pole where the density is
-/// infinite).
-pub fn graded(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
+/// width (a pole where the density is infinite is kept out of `[a, b]`
+/// by [`integrable_span`]).
+fn graded(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
     // The half [lo, hi] ⊂ [0, 1]: μ = 1 − eᵗ; mirrored for [−1, 0].
     let half = |lo: f64, hi: f64, sign: f64| {
         if lo >= hi {

@@ -205,7 +205,8 @@ enum sk_phase_model
     SK_PHASE_GEGENBAUER = 7,
     /*
      Fournier-Forand: `params[0]` = n, `params[1]` = nu = (3 - Junge
-     slope)/2, `params[2]` = the backscatter fraction.
+     slope)/2 (in (-1, -FLT_MIN], or -DBL_MIN for the double twin),
+     `params[2]` = the backscatter fraction.
      */
     SK_PHASE_FOURNIER_FORAND = 8,
     /*
@@ -1896,9 +1897,12 @@ sk_status sk_phase_new_fournier_forand(float n, float mu_j, sk_phase *out);
 sk_status sk_phase_new_fournier_forand_f64(double n, double mu_j, sk_phase_f64 *out);
 
 /*
- Fournier-Forand from the backscatter fraction 0 < b < 1/2 and 1 < n <=
- 1.8, as oceanographers specify it (nu = -ln(2 b (d90 - 1) + 1) / ln d90,
- d90 = 2 / (3 (n - 1)^2)); SK_ERR_DOMAIN outside the ranges.
+ Fournier-Forand from the backscatter fraction FLT_MIN <= b < 1/2
+ (DBL_MIN for the double twin: a smaller b would give a subnormal nu,
+ with too few bits to give b back) and 1 < n <= 1.8, as oceanographers
+ specify it (nu = -ln(2 b (d90 - 1) + 1) / ln d90, d90 = 2 / (3 (n -
+ 1)^2), rounded to the precision and kept inside (-1, 0)); SK_ERR_DOMAIN
+ outside the ranges.
  */
 sk_status sk_phase_new_fournier_forand_backscatter(float b, float n, sk_phase *out);
 

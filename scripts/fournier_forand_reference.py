@@ -99,3 +99,28 @@ with open("tests/data/fournier_forand_density.txt", "w") as f:
                 if mu < -1.0 or abs(k * (1 - mp.mpf(mu)) / 2 - 1) < mp.mpf(10) ** -30:
                     continue
                 f.write("%r %r %r %s\n" % (n, m, mu, mp.nstr(density(n, m, mu), 20)))
+
+
+def one_minus_mean(n, muj):
+    """1 - <mu> = 2 pi int (1 - mu) p dmu of the published density (its
+    normalisation gives the 1), split at the removable point delta = 1."""
+    k = 4 / (3 * (mp.mpf(n) - 1) ** 2)
+
+    def f(mu):
+        s = (1 - mu) / 2
+        if s <= 0:
+            return mp.mpf(0)
+        if abs(k * s - 1) < mp.mpf(10) ** -30:
+            mu = mu + mp.mpf(10) ** -29
+        return (1 - mu) * density(n, muj, mu)
+
+    mu1 = 1 - 2 / k
+    pts = [-1, mu1, 1] if mu1 > -1 else [-1, 1]
+    return 2 * mp.pi * mp.quad(f, pts)
+
+
+with open("tests/data/fournier_forand_mean_cosine.txt", "w") as f:
+    f.write("# n mu_J 1-<mu> (n, mu_J exact doubles; nu = (3 - mu_J)/2)\n")
+    for n in NS_D + [1.0 + 2.0**-40]:
+        for m in MUJ_D:
+            f.write("%r %r %s\n" % (n, m, mp.nstr(one_minus_mean(n, m), 25)))

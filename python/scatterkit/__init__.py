@@ -196,8 +196,10 @@ class Phase:
 
     @classmethod
     def fournier_forand_backscatter(cls, b: float, n: float) -> "Phase":
-        """Fournier–Forand from the backscatter fraction ``b`` in ``(0, 1/2)`` and the
-        index ``n`` in ``(1, 1.8]``, as oceanographers specify it (Mobley et al. 2002)."""
+        """Fournier–Forand from the backscatter fraction ``b`` in
+        ``[sys.float_info.min, 1/2)`` (a smaller ``b`` would give a subnormal
+        ``nu``, too few bits to give ``b`` back) and the index ``n`` in ``(1, 1.8]``,
+        as oceanographers specify it (Mobley et al. 2002)."""
         return cls(_sk._Phase.fournier_forand_backscatter(float(b), float(n)))
 
     @classmethod

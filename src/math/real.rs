@@ -51,6 +51,9 @@ pub trait Real:
     const INV_4PI: Self;
     /// Machine epsilon (spacing of floats just above 1).
     const EPSILON: Self;
+    /// The smallest positive normal value (below it, subnormals keep
+    /// fewer significant bits).
+    const MIN_POSITIVE: Self;
     /// Not a number.
     const NAN: Self;
     /// +∞.
@@ -153,6 +156,7 @@ macro_rules! impl_real {
             const TAU: Self = core::f64::consts::TAU as $t;
             const INV_4PI: Self = (0.25 * core::f64::consts::FRAC_1_PI) as $t;
             const EPSILON: Self = <$t>::EPSILON;
+            const MIN_POSITIVE: Self = <$t>::MIN_POSITIVE;
             const NAN: Self = <$t>::NAN;
             const INFINITY: Self = <$t>::INFINITY;
 

@@ -215,8 +215,9 @@ impl<T: Real> Phase<T> {
     pub fn fournier_forand(n: T, mu_j: T) -> Result<Self, Error> {
         FournierForand::new(n, mu_j).map(Phase::FournierForand)
     }
-    /// Fournier–Forand from the backscatter fraction `b ∈ (0, ½)` and
-    /// `n ∈ (1, 1.8]`, as oceanographers specify it.
+    /// Fournier–Forand from the backscatter fraction `b ∈
+    /// [T::MIN_POSITIVE, ½)` and `n ∈ (1, 1.8]`, as oceanographers specify
+    /// it ([`FournierForand::from_backscatter`]).
     pub fn fournier_forand_backscatter(b: T, n: T) -> Result<Self, Error> {
         FournierForand::from_backscatter(b, n).map(Phase::FournierForand)
     }

@@ -125,9 +125,9 @@ static void phase_constructors(void) {
         CHECK(sk_phase_new_fournier_forand(1.1f, f, &p) == (f > 3.0f && f < 5.0f ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_new_fournier_forand_f64(d, 4.0, &q) == (d > 1.0 && d <= 1.8 ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_new_fournier_forand_f64(1.1, d, &q) == (d > 3.0 && d < 5.0 ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_new_fournier_forand_backscatter(f, 1.1f, &p) == (f > 0.0f && f < 0.5f ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fournier_forand_backscatter(f, 1.1f, &p) == (f >= FLT_MIN && f < 0.5f ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_new_fournier_forand_backscatter(0.02f, f, &p) == (f > 1.0f && f <= 1.8f ? SK_OK : SK_ERR_DOMAIN));
-        CHECK(sk_phase_new_fournier_forand_backscatter_f64(d, 1.1, &q) == (d > 0.0 && d < 0.5 ? SK_OK : SK_ERR_DOMAIN));
+        CHECK(sk_phase_new_fournier_forand_backscatter_f64(d, 1.1, &q) == (d >= DBL_MIN && d < 0.5 ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_new_fournier_forand_backscatter_f64(0.02, d, &q) == (d > 1.0 && d <= 1.8 ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_new_gegenbauer(f, 0.5f, &p) == (f > -0.5f && f <= 1000.0f ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_phase_new_gegenbauer(0.5f, f, &p) == (g_ok ? SK_OK : SK_ERR_DOMAIN));

@@ -15,8 +15,8 @@
 //! the integral of `pdf`, the inverse monotone and inverting `cdf`, the
 //! f32 model following the f64 one of its own stored parameters (the
 //! higher-precision oracle) at every f32 argument, and every sampler
-//! finite and inside `[−1, 1]` (a density infinite at a pole takes the
-//! range checks alone: see `contract_at`).
+//! finite and inside `[−1, 1]` (an HG lobe at `|g| = 1`, a Dirac limit,
+//! takes the range checks alone: see `contract_at`).
 
 use crate::checks::{self, Check};
 use crate::common::{map_parallel, uniform_grid};
@@ -34,6 +34,9 @@ enum End {
     /// The docs give a measured band, not a formula: the edge is found
     /// and the contract checked there, but not compared.
     Measured,
+    /// Closed at the precision's smallest normal value
+    /// (`MIN_POSITIVE`).
+    SmallestNormal,
 }
 
 /// A parameter's documented range at a base set of the others.
@@ -70,7 +73,7 @@ fn top(hg: f64) -> f64 {
 
 /// Every documented range, as each constructor's docs state it.
 fn reaches() -> Vec<Reach> {
-    use End::{Closed, Measured, Open};
+    use End::{Closed, Measured, Open, SmallestNormal};
     let all: Vec<Model> = models().into_iter().chain(more_forms()).collect();
     let m = |name: &str| *all.iter().find(|m| m.name == name).unwrap();
     let r = |name: &str, param: usize, base: &'static [f64], lo: End, hi: End| Reach {
@@ -168,7 +171,7 @@ fn reaches() -> Vec<Reach> {
             "fournier-forand by backscatter",
             0,
             &[0.1, 1.1],
-            Open(0.0),
+            SmallestNormal,
             Open(0.5),
         ),
         r(
@@ -244,6 +247,7 @@ fn beyond<T: Walk>(end: End, base: T, dir: f64) -> T {
     match end {
         End::Closed(x) | End::Open(x) if x.is_infinite() => T::from_f64(x),
         End::Closed(x) | End::Open(x) => T::from_f64(x + dir * x.abs().max(1.0)),
+        End::SmallestNormal => T::from_f64(dir),
         End::Measured => base + T::from_f64(dir * base.to_f64().abs().max(1.0)),
     }
 }
@@ -269,6 +273,11 @@ fn found_edge<T: Walk>(reach: &Reach, dir: f64) -> Result<T, String> {
         End::Open(x) if first != want(x) => {
             return Err(format!(
                 "open at {x}: last accepted {last:?}, first refused {first:?}"
+            ));
+        }
+        End::SmallestNormal if last != T::MIN_POSITIVE => {
+            return Err(format!(
+                "closed at the smallest normal: last accepted {last:?}, first refused {first:?}"
             ));
         }
         _ => {}
@@ -337,17 +346,8 @@ fn inside<T: Walk>(last: T, base: T, k: i64) -> T {
     T::from_key(last.key() + step)
 }
 
-/// The float of precision `T` just below `x` (a value of `T`), or −∞ where
-/// `x` is subnormal in `T` (no relative precision to hold it to).
+/// The float of precision `T` just below `x` (a value of `T`).
 fn one_ulp_below<T: Walk>(x: f64) -> f64 {
-    let normal = if T::EPSILON.to_f64() == f64::EPSILON {
-        f64::MIN_POSITIVE
-    } else {
-        f32::MIN_POSITIVE as f64
-    };
-    if x.abs() < normal {
-        return f64::NEG_INFINITY;
-    }
     T::from_key(T::from_f64(x).key() - 1).to_f64()
 }
 
@@ -371,12 +371,12 @@ fn finite_in_range<T: Walk>(p: &Phase<T>) -> Check {
         if d.is_nan() || d < 0.0 {
             return Err(format!("pdf({m}) = {d}"));
         }
-        // One ulp of the previous value of slack for monotone, none held
-        // among subnormal values: Fournier–Forand's CDF at b = 5·10⁻³²⁴
-        // (its ν subnormal) wanders by tens of subnormals near F = 0.
-        // (HG's and Schlick's stepped back by up to five ulps of 1 near
-        // F = 1 as |g| → 1 when this sweep first allowed none; both now
-        // take the upper tail there.)
+        // One ulp of the previous value of slack for monotone, subnormal
+        // values included. (HG's and Schlick's stepped back by up to five
+        // ulps of 1 near F = 1 as |g| → 1 when this sweep first allowed
+        // none; both now take the upper tail there. Fournier–Forand's CDF
+        // wandered by tens of subnormals near F = 0 at b = 5·10⁻³²⁴, its ν
+        // subnormal; such b are now refused.)
         if !(0.0..=1.0).contains(&c) || c < one_ulp_below::<T>(prev) {
             return Err(format!("cdf({m}) = {c} after {prev}"));
         }
@@ -402,6 +402,16 @@ fn finite_in_range<T: Walk>(p: &Phase<T>) -> Check {
     Ok(())
 }
 
+/// Whether parameter `x` of `r` at ±1 is an HG lobe's `g` (HG alone, either
+/// lobe of the two-lobe HG, the fog's HG lobe).
+fn dirac_limit(r: &Reach, x: f64) -> bool {
+    let lobe = matches!(
+        (r.model.name, r.param),
+        ("henyey-greenstein", 0) | ("two-lobe hg", 0 | 1) | ("fog by parameters", 0)
+    );
+    lobe && x.abs() == 1.0
+}
+
 /// The contract at one parameter set near an edge, in precision `T`
 /// (the f64 checks against quadrature for f64; the f32 model against the
 /// f64 one of the same, f32-rounded, parameters for f32).
@@ -413,24 +423,23 @@ fn contract_at<T: Walk>(r: &Reach, x: T) -> Check {
     let mut params = r.base.to_vec();
     params[r.param] = x.to_f64();
     let p64 = f64::build(&r.model, &params).ok_or("the f64 twin refused")?;
-    // A density infinite at a pole takes `finite_in_range` alone: the
-    // Dirac limits (HG's |g| = 1, alone or as a lobe of a mixture) have
-    // no density to integrate, and Fournier–Forand's power law is
-    // integrable but, at its edges, fails the mean-cosine check (its
-    // closed form, Simpson over u, is 1.5·10⁻⁴ low as ν → 0) and f32
-    // against f64 as b → 0 or ½: found, not yet fixed
-    // (docs/measured/robustness.md).
-    let (top, bottom) = (p64.pdf(1.0), p64.pdf(-1.0));
-    if top.is_infinite() || bottom.is_infinite() {
+    // An HG lobe at |g| = 1 is a Dirac limit, with no density to check:
+    // the range checks alone. (Fournier–Forand's integrable power law is
+    // infinite at μ = 1 too, and takes every check.)
+    if dirac_limit(r, x.to_f64()) {
         return Ok(());
     }
+    let (top, bottom) = (p64.pdf(1.0), p64.pdf(-1.0));
     if T::EPSILON.to_f64() == f64::EPSILON {
         checks::inverse_monotone(&p64, r.model.mu_tol.1)?;
         // A lobe narrower than the floats at its pole puts more than the
         // quadrature's tolerance into one float's span there: no
         // quadrature over f64 arguments can see it (Draine at 1 − g =
         // 2⁻⁵³: width 10⁻³², spacing 10⁻¹⁶).
-        let cell = TAU * (top * f64::EPSILON / 2.0).max(bottom * f64::EPSILON);
+        // (An infinite pole is integrated from the CDF: see
+        // `checks::normalised`.)
+        let finite = |d: f64| if d.is_finite() { d } else { 0.0 };
+        let cell = TAU * (finite(top) * f64::EPSILON / 2.0).max(finite(bottom) * f64::EPSILON);
         if cell <= checks::QUAD_TOL {
             checks::normalised(&p64)?;
             checks::cdf_is_integral(&p64)?;

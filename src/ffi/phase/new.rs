@@ -153,9 +153,12 @@ pub unsafe extern "C" fn sk_phase_new_fournier_forand_f64(
     unsafe { construct(out, Phase::fournier_forand(n, mu_j)) }
 }
 
-/// Fournier-Forand from the backscatter fraction 0 < b < 1/2 and 1 < n <=
-/// 1.8, as oceanographers specify it (nu = -ln(2 b (d90 - 1) + 1) / ln d90,
-/// d90 = 2 / (3 (n - 1)^2)); SK_ERR_DOMAIN outside the ranges.
+/// Fournier-Forand from the backscatter fraction FLT_MIN <= b < 1/2
+/// (DBL_MIN for the double twin: a smaller b would give a subnormal nu,
+/// with too few bits to give b back) and 1 < n <= 1.8, as oceanographers
+/// specify it (nu = -ln(2 b (d90 - 1) + 1) / ln d90, d90 = 2 / (3 (n -
+/// 1)^2), rounded to the precision and kept inside (-1, 0)); SK_ERR_DOMAIN
+/// outside the ranges.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_phase_new_fournier_forand_backscatter(
     b: f32,

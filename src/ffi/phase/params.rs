@@ -22,7 +22,8 @@ pub enum sk_phase_model {
     /// The Gegenbauer kernel: `params[0]` = alpha, `params[1]` = g.
     SK_PHASE_GEGENBAUER = 7,
     /// Fournier-Forand: `params[0]` = n, `params[1]` = nu = (3 - Junge
-    /// slope)/2, `params[2]` = the backscatter fraction.
+    /// slope)/2 (in (-1, -FLT_MIN], or -DBL_MIN for the double twin),
+    /// `params[2]` = the backscatter fraction.
     SK_PHASE_FOURNIER_FORAND = 8,
     /// Schlick's phase function (1 - k^2)/(4 pi (1 - k mu)^2): `params[0]` = k.
     SK_PHASE_SCHLICK = 9,

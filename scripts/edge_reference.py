@@ -16,6 +16,10 @@ Models, with the parameters as the library stores them (exact doubles):
       Draine's density (1 - g^2)(1 + alpha mu^2) / (2 (1 + alpha (1 + 2 g^2)/3)
       y^(3/2)), its CDF by quadrature split where it bends.
       HG: density (1 - g^2) / (2 y^(3/2)), CDF (1 - g^2)/(2g) (1/sqrt(y) - 1/(1+g)).
+  schlick k  -- Schlick's (1 - k^2) / (2 (1 - k mu)^2) per unit mu, CDF
+      (1 - k)(1 + mu) / (2 (1 - k mu)).
+  rayleigh_depolarized rho  -- Chandrasekhar's 3 (1 + 3 c + (1 - c) mu^2) /
+      (8 (1 + 2 c)) per unit mu, c = rho / (2 - rho), CDF its integral from -1.
 The pdf written is per steradian (the density of mu over 2 pi), as the
 library's pdf.
 """
@@ -62,6 +66,15 @@ def model(words, mu):
         return gegenbauer(v[0], v[1], mu)
     if words[0] == "hg":
         return hg(v[0], mu)
+    if words[0] == "schlick":
+        k = v[0]
+        return (1 - k * k) / (2 * (1 - k * mu) ** 2), (1 - k) * (1 + mu) / (2 * (1 - k * mu))
+    if words[0] == "rayleigh_depolarized":
+        c = v[0] / (2 - v[0])
+        norm = 8 * (1 + 2 * c)
+        dens = 3 * (1 + 3 * c + (1 - c) * mu * mu) / norm
+        cdf = (3 * (1 + 3 * c) * (mu + 1) + (1 - c) * (mu ** 3 + 1)) / norm
+        return dens, cdf
     g_hg, g_d, alpha, w = v
     if alpha == 0:  # two HG lobes
         second = hg(g_d, mu)

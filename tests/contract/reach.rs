@@ -1,8 +1,9 @@
 //! Each constructor's reach, found to the bit, and the contract held at
 //! its ends. For every parameter of each constructor form in `reaches`
 //! (the registry's models, the fog by its four parameters, the HG forms
-//! set by moments and Fournier–Forand by backscatter; the Gegenbauer
-//! kernel by `γ` and `δ`, whose bands are measured, is swept in
+//! set by moments, Fournier–Forand by backscatter, Schlick's fit to HG and
+//! `Phase::particle`; a mixture's weight in its own test below; the
+//! Gegenbauer kernel by `γ` and `δ`, whose bands are measured, is swept in
 //! `tests/models/gegenbauer.rs`), the others at a base set, bisection
 //! over the ordered bit patterns between an accepted value and a refused
 //! one finds the last accepted float and the first refused one, in f32
@@ -21,6 +22,8 @@
 use crate::checks::{self, Check};
 use crate::common::{map_parallel, uniform_grid};
 use crate::registry::{Model, models};
+use scatterkit::mixture::{Mixture, Part};
+use scatterkit::phase::schlick::Schlick;
 use scatterkit::{Phase, PhaseFunction, Real};
 use std::f64::consts::TAU;
 
@@ -54,7 +57,9 @@ const INF: f64 = f64::INFINITY;
 const ITERATIVE: (f64, f64) = (3e-7, 1e-13);
 
 /// The forms the registry does not hold (it has one constructor per
-/// model): the fog by its four parameters and the forms set by moments.
+/// model): the fog by its four parameters, the forms set by moments,
+/// Fournier–Forand by backscatter, Schlick's fit to HG and the cheapest
+/// model for a droplet diameter (`Phase::particle`).
 fn more_forms() -> Vec<Model> {
     vec![
         model!("fog by parameters", |p| Phase::fog(p[0], p[1], p[2], p[3]), sets: &[], bad: &[], golden: ("", &[]), mu_tol: ITERATIVE),
@@ -63,6 +68,8 @@ fn more_forms() -> Vec<Model> {
         model!("two-lobe hg by γ", |p| Phase::two_lobe_hg_gamma(p[0], p[1]), sets: &[], bad: &[], golden: ("", &[]), mu_tol: ITERATIVE),
         model!("two-lobe hg by δ", |p| Phase::two_lobe_hg_delta(p[0], p[1]), sets: &[], bad: &[], golden: ("", &[]), mu_tol: ITERATIVE),
         model!("fournier-forand by backscatter", |p| Phase::fournier_forand_backscatter(p[0], p[1]), sets: &[], bad: &[], golden: ("", &[]), mu_tol: ITERATIVE),
+        model!("schlick approximating hg", |p| Schlick::approximating_hg(p[0]).map(Phase::from), sets: &[], bad: &[], golden: ("", &[]), mu_tol: ITERATIVE),
+        model!("particle", |p| Phase::particle(p[0], p[1]), sets: &[], bad: &[], golden: ("", &[]), mu_tol: ITERATIVE),
     ]
 }
 
@@ -181,6 +188,9 @@ fn reaches() -> Vec<Reach> {
             Open(1.0),
             Closed(1.8),
         ),
+        r("schlick approximating hg", 0, &[0.5], Open(-1.0), Open(1.0)),
+        r("particle", 0, &[10.0, 0.05], Open(0.0), Closed(50.0)),
+        r("particle", 1, &[10.0, 0.05], Open(0.0), Open(1.0)),
     ]
 }
 
@@ -351,9 +361,26 @@ fn one_ulp_below<T: Walk>(x: f64) -> f64 {
     T::from_key(T::from_f64(x).key() - 1).to_f64()
 }
 
+/// A phase function with a lobe-by-lobe sampler besides its inverse.
+trait ByLobe<T: Real>: PhaseFunction<T> {
+    fn by_lobe(&self, u: T) -> T;
+}
+
+impl<T: Real> ByLobe<T> for Phase<T> {
+    fn by_lobe(&self, u: T) -> T {
+        self.sample_cos_by_lobe(u)
+    }
+}
+
+impl<T: Real> ByLobe<T> for Mixture<'_, T> {
+    fn by_lobe(&self, u: T) -> T {
+        self.sample_cos_by_lobe(u)
+    }
+}
+
 /// Every sampler finite and in `[−1, 1]`, the density finite and ≥ 0, the
 /// CDF in `[0, 1]` and non-decreasing with ends 0 and 1.
-fn finite_in_range<T: Walk>(p: &Phase<T>) -> Check {
+fn finite_in_range<T: Walk>(p: &impl ByLobe<T>) -> Check {
     let eps = T::EPSILON.to_f64();
     let near_ends = (0..64).flat_map(|k| {
         let x = 1.0 - eps * k as f64 / 2.0;
@@ -390,10 +417,7 @@ fn finite_in_range<T: Walk>(p: &Phase<T>) -> Check {
     let us = uniform_grid(4001).chain([eps / 4.0, 1.0 - eps / 4.0]);
     for u in us {
         let u = T::from_f64(u);
-        for (what, mu) in [
-            ("sample_cos", p.sample_cos(u)),
-            ("by_lobe", p.sample_cos_by_lobe(u)),
-        ] {
+        for (what, mu) in [("sample_cos", p.sample_cos(u)), ("by_lobe", p.by_lobe(u))] {
             if mu.is_nan() || mu.to_f64().abs() > 1.0 {
                 return Err(format!("{what}({u:?}) = {mu:?}"));
             }
@@ -474,4 +498,59 @@ fn contract_near<T: Walk>(r: &Reach, dir: f64) -> Check {
 #[test]
 fn the_contract_holds_at_every_edge() {
     on_every_end("at the edges", contract_near::<f32>, contract_near::<f64>);
+}
+
+/// A mixture's weight: finite and `≥ 0` beside a part of weight 1
+/// (`Mixture::new`), so the reach is `[0, MAX]` (`MAX + 1` rounds to
+/// `MAX`, a finite total); bisected to the bit like the constructors
+/// above, the accepted set an interval, and the contract at 0, at the
+/// smallest subnormal and at `MAX` and 2⁴ and 2²⁰ floats inside each end
+/// (a part of weight 0; one of weight 10⁻³²⁴ beside 1; a part of 1 beside
+/// `MAX`, its normalised weight subnormal).
+#[test]
+fn a_mixture_weight_reaches_zero_and_the_largest_float() {
+    fn mixture<T: Walk>(w: T) -> Result<Mixture<'static, T>, scatterkit::Error> {
+        let hg = Phase::henyey_greenstein(T::from_f64(0.7)).unwrap();
+        Mixture::new(&[
+            (Part::Phase(hg), w),
+            (Part::Phase(Phase::rayleigh()), T::ONE),
+        ])
+    }
+    fn sweep<T: Walk>() -> Check {
+        let ok = |w: T| mixture(w).is_ok();
+        let one = T::ONE;
+        let (low, below) = edge(&ok, one, T::from_f64(-1.0));
+        let (high, above) = edge(&ok, one, T::INFINITY);
+        if low.key() != 0 || below.key() != -1 || above != T::INFINITY {
+            return Err(format!("ends {below:?} | {low:?} … {high:?} | {above:?}"));
+        }
+        for end in [low, high] {
+            let (kb, ke) = (one.key(), end.key());
+            for i in 0..=256i128 {
+                let w = T::from_key((kb as i128 + (ke as i128 - kb as i128) * i / 256) as i64);
+                if !ok(w) {
+                    return Err(format!("{w:?} refused between 1 and {end:?}"));
+                }
+            }
+            for k in [0, 1, 1 << 4, 1 << 20] {
+                let w = inside(end, one, k);
+                let m = mixture(w).map_err(|e| format!("{w:?}: {e:?}"))?;
+                finite_in_range(&m).map_err(|e| format!("at {w:?}: {e}"))?;
+                let m64 = mixture(w.to_f64()).map_err(|e| format!("{w:?} in f64: {e:?}"))?;
+                checks::normalised(&m64).map_err(|e| format!("at {w:?}: {e}"))?;
+                checks::cdf_is_integral(&m64).map_err(|e| format!("at {w:?}: {e}"))?;
+                checks::inverse_monotone(&m64, ITERATIVE.1)
+                    .map_err(|e| format!("at {w:?}: {e}"))?;
+            }
+        }
+        Ok(())
+    }
+    let found: Vec<String> = [
+        ("f32", sweep::<f32> as fn() -> Check),
+        ("f64", sweep::<f64>),
+    ]
+    .into_iter()
+    .filter_map(|(name, f)| f().err().map(|e| format!("{name}: {e}")))
+    .collect();
+    assert!(found.is_empty(), "{}", found.join("\n"));
 }

@@ -5,7 +5,8 @@
 //! the two-lobe HG with an isotropic lobe, each on grids that reach within
 //! 10⁻⁹ of both ends of its reach at several `g`; and the kernel, HG, two
 //! HG lobes and the fog (an HG and a Draine lobe) set directly with
-//! `1 − |g|` down to 10⁻⁹.
+//! `1 − |g|` down to 10⁻⁹; Schlick's `k` and the depolarised Rayleigh `ρ`
+//! up to their last float below 1.
 //!
 //! Every case a constructor accepts must have, in f64: its density within
 //! 10⁻⁹ (relative; 10⁻¹² at the forward peak) and its CDF within 10⁻¹² of
@@ -26,6 +27,7 @@
 //! still return exactly those parameters.
 
 use crate::common::rng;
+use scatterkit::phase::schlick::Schlick;
 use scatterkit::{Phase, PhaseFunction, Real};
 
 /// The requests: `(kind, g, x)` for the constructors by moments, or the
@@ -64,6 +66,16 @@ fn requests() -> Vec<(&'static str, f64, f64, f64, f64)> {
         // The fog mixture with a Draine lobe (α > 0) beside the HG lobe.
         v.push(("fog", g, 0.999_999, 5.0, 0.3));
         v.push(("fog", -0.9, g, 20.0, 0.5));
+    }
+    // Schlick's k and the depolarisation ρ up to their last float (both
+    // ranges open at 1).
+    let last = 1.0 - f64::EPSILON / 2.0;
+    for k in [0.999, 1.0 - 1e-6, 1.0 - 1e-9, last] {
+        v.push(("schlick", k, 0.0, 0.0, 0.0));
+        v.push(("schlick", -k, 0.0, 0.0, 0.0));
+    }
+    for rho in [0.0, 0.028, 0.5, 1.0 - 1e-9, last] {
+        v.push(("rayleigh_depolarized", rho, 0.0, 0.0, 0.0));
     }
     v
 }
@@ -113,6 +125,8 @@ fn build<T: Real>(kind: &str, p: [f64; 4]) -> Result<Phase<T>, scatterkit::Error
         "two_lobe" => Phase::two_lobe_hg(t(a), t(b), t(c)),
         "hg" => Phase::henyey_greenstein(t(a)),
         "fog" => Phase::fog(t(a), t(b), t(c), t(d)),
+        "schlick" => Schlick::new(t(a)).map(Phase::from),
+        "rayleigh_depolarized" => Phase::rayleigh_depolarized(t(a)),
         _ => unreachable!(),
     }
 }
@@ -127,6 +141,8 @@ fn describe(p: &Phase<f64>) -> String {
             let (a, b, c, d) = f.params();
             format!("fog {a:?} {b:?} {c:?} {d:?}")
         }
+        Phase::Schlick(k) => format!("schlick {:?}", k.k()),
+        Phase::RayleighDepolarized(r) => format!("rayleigh_depolarized {:?}", r.rho()),
         other => panic!("unexpected model {other:?}"),
     }
 }

@@ -81,8 +81,8 @@ impl<T: Real> FournierForand<T> {
     /// `f64::MIN_POSITIVE`, 2.2·10⁻³⁰⁸): below it `ν` (about `2b` or
     /// more) would be subnormal, with too few bits for the model to give
     /// back the `b` asked for. `ν` is rounded to `T` and kept inside `(−1,
-    /// 0)` (as `b → ½`, `ν → −1`, and in f32 it rounded onto −1, outside
-    /// the model's domain). [`Error::Domain`] outside the ranges (NaN
+    /// 0)` (as `b → ½`, `ν → −1`, and its rounding reached −1, outside the
+    /// model's domain). [`Error::Domain`] outside the ranges (NaN
     /// fails).
     pub fn from_backscatter(b: T, n: T) -> Result<Self, Error> {
         let (bf, nf) = (b.to_f64(), n.to_f64());
@@ -91,8 +91,12 @@ impl<T: Real> FournierForand<T> {
             return Err(Error::Domain);
         }
         let d90 = 2.0 / (3.0 * (nf - 1.0) * (nf - 1.0));
+        // ν ∈ (−1, 0) for every b and n accepted here, but within a few
+        // ulps of b = ½ the quotient can round onto or below −1 (for about
+        // one n in 30 at the last float below ½): `nu_in` rounds it back
+        // inside, where refusing it left holes below ½.
         let nu = -libm::log1p(2.0 * bf * (d90 - 1.0)) / libm::log(d90);
-        if !(nu > -1.0 && nu < 0.0) {
+        if nu.is_nan() || nu >= 0.0 {
             return Err(Error::Domain);
         }
         Ok(Self::from_parts(n, nu_in(nu)))

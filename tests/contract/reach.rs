@@ -2,7 +2,8 @@
 //! its ends. For every parameter of each constructor form in `reaches`
 //! (the registry's models, the fog by its four parameters, the HG forms
 //! set by moments, Fournier–Forand by backscatter, Schlick's fit to HG and
-//! `Phase::particle`; a mixture's weight in its own test below; the
+//! `Phase::particle`, and Fournier–Forand by its stored `(n, ν)` through
+//! `Phase::from_params`; a mixture's weight in its own test below; the
 //! Gegenbauer kernel by `γ` and `δ`, whose bands are measured, is swept in
 //! `tests/models/gegenbauer.rs`), the others at a base set, bisection
 //! over the ordered bit patterns between an accepted value and a refused
@@ -11,8 +12,9 @@
 //! (closed: the edge is the last accepted; open: the first refused), and
 //! values between the base and the edge must all be accepted (the
 //! accepted set is an interval). Then, at the last accepted value and at
-//! 2⁴ and 2²⁰ floats inside it, the density, CDF and inverse keep the
-//! contract: normalised (by a quadrature graded toward both poles), `cdf`
+//! 2⁴ and 2²⁰ floats inside it, the parameters the model reports rebuild
+//! it bit for bit, and the density, CDF and inverse keep the contract:
+//! normalised (by a quadrature graded toward both poles), `cdf`
 //! the integral of `pdf`, the inverse monotone and inverting `cdf`, the
 //! f32 model following the f64 one of its own stored parameters (the
 //! higher-precision oracle) at every f32 argument, and every sampler
@@ -40,6 +42,8 @@ enum End {
     /// Closed at the precision's smallest normal value
     /// (`MIN_POSITIVE`).
     SmallestNormal,
+    /// Closed at minus it.
+    MinusSmallestNormal,
 }
 
 /// A parameter's documented range at a base set of the others.
@@ -70,6 +74,8 @@ fn more_forms() -> Vec<Model> {
         model!("fournier-forand by backscatter", |p| Phase::fournier_forand_backscatter(p[0], p[1]), sets: &[], bad: &[], golden: ("", &[]), mu_tol: ITERATIVE),
         model!("schlick approximating hg", |p| Schlick::approximating_hg(p[0]).map(Phase::from), sets: &[], bad: &[], golden: ("", &[]), mu_tol: ITERATIVE),
         model!("particle", |p| Phase::particle(p[0], p[1]), sets: &[], bad: &[], golden: ("", &[]), mu_tol: ITERATIVE),
+        // Tag 8 (`SK_PHASE_FOURNIER_FORAND`): (n, ν, b), b not read.
+        model!("fournier-forand by params", |p| Phase::from_params(8, &[p[0], p[1], p[0]]), sets: &[], bad: &[], golden: ("", &[]), mu_tol: ITERATIVE),
     ]
 }
 
@@ -80,7 +86,7 @@ fn top(hg: f64) -> f64 {
 
 /// Every documented range, as each constructor's docs state it.
 fn reaches() -> Vec<Reach> {
-    use End::{Closed, Measured, Open, SmallestNormal};
+    use End::{Closed, Measured, MinusSmallestNormal, Open, SmallestNormal};
     let all: Vec<Model> = models().into_iter().chain(more_forms()).collect();
     let m = |name: &str| *all.iter().find(|m| m.name == name).unwrap();
     let r = |name: &str, param: usize, base: &'static [f64], lo: End, hi: End| Reach {
@@ -191,6 +197,20 @@ fn reaches() -> Vec<Reach> {
         r("schlick approximating hg", 0, &[0.5], Open(-1.0), Open(1.0)),
         r("particle", 0, &[10.0, 0.05], Open(0.0), Closed(50.0)),
         r("particle", 1, &[10.0, 0.05], Open(0.0), Open(1.0)),
+        r(
+            "fournier-forand by params",
+            0,
+            &[1.1, -0.5],
+            Open(1.0),
+            Closed(1.8),
+        ),
+        r(
+            "fournier-forand by params",
+            1,
+            &[1.1, -0.5],
+            Open(-1.0),
+            MinusSmallestNormal,
+        ),
     ]
 }
 
@@ -257,7 +277,7 @@ fn beyond<T: Walk>(end: End, base: T, dir: f64) -> T {
     match end {
         End::Closed(x) | End::Open(x) if x.is_infinite() => T::from_f64(x),
         End::Closed(x) | End::Open(x) => T::from_f64(x + dir * x.abs().max(1.0)),
-        End::SmallestNormal => T::from_f64(dir),
+        End::SmallestNormal | End::MinusSmallestNormal => T::from_f64(dir),
         End::Measured => base + T::from_f64(dir * base.to_f64().abs().max(1.0)),
     }
 }
@@ -288,6 +308,11 @@ fn found_edge<T: Walk>(reach: &Reach, dir: f64) -> Result<T, String> {
         End::SmallestNormal if last != T::MIN_POSITIVE => {
             return Err(format!(
                 "closed at the smallest normal: last accepted {last:?}, first refused {first:?}"
+            ));
+        }
+        End::MinusSmallestNormal if last != -T::MIN_POSITIVE => {
+            return Err(format!(
+                "closed at minus the smallest normal: last accepted {last:?}, first refused {first:?}"
             ));
         }
         _ => {}
@@ -443,6 +468,13 @@ fn contract_at<T: Walk>(r: &Reach, x: T) -> Check {
     let Some(p) = build::<T>(r, x) else {
         return Err(format!("{x:?} refused"));
     };
+    // The parameters a model reports rebuild it, bit for bit (a model
+    // saved and restored, or handed through the C layer's params).
+    let (tag, n, stored) = p.params();
+    match Phase::<T>::from_params(tag, &stored[..n]) {
+        Ok(q) if q == p => {}
+        other => return Err(format!("params {:?} rebuild {other:?}", &stored[..n])),
+    }
     finite_in_range(&p)?;
     let mut params = r.base.to_vec();
     params[r.param] = x.to_f64();

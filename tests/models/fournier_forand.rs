@@ -11,7 +11,7 @@ use crate::common;
 
 use common::chi2::{pearson, threshold};
 use common::{CHI2_SAMPLES, rng};
-use scatterkit::{FournierForand, PhaseFunction, Real, Vec3};
+use scatterkit::{FournierForand, Phase, PhaseFunction, Real, Vec3};
 
 struct Row {
     n: f64,
@@ -359,4 +359,49 @@ fn mean_cosine_against_40_digits() {
     }
     assert!(worst.0 <= 2e-15, "{worst:?}");
     eprintln!("largest |⟨μ⟩ error| {:.2e} at {}", worst.0, worst.1);
+}
+
+/// `b = ½` is refused at every `n`, and the float below it gives `ν`
+/// inside `(−1, 0)`, in f32 and f64: at `b = ½`, `ν = −ln(1 + (δ₉₀ − 1)) /
+/// ln δ₉₀` is −1 to rounding, and above −1 for about 3 % of `n` (so the
+/// check on `b` itself is what refuses it there); below ½ in f32, `ν`
+/// rounded onto −1 before it was kept inside. 4001 `n` over `(1, 1.8]`.
+#[test]
+fn half_is_refused_and_just_below_it_nu_stays_inside() {
+    fn check<T: Real>() {
+        let half = T::from_f64(0.5);
+        let below = half - T::EPSILON / T::from_f64(4.0);
+        assert!(below < half);
+        for i in 1..=4001 {
+            let n = T::from_f64(1.0 + 0.8 * f64::from(i) / 4001.0);
+            assert!(
+                FournierForand::from_backscatter(half, n).is_err(),
+                "b = ½ accepted at n = {n:?}"
+            );
+            let nu = FournierForand::from_backscatter(below, n).unwrap().nu();
+            assert!(
+                nu > -T::ONE && nu < T::ZERO,
+                "ν = {nu:?} at n = {n:?}, b = {below:?}"
+            );
+        }
+    }
+    check::<f32>();
+    check::<f64>();
+}
+
+/// An f64 model whose `ν` is below f32's normal range casts to the f32
+/// model at `ν = −f32::MIN_POSITIVE`, not to `ν = −0` (no model), and an
+/// f32 model casts to f64 with its `ν` unchanged.
+#[test]
+fn a_cast_keeps_nu_inside() {
+    let tiny = Phase::<f64>::fournier_forand_backscatter(1e-300, 1.1).unwrap();
+    let Phase::FournierForand(f) = tiny.cast::<f32>() else {
+        panic!("not Fournier–Forand");
+    };
+    assert_eq!(f.nu(), -f32::MIN_POSITIVE);
+    let f32_model = FournierForand::<f32>::from_backscatter(0.4999, 1.1).unwrap();
+    let Phase::FournierForand(g) = Phase::FournierForand(f32_model).cast::<f64>() else {
+        panic!("not Fournier–Forand");
+    };
+    assert_eq!(g.nu(), f64::from(f32_model.nu()));
 }

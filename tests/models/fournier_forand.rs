@@ -314,8 +314,19 @@ fn the_density_scales_with_nu_as_nu_goes_to_zero() {
 /// off at the smallest).
 #[test]
 fn density_against_50_digits() {
+    let worst = worst_over("fournier_forand_density.txt", |v| {
+        let p = FournierForand::<f64>::new(v[0], v[1]).unwrap();
+        ((p.pdf(v[2]) - v[3]) / v[3]).abs()
+    });
+    assert!(worst.0 <= 1e-11, "{worst:?}");
+}
+
+/// The largest `err` over the rows of `tests/data/<name>` (numbers, `#`
+/// comments skipped), with its row.
+fn worst_over(name: &str, err: impl Fn(&[f64]) -> f64) -> (f64, String) {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/fournier_forand_density.txt");
+        .join("tests/data")
+        .join(name);
     let text = std::fs::read_to_string(path).unwrap();
     let mut worst = (0.0f64, String::new());
     for line in text.lines().filter(|l| !l.starts_with('#')) {
@@ -323,13 +334,12 @@ fn density_against_50_digits() {
             .split_whitespace()
             .map(|x| x.parse().unwrap())
             .collect();
-        let p = FournierForand::<f64>::new(v[0], v[1]).unwrap();
-        let err = ((p.pdf(v[2]) - v[3]) / v[3]).abs();
-        if err > worst.0 {
-            worst = (err, line.to_string());
+        let e = err(&v);
+        if e >= worst.0 {
+            worst = (e, line.to_string());
         }
     }
-    assert!(worst.0 <= 1e-11, "{worst:?}");
+    worst
 }
 
 /// The mean cosine against `1 − ⟨μ⟩ = 2π ∫ (1 − μ) p dμ` of the published
@@ -340,23 +350,12 @@ fn density_against_50_digits() {
 /// (the inverse is a step at `u = 1` as `ν → 0`).
 #[test]
 fn mean_cosine_against_40_digits() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/fournier_forand_mean_cosine.txt");
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut worst = (0.0f64, String::new());
-    for line in text.lines().filter(|l| !l.starts_with('#')) {
-        let v: Vec<f64> = line
-            .split_whitespace()
-            .map(|x| x.parse().unwrap())
-            .collect();
+    let worst = worst_over("fournier_forand_mean_cosine.txt", |v| {
         let g = FournierForand::<f64>::new(v[0], v[1])
             .unwrap()
             .mean_cosine();
-        let err = (g - (1.0 - v[2])).abs();
-        if err >= worst.0 {
-            worst = (err, line.to_string());
-        }
-    }
+        (g - (1.0 - v[2])).abs()
+    });
     assert!(worst.0 <= 2e-15, "{worst:?}");
     eprintln!("largest |⟨μ⟩ error| {:.2e} at {}", worst.0, worst.1);
 }

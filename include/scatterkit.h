@@ -1220,7 +1220,9 @@ typedef struct {
  spectrum): each channel's coefficients per unit density, the hero whose
  majorant draws the free paths, and where each channel's results go.
  The medium's majorants must bound the density itself (build them on a
- grid with sigma_a + sigma_s = 1).
+ grid with sigma_a + sigma_s = 1), and each channel's sigma_a + sigma_s
+ times every majorant the ray meets must be finite (SK_ERR_DOMAIN where
+ one overflows: tracking could not step through it).
  */
 typedef struct {
     /*
@@ -3485,8 +3487,9 @@ sk_status sk_homogeneous_sample_f64(const double *sigma_t,
  interpolated trilinearly; sigma_t(p) = (sigma_a + sigma_s) density(p).
  Checks every value once, here. SK_ERR_NULL for NULL density or out; SK_ERR_SIZE
  for a zero dimension or a product that overflows; SK_ERR_DOMAIN for a
- negative or non-finite value or coefficient, or a majorant
- (sigma_a + sigma_s) * max(density) that overflows.
+ negative or non-finite value or coefficient, or a majorant that
+ overflows: (sigma_a + sigma_s) * max(density) * (1 + 4 FLT_EPSILON),
+ the grid's majorant with its slack (DBL_EPSILON for sk_grid_new_f64).
  */
 sk_status sk_grid_new(const float *density,
                       uint32_t nx,

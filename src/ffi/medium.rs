@@ -298,8 +298,9 @@ pub unsafe extern "C" fn sk_homogeneous_sample_f64(
 /// interpolated trilinearly; sigma_t(p) = (sigma_a + sigma_s) density(p).
 /// Checks every value once, here. SK_ERR_NULL for NULL density or out; SK_ERR_SIZE
 /// for a zero dimension or a product that overflows; SK_ERR_DOMAIN for a
-/// negative or non-finite value or coefficient, or a majorant
-/// (sigma_a + sigma_s) * max(density) that overflows.
+/// negative or non-finite value or coefficient, or a majorant that
+/// overflows: (sigma_a + sigma_s) * max(density) * (1 + 4 FLT_EPSILON),
+/// the grid's majorant with its slack (DBL_EPSILON for sk_grid_new_f64).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_grid_new(
     density: *const f32,

@@ -97,7 +97,9 @@ pub struct sk_medium_f64 {
 /// spectrum): each channel's coefficients per unit density, the hero whose
 /// majorant draws the free paths, and where each channel's results go.
 /// The medium's majorants must bound the density itself (build them on a
-/// grid with sigma_a + sigma_s = 1).
+/// grid with sigma_a + sigma_s = 1), and each channel's sigma_a + sigma_s
+/// times every majorant the ray meets must be finite (SK_ERR_DOMAIN where
+/// one overflows: tracking could not step through it).
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct sk_spectrum {

@@ -316,8 +316,11 @@ impl<'a, T: Real> Grid<'a, T> {
     /// Validates and borrows `density`. [`Error::Size`] for a zero dimension,
     /// a product that overflows, or a buffer shorter than `nx·ny·nz`;
     /// [`Error::Domain`] for a negative or non-finite density value or
-    /// coefficient, or a majorant `(σ_a + σ_s)·max(density)` that overflows
-    /// (tracking could not step through it).
+    /// coefficient, or a majorant that overflows (tracking could not step
+    /// through it): `(σ_a + σ_s)·max(density)·(1 + 4ε)`, the
+    /// [`majorant`](Self::majorant) with its slack, so the last values
+    /// accepted are up to 8 ulp below where the product alone would
+    /// overflow.
     pub fn new(
         density: &'a [T],
         nx: usize,

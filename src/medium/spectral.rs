@@ -67,6 +67,8 @@ pub struct Ratios<'a, T> {
 struct Acc<T> {
     n: usize,
     k: [T; MAX_CHANNELS],
+    /// The largest `k_c`.
+    k_max: T,
     weight: [T; MAX_CHANNELS],
     r_u: [T; MAX_CHANNELS],
     r_l: [T; MAX_CHANNELS],
@@ -93,6 +95,7 @@ impl<T: Real> Acc<T> {
         Ok(Acc {
             n,
             k,
+            k_max: k.iter().fold(T::ZERO, |a, &b| a.max_of(b)),
             weight: one,
             r_u: one,
             r_l: one,
@@ -179,7 +182,10 @@ impl<T: Real> Majorants<'_, T> {
     /// [`Majorants::delta_track`], and [`Error::Size`] for 0 or more than
     /// [`MAX_CHANNELS`] channels, coefficient slices of different lengths
     /// or short outputs, [`Error::Domain`] for a negative or non-finite
-    /// coefficient or a hero out of range.
+    /// coefficient, a channel's `σ_a + σ_s` that overflows, a hero out of
+    /// range, or a cell met on the way where a channel's majorant
+    /// `(σ_a + σ_s)·σ_maj` overflows (tracking could not step through it:
+    /// its weights would be ∞/∞).
     #[allow(clippy::too_many_arguments)]
     pub fn delta_track_spectral<R: Rng + ?Sized>(
         &self,
@@ -193,9 +199,10 @@ impl<T: Real> Majorants<'_, T> {
         let mut acc = self.prepare(grid, spectrum, ray, out)?;
         let (h, sa, ss) = (spectrum.hero, spectrum.sigma_a, spectrum.sigma_s);
         let rate = acc.k(h);
+        let k_max = acc.k_max;
         let visit = |c: Tentative<T>, r: &mut R| {
             let rho = density_within(grid, c.p, c.value)?;
-            let m = c.value;
+            let m = scalable(k_max, c.value)?;
             // The hero's free-flight density and event probabilities.
             let tm_h = (-(rate * c.since)).exp();
             let (a_h, s_h) = (at(sa, h) * rho, at(ss, h) * rho);
@@ -264,9 +271,10 @@ impl<T: Real> Majorants<'_, T> {
         let h = spectrum.hero;
         let floor = T::from_f64(ROULETTE_BELOW);
         let rate = acc.k(h);
+        let k_max = acc.k_max;
         let visit = |c: Tentative<T>, r: &mut R| {
             let rho = density_within(grid, c.p, c.value)?;
-            let m = c.value;
+            let m = scalable(k_max, c.value)?;
             let null = |k: T| (k * (m - rho)).max_of(T::ZERO);
             let pdf = (-(rate * c.since)).exp() * rate * m;
             acc.scale(c.since, pdf, |_, k| (null(k), null(k), k * m));
@@ -304,6 +312,20 @@ impl<T: Real> Majorants<'_, T> {
         check_out(out, acc.n)?;
         ray.checked()?;
         Ok(acc)
+    }
+}
+
+/// The cell's density majorant `m` if every channel's majorant `k_c·m`
+/// is finite (`k_max` the largest `k_c`). Where one overflows, its
+/// free-flight density and the weights it divides are ∞/∞ (NaN weights
+/// were returned as a result): [`Error::Domain`], as [`Grid::new`]
+/// refuses a majorant that overflows.
+#[inline(always)]
+fn scalable<T: Real>(k_max: T, m: T) -> Result<T, Error> {
+    if (k_max * m).is_finite() {
+        Ok(m)
+    } else {
+        Err(Error::Domain)
     }
 }
 

@@ -7,13 +7,16 @@
 //! `sample_dir` reports the density of what it drew, f32 follows f64, and
 //! golden bits hold. The last test shows the checks catch a sampler that is
 //! wrong by a 2 % slope. `reach.rs` finds each constructor's accepted range
-//! to the bit, holds it to the docs, and runs the checks at its ends.
+//! to the bit, holds it to the docs, and runs the checks at its ends;
+//! `media_reach.rs` does the same for the media's constructors and
+//! calls.
 
 #[path = "../common/mod.rs"]
 mod common;
 
 mod batch;
 mod checks;
+mod media_reach;
 mod properties;
 #[macro_use]
 mod registry;

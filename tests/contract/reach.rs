@@ -216,7 +216,7 @@ fn reaches() -> Vec<Reach> {
 
 /// A float whose bit patterns can be walked in order, and the registry's
 /// builder for its precision.
-trait Walk: Real {
+pub(crate) trait Walk: Real {
     /// A key increasing with the value (−0 and +0 share 0).
     fn key(self) -> i64;
     fn from_key(k: i64) -> Self;
@@ -260,7 +260,7 @@ fn build<T: Walk>(reach: &Reach, x: T) -> Option<Phase<T>> {
 
 /// `(last accepted, first refused)`: adjacent floats between the accepted
 /// `good` and the refused `bad`.
-fn edge<T: Walk>(ok: &dyn Fn(T) -> bool, mut good: T, mut bad: T) -> (T, T) {
+pub(crate) fn edge<T: Walk>(ok: &dyn Fn(T) -> bool, mut good: T, mut bad: T) -> (T, T) {
     while (good.key() as i128 - bad.key() as i128).abs() > 1 {
         let mid = T::from_key(((good.key() as i128 + bad.key() as i128) / 2) as i64);
         if ok(mid) {
@@ -376,7 +376,7 @@ fn every_parameter_reaches_exactly_its_documented_edge() {
 }
 
 /// The floats `k` steps inside `last` (toward `base`), for the ladder.
-fn inside<T: Walk>(last: T, base: T, k: i64) -> T {
+pub(crate) fn inside<T: Walk>(last: T, base: T, k: i64) -> T {
     let step = if base.key() < last.key() { -k } else { k };
     T::from_key(last.key() + step)
 }

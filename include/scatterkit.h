@@ -3769,7 +3769,10 @@ sk_status sk_emission_track_f64(const sk_track_args_f64 *args, sk_track_result_f
  SK_ERR_NULL for a NULL out; SK_ERR_DOMAIN for a zero or non-finite d, a
  non-finite o or point, t_min negative or NaN, an empty segment, or a
  point on the ray's line or so near it or far from it that the squared
- distance underflows or overflows.
+ distance underflows or overflows, or a segment too short to subtend a
+ representable angle or to have a finite density (its peak overflows:
+ shorter than about 1/FLT_MAX, or 1/DBL_MAX for the _f64 twin, at a
+ distance of 1).
  */
 sk_status sk_equiangular_new(sk_vec3 o,
                              sk_vec3 d,

@@ -85,7 +85,10 @@ unsafe fn with<E: EqStore>(e: *const E, f: impl Fn(Equiangular<T<E>>) -> T<E>) -
 /// SK_ERR_NULL for a NULL out; SK_ERR_DOMAIN for a zero or non-finite d, a
 /// non-finite o or point, t_min negative or NaN, an empty segment, or a
 /// point on the ray's line or so near it or far from it that the squared
-/// distance underflows or overflows.
+/// distance underflows or overflows, or a segment too short to subtend a
+/// representable angle or to have a finite density (its peak overflows:
+/// shorter than about 1/FLT_MAX, or 1/DBL_MAX for the _f64 twin, at a
+/// distance of 1).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_equiangular_new(
     o: sk_vec3,

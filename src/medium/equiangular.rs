@@ -44,7 +44,9 @@ impl<T: Real> Equiangular<T> {
     /// point, an empty segment, a point on the ray's line (the density
     /// would be a spike) or so near it or so far from it that `Δ²`
     /// underflows or overflows, or a segment too short to subtend a
-    /// representable angle.
+    /// representable angle or to have a representable density (its peak
+    /// overflows: a length below about 1/MAX, 5.6·10⁻³⁰⁹ in f64 and
+    /// 2.9·10⁻³⁹ in f32, at `Δ` = 1).
     pub fn new(ray: Ray<T>, point: Vec3<T>) -> Result<Self, Error> {
         let (o, d) = ray.checked()?;
         if !point.is_finite() || ray.t_max <= ray.t_min {
@@ -123,17 +125,25 @@ impl<T: Real> Equiangular<T> {
     /// a caller stored cannot make [`sample`](Self::sample) leave the
     /// segment or [`pdf`](Self::pdf) answer NaN: [`Error::Domain`] unless
     /// `t₀` and `a` are finite, `Δ > 0` with `Δ²` finite and non-zero,
-    /// `0 < θ_b − θ_a ≤ π` and `a < b`.
+    /// `0 < θ_b − θ_a ≤ π`, `a < b`, and the density finite at its peak
+    /// (the point of the segment nearest `t₀`).
     pub fn from_parts([t0, delta, span, a, b]: [T; 5]) -> Result<Self, Error> {
         let d2 = delta * delta;
         let ok = t0.is_finite() && a.is_finite() && a < b && delta > T::ZERO;
-        if ok && d2 > T::ZERO && d2.is_finite() && span > T::ZERO && span <= T::PI {
-            Ok(Equiangular {
-                t0,
-                delta,
-                span,
-                ends: (a, b),
-            })
+        if !(ok && d2 > T::ZERO && d2.is_finite() && span > T::ZERO && span <= T::PI) {
+            return Err(Error::Domain);
+        }
+        let e = Equiangular {
+            t0,
+            delta,
+            span,
+            ends: (a, b),
+        };
+        // A segment of a few subnormals' length subtends a representable
+        // angle, but its density, about 1/(b − a), overflows: +∞, and NaN
+        // in the MIS weights it feeds.
+        if e.pdf(t0.max_of(a).min_of(b)).is_finite() {
+            Ok(e)
         } else {
             Err(Error::Domain)
         }

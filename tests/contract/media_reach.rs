@@ -2,25 +2,34 @@
 //! phase functions': for each scalar parameter of `Grid::new` (σ_a, σ_s,
 //! the largest density), `Grid::with_box` (a face on each side),
 //! `Majorants::new` (a cell's value), the one majorant of
-//! `one_majorant_delta_track`, and `free_path` and `transmittance` (whose
-//! refusal is NaN), bisection over the ordered bit patterns finds the last
-//! accepted float and the first refused one, in f32 and f64; each must be
-//! the edge the docs state, NaN must be refused, and values between the
-//! base and the edge must all be accepted (the accepted set is an
-//! interval). At the last accepted value and 2⁴ and 2²⁰ floats inside it,
-//! what was built must work: densities finite and within the grid's
-//! majorant, delta and ratio tracking (by the grid's one majorant and by
-//! majorants built on it) ending in the segment with a transmittance in
-//! `[0, 1]`, or in `Error::Budget` (a majorant optical depth past the
-//! budget), never `Error::Domain` for an accepted medium and a valid ray;
-//! free paths `≥ 0` and non-decreasing in `u`, transmittance in `[0, 1]`.
+//! `one_majorant_*_track`, spectral tracking (the hero's coefficients,
+//! the density), `Equiangular::new` (the point's distance, the segment's
+//! end), and `free_path` and `transmittance` (whose refusal is NaN),
+//! bisection over the ordered bit patterns finds the last accepted float
+//! and the first refused one, in f32 and f64; each must be the edge the
+//! docs state, NaN must be refused, and values between the base and the
+//! edge must all be accepted (the accepted set is an interval). At the
+//! last accepted value and 2⁴ and 2²⁰ floats inside it, what was built
+//! must work: densities within the grid's majorant; delta and ratio
+//! tracking (by the grid's one majorant, by majorants built on it, and
+//! spectral, every output finite and `≥ 0`) ending in the segment with a
+//! transmittance in `[0, 1]`, or in `Error::Budget` (a majorant optical
+//! depth past the budget), never `Error::Domain` for an accepted medium
+//! and a valid ray; residual ratio tracking, both ray marchers, signed
+//! ratio and weighted delta tracking and emission finite, or refused as
+//! their docs say; equiangular distances monotone within the segment with
+//! finite densities; free paths `≥ 0` and non-decreasing in `u`,
+//! transmittance in `[0, 1]`.
 
 use crate::checks::Check;
 use crate::common::map_parallel;
 use crate::reach::{Walk, edge, inside};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
+use scatterkit::medium::equiangular::Equiangular;
 use scatterkit::medium::majorant::{one_majorant_delta_track, one_majorant_ratio_track};
+use scatterkit::medium::ray_march::{ray_march_transmittance, telescoping_transmittance};
+use scatterkit::medium::residual::Extrema;
 use scatterkit::medium::spectral::{Ratios, Spectrum};
 use scatterkit::medium::{Event, free_path, transmittance};
 use scatterkit::{Error, Grid, Majorants, Ray, Vec3};
@@ -49,6 +58,9 @@ enum Form {
     /// [`Form::Grid`]'s values at `v` = 2 times `s`, by their density
     /// majorants.
     Spectral,
+    /// `Equiangular::new` on the ray from the origin along x over
+    /// `[0, t_max]` toward the point `(½, Δ, 0)`: `[Δ, t_max]`.
+    Equiangular,
 }
 
 /// One end of a documented range, in the precision at hand.
@@ -71,6 +83,11 @@ enum End {
     /// Where `σ_a + σ_s` of the parameters overflows (the spectral
     /// calls' docs): the last value keeping it finite.
     SumFinite,
+    /// The smallest positive value whose square is not 0 (`Δ²`
+    /// underflows below it: `Equiangular::new`'s docs).
+    SquarePositive,
+    /// The largest value whose square is finite.
+    SquareFinite,
     /// Found and checked, but not compared (the docs give the rule, not
     /// the value: a box whose extent overflows).
     Measured,
@@ -135,6 +152,15 @@ fn reaches() -> Vec<Reach> {
         // Up to 2: a channel's majorant `(σ_a + σ_s)·σ_maj` overflows first.
         r(Form::Spectral, 0, &[1.0, 1.0, 2.0], Closed(0.0), Measured),
         r(Form::Spectral, 2, &[1.0, 1.0, 2.0], Closed(0.0), Measured),
+        r(
+            Form::Equiangular,
+            0,
+            &[1.0, 1.0],
+            SquarePositive,
+            SquareFinite,
+        ),
+        // Short segments: the peak density overflows first (measured).
+        r(Form::Equiangular, 1, &[1.0, 1.0], Measured, Closed(INF)),
     ]
 }
 
@@ -211,6 +237,7 @@ fn accepts<T: Walk>(form: Form, p: &[T]) -> bool {
             one_majorant_delta_track(vacuum, p[0], ray, 1, &mut rng).err() != Some(Error::Domain)
         }
         Form::FreePath => !free_path(p[0], T::HALF).is_nan(),
+        Form::Equiangular => equiangular(p).is_ok(),
         Form::Spectral => {
             let ray = Ray::new(
                 Vec3::new(T::HALF, T::HALF, T::HALF),
@@ -256,6 +283,8 @@ fn documented<T: Walk>(reach: &Reach, end: End, far: T) -> Option<T> {
             let other = base[1 - reach.param];
             Some(edge(&|x: T| (x + other).is_finite(), base[reach.param], far).0)
         }
+        End::SquarePositive => Some(edge(&|x: T| x * x > T::ZERO, T::ONE, T::ZERO).0),
+        End::SquareFinite => Some(edge(&|x: T| (x * x).is_finite(), T::ONE, far).0),
         End::Measured => None,
     }
 }
@@ -265,6 +294,9 @@ fn beyond<T: Walk>(end: End, dir: f64) -> T {
     match end {
         End::Closed(x) | End::Open(x) if x.is_infinite() => T::from_f64(x),
         End::Closed(x) | End::Open(x) => T::from_f64(x + dir * x.abs().max(1.0)),
+        // Δ and −Δ are the same point's distance: the low end is where
+        // the square underflows on the positive side.
+        End::SquarePositive => T::ZERO,
         _ => T::from_f64(dir * INF),
     }
 }
@@ -395,8 +427,51 @@ fn grid_works<T: Walk>(form: Form, p: &[T]) -> Check {
         tracked("majorant delta", d, &ray)?;
         let r = maj.ratio_track(&g, ray, 4096, &mut rng).map(|x| x.tr);
         estimated("majorant ratio", r, &ray)?;
+        other_estimators(&g, &maj, ray, &mut rng)?;
     }
     Ok(())
+}
+
+/// The estimators beyond delta and ratio tracking, through grid `g` and
+/// majorants `maj` built on it: finite results, or the errors their docs
+/// give (the budget; a series, weight or radiance that overflows).
+fn other_estimators<T: Walk>(
+    g: &Grid<'_, T>,
+    maj: &Majorants<'_, T>,
+    ray: Ray<T>,
+    rng: &mut Xoshiro256PlusPlus,
+) -> Check {
+    let coef = |p: Vec3<T>| g.coefficients_at(p);
+    let (mut hi, mut lo) = ([T::ZERO; 8], [T::ZERO; 8]);
+    let ext =
+        Extrema::build(g, [2, 2, 2], &mut hi, &mut lo).map_err(|e| format!("extrema: {e:?}"))?;
+    let residual = ext.residual_ratio_track(g, ray, 4096, rng).map(|x| x.tr);
+    estimated("residual ratio", residual, &ray)?;
+    let overflow = [Error::Budget, Error::Domain];
+    let march = ray_march_transmittance(g, ray, 4, 4096, rng).map(|x| x.tr);
+    finite("ray march", march, &overflow, &ray)?;
+    let tele = telescoping_transmittance(g, ray, 16, 4096, rng).map(|x| x.tr);
+    finite("telescoping", tele, &overflow, &ray)?;
+    let signed = maj
+        .ratio_track_signed_fn(coef, ray, 4096, rng)
+        .map(|x| x.tr);
+    finite("signed ratio", signed, &overflow, &ray)?;
+    let weighted = maj
+        .delta_track_weighted_fn(coef, ray, 4096, rng)
+        .map(|x| x.weight);
+    finite("weighted delta", weighted, &overflow, &ray)?;
+    let emitted = maj.emission_track(g, |_| T::ONE, ray, 4096, rng);
+    finite("emission", emitted.map(|x| x.radiance), &overflow, &ray)?;
+    estimated("emission's transmittance", emitted.map(|x| x.tr), &ray)
+}
+
+/// An estimate's outcome: finite, or one of the errors `allowed`.
+fn finite<T: Walk>(what: &str, r: Result<T, Error>, allowed: &[Error], ray: &Ray<T>) -> Check {
+    match r {
+        Ok(x) if x.is_finite() => Ok(()),
+        Err(e) if allowed.contains(&e) => Ok(()),
+        other => Err(format!("{what} along {ray:?}: {other:?}")),
+    }
 }
 
 /// Spectral delta (`delta`) or ratio tracking along `ray` with the hero
@@ -436,6 +511,13 @@ fn spectral<T: Walk>(p: &[T], ray: Ray<T>, budget: u32, delta: bool) -> Result<(
     } else {
         Err(Error::Size)
     }
+}
+
+/// [`Form::Equiangular`] at `p`.
+fn equiangular<T: Walk>(p: &[T]) -> Result<Equiangular<T>, Error> {
+    let (z, o) = (T::ZERO, T::ONE);
+    let ray = Ray::new(Vec3::new(z, z, z), Vec3::new(o, z, z), p[1]);
+    Equiangular::new(ray, Vec3::new(T::HALF, p[0], z))
 }
 
 /// What the form built at `p` gives, checked.
@@ -493,6 +575,21 @@ fn works<T: Walk>(form: Form, p: &[T]) -> Check {
                 tracked("spectral delta (outputs finite, ≥ 0)", d, &ray)?;
                 let r = spectral(p, ray, 4096, false).map(|x| x.0);
                 estimated("spectral ratio (outputs finite, ≥ 0)", r, &ray)?;
+            }
+            Ok(())
+        }
+        Form::Equiangular => {
+            let e = equiangular(p).map_err(|e| format!("{e:?}"))?;
+            let mut prev = z;
+            for i in 0..=1024 {
+                let u = T::from_f64(i as f64 / 1024.0);
+                let t = e.sample(u);
+                let pdf = e.pdf(t);
+                let inside = t >= prev && t <= p[1] && (t < p[1] || i > 0);
+                if !(inside && pdf >= z && (pdf.is_finite() || !t.is_finite())) {
+                    return Err(format!("sample({u:?}) = {t:?} after {prev:?}, pdf {pdf:?}"));
+                }
+                prev = t;
             }
             Ok(())
         }

@@ -366,11 +366,13 @@ impl<T: Real> PhaseFunction<T> for HenyeyGreenstein<T> {
             // free of its cancellation. The tail is accurate to a few ulps
             // of itself, so `1 − tail` rises with μ; `f` there stepped back
             // by up to five ulps of 1 as g → −1 (one minus a product of
-            // roundings).
+            // roundings). `s + (μ − g)` adds two non-negative terms: as
+            // `(s + μ) − g` it cancelled where s is small (μ and g near 1:
+            // the tail 2.8·10⁻¹¹ off at g = 0.999999, μ = 1 − 2⁻⁵³).
             let gap = if mu > g {
-                (T::ONE - mu) * (T::ONE + mu) / (s + mu - g)
+                (T::ONE - mu) * (T::ONE + mu) / (s + (mu - g))
             } else {
-                s + g - mu
+                s + (g - mu)
             };
             (T::ONE - (T::ONE + g) * gap / whole).clamp01()
         } else {

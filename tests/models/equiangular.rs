@@ -174,6 +174,13 @@ fn an_infinite_segment_and_bad_input() {
             "part {k} = {v}"
         );
     }
+    // Δ² underflowing to 0 with the foot of the perpendicular outside the
+    // segment, where the density stays finite: the check on Δ² alone
+    // refuses it (inside, the peak density's check would too; mutation
+    // testing found the two overlapping there).
+    let mut p = good;
+    (p[0], p[1]) = (good[3] - 1.0, 1e-200);
+    assert_eq!(Equiangular::from_parts(p).err(), Some(Error::Domain));
     assert!(e.sample(f64::NAN).is_nan(), "NaN in, NaN out");
     assert_eq!(
         (e.sample(-1.0), e.sample(2.0)),

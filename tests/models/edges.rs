@@ -55,8 +55,25 @@ fn requests() -> Vec<(&'static str, f64, f64, f64, f64)> {
             }
         }
     }
-    for g in [0.999, 1.0 - 1e-6, 1.0 - 1e-9, 1.0 - 3e-9] {
-        for a in [-0.499_999_999, -0.25, 0.0, 0.5, 2.0, 47.0, 1000.0] {
+    // Down to 3·10⁻⁹ from |g| = 1, and within a few floats of it (2⁻⁴⁰
+    // and the last float below 1: there only the lobes whose 50-digit
+    // references need no quadrature, and the kernel's α up to 47).
+    let last = 1.0 - f64::EPSILON / 2.0;
+    for g in [
+        0.999,
+        1.0 - 1e-6,
+        1.0 - 1e-9,
+        1.0 - 3e-9,
+        1.0 - 2f64.powi(-40),
+        last,
+    ] {
+        let extreme = g > 1.0 - 1e-10;
+        let alphas: &[f64] = if extreme {
+            &[-0.25, 0.0, 0.5, 2.0, 47.0]
+        } else {
+            &[-0.499_999_999, -0.25, 0.0, 0.5, 2.0, 47.0, 1000.0]
+        };
+        for &a in alphas {
             v.push(("gegenbauer", a, g, 0.0, 0.0));
             v.push(("gegenbauer", a, -g, 0.0, 0.0));
         }
@@ -66,21 +83,9 @@ fn requests() -> Vec<(&'static str, f64, f64, f64, f64)> {
         v.push(("hg", -g, 0.0, 0.0, 0.0));
         // The fog mixture with a Draine lobe (α > 0) beside the HG lobe.
         v.push(("fog", g, 0.999_999, 5.0, 0.3));
-        v.push(("fog", -0.9, g, 20.0, 0.5));
-    }
-    // Within a few floats of |g| = 1 (the last below it, and 2⁻⁴⁰): the
-    // lobes whose 50-digit references need no quadrature.
-    let last = 1.0 - f64::EPSILON / 2.0;
-    for g in [1.0 - 2f64.powi(-40), last] {
-        for a in [-0.25, 0.0, 0.5, 2.0, 47.0] {
-            v.push(("gegenbauer", a, g, 0.0, 0.0));
-            v.push(("gegenbauer", a, -g, 0.0, 0.0));
+        if !extreme {
+            v.push(("fog", -0.9, g, 20.0, 0.5));
         }
-        v.push(("two_lobe", g, 0.0, 0.5, 0.0));
-        v.push(("two_lobe", g, -g, 0.3, 0.0));
-        v.push(("hg", g, 0.0, 0.0, 0.0));
-        v.push(("hg", -g, 0.0, 0.0, 0.0));
-        v.push(("fog", g, 0.999_999, 5.0, 0.3));
     }
     // Schlick's k and the depolarisation ρ up to their last float (both
     // ranges open at 1).
@@ -244,8 +249,12 @@ fn density_and_cdf_against_50_digits() {
                 rel <= 1e-9,
                 "{model} pdf({mu:e}) = {got:e}, reference {pdf:e}"
             );
+            // 10⁻¹² was fixed before the first run; 2·10⁻¹⁵ was set after
+            // the run that added the cases at 2⁻⁵³ (3× its worst, 6.2·10⁻¹⁶)
+            // as a guard: HG's tail at g = 0.999999 had been 3.1·10⁻¹⁵ off
+            // under the looser bound.
             assert!(
-                abs <= 1e-12,
+                abs <= 2e-15,
                 "{model} cdf({mu:e}) = {:e}, reference {cdf:e}",
                 p.cdf(mu)
             );

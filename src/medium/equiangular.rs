@@ -71,7 +71,16 @@ impl<T: Real> Equiangular<T> {
             // An infinite or enormous segment: no cancellation to avoid.
             xb.atan2(delta) - xa.atan2(delta)
         };
-        Self::from_parts([t0, delta, span, a, b])
+        let e = Self::from_parts([t0, delta, span, a, b])?;
+        // A segment of a few subnormals' length subtends a representable
+        // angle, but its density, about 1/(b − a), overflows: +∞, and NaN
+        // in the MIS weights it feeds. Checked here, once, not in
+        // `from_parts`, which the C layer runs on every sample.
+        if e.pdf(t0.max_of(a).min_of(b)).is_finite() {
+            Ok(e)
+        } else {
+            Err(Error::Domain)
+        }
     }
 
     /// The distance for a uniform `u` (clamped to `[0, 1]`; NaN stays
@@ -125,25 +134,17 @@ impl<T: Real> Equiangular<T> {
     /// a caller stored cannot make [`sample`](Self::sample) leave the
     /// segment or [`pdf`](Self::pdf) answer NaN: [`Error::Domain`] unless
     /// `t₀` and `a` are finite, `Δ > 0` with `Δ²` finite and non-zero,
-    /// `0 < θ_b − θ_a ≤ π`, `a < b`, and the density finite at its peak
-    /// (the point of the segment nearest `t₀`).
+    /// `0 < θ_b − θ_a ≤ π` and `a < b`.
     pub fn from_parts([t0, delta, span, a, b]: [T; 5]) -> Result<Self, Error> {
         let d2 = delta * delta;
         let ok = t0.is_finite() && a.is_finite() && a < b && delta > T::ZERO;
-        if !(ok && d2 > T::ZERO && d2.is_finite() && span > T::ZERO && span <= T::PI) {
-            return Err(Error::Domain);
-        }
-        let e = Equiangular {
-            t0,
-            delta,
-            span,
-            ends: (a, b),
-        };
-        // A segment of a few subnormals' length subtends a representable
-        // angle, but its density, about 1/(b − a), overflows: +∞, and NaN
-        // in the MIS weights it feeds.
-        if e.pdf(t0.max_of(a).min_of(b)).is_finite() {
-            Ok(e)
+        if ok && d2 > T::ZERO && d2.is_finite() && span > T::ZERO && span <= T::PI {
+            Ok(Equiangular {
+                t0,
+                delta,
+                span,
+                ends: (a, b),
+            })
         } else {
             Err(Error::Domain)
         }

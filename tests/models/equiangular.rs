@@ -176,8 +176,7 @@ fn an_infinite_segment_and_bad_input() {
     }
     // Δ² underflowing to 0 with the foot of the perpendicular outside the
     // segment, where the density stays finite: the check on Δ² alone
-    // refuses it (inside, the peak density's check would too; mutation
-    // testing found the two overlapping there).
+    // refuses it (mutation testing found no case with the foot outside).
     let mut p = good;
     (p[0], p[1]) = (good[3] - 1.0, 1e-200);
     assert_eq!(Equiangular::from_parts(p).err(), Some(Error::Domain));

@@ -62,8 +62,11 @@ impl<'a, T: Real> Extrema<'a, T> {
     /// cells and box and every minorant is at most its cell's majorant.
     /// Each must bound `σ_t` over its closed cell, from above and from
     /// below; tracking reports [`Error::Domain`] where `σ_t` exceeds a
-    /// majorant. A minorant above `σ_t` keeps the estimate unbiased (its
-    /// weights exceed 1) but costs variance.
+    /// majorant. A minorant above `σ_t` keeps the estimate unbiased where
+    /// its cell's residual `σ_maj − σ_min` is positive (its weights are
+    /// then above one) but costs variance; a cell whose minorant equals
+    /// its majorant draws nothing and reads no density, so there `σ_t` is
+    /// taken to be that value.
     pub fn new(max: Majorants<'a, T>, min: Majorants<'a, T>) -> Result<Self, Error> {
         let pair = Self::paired(max, min)?;
         let m = max.dims();

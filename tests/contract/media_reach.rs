@@ -1,7 +1,9 @@
 //! The media constructors' reach, found to the bit as `reach.rs` finds the
 //! phase functions': for each scalar parameter of `Grid::new` (σ_a, σ_s,
 //! the largest density), `Grid::with_box` (a face on each side),
-//! `Majorants::new` (a cell's value), the one majorant of
+//! `Majorants::new` (a cell's value, beside cells of 1, or of 0 and the
+//! largest float), `Extrema::new` (a cell's minorant and majorant), the
+//! one majorant of
 //! `one_majorant_*_track`, spectral tracking (the hero's coefficients,
 //! the density), `Equiangular::new` (the point's distance, the segment's
 //! end), and `free_path` and `transmittance` (whose refusal is NaN),
@@ -46,6 +48,13 @@ enum Form {
     /// `Majorants::new` on a 2 × 1 × 1 division of the unit cube: `[s]`,
     /// the first cell's value (the second's 1).
     Majorants,
+    /// `Majorants::new` on a 3 × 1 × 1 division of the unit cube with
+    /// cells of every kind beside each other: `[s]`, the first cell's
+    /// value, then 0 (nothing to collide with) and the largest float.
+    MajorantsMixed,
+    /// `Extrema::new` on the 2 × 1 × 1 division: `[min, max]`, the first
+    /// cell's minorant and majorant (the second cell's ½ and 1).
+    Extrema,
     /// `one_majorant_delta_track`'s and `one_majorant_ratio_track`'s
     /// majorant: `[σ_maj]`.
     OneMajorant,
@@ -123,6 +132,12 @@ fn reaches() -> Vec<Reach> {
         r(Form::GridBox, 1, &[0.0, 1.0], ExtentReciprocal, Largest),
         r(Form::GridBox, 0, &[0.0, f64::MAX], Measured, Open(f64::MAX)),
         r(Form::Majorants, 0, &[1.0], Closed(0.0), Largest),
+        r(Form::MajorantsMixed, 0, &[1.0], Closed(0.0), Largest),
+        // A minorant up to its cell's majorant; a majorant from the
+        // minorant up.
+        r(Form::Extrema, 0, &[0.5, 1.0], Closed(0.0), Closed(1.0)),
+        r(Form::Extrema, 1, &[0.5, 1.0], Closed(0.5), Largest),
+        r(Form::Extrema, 0, &[0.5, f64::MAX], Closed(0.0), Largest),
         r(Form::OneMajorant, 0, &[1.0], Closed(0.0), Largest),
         r(Form::FreePath, 0, &[1.0], Closed(0.0), Largest),
         r(
@@ -230,6 +245,11 @@ fn accepts<T: Walk>(form: Form, p: &[T]) -> bool {
             Vec3::new(o, o, o),
         )
         .is_ok(),
+        Form::MajorantsMixed => mixed(&[p[0], z, largest()]).is_ok(),
+        Form::Extrema => {
+            let (max, min) = ([p[1], o], [p[0], T::HALF]);
+            extrema(&max, &min).is_ok()
+        }
         Form::OneMajorant => {
             let ray = Ray::new(Vec3::new(z, z, z), Vec3::new(z, z, o), o);
             let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
@@ -513,6 +533,88 @@ fn spectral<T: Walk>(p: &[T], ray: Ray<T>, budget: u32, delta: bool) -> Result<(
     }
 }
 
+/// The unit cube.
+fn unit_box<T: Walk>() -> (Vec3<T>, Vec3<T>) {
+    let (z, o) = (T::ZERO, T::ONE);
+    (Vec3::new(z, z, z), Vec3::new(o, o, o))
+}
+
+/// [`Form::MajorantsMixed`]'s majorants: the values `sigma` on a 3 × 1 × 1
+/// division of the unit cube.
+fn mixed<T: Walk>(sigma: &[T]) -> Result<Majorants<'_, T>, Error> {
+    let (lo, hi) = unit_box();
+    Majorants::new(sigma, [3, 1, 1], lo, hi)
+}
+
+/// [`Form::Extrema`]'s extrema: majorants `max` and minorants `min` on a
+/// 2 × 1 × 1 division of the unit cube.
+fn extrema<'a, T: Walk>(max: &'a [T], min: &'a [T]) -> Result<Extrema<'a, T>, Error> {
+    let (lo, hi) = unit_box();
+    Extrema::new(
+        Majorants::new(max, [2, 1, 1], lo, hi)?,
+        Majorants::new(min, [2, 1, 1], lo, hi)?,
+    )
+}
+
+/// A majorant or control optical depth: `≥ 0` (+∞ where the integral
+/// overflows the precision).
+fn depth<T: Walk>(what: &str, r: Result<T, Error>, ray: &Ray<T>) -> Check {
+    match r {
+        Ok(x) if x >= T::ZERO => Ok(()),
+        other => Err(format!("{what} along {ray:?}: {other:?}")),
+    }
+}
+
+/// [`Form::MajorantsMixed`] at `s`: a vacuum tracked through cells of
+/// majorant `s`, 0 and the largest float escapes (or runs out of budget
+/// in the last), with a transmittance of exactly 1.
+fn mixed_works<T: Walk>(s: T, rng: &mut Xoshiro256PlusPlus) -> Check {
+    let z = T::ZERO;
+    let sigma = [s, z, largest()];
+    let m = mixed(&sigma).map_err(|e| format!("{e:?}"))?;
+    let vacuum = |_: Vec3<T>| (z, z);
+    let (lo, hi) = unit_box();
+    for ray in rays(lo, hi) {
+        match m.delta_track_fn(vacuum, ray, 4096, rng) {
+            Ok(x) if x.event == Event::Escaped => {}
+            Err(Error::Budget) => {}
+            other => return Err(format!("delta along {ray:?}: {other:?}")),
+        }
+        match m.ratio_track_fn(vacuum, ray, 4096, rng) {
+            Ok(x) if x.tr == T::ONE => {}
+            Err(Error::Budget) => {}
+            other => return Err(format!("ratio along {ray:?}: {other:?}")),
+        }
+        depth("optical depth", m.optical_depth(ray), &ray)?;
+    }
+    Ok(())
+}
+
+/// [`Form::Extrema`] at `p`: residual ratio tracking of a medium of
+/// `σ_t = ½ min(max, 1)` (within every cell's majorant, below a minorant
+/// above it: weights above 1, so the estimate is `≥ 0` and finite, not
+/// held to `[0, 1]`), at the default rate, 1 and 16.
+fn extrema_works<T: Walk>(p: &[T], rng: &mut Xoshiro256PlusPlus) -> Check {
+    let (z, o) = (T::ZERO, T::ONE);
+    let (max, min) = ([p[1], o], [p[0], T::HALF]);
+    let e = extrema(&max, &min).map_err(|e| format!("{e:?}"))?;
+    let sigma = p[1].min_of(o) * T::HALF;
+    let medium = |_: Vec3<T>| (z, sigma);
+    let (lo, hi) = unit_box();
+    for ray in rays(lo, hi) {
+        for rate in [0, 1, 16] {
+            let r = e.residual_ratio_track_rate(medium, ray, rate, 4096, rng);
+            match r {
+                Ok(x) if x.tr >= z && x.tr.is_finite() => {}
+                Err(Error::Budget) => {}
+                other => return Err(format!("residual (rate {rate}) along {ray:?}: {other:?}")),
+            }
+        }
+        depth("control depth", e.control_depth(ray), &ray)?;
+    }
+    Ok(())
+}
+
 /// [`Form::Equiangular`] at `p`.
 fn equiangular<T: Walk>(p: &[T]) -> Result<Equiangular<T>, Error> {
     let (z, o) = (T::ZERO, T::ONE);
@@ -542,6 +644,8 @@ fn works<T: Walk>(form: Form, p: &[T]) -> Check {
             }
             Ok(())
         }
+        Form::MajorantsMixed => mixed_works(p[0], &mut rng),
+        Form::Extrema => extrema_works(p, &mut rng),
         Form::OneMajorant => {
             let half = |_: Vec3<T>| (z, p[0] * T::HALF);
             for t_max in [o, T::from_f64(1e6)] {

@@ -92,6 +92,14 @@ impl<T: Real> Equiangular<T> {
             return a;
         }
         let (s, c) = phi.sin_cos();
+        if s < T::ZERO {
+            // φ past π, which only rounding reaches: a segment so near the
+            // point that its angle rounds up to the precision's π (f32's
+            // lies above π). θ is then past π/2, beyond the segment's
+            // end; with the sine's sign kept, the distance fell back
+            // towards the foot.
+            return b;
+        }
         let xa = a - self.t0;
         // t − a = (Δ² + x_a²) / (Δ cot φ − x_a): the addition formula
         // divided by sin φ. Every step after cot φ is a correctly rounded

@@ -94,6 +94,45 @@ impl<T: Real> Gegenbauer<T> {
 /// ([`K::route`]).
 const POLISH_LOG: f64 = 16.0;
 
+/// A cosine with its distances to the poles, `w = 1 − μ` and `v = 1 + μ`:
+/// for a float `μ` as float arithmetic gives them ([`At::of`]); from the
+/// inverse's route, the one it solved for kept finer than `μ` resolves
+/// near its pole ([`At::by`]), so that the Newton step reads the CDF at
+/// the point it stepped from, not at `μ` rounded.
+#[derive(Clone, Copy, Debug)]
+struct At {
+    mu: f64,
+    w: f64,
+    v: f64,
+}
+
+impl At {
+    /// A float `μ`.
+    fn of(mu: f64) -> At {
+        At {
+            mu,
+            w: 1.0 - mu,
+            v: 1.0 + mu,
+        }
+    }
+    /// `z = 1 − μ` (`by_d`) or `1 + μ`.
+    fn by(z: f64, by_d: bool) -> At {
+        if by_d {
+            At {
+                mu: 1.0 - z,
+                w: z,
+                v: 2.0 - z,
+            }
+        } else {
+            At {
+                mu: z - 1.0,
+                w: 2.0 - z,
+                v: z,
+            }
+        }
+    }
+}
+
 /// The model's constants in f64.
 #[derive(Clone, Copy, Debug)]
 struct K {
@@ -137,7 +176,10 @@ impl K {
     /// `μ = −1` to 0 at 1, the second rises from 0. Bisection to a few
     /// parts in 10⁴ (the two errors are comparable over a wide stretch).
     fn switch(&self) -> f64 {
-        let excess = |mu: f64| self.d(mu).abs() * (1.0 - mu) - self.l_y(mu).abs() * (1.0 + mu);
+        let excess = |mu: f64| {
+            let at = At::of(mu);
+            self.d(at).abs() * at.w - self.l_y(at).abs() * at.v
+        };
         let (mut lo, mut hi) = (-1.0, 1.0);
         for _ in 0..14 {
             let mid = 0.5 * (lo + hi);
@@ -159,11 +201,13 @@ impl K {
     }
     /// `y = 1 + g² − 2gμ` from the end nearer to its zero: a sum of
     /// non-negative terms for either sign of `g`.
-    fn y(&self, mu: f64) -> f64 {
-        let g = self.g;
+    fn y(&self, at: At) -> f64 {
+        let (g, mu) = (self.g, at.mu);
         if g * mu >= 0.0 {
-            let (ag, am) = (g.abs(), mu.abs());
-            (1.0 - ag) * (1.0 - ag) + 2.0 * ag * (1.0 - am)
+            // 1 − |μ|: the distance to the pole μ's sign points at.
+            let ag = g.abs();
+            let near = if mu >= 0.0 { at.w } else { at.v };
+            (1.0 - ag) * (1.0 - ag) + 2.0 * ag * near
         } else {
             1.0 + g * g - 2.0 * g * mu
         }
@@ -172,25 +216,25 @@ impl K {
     /// `x > ½` (`μ` near 1 for `g → 1`) `1 − x` cancels, to nothing at
     /// `μ = 1` once `1 − g < 10⁻⁸`; there it is `2 log1p(g) − ln y`, with
     /// `y` from the near end, a difference of at least `ln 2`.
-    fn l_y(&self, mu: f64) -> f64 {
+    fn l_y(&self, at: At) -> f64 {
         let g = self.g;
-        let x = 2.0 * g * (1.0 + mu) / ((1.0 + g) * (1.0 + g));
+        let x = 2.0 * g * at.v / ((1.0 + g) * (1.0 + g));
         if x <= 0.5 {
             -libm::log1p(-x)
         } else {
-            2.0 * libm::log1p(g) - libm::log(self.y(mu))
+            2.0 * libm::log1p(g) - libm::log(self.y(at))
         }
     }
     /// `D = ln(y/(1−g)²) = log1p(x)`, `x = 2g(1−μ)/(1−g)²`; where
     /// `x < −½` (`μ` near −1 for `g → −1`), `ln y − 2 log1p(−g)`, as
     /// [`l_y`](Self::l_y).
-    fn d(&self, mu: f64) -> f64 {
+    fn d(&self, at: At) -> f64 {
         let g = self.g;
-        let x = 2.0 * g * (1.0 - mu) / ((1.0 - g) * (1.0 - g));
+        let x = 2.0 * g * at.w / ((1.0 - g) * (1.0 - g));
         if x >= -0.5 {
             libm::log1p(x)
         } else {
-            libm::log(self.y(mu)) - 2.0 * libm::log1p(-g)
+            libm::log(self.y(at)) - 2.0 * libm::log1p(-g)
         }
     }
     /// `expm1(α t) / α`, `t` at `α = 0`.
@@ -203,28 +247,37 @@ impl K {
     }
     /// `P(cos θ ≤ μ)`.
     fn cdf(&self, mu: f64) -> f64 {
+        self.cdf_at(At::of(mu))
+    }
+    /// [`cdf`](Self::cdf) at a cosine given with its distances to the poles.
+    fn cdf_at(&self, at: At) -> f64 {
         if self.g == 0.0 {
-            return 0.5 * (1.0 + mu);
+            return 0.5 * at.v;
         }
         if self.s > 0.0 {
             // e^{−αD} expm1(−α L_y)/expm1(−α L_1): exponents ≤ 0.
-            let (ly, d) = (self.l_y(mu), self.d(mu));
+            let (ly, d) = (self.l_y(at), self.d(at));
             libm::exp(-self.a * d) * libm::expm1(-self.a * ly) / self.m
         } else {
-            self.em(self.l_y(mu)) / self.em_l1()
+            self.em(self.l_y(at)) / self.em_l1()
         }
     }
     /// Density of `μ` (`2π p`): `dF/dμ = (2g/y) α e^{αL_y}/expm1(αL_1)`.
     fn density_mu(&self, mu: f64) -> f64 {
+        self.density_at(At::of(mu))
+    }
+    /// [`density_mu`](Self::density_mu) at a cosine given with its
+    /// distances to the poles.
+    fn density_at(&self, at: At) -> f64 {
         let g = self.g;
         if g == 0.0 {
             return 0.5;
         }
-        let y = self.y(mu);
+        let y = self.y(at);
         let factor = if self.s > 0.0 {
-            libm::exp(-self.a * self.d(mu)) * self.a / -self.m
+            libm::exp(-self.a * self.d(at)) * self.a / -self.m
         } else {
-            libm::exp(self.a * self.l_y(mu)) / self.em_l1()
+            libm::exp(self.a * self.l_y(at)) / self.em_l1()
         };
         2.0 * g / y * factor
     }
@@ -286,12 +339,17 @@ impl K {
     /// `by_d`, else `1 + μ`), kept in `[0, 2]`.
     #[cold]
     fn polish(&self, z: f64, by_d: bool, u: f64) -> f64 {
-        let mu = if by_d { 1.0 - z } else { z - 1.0 };
-        let f = self.density_mu(mu);
+        // At z itself, not at μ = 1 ∓ z rounded: where the lobe is
+        // narrower than the floats' spacing near its pole, a step from the
+        // rounded point moved with u by less than its own linearisation
+        // error, and μ stepped back by an ulp as u rose (α = ½,
+        // 1 − g = 7.3·10⁻¹², u = 2.7·10⁻⁴).
+        let at = At::by(z, by_d);
+        let f = self.density_at(at);
         if !(f > 0.0 && f.is_finite()) {
             return z;
         }
-        let step = (u - self.cdf(mu)) / f;
+        let step = (u - self.cdf_at(at)) / f;
         let z = if by_d { z - step } else { z + step };
         z.clamp(0.0, 2.0)
     }

@@ -79,12 +79,18 @@ pub fn normalised(p: &impl PhaseFunction<f64>) -> Check {
     let (lo, hi) = integrable_span(p);
     let (below, above) = (p.cdf(lo), 1.0 - p.cdf(hi));
     let total = TAU * graded(&pdf, lo, hi, tol * 1e-3) + below + above;
-    let mean = TAU * graded(&|mu| mu * pdf(mu), lo, hi, tol * 1e-3) - below + above;
+    // The mass beyond a cut pole counts at the middle of its span, within
+    // half the span's width: at 1 read as 1, a Fournier–Forand pole with
+    // a tenth of the mass there put the mean 1.2·10⁻⁹ high (ν = 1 + 1.5·10⁻⁵).
+    let (mid_lo, mid_hi) = (0.5 * (-1.0 + lo), 0.5 * (hi + 1.0));
+    let cut = 0.5 * (below * (1.0 + lo) + above * (1.0 - hi));
+    let mean =
+        TAU * graded(&|mu| mu * pdf(mu), lo, hi, tol * 1e-3) + below * mid_lo + above * mid_hi;
     let closed = p.mean_cosine().to_f64();
     if !within(total - 1.0, tol) {
         return Err(format!("2π∫p dμ = {total}"));
     }
-    if !within(mean - closed, tol) {
+    if !within(mean - closed, tol + cut) {
         return Err(format!("mean cosine {mean} by quadrature, {closed} closed"));
     }
     Ok(())

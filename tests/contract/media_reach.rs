@@ -11,7 +11,7 @@
 //! and the first refused one, in f32 and f64; each must be the edge the
 //! docs state, NaN must be refused, and values between the base and the
 //! edge must all be accepted (the accepted set is an interval). At the
-//! last accepted value and 2⁴ and 2²⁰ floats inside it, what was built
+//! last accepted value and 2⁰, 2², …, 2⁴⁰ floats inside it, what was built
 //! must work: densities within the grid's majorant; delta and ratio
 //! tracking (by the grid's one majorant, by majorants built on it, and
 //! spectral, every output finite and `≥ 0`) ending in the segment with a
@@ -25,7 +25,7 @@
 
 use crate::checks::Check;
 use crate::common::map_parallel;
-use crate::reach::{Walk, edge, inside};
+use crate::reach::{Walk, edge, inside, steps_inside};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 use scatterkit::medium::equiangular::Equiangular;
@@ -708,12 +708,13 @@ fn works<T: Walk>(form: Form, p: &[T]) -> Check {
     }
 }
 
-/// The form works at each end's last accepted value and 2⁴ and 2²⁰ floats
-/// inside it.
+/// The form works at each end's last accepted value and `2^j` floats
+/// inside it for `j = 0, 2, 4, …, 40` (those between the end and the
+/// base).
 fn works_near<T: Walk>(reach: &Reach, dir: f64) -> Check {
     let last = found_edge::<T>(reach, dir)?;
     let base = base_of::<T>(reach)[reach.param];
-    for k in [0, 1 << 4, 1 << 20] {
+    for k in steps_inside(last, base, true) {
         let x = if !last.is_finite() {
             last
         } else {

@@ -376,6 +376,23 @@ fn every_parameter_reaches_exactly_its_documented_edge() {
 }
 
 /// The floats `k` steps inside `last` (toward `base`), for the ladder.
+/// The float steps from an end `last` toward `base` at which a sweep
+/// checks the contract: 0, 2⁴ and 2²⁰, or (`dense`) 0 and `2^j` for `j =
+/// 0, 2, 4, …, 40`; only those short of the base.
+pub(crate) fn steps_inside<T: Walk>(last: T, base: T, dense: bool) -> Vec<i64> {
+    let span = (last.key() as i128 - base.key() as i128).unsigned_abs();
+    let powers: Vec<u32> = if dense {
+        (0..=40).step_by(2).collect()
+    } else {
+        vec![4, 20]
+    };
+    let short = powers
+        .into_iter()
+        .map(|j| 1i64 << j)
+        .filter(|&k| (k as u128) < span);
+    [0].into_iter().chain(short).collect()
+}
+
 pub(crate) fn inside<T: Walk>(last: T, base: T, k: i64) -> T {
     let step = if base.key() < last.key() { -k } else { k };
     T::from_key(last.key() + step)
@@ -514,13 +531,19 @@ fn contract_at<T: Walk>(r: &Reach, x: T) -> Check {
 /// The contract at each end's last accepted value and 2⁴ and 2²⁰ floats
 /// inside it.
 fn contract_near<T: Walk>(r: &Reach, dir: f64) -> Check {
+    contract_inside::<T>(r, dir, false)
+}
+
+/// [`contract_near`], or (`dense`) at `2^j` floats inside for every even
+/// `j` up to 40.
+fn contract_inside<T: Walk>(r: &Reach, dir: f64, dense: bool) -> Check {
     let end = if dir < 0.0 { r.lo } else { r.hi };
     if matches!(end, End::Open(x) | End::Closed(x) if x.is_infinite()) {
         return Ok(());
     }
     let last = found_edge::<T>(r, dir)?;
     let base = T::from_f64(r.base[r.param]);
-    for k in [0, 1 << 4, 1 << 20] {
+    for k in steps_inside(last, base, dense) {
         let x = inside(last, base, k);
         contract_at(r, x).map_err(|e| format!("at {x:?}: {e}"))?;
     }
@@ -530,6 +553,18 @@ fn contract_near<T: Walk>(r: &Reach, dir: f64) -> Check {
 #[test]
 fn the_contract_holds_at_every_edge() {
     on_every_end("at the edges", contract_near::<f32>, contract_near::<f64>);
+}
+
+/// The same at 2⁰, 2², …, 2⁴⁰ floats inside every end (run with
+/// `--ignored`).
+#[test]
+#[ignore]
+fn the_contract_holds_inside_every_edge_densely() {
+    on_every_end(
+        "inside the edges",
+        |r, dir| contract_inside::<f32>(r, dir, true),
+        |r, dir| contract_inside::<f64>(r, dir, true),
+    );
 }
 
 /// A mixture's weight: finite and `≥ 0` beside a part of weight 1

@@ -254,8 +254,9 @@ fn a_short_far_segment_keeps_its_precision() {
 }
 
 /// Segments of every kind for the monotonicity sweep, f32: the test cases,
-/// a point far off a short segment, a point near the line, an infinite
-/// segment, the foot of the perpendicular before, inside and after.
+/// a point far off a short segment, points near the line (one so near
+/// that the segment's angle rounds to f32's π), an infinite segment, the
+/// foot of the perpendicular before, inside and after.
 fn sweep_segments() -> Vec<Equiangular<f32>> {
     let mut out: Vec<Equiangular<f32>> = cases()
         .iter()
@@ -276,6 +277,9 @@ fn sweep_segments() -> Vec<Equiangular<f32>> {
         (2.0, f32::INFINITY, Vec3::new(0.5f32, 0.7, 0.0)),
         (3.0, 7.0, Vec3::new(-2.0f32, 1.5, 0.0)),
         (3.0, 7.0, Vec3::new(12.0f32, 0.25, 0.0)),
+        // So near the line that the angle the segment subtends rounds up
+        // to f32's π, which is past π: the last angles' sine is negative.
+        (0.0, 1.0, Vec3::new(0.5f32, 1e-9, 0.0)),
     ] {
         out.push(Equiangular::new(Ray::new(o, x, b).segment(a, b), p).unwrap());
     }

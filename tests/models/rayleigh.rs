@@ -261,6 +261,19 @@ fn cross_section_and_coefficient() {
     }
     assert!(rayleigh::scattering_coeff(-1.0, 500e-9, 1e-9, 1.5).is_err());
     assert_eq!(rayleigh::scattering_coeff(0.0, 500e-9, 1e-9, 1.5), Ok(0.0));
+    // Both forms of the Lorentz factor (n² − 1)/(n² + 2): n = 3 and 1.9
+    // against the direct form (no cancellation at either), and the factor
+    // reaching 1 where n² overflows (a perfect conductor's limit).
+    let direct = |n: f64| {
+        let l = (n * n - 1.0) / (n * n + 2.0);
+        128.0 * std::f64::consts::PI.powi(5) / 3.0 * (1e-27 * l).powi(2) / 500e-9f64.powi(4)
+    };
+    for n in [3.0, 1.9, 1e3] {
+        let c = rayleigh::cross_section(500e-9, 1e-9, n).unwrap();
+        assert!((c / direct(n) - 1.0).abs() < 1e-13, "n {n}: {c:e}");
+    }
+    let huge = rayleigh::cross_section(500e-9, 1e-9, 1e200).unwrap();
+    assert!((huge / direct(1e3) - 1.0).abs() < 1e-5, "{huge:e}");
 }
 
 /// Frisvad's table samples exactly the density its linear interpolation

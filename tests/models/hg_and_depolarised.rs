@@ -233,3 +233,38 @@ fn hg_f32_is_monotone_on_every_float() {
         }
     });
 }
+
+/// `HenyeyGreenstein::f64_path_constants`, as documented: `Some` for an
+/// f32 model with `|g| ≥ 2⁻¹⁰` where doubles are fast (x86-64, aarch64),
+/// and then `cos θ = A − B/(u' + k)²` in f64, rounded once to f32 (`u' =
+/// 1 − u` if mirrored), is the sampler's own bits at every `u` of a grid;
+/// `None` below `2⁻¹⁰`, for `|g| = 1` and for an f64 model.
+#[test]
+fn the_f64_path_constants_give_the_samplers_bits() {
+    use scatterkit::HenyeyGreenstein;
+    if !cfg!(any(target_arch = "x86_64", target_arch = "aarch64")) {
+        eprintln!("SKIPPED: no fast doubles on this target");
+        return;
+    }
+    for g in [0.3f32, -0.7, 0.99, 1.0 / 1024.0, -0.999_99] {
+        let h = HenyeyGreenstein::new(g).unwrap();
+        let ([k, a, b], mirror) = h
+            .f64_path_constants()
+            .unwrap_or_else(|| panic!("g {g}: no f64 path"));
+        assert_eq!(mirror, g < 0.0, "g {g}");
+        for u in uniform_grid(4097) {
+            let u = u as f32;
+            let u1 = if mirror { 1.0 - u } else { u } as f64;
+            let cos = (a - b / ((u1 + k) * (u1 + k))) as f32;
+            assert_eq!(cos.to_bits(), h.sample_cos(u).to_bits(), "g {g}, u {u}");
+        }
+    }
+    for g in [0.0f32, 1.0 / 2048.0, -1e-4, 1.0, -1.0] {
+        let h = HenyeyGreenstein::new(g).unwrap();
+        assert_eq!(h.f64_path_constants(), None, "g {g}");
+    }
+    assert_eq!(
+        HenyeyGreenstein::new(0.5f64).unwrap().f64_path_constants(),
+        None
+    );
+}

@@ -375,7 +375,6 @@ fn every_parameter_reaches_exactly_its_documented_edge() {
     );
 }
 
-/// The floats `k` steps inside `last` (toward `base`), for the ladder.
 /// The float steps from an end `last` toward `base` at which a sweep
 /// checks the contract: 0, 2⁴ and 2²⁰, or (`dense`) 0 and `2^j` for `j =
 /// 0, 2, 4, …, 40`; only those short of the base.
@@ -393,6 +392,7 @@ pub(crate) fn steps_inside<T: Walk>(last: T, base: T, dense: bool) -> Vec<i64> {
     [0].into_iter().chain(short).collect()
 }
 
+/// The floats `k` steps inside `last` (toward `base`), for the ladder.
 pub(crate) fn inside<T: Walk>(last: T, base: T, k: i64) -> T {
     let step = if base.key() < last.key() { -k } else { k };
     T::from_key(last.key() + step)

@@ -302,11 +302,7 @@ impl K {
     }
     /// `μ` from a [`route`](Self::route)'s answer (`g = 0`: `2u − 1`).
     fn mu_of(route: Option<(f64, bool)>, u: f64) -> f64 {
-        match route {
-            Some((z, true)) => 1.0 - z,
-            Some((z, false)) => z - 1.0,
-            None => 2.0 * u - 1.0,
-        }
+        route.map_or(2.0 * u - 1.0, |(z, by_d)| At::by(z, by_d).mu)
     }
     /// `(z, by_d)`: `z = 1 − μ` (`by_d`) or `1 + μ`, in `[0, 2]`, from the
     /// route [`inverse`](Self::inverse) takes; `None` for `g = 0`.

@@ -235,14 +235,19 @@ fn hg_f32_is_monotone_on_every_float() {
 }
 
 /// `HenyeyGreenstein::f64_path_constants`, as documented: `Some` for an
-/// f32 model with `|g| ≥ 2⁻¹⁰` where doubles are fast (x86-64, aarch64),
+/// f32 model with `|g| ≥ 2⁻¹⁰` where doubles are fast (x86, aarch64),
 /// and then `cos θ = A − B/(u' + k)²` in f64, rounded once to f32 (`u' =
 /// 1 − u` if mirrored), is the sampler's own bits at every `u` of a grid;
 /// `None` below `2⁻¹⁰`, for `|g| = 1` and for an f64 model.
 #[test]
 fn the_f64_path_constants_give_the_samplers_bits() {
     use scatterkit::HenyeyGreenstein;
-    if !cfg!(any(target_arch = "x86_64", target_arch = "aarch64")) {
+    let fast_doubles = cfg!(any(
+        target_arch = "x86_64",
+        target_arch = "x86",
+        target_arch = "aarch64"
+    ));
+    if !fast_doubles {
         eprintln!("SKIPPED: no fast doubles on this target");
         return;
     }

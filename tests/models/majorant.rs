@@ -441,3 +441,152 @@ fn ratio_tracking_through_majorants_ends_once_the_transmittance_is_gone() {
         assert!(tr.steps < 10_000);
     }
 }
+
+/// The built majorants bound the density on each cell's faces and one
+/// float inside them, where random points never land (a mutation test
+/// narrowed the slop that widens each cell's reach over the lattice, and
+/// no test saw it): 1-D grids with one spike of 1000 on a floor of 1, at
+/// every node in turn, and cell counts that put faces just above or below
+/// a node.
+#[test]
+fn majorants_bound_the_density_on_every_cell_face() {
+    let inward = |x: f64, up: bool| {
+        let b = x.to_bits();
+        match (x == 0.0, up) {
+            (true, true) => f64::from_bits(1),
+            (true, false) => 0.0,
+            (false, true) => f64::from_bits(b + 1),
+            (false, false) => f64::from_bits(b - 1),
+        }
+    };
+    for sampling in [Sampling::Nodes, Sampling::Cells] {
+        for (n, m) in [(1002, 3), (1001, 3), (1000, 3), (64, 5), (10, 7), (2, 3)] {
+            for spike in 0..n {
+                let mut values = vec![1.0; n];
+                values[spike] = 1000.0;
+                let g = Grid::new(&values, n, 1, 1, 0.5, 0.5)
+                    .unwrap()
+                    .with_sampling(sampling);
+                let mut store = vec![0.0; m];
+                let maj = Majorants::build(&g, [m, 1, 1], &mut store).unwrap();
+                for c in 0..m {
+                    let (lo, hi) = (c as f64 / m as f64, (c + 1) as f64 / m as f64);
+                    let inside = (1..16).map(|k| lo + (hi - lo) * k as f64 / 16.0);
+                    let faces = [lo, inward(lo, true), hi.min(1.0), inward(hi, false)];
+                    for x in faces.into_iter().chain(inside) {
+                        let rho = g.density(Vec3::new(x, 0.5, 0.5));
+                        assert!(
+                            rho <= maj.get(c, 0, 0),
+                            "{sampling:?} n = {n}, m = {m}, spike at {spike}, cell {c}, x = {x}: \
+                             {rho} above {}",
+                            maj.get(c, 0, 0)
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// `get` is 0 outside the grid on each axis alone, and the stored value
+/// inside (a mutation test found `get` past one axis's end untested: it
+/// read another cell).
+#[test]
+fn get_is_zero_outside_on_every_axis() {
+    let sigma: Vec<f64> = (1..=12).map(|v| v as f64).collect();
+    let maj = Majorants::new(
+        &sigma,
+        [3, 2, 2],
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(1.0, 1.0, 1.0),
+    )
+    .unwrap();
+    for (i, j, k) in [
+        (3, 0, 0),
+        (0, 2, 0),
+        (0, 0, 2),
+        (3, 1, 0),
+        (2, 2, 1),
+        (1, 1, 2),
+    ] {
+        assert_eq!(maj.get(i, j, k), 0.0, "({i}, {j}, {k})");
+    }
+    for (i, j, k) in [(0, 0, 0), (2, 1, 0), (1, 0, 1), (2, 1, 1)] {
+        assert_eq!(maj.get(i, j, k), sigma[i + 3 * (j + 2 * k)]);
+    }
+}
+
+/// A generator that counts its draws.
+struct Counting(rand_xoshiro::Xoshiro256PlusPlus, usize);
+
+impl rand_xoshiro::rand_core::TryRng for Counting {
+    type Error = core::convert::Infallible;
+    fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+        self.1 += 1;
+        self.0.try_next_u32()
+    }
+    fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+        self.1 += 1;
+        self.0.try_next_u64()
+    }
+    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+        self.1 += 1;
+        self.0.try_fill_bytes(dst)
+    }
+}
+
+/// An empty cell (majorant 0) is crossed without a draw, as documented,
+/// so a seed's draws do not depend on how many empty cells a ray crosses
+/// (a mutation test let the walk draw once in each, unnoticed).
+#[test]
+fn an_empty_cell_is_crossed_without_a_draw() {
+    use rand_xoshiro::rand_core::SeedableRng;
+    let sigma = [2.0, 0.0, 0.0, 2.0];
+    let maj = Majorants::new(
+        &sigma,
+        [4, 1, 1],
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(1.0, 1.0, 1.0),
+    )
+    .unwrap();
+    let mut r = Counting(rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(3), 0);
+    // From inside cell 1 to inside cell 2: only empty cells.
+    let ray = Ray::new(Vec3::new(0.3, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 0.4);
+    let hit = maj
+        .delta_track_fn(|_| (0.0, 0.0), ray, 100, &mut r)
+        .unwrap();
+    assert_eq!((hit.event, r.1), (Event::Escaped, 0));
+    let tr = maj
+        .ratio_track_fn(|_| (0.0, 0.0), ray, 100, &mut r)
+        .unwrap();
+    assert_eq!((tr.tr, tr.steps, r.1), (1.0, 0, 0));
+}
+
+/// A uniform of exactly 0 at a real collision of a medium that does not
+/// absorb scatters (a mutation test let `ξ σ_maj ≤ σ_t` collide where
+/// `ξ σ_maj = σ_t`, unnoticed).
+#[test]
+fn a_medium_that_does_not_absorb_scatters_at_a_uniform_of_zero() {
+    struct Zero;
+    impl rand_xoshiro::rand_core::TryRng for Zero {
+        type Error = core::convert::Infallible;
+        fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+            Ok(0)
+        }
+        fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+            Ok(0)
+        }
+        fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+            dst.fill(0);
+            Ok(())
+        }
+    }
+    let ray = Ray::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0), 1.0);
+    let track = |coefficients: fn(Vec3<f64>) -> (f64, f64)| {
+        scatterkit::majorant::one_majorant_delta_track(coefficients, 1.0, ray, 100, &mut Zero)
+    };
+    assert_eq!(track(|_| (0.0, 1.0)).unwrap().event, Event::Scattered);
+    // Nor does a vacuum collide (`ξ σ_maj ≤ σ_t` would scatter there):
+    // every step is 0, so the walk stays put until the budget runs out.
+    assert_eq!(track(|_| (0.0, 0.0)).err(), Some(Error::Budget));
+}

@@ -228,3 +228,64 @@ fn huge_finite_coefficients_are_taken() {
     }
     assert!(taken >= 32, "{taken} of 64 taken");
 }
+
+/// A negative coefficient is refused on either side, alone (a mutation
+/// test accepted a negative one beside a positive one, unnoticed), by both
+/// trackers.
+#[test]
+fn a_negative_coefficient_is_refused_on_either_side() {
+    let one = [1.0];
+    let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0));
+    let maj = Majorants::new(&one, [1; 3], lo, hi).unwrap();
+    let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 3.0);
+    let mut r = rng(6);
+    for c in [(-0.25, 0.5), (0.5, -0.25), (-0.25, -0.25)] {
+        // The first tentative collision inside the box reads them: refused
+        // unless the ray escapes first (then nothing was read).
+        let coefficients = move |_: Vec3<f64>| c;
+        let (mut refused, mut escaped) = (0, 0);
+        for _ in 0..64 {
+            match maj.ratio_track_signed_fn(coefficients, ray, 1 << 20, &mut r) {
+                Err(Error::Domain) => refused += 1,
+                Ok(t) if t.steps == 0 => escaped += 1,
+                other => panic!("{c:?}: {other:?}"),
+            }
+            match maj.delta_track_weighted_fn(coefficients, ray, 1 << 20, &mut r) {
+                Err(Error::Domain) => refused += 1,
+                Ok(t) if t.steps == 0 => escaped += 1,
+                other => panic!("{c:?}: {other:?}"),
+            }
+        }
+        assert!(
+            refused > 64 && refused + escaped == 128,
+            "{c:?}: {refused} refused"
+        );
+    }
+}
+
+/// The roulette runs on the signed weight's magnitude, as documented:
+/// with each tentative collision multiplying the weight by exactly ½, an
+/// estimate is 0 or a power of two no smaller than 2⁻⁴ (the first below
+/// 0.05 is 2⁻⁵, which the roulette sets to 0 or 2⁻³); without the roulette
+/// (a mutation test's `|tr| < 0.05` → `== 0.05`, unnoticed) smaller powers
+/// appear on long rays.
+#[test]
+fn the_signed_roulette_keeps_weights_above_its_threshold() {
+    let one = [1.0];
+    let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(8.0, 1.0, 1.0));
+    let maj = Majorants::new(&one, [1; 3], lo, hi).unwrap();
+    // Eight mean free paths of the majorant.
+    let ray = Ray::new(Vec3::new(0.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 8.0);
+    let mut r = rng(7);
+    let mut survived = 0;
+    for _ in 0..4000 {
+        let t = maj
+            .ratio_track_signed_fn(|_| (0.25, 0.25), ray, 1 << 20, &mut r)
+            .unwrap();
+        assert!(t.tr == 0.0 || t.tr >= 0.0625, "{t:?}");
+        if t.tr > 0.0 && t.steps >= 5 {
+            survived += 1;
+        }
+    }
+    assert!(survived > 0);
+}

@@ -215,3 +215,43 @@ fn spectral_bad_input() {
     );
     assert!(w[..4].iter().all(|&x| x != 7.0) && w[4..].iter().all(|&x| x == 7.0));
 }
+
+/// A uniform of exactly 0 in an empty region is a null collision for the
+/// hero, as for a single channel (a mutation test let `ξ σ_maj ≤ σ_t`
+/// scatter there, with a zero pdf, unnoticed): every step is 0, so the
+/// walk stays put until the budget runs out.
+#[test]
+fn a_vacuum_does_not_collide_at_a_uniform_of_zero() {
+    struct Zero;
+    impl rand_xoshiro::rand_core::TryRng for Zero {
+        type Error = core::convert::Infallible;
+        fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+            Ok(0)
+        }
+        fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+            Ok(0)
+        }
+        fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+            dst.fill(0);
+            Ok(())
+        }
+    }
+    let empty = [0.0; 8];
+    let g = Grid::new(&empty, 2, 2, 2, 1.0, 1.0).unwrap();
+    let (lo, hi) = g.bounds();
+    let maj = Majorants::new(&[1.0], [1; 3], lo, hi).unwrap();
+    let s = Spectrum {
+        sigma_a: &[0.5, 0.25],
+        sigma_s: &[0.5, 1.0],
+        hero: 0,
+    };
+    let (mut w, mut u, mut l) = ([0.0; 2], [0.0; 2], [0.0; 2]);
+    let mut out = Ratios {
+        weight: &mut w,
+        r_u: &mut u,
+        r_l: &mut l,
+    };
+    let ray = Ray::new(Vec3::new(0.5, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 0.25);
+    let got = maj.delta_track_spectral(&g, &s, ray, 100, &mut Zero, &mut out);
+    assert_eq!(got.err(), Some(Error::Budget));
+}

@@ -999,9 +999,9 @@ mod tests {
     }
 
     /// The public lookups as documented (a mutation test found three
-    /// untested): a NaN in any one coordinate gives NaN; a slab of one
-    /// cell in y but two in x (not a column) interpolates in x as the same
-    /// values repeated in y do; `sigma_t` is `(σ_a + σ_s)·density`.
+    /// untested): a NaN in any one coordinate gives NaN; a slab one value
+    /// thick in y or in x (not a column) interpolates as the same values
+    /// repeated across its thickness do; `sigma_t` is `(σ_a + σ_s)·density`.
     #[test]
     fn the_public_lookups_follow_the_docs() {
         // Values x fastest: (x, z) = (0, 0) 1, (1, 0) 3, (0, 1) 2, (1, 1) 7.
@@ -1009,6 +1009,9 @@ mod tests {
         let repeated = [1.0, 3.0, 1.0, 3.0, 2.0, 7.0, 2.0, 7.0];
         let thin = Grid::new(&slab, 2, 1, 2, 0.25, 0.5).unwrap();
         let full = Grid::new(&repeated, 2, 2, 2, 0.25, 0.5).unwrap();
+        let repeated_y = [1.0, 1.0, 3.0, 3.0, 2.0, 2.0, 7.0, 7.0];
+        let thin_y = Grid::new(&slab, 1, 2, 2, 0.25, 0.5).unwrap();
+        let full_y = Grid::new(&repeated_y, 2, 2, 2, 0.25, 0.5).unwrap();
         for p in [
             [0.3, 0.5, 0.6],
             [0.9, 0.1, 0.2],
@@ -1019,6 +1022,10 @@ mod tests {
             assert_eq!(thin.density(p), full.density(p), "{p:?}");
             assert!(thin.density(p) > 1.0);
             assert_eq!(thin.sigma_t(p), 0.75 * thin.density(p));
+            // The same slab turned to vary in y, one cell in x.
+            let q = Vec3::new(p.y, p.x, p.z);
+            assert_eq!(thin_y.density(q), full_y.density(q), "{q:?}");
+            assert_eq!(thin_y.density(q), thin.density(p), "{q:?}");
         }
         let m = 0.5;
         for p in [[f64::NAN, m, m], [m, f64::NAN, m], [m, m, f64::NAN]] {

@@ -774,3 +774,54 @@ fn pivot_estimate<T: Real>(p: T, x: &[T; LEN], n: usize, pivot: usize, q: &[T; L
     }
     (-p).exp() * sum
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `pivot_estimate` is its formula, `exp(−p) Σ_k e_k(p − Y) (N − k)! /
+    /// (N! q[k])`, with `e_k` summed over every k-subset of the other
+    /// marches by brute force (a mutation test's `/ q[k]` → `· q[k]` was
+    /// unnoticed: the terms with `q[k] < 1` are products of `k` march
+    /// differences, too small for the unbiasedness tests to see).
+    #[test]
+    fn the_pivot_estimate_is_its_formula() {
+        let mut x = [0.0f64; LEN];
+        let marches = [0.3, 1.7, 0.9, 2.4, 0.05, 1.2];
+        x[..marches.len()].copy_from_slice(&marches);
+        let mut q = [1.0f64; LEN];
+        for (k, qk) in q.iter_mut().enumerate().skip(3) {
+            *qk = 0.5f64.powi(k as i32 - 2);
+        }
+        let n = marches.len();
+        let fact = |m: usize| (1..=m).map(|i| i as f64).product::<f64>();
+        for pivot in 0..n {
+            let p = x[pivot];
+            let mut others = [0.0f64; 8];
+            let mut big_n = 0;
+            for j in (0..n).filter(|&j| j != pivot) {
+                others[big_n] = p - x[j];
+                big_n += 1;
+            }
+            let mut want = 0.0;
+            for (k, &qk) in q.iter().enumerate().take(big_n + 1) {
+                let e_k: f64 = (0u32..1 << big_n)
+                    .filter(|s| s.count_ones() as usize == k)
+                    .map(|s| {
+                        (0..big_n)
+                            .filter(|&j| s >> j & 1 == 1)
+                            .map(|j| others[j])
+                            .product::<f64>()
+                    })
+                    .sum();
+                want += e_k * fact(big_n - k) / (fact(big_n) * qk);
+            }
+            want *= (-p).exp();
+            let got = pivot_estimate(p, &x, n, pivot, &q);
+            assert!(
+                (got - want).abs() <= 1e-13 * want.abs().max(1.0),
+                "pivot {pivot}: {got} against {want}"
+            );
+        }
+    }
+}

@@ -12,8 +12,8 @@ use super::majorant::{cloud, for_each_grid, mean_se, optical_depth, rays};
 use crate::common::rng;
 use scatterkit::majorant::Majorants;
 use scatterkit::medium::ray_march::{
-    Placement, Series, march_grid_within, ray_march_transmittance, ray_march_transmittance_fn,
-    telescoping_transmittance, telescoping_transmittance_fn,
+    MAX_LEVEL, Placement, Series, march_grid_within, ray_march_transmittance,
+    ray_march_transmittance_fn, telescoping_transmittance, telescoping_transmittance_fn,
 };
 use scatterkit::{Error, Grid, Ray, Real, Vec3};
 
@@ -355,4 +355,37 @@ fn an_infinite_majorant_depth_is_refused() {
             assert_eq!(r.unwrap_err(), Error::Domain, "{strata} strata");
         }
     }
+}
+
+/// The telescoping sum's deepest level is [`MAX_LEVEL`], as documented: a
+/// generator whose every uniform is 0 passes every level's coin, so one
+/// stratum marches at levels 0 to 24 (`2^k` points each, `2²⁵ − 1` density
+/// evaluations) and the next coin ends it with [`Error::Budget`] (a
+/// mutation test stopped a level earlier, unnoticed: reached with
+/// probability `3^−24`, no random test gets there).
+#[test]
+fn every_coin_passing_ends_past_the_deepest_level() {
+    struct Zero;
+    impl rand_xoshiro::rand_core::TryRng for Zero {
+        type Error = core::convert::Infallible;
+        fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+            Ok(0)
+        }
+        fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+            Ok(0)
+        }
+        fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+            dst.fill(0);
+            Ok(())
+        }
+    }
+    let count = core::cell::Cell::new(0u64);
+    let medium = |_: Vec3<f64>| {
+        count.set(count.get() + 1);
+        (0.25, 0.25)
+    };
+    let ray = Ray::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0), 1.0);
+    let got = telescoping_transmittance_fn(medium, ray, 1, u32::MAX, &mut Zero);
+    assert_eq!(got.err(), Some(Error::Budget));
+    assert_eq!(count.get(), (1u64 << (MAX_LEVEL + 1)) - 1);
 }

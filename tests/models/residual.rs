@@ -311,3 +311,31 @@ fn a_minorant_above_the_density_is_unbiased_where_the_residual_is_positive() {
         assert_eq!((x.tr, x.steps), ((-1.0f64).exp(), 0));
     }
 }
+
+/// The caller's coefficients are checked at each collision: a negative
+/// one on either side, or a sum above the cell's majorant however it is
+/// split, is refused (a mutation test accepted a negative σ_s beside a
+/// positive σ_a, and a σ_s far above the majorant read as `σ_a − σ_s`,
+/// unnoticed).
+#[test]
+fn bad_coefficients_are_refused_at_a_collision() {
+    let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(8.0, 1.0, 1.0));
+    let (max, min) = ([2.0], [0.5]);
+    let ext = Extrema::new(
+        Majorants::new(&max, [1; 3], lo, hi).unwrap(),
+        Majorants::new(&min, [1; 3], lo, hi).unwrap(),
+    )
+    .unwrap();
+    // Twelve mean free paths of the residual: a collision is all but sure.
+    let ray = Ray::new(Vec3::new(0.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 8.0);
+    let mut r = rng(12);
+    for c in [(1.0, -0.25), (-0.25, 1.0), (0.1, 5.0), (5.0, 0.1)] {
+        for rate in [1, 16] {
+            let got = ext.residual_ratio_track_rate(move |_| c, ray, rate, 1 << 20, &mut r);
+            assert_eq!(got.err(), Some(Error::Domain), "{c:?} at rate {rate}");
+        }
+    }
+    // Within the bounds it runs.
+    let got = ext.residual_ratio_track_rate(|_| (0.5, 1.0), ray, 16, 1 << 20, &mut r);
+    assert!(got.is_ok());
+}

@@ -255,3 +255,63 @@ fn a_vacuum_does_not_collide_at_a_uniform_of_zero() {
     let got = maj.delta_track_spectral(&g, &s, ray, 100, &mut Zero, &mut out);
     assert_eq!(got.err(), Some(Error::Budget));
 }
+
+/// A medium that does not absorb scatters at a uniform of 0 (a mutation
+/// test let `ξ σ_maj ≤ σ_a` absorb there), and a density above its
+/// majorant is refused by both spectral trackers (a mutation test let it
+/// through, unnoticed).
+#[test]
+fn no_absorption_at_zero_and_low_majorants_are_refused() {
+    struct Zero;
+    impl rand_xoshiro::rand_core::TryRng for Zero {
+        type Error = core::convert::Infallible;
+        fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+            Ok(0)
+        }
+        fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+            Ok(0)
+        }
+        fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+            dst.fill(0);
+            Ok(())
+        }
+    }
+    let ones = [1.0; 8];
+    let g = Grid::new(&ones, 2, 2, 2, 1.0, 1.0).unwrap();
+    let (lo, hi) = g.bounds();
+    let maj = Majorants::new(&[1.0], [1; 3], lo, hi).unwrap();
+    let s = Spectrum {
+        sigma_a: &[0.0, 0.0],
+        sigma_s: &[1.0, 0.5],
+        hero: 0,
+    };
+    let (mut w, mut u, mut l) = ([0.0; 2], [0.0; 2], [0.0; 2]);
+    let ray = Ray::new(Vec3::new(0.5, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 0.25);
+    let mut out = Ratios {
+        weight: &mut w,
+        r_u: &mut u,
+        r_l: &mut l,
+    };
+    let hit = maj.delta_track_spectral(&g, &s, ray, 100, &mut Zero, &mut out);
+    assert_eq!(hit.unwrap().event, Event::Scattered);
+    // Density majorants of ½ under a density of 1.
+    let low = Majorants::new(&[0.5], [1; 3], lo, hi).unwrap();
+    let mut r = rng(13);
+    let long = Ray::new(Vec3::new(0.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 1.0);
+    let mut refused = 0;
+    for _ in 0..16 {
+        let mut out = Ratios {
+            weight: &mut w,
+            r_u: &mut u,
+            r_l: &mut l,
+        };
+        let hit = low.delta_track_spectral(&g, &s, long, 1 << 20, &mut Zero, &mut out);
+        assert_eq!(hit.err(), Some(Error::Domain));
+        let tr = low.ratio_track_spectral(&g, &s, long, 1 << 20, &mut r, &mut out);
+        // Refused at the first tentative collision; none on the ray
+        // (probability e^{−½}) is the only way through.
+        assert!(matches!(tr, Err(Error::Domain) | Ok(0)), "{tr:?}");
+        refused += usize::from(tr.is_err());
+    }
+    assert!(refused > 0);
+}

@@ -1035,7 +1035,7 @@ mod tests {
 
     /// The f32 logarithm of targets without hardware doubles, checked on
     /// every host (a mutation test found its sign untested where doubles
-    /// are fast and the path is not taken): within 2 ulp of the f64
+    /// are fast and the path is not taken): within 2ε relative of the f64
     /// `ln(1 − u)` at every `u = k/4096` and at `1 − 2⁻ʲ`, and 0 at `u = 0`.
     #[test]
     fn the_narrow_logarithm_is_ln_of_one_minus_u() {

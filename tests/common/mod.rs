@@ -16,6 +16,24 @@ pub fn rng(seed: u64) -> Xoshiro256PlusPlus {
     Xoshiro256PlusPlus::seed_from_u64(seed)
 }
 
+/// A generator stuck on 0: every uniform is exactly 0 (every free path 0,
+/// every coin `u < p`), for the edges no seeded generator reaches.
+pub struct Zero;
+
+impl rand_xoshiro::rand_core::TryRng for Zero {
+    type Error = core::convert::Infallible;
+    fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+        Ok(0)
+    }
+    fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+        Ok(0)
+    }
+    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+        dst.fill(0);
+        Ok(())
+    }
+}
+
 /// The incident directions the chi² tests use: ±z, ±x and one off every axis.
 pub fn test_directions() -> [[f64; 3]; 5] {
     let l = (0.3f64 * 0.3 + 0.5 * 0.5 + 0.81 * 0.81).sqrt();

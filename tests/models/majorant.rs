@@ -8,7 +8,7 @@
 
 use crate::common;
 
-use common::rng;
+use common::{Zero, rng};
 use scatterkit::majorant::{DEFAULT_RES, Majorants, majorant_len};
 use scatterkit::medium::Event;
 use scatterkit::{Error, Grid, Ray, Real, Sampling, Vec3};
@@ -567,20 +567,6 @@ fn an_empty_cell_is_crossed_without_a_draw() {
 /// `ξ σ_maj = σ_t`, unnoticed).
 #[test]
 fn a_medium_that_does_not_absorb_scatters_at_a_uniform_of_zero() {
-    struct Zero;
-    impl rand_xoshiro::rand_core::TryRng for Zero {
-        type Error = core::convert::Infallible;
-        fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
-            Ok(0)
-        }
-        fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
-            Ok(0)
-        }
-        fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
-            dst.fill(0);
-            Ok(())
-        }
-    }
     let ray = Ray::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0), 1.0);
     let track = |coefficients: fn(Vec3<f64>) -> (f64, f64)| {
         scatterkit::majorant::one_majorant_delta_track(coefficients, 1.0, ray, 100, &mut Zero)

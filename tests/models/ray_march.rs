@@ -9,7 +9,7 @@
 //! tracking.
 
 use super::majorant::{cloud, for_each_grid, mean_se, optical_depth, rays};
-use crate::common::rng;
+use crate::common::{Zero, rng};
 use scatterkit::majorant::Majorants;
 use scatterkit::medium::ray_march::{
     MAX_LEVEL, Placement, Series, march_grid_within, ray_march_transmittance,
@@ -365,20 +365,6 @@ fn an_infinite_majorant_depth_is_refused() {
 /// probability `3^−24`, no random test gets there).
 #[test]
 fn every_coin_passing_ends_past_the_deepest_level() {
-    struct Zero;
-    impl rand_xoshiro::rand_core::TryRng for Zero {
-        type Error = core::convert::Infallible;
-        fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
-            Ok(0)
-        }
-        fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
-            Ok(0)
-        }
-        fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
-            dst.fill(0);
-            Ok(())
-        }
-    }
     let count = core::cell::Cell::new(0u64);
     let medium = |_: Vec3<f64>| {
         count.set(count.get() + 1);

@@ -8,7 +8,7 @@
 
 use crate::common;
 
-use common::rng;
+use common::{Zero, rng};
 use scatterkit::majorant::Majorants;
 use scatterkit::medium::Event;
 use scatterkit::spectral::{MAX_CHANNELS, Ratios, Spectrum};
@@ -222,20 +222,6 @@ fn spectral_bad_input() {
 /// walk stays put until the budget runs out.
 #[test]
 fn a_vacuum_does_not_collide_at_a_uniform_of_zero() {
-    struct Zero;
-    impl rand_xoshiro::rand_core::TryRng for Zero {
-        type Error = core::convert::Infallible;
-        fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
-            Ok(0)
-        }
-        fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
-            Ok(0)
-        }
-        fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
-            dst.fill(0);
-            Ok(())
-        }
-    }
     let empty = [0.0; 8];
     let g = Grid::new(&empty, 2, 2, 2, 1.0, 1.0).unwrap();
     let (lo, hi) = g.bounds();
@@ -262,20 +248,6 @@ fn a_vacuum_does_not_collide_at_a_uniform_of_zero() {
 /// through, unnoticed).
 #[test]
 fn no_absorption_at_zero_and_low_majorants_are_refused() {
-    struct Zero;
-    impl rand_xoshiro::rand_core::TryRng for Zero {
-        type Error = core::convert::Infallible;
-        fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
-            Ok(0)
-        }
-        fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
-            Ok(0)
-        }
-        fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
-            dst.fill(0);
-            Ok(())
-        }
-    }
     let ones = [1.0; 8];
     let g = Grid::new(&ones, 2, 2, 2, 1.0, 1.0).unwrap();
     let (lo, hi) = g.bounds();

@@ -450,15 +450,11 @@ fn ratio_tracking_through_majorants_ends_once_the_transmittance_is_gone() {
 /// a node.
 #[test]
 fn majorants_bound_the_density_on_every_cell_face() {
-    let inward = |x: f64, up: bool| {
-        let b = x.to_bits();
-        match (x == 0.0, up) {
-            (true, true) => f64::from_bits(1),
-            (true, false) => 0.0,
-            (false, true) => f64::from_bits(b + 1),
-            (false, false) => f64::from_bits(b - 1),
-        }
-    };
+    // The float after `x ≥ 0`, and the one before `x > 0`.
+    let (up, down) = (
+        |x: f64| f64::from_bits(x.to_bits() + 1),
+        |x: f64| f64::from_bits(x.to_bits() - 1),
+    );
     for sampling in [Sampling::Nodes, Sampling::Cells] {
         for (n, m) in [(1002, 3), (1001, 3), (1000, 3), (64, 5), (10, 7), (2, 3)] {
             for spike in 0..n {
@@ -472,7 +468,7 @@ fn majorants_bound_the_density_on_every_cell_face() {
                 for c in 0..m {
                     let (lo, hi) = (c as f64 / m as f64, (c + 1) as f64 / m as f64);
                     let inside = (1..16).map(|k| lo + (hi - lo) * k as f64 / 16.0);
-                    let faces = [lo, inward(lo, true), hi.min(1.0), inward(hi, false)];
+                    let faces = [lo, up(lo), hi, down(hi)];
                     for x in faces.into_iter().chain(inside) {
                         let rho = g.density(Vec3::new(x, 0.5, 0.5));
                         assert!(

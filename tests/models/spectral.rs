@@ -216,19 +216,21 @@ fn spectral_bad_input() {
     assert!(w[..4].iter().all(|&x| x != 7.0) && w[4..].iter().all(|&x| x == 7.0));
 }
 
-/// A uniform of exactly 0 in an empty region is a null collision for the
-/// hero, as for a single channel (a mutation test let `ξ σ_maj ≤ σ_t`
-/// scatter there, with a zero pdf, unnoticed): every step is 0, so the
-/// walk stays put until the budget runs out.
-#[test]
-fn a_vacuum_does_not_collide_at_a_uniform_of_zero() {
-    let empty = [0.0; 8];
-    let g = Grid::new(&empty, 2, 2, 2, 1.0, 1.0).unwrap();
+/// Hero delta tracking with a generator stuck on 0 (every step 0, every
+/// uniform 0) from inside a 2 × 2 × 2 grid of constant `density` under a
+/// density majorant of 1, hero channel 0.
+fn stuck_hero_walk(
+    density: f64,
+    sigma_a: &[f64; 2],
+    sigma_s: &[f64; 2],
+) -> Result<scatterkit::majorant::Track<f64>, Error> {
+    let values = [density; 8];
+    let g = Grid::new(&values, 2, 2, 2, 1.0, 1.0).unwrap();
     let (lo, hi) = g.bounds();
     let maj = Majorants::new(&[1.0], [1; 3], lo, hi).unwrap();
     let s = Spectrum {
-        sigma_a: &[0.5, 0.25],
-        sigma_s: &[0.5, 1.0],
+        sigma_a,
+        sigma_s,
         hero: 0,
     };
     let (mut w, mut u, mut l) = ([0.0; 2], [0.0; 2], [0.0; 2]);
@@ -238,7 +240,16 @@ fn a_vacuum_does_not_collide_at_a_uniform_of_zero() {
         r_l: &mut l,
     };
     let ray = Ray::new(Vec3::new(0.5, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 0.25);
-    let got = maj.delta_track_spectral(&g, &s, ray, 100, &mut Zero, &mut out);
+    maj.delta_track_spectral(&g, &s, ray, 100, &mut Zero, &mut out)
+}
+
+/// A uniform of exactly 0 in an empty region is a null collision for the
+/// hero, as for a single channel (a mutation test let `ξ σ_maj ≤ σ_t`
+/// scatter there, with a zero pdf, unnoticed): every step is 0, so the
+/// walk stays put until the budget runs out.
+#[test]
+fn a_vacuum_does_not_collide_at_a_uniform_of_zero() {
+    let got = stuck_hero_walk(0.0, &[0.5, 0.25], &[0.5, 1.0]);
     assert_eq!(got.err(), Some(Error::Budget));
 }
 
@@ -248,37 +259,32 @@ fn a_vacuum_does_not_collide_at_a_uniform_of_zero() {
 /// through, unnoticed).
 #[test]
 fn no_absorption_at_zero_and_low_majorants_are_refused() {
+    let (sigma_a, sigma_s) = ([0.0, 0.0], [1.0, 0.5]);
+    let hit = stuck_hero_walk(1.0, &sigma_a, &sigma_s);
+    assert_eq!(hit.unwrap().event, Event::Scattered);
+    // Density majorants of ½ under a density of 1.
     let ones = [1.0; 8];
     let g = Grid::new(&ones, 2, 2, 2, 1.0, 1.0).unwrap();
     let (lo, hi) = g.bounds();
-    let maj = Majorants::new(&[1.0], [1; 3], lo, hi).unwrap();
+    let low = Majorants::new(&[0.5], [1; 3], lo, hi).unwrap();
     let s = Spectrum {
-        sigma_a: &[0.0, 0.0],
-        sigma_s: &[1.0, 0.5],
+        sigma_a: &sigma_a,
+        sigma_s: &sigma_s,
         hero: 0,
     };
     let (mut w, mut u, mut l) = ([0.0; 2], [0.0; 2], [0.0; 2]);
-    let ray = Ray::new(Vec3::new(0.5, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 0.25);
     let mut out = Ratios {
         weight: &mut w,
         r_u: &mut u,
         r_l: &mut l,
     };
-    let hit = maj.delta_track_spectral(&g, &s, ray, 100, &mut Zero, &mut out);
-    assert_eq!(hit.unwrap().event, Event::Scattered);
-    // Density majorants of ½ under a density of 1.
-    let low = Majorants::new(&[0.5], [1; 3], lo, hi).unwrap();
-    let mut r = rng(13);
     let long = Ray::new(Vec3::new(0.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 1.0);
+    // With every step 0 the first tentative collision is at the origin.
+    let hit = low.delta_track_spectral(&g, &s, long, 1 << 20, &mut Zero, &mut out);
+    assert_eq!(hit.err(), Some(Error::Domain));
+    let mut r = rng(13);
     let mut refused = 0;
     for _ in 0..16 {
-        let mut out = Ratios {
-            weight: &mut w,
-            r_u: &mut u,
-            r_l: &mut l,
-        };
-        let hit = low.delta_track_spectral(&g, &s, long, 1 << 20, &mut Zero, &mut out);
-        assert_eq!(hit.err(), Some(Error::Domain));
         let tr = low.ratio_track_spectral(&g, &s, long, 1 << 20, &mut r, &mut out);
         // Refused at the first tentative collision; none on the ray
         // (probability e^{−½}) is the only way through.

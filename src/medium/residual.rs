@@ -222,3 +222,39 @@ impl<'a, T: Real> Extrema<'a, T> {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand_xoshiro::Xoshiro256PlusPlus;
+    use rand_xoshiro::rand_core::SeedableRng;
+
+    /// Extrema stored unchecked (as the C layer keeps them) are refused
+    /// where the ray meets a cell whose minorant is negative or above its
+    /// majorant, whichever of the two fails (a mutation test's `&&` → `||`
+    /// let a negative minorant under a positive majorant through).
+    #[test]
+    fn stored_extrema_that_do_not_hold_are_refused_on_the_way() {
+        let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0));
+        let ray = Ray::new(Vec3::new(0.5, 0.5, -1.0), Vec3::new(0.0, 0.0, 1.0), 3.0);
+        let medium = |_: Vec3<f64>| (0.0, 0.5);
+        for (min, max, ok) in [(0.25, 1.0, true), (-1.0, 1.0, false), (2.0, 1.0, false)] {
+            let (min, max) = ([min], [max]);
+            let pair = Extrema::paired(
+                Majorants::from_parts(&max, [1; 3], lo, hi).unwrap(),
+                Majorants::from_parts(&min, [1; 3], lo, hi).unwrap(),
+            )
+            .unwrap();
+            let mut r = Xoshiro256PlusPlus::seed_from_u64(3);
+            let got = pair.residual_ratio_track_rate(medium, ray, 1, 1 << 20, &mut r);
+            assert_eq!(
+                got.is_ok(),
+                ok,
+                "minorant {min:?}, majorant {max:?}: {got:?}"
+            );
+            if !ok {
+                assert_eq!(got.err(), Some(Error::Domain));
+            }
+        }
+    }
+}

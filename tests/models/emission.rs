@@ -263,6 +263,19 @@ fn bad_input_is_refused() {
     )
     .unwrap();
     assert_eq!(emission_cells(&maj, &m2, ray).err(), Some(Error::Domain));
+    // A bad emitted value in a cell the ray crosses, stored after the
+    // check (as through C), stops the walk (a mutation test found no test
+    // giving one).
+    let (lo, hi) = maj.bounds();
+    for bad in [-1.0, f64::NAN, f64::INFINITY] {
+        let stored = [bad; 8];
+        let j = Majorants::from_parts(&stored, [2; 3], lo, hi).unwrap();
+        assert_eq!(
+            emission_cells(&maj, &j, ray).err(),
+            Some(Error::Domain),
+            "J = {bad}"
+        );
+    }
     // Coefficients above the majorant.
     assert_eq!(
         maj.emission_track_fn(|_| (50.0, 0.0), |_| 1.0, ray, 1 << 20, &mut r)

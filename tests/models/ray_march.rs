@@ -375,3 +375,44 @@ fn every_coin_passing_ends_past_the_deepest_level() {
     assert_eq!(got.err(), Some(Error::Budget));
     assert_eq!(count.get(), (1u64 << (MAX_LEVEL + 1)) - 1);
 }
+
+/// The budget is the most density evaluations a call may make: a call
+/// that needs `k` succeeds with a budget of `k`, with the same estimate and
+/// count, and ends with [`Error::Budget`] at `k − 1` (a mutation test's
+/// `steps > budget` → `≥` went unnoticed), for both series.
+#[test]
+fn a_budget_of_exactly_the_evaluations_needed_suffices() {
+    let medium = |p: Vec3<f64>| (0.0, 1.0 + p.x);
+    let ray = Ray::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), 2.0);
+    type Estimator = fn(
+        &dyn Fn(Vec3<f64>) -> (f64, f64),
+        Ray<f64>,
+        u32,
+        &mut rand_xoshiro::Xoshiro256PlusPlus,
+    ) -> Result<scatterkit::majorant::Transmittance<f64>, Error>;
+    let estimators: [(&str, Estimator); 2] = [
+        ("power", |m, ray, budget, r| {
+            ray_march_transmittance_fn(m, ray, 4, budget, r)
+        }),
+        ("telescoping", |m, ray, budget, r| {
+            telescoping_transmittance_fn(m, ray, 4, budget, r)
+        }),
+    ];
+    for (name, estimate) in estimators {
+        for seed in 0..16 {
+            let free = estimate(&medium, ray, u32::MAX, &mut rng(seed)).unwrap();
+            let k = free.steps;
+            let exact = estimate(&medium, ray, k, &mut rng(seed)).unwrap();
+            assert_eq!(
+                (exact.tr.to_bits(), exact.steps),
+                (free.tr.to_bits(), k),
+                "{name}, seed {seed}"
+            );
+            assert_eq!(
+                estimate(&medium, ray, k - 1, &mut rng(seed)).err(),
+                Some(Error::Budget),
+                "{name}, seed {seed}: {k} evaluations"
+            );
+        }
+    }
+}

@@ -214,6 +214,23 @@ fn spectral_bad_input() {
             .is_ok()
     );
     assert!(w[..4].iter().all(|&x| x != 7.0) && w[4..].iter().all(|&x| x == 7.0));
+    // One output short beside two that hold every channel (a mutation
+    // test's `&&` → `||` in the length check went unnoticed).
+    for short in 0..3 {
+        let n = |k: usize| if k == short { 3 } else { 4 };
+        let (mut w, mut u, mut l) = ([7.0; 4], [7.0; 4], [7.0; 4]);
+        let mut out = Ratios {
+            weight: &mut w[..n(0)],
+            r_u: &mut u[..n(1)],
+            r_l: &mut l[..n(2)],
+        };
+        assert_eq!(
+            maj.ratio_track_spectral(&g, &s, Ray::new(o, d, 2.0), 1 << 20, &mut r, &mut out)
+                .err(),
+            Some(Error::Size),
+            "output {short} short"
+        );
+    }
 }
 
 /// Hero delta tracking with a generator stuck on 0 (every step 0, every

@@ -384,32 +384,26 @@ fn every_coin_passing_ends_past_the_deepest_level() {
 fn a_budget_of_exactly_the_evaluations_needed_suffices() {
     let medium = |p: Vec3<f64>| (0.0, 1.0 + p.x);
     let ray = Ray::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), 2.0);
-    type Estimator = fn(
-        &dyn Fn(Vec3<f64>) -> (f64, f64),
-        Ray<f64>,
-        u32,
-        &mut rand_xoshiro::Xoshiro256PlusPlus,
-    ) -> Result<scatterkit::majorant::Transmittance<f64>, Error>;
-    let estimators: [(&str, Estimator); 2] = [
-        ("power", |m, ray, budget, r| {
-            ray_march_transmittance_fn(m, ray, 4, budget, r)
-        }),
-        ("telescoping", |m, ray, budget, r| {
-            telescoping_transmittance_fn(m, ray, 4, budget, r)
-        }),
-    ];
-    for (name, estimate) in estimators {
+    let estimate = |telescoping: bool, budget: u32, seed: u64| {
+        let mut r = rng(seed);
+        if telescoping {
+            telescoping_transmittance_fn(medium, ray, 4, budget, &mut r)
+        } else {
+            ray_march_transmittance_fn(medium, ray, 4, budget, &mut r)
+        }
+    };
+    for (name, telescoping) in [("power", false), ("telescoping", true)] {
         for seed in 0..16 {
-            let free = estimate(&medium, ray, u32::MAX, &mut rng(seed)).unwrap();
+            let free = estimate(telescoping, u32::MAX, seed).unwrap();
             let k = free.steps;
-            let exact = estimate(&medium, ray, k, &mut rng(seed)).unwrap();
+            let exact = estimate(telescoping, k, seed).unwrap();
             assert_eq!(
                 (exact.tr.to_bits(), exact.steps),
                 (free.tr.to_bits(), k),
                 "{name}, seed {seed}"
             );
             assert_eq!(
-                estimate(&medium, ray, k - 1, &mut rng(seed)).err(),
+                estimate(telescoping, k - 1, seed).err(),
                 Some(Error::Budget),
                 "{name}, seed {seed}: {k} evaluations"
             );

@@ -716,7 +716,15 @@ fn power<T: Real, R: Rng + ?Sized, S: Fn(Vec3<T>) -> Result<T, Error>>(
     m: &mut Marcher<'_, T, S>,
     rng: &mut R,
 ) -> Result<T, Error> {
-    let mut march = |r: &mut R| m.jittered(r);
+    power_series(|r: &mut R| m.jittered(r), rng)
+}
+
+/// [`power`] over the marches `march` makes (a seam for tests, which
+/// choose the marches).
+fn power_series<T: Real, R: Rng + ?Sized>(
+    mut march: impl FnMut(&mut R) -> Result<T, Error>,
+    rng: &mut R,
+) -> Result<T, Error> {
     // x: the marches; q[k] = P(N ≥ k). No indexing below can fail (and
     // none can panic: the C layer's entry points must not).
     let (mut x, mut q) = ([T::ZERO; LEN], [T::ONE; LEN]);
@@ -823,5 +831,46 @@ mod tests {
                 "pivot {pivot}: {got} against {want}"
             );
         }
+    }
+
+    /// The power series averages the pivot estimates over all `N + 1`
+    /// marches it made, with `q[k]` the roulette's `P(N ≥ k)`: recomputed
+    /// here from the marches recorded (a mutation test's `N + 1` → `N`,
+    /// which leaves the last march out of every sum, was below the
+    /// unbiasedness tests' resolution).
+    #[test]
+    fn the_power_series_uses_every_march_it_made() {
+        use rand_xoshiro::Xoshiro256PlusPlus;
+        use rand_xoshiro::rand_core::SeedableRng;
+        let mut longest = 0;
+        for seed in 0..64u64 {
+            let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+            let (mut x, mut n) = ([0.0f64; LEN], 0);
+            let got = power_series(
+                |r: &mut Xoshiro256PlusPlus| {
+                    let v = 0.2 + 1.5 * f64::uniform(r);
+                    x[n] = v;
+                    n += 1;
+                    Ok(v)
+                },
+                &mut rng,
+            )
+            .unwrap();
+            let mut q = [1.0f64; LEN];
+            for k in MIN_ORDER as usize + 1..LEN {
+                q[k] = q[k - 1] * CONTINUE / k as f64;
+            }
+            let want = (0..n)
+                .map(|i| pivot_estimate(x[i], &x, n, i, &q))
+                .sum::<f64>()
+                / n as f64;
+            assert!(
+                (got - want).abs() <= 1e-14 * want.abs(),
+                "seed {seed}, {n} marches: {got} against {want}"
+            );
+            longest = longest.max(n);
+        }
+        // Some draws went past the fewest marches.
+        assert!(longest > MIN_ORDER as usize + 2, "{longest}");
     }
 }

@@ -892,4 +892,56 @@ mod tests {
             Some(Error::Budget)
         );
     }
+
+    /// A generator whose every uniform is `1 − 2⁻⁵³` (a step of 36.7 mean
+    /// free paths), counting its draws.
+    struct Far(u32);
+
+    impl rand_core::TryRng for Far {
+        type Error = core::convert::Infallible;
+        fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+            self.0 += 1;
+            Ok(u32::MAX)
+        }
+        fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+            self.0 += 1;
+            Ok(u64::MAX)
+        }
+        fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+            dst.fill(u8::MAX);
+            Ok(())
+        }
+    }
+
+    /// A ray through a grid's edge crosses a cell of zero length there,
+    /// and draws nothing in it: one draw per cell of positive length (a
+    /// mutation test's `t < t_end` → `≤` drew in the empty one too). A
+    /// single majorant of 0 draws nothing either (`σ > 0` → `≥ 0` drew).
+    #[test]
+    fn a_cell_crossed_over_no_length_draws_nothing() {
+        let ray = Ray::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0), 5.0);
+        let vacuum = |_: Vec3<f64>| (0.0, 0.0);
+        let mut rng = Far(0);
+        let hit = Walker::One(0.0).delta_track_fn(vacuum, ray, 100, &mut rng);
+        assert_eq!(
+            hit.map(|h| (h.t, h.event, rng.0)),
+            Ok((5.0, Event::Escaped, 0))
+        );
+        let mut rng = Far(0);
+        let tr = Walker::One(0.0).ratio_track_fn(vacuum, ray, 100, &mut rng);
+        assert_eq!(tr.map(|x| (x.tr, rng.0)), Ok((1.0, 0)));
+        let sigma = [2.0f64; 4];
+        let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0));
+        let grid = Majorants::from_parts(&sigma, [2, 2, 1], lo, hi).unwrap();
+        let coef = |_: Vec3<f64>| (0.5, 0.5);
+        // Along the diagonal of the 2 × 2 cells: through the edge x = y =
+        // ½, between the cells (0, 0) and (1, 1).
+        let diagonal = Ray::new(Vec3::new(0.0, 0.0, 0.5), Vec3::new(1.0, 1.0, 0.0), 10.0);
+        let mut rng = Far(0);
+        let hit = grid.delta_track_fn(coef, diagonal, 100, &mut rng).unwrap();
+        assert_eq!((hit.event, hit.steps, rng.0), (Event::Escaped, 0, 2));
+        let mut rng = Far(0);
+        let tr = grid.ratio_track_fn(coef, diagonal, 100, &mut rng).unwrap();
+        assert_eq!((tr.tr, tr.steps, rng.0), (1.0, 0, 2));
+    }
 }

@@ -63,7 +63,14 @@ pub(crate) fn exponential_step<T: Real>(inv_sigma: T, u: T) -> T {
 /// where doubles run in hardware), else libm's `log1pf`.
 #[inline(always)]
 fn ln_1m<T: Real>(u: T) -> T {
-    if core::mem::size_of::<T>() == 8 || crate::math::log::WIDE {
+    ln_1m_on(u, crate::math::log::WIDE)
+}
+
+/// [`ln_1m`] on a host whose doubles run in hardware (`wide`) or not: a
+/// parameter, so that one host tests both routes.
+#[inline(always)]
+fn ln_1m_on<T: Real>(u: T, wide: bool) -> T {
+    if core::mem::size_of::<T>() == 8 || wide {
         T::from_f64(crate::math::log::ln_1m(u.to_f64()))
     } else {
         ln_1m_narrow(u)
@@ -998,6 +1005,105 @@ mod tests {
         assert!(last.scattered && last.t == free_path(4.0, 0.5));
     }
 
+    /// A sample that reaches `t_max` is the surface event, also when both
+    /// are +∞ (a channel of σ_t = 0 in an unbounded medium), and where
+    /// every channel's transmittance has underflowed to 0 the weights are
+    /// 0, as documented (a mutation test found both untested: `dist <
+    /// t_max` → `≤` reported a scattering at +∞, `pdf > 0` → `≥ 0` gave
+    /// NaN weights).
+    #[test]
+    fn reaching_t_max_is_the_surface_and_no_density_weighs_nothing() {
+        let mut w = [f64::NAN; 2];
+        let inf = f64::INFINITY;
+        let s = homogeneous_sample(&[0.0, 1.0], &[0.0, 0.5], inf, 0.0, 0.5, &mut w).unwrap();
+        assert_eq!(
+            s,
+            HomogeneousSample {
+                t: inf,
+                scattered: false
+            }
+        );
+        // Tr = (1, 0), mean 1/2.
+        assert_eq!(w, [2.0, 0.0]);
+        // u_dist = 1: no collision before t_max = 1000, where e^{−1000}
+        // and e^{−2000} are 0.
+        let mut w = [f64::NAN; 2];
+        let s = homogeneous_sample(&[1.0, 2.0], &[0.5, 1.0], 1000.0, 0.0, 1.0, &mut w).unwrap();
+        assert!(!s.scattered && s.t == 1000.0);
+        assert_eq!(w, [0.0, 0.0]);
+    }
+
+    /// A grid of σ_s = 0 never scatters, even where the event's uniform is
+    /// 0 (it scatters with probability σ_s/σ_t: `u < albedo`, which `u ≤
+    /// albedo`, a mutation test's, broke at 0); a ray leaving through the
+    /// face it starts on crosses nothing, escapes, and draws nothing (the
+    /// clip's empty span, `t0 < t1` → `≤`, was tracked over with a draw).
+    #[test]
+    fn an_absorbing_grid_never_scatters_and_an_empty_crossing_draws_nothing() {
+        use rand_xoshiro::rand_core::Rng as _;
+        let density = [1.0f64; 8];
+        let absorbing = Grid::new(&density, 2, 2, 2, 1.0, 0.0).unwrap();
+        let up = Vec3::new(0.0, 0.0, 1.0);
+        let ray = Ray::new(Vec3::new(0.5, 0.5, 0.5), up, 10.0);
+        // Every uniform 0: a collision where the ray starts.
+        let hit = absorbing.delta_track(ray, &mut Script(&[])).unwrap();
+        assert_eq!(hit, (0.0, Event::Absorbed));
+        let on_top = Ray::new(Vec3::new(0.5, 0.5, 1.0), up, 10.0);
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(3);
+        let mut untouched = rng.clone();
+        let hit = absorbing.delta_track(on_top, &mut rng).unwrap();
+        assert_eq!(hit, (10.0, Event::Escaped));
+        assert_eq!(rng.next_u64(), untouched.next_u64());
+    }
+
+    /// A generator giving the words of its script in turn (then 0).
+    struct Script<'a>(&'a [u64]);
+
+    impl rand_core::TryRng for Script<'_> {
+        type Error = core::convert::Infallible;
+        fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+            self.try_next_u64().map(|x| (x >> 32) as u32)
+        }
+        fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+            let (&x, rest) = self.0.split_first().unwrap_or((&0, &[]));
+            self.0 = rest;
+            Ok(x)
+        }
+        fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+            dst.fill(0);
+            Ok(())
+        }
+    }
+
+    /// Where σ_t = 0 nothing collides, even at a uniform of 0 (a real
+    /// collision is `u σ_maj < σ_t`; a mutation test's `≤` collided in a
+    /// vacuum), and a majorant of 0 (a grid of zero density) is crossed by
+    /// delta and ratio tracking without a draw (`σ_maj` NaN `||` `≤ 0` →
+    /// `&&`, a mutation test's, drew one).
+    #[test]
+    fn nothing_collides_where_there_is_nothing() {
+        // σ_t rises from 0 at z = 0 to 2 at z = 1; the ray runs along the
+        // face z = 0. Draws: a step of 0, an acceptance uniform of 0, then
+        // a step of 36.7 mean free paths, past the box.
+        let rising = [0.0f64, 1.0];
+        let grid = Grid::new(&rising, 1, 1, 2, 1.0, 1.0).unwrap();
+        let along = Ray::new(Vec3::new(0.5, 0.5, 0.0), Vec3::new(1.0, 0.0, 0.0), 10.0);
+        let hit = grid.delta_track(along, &mut Script(&[0, 0, u64::MAX]));
+        assert_eq!(hit, Ok((10.0, Event::Escaped)));
+        let none = [0.0f64; 8];
+        let vacuum = Grid::new(&none, 2, 2, 2, 1.0, 1.0).unwrap();
+        let ray = Ray::new(Vec3::new(0.5, 0.5, 0.5), Vec3::new(0.0, 0.0, 1.0), 10.0);
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(5);
+        let mut untouched = rng.clone();
+        assert_eq!(
+            vacuum.delta_track(ray, &mut rng),
+            Ok((10.0, Event::Escaped))
+        );
+        assert_eq!(vacuum.ratio_track(ray, &mut rng), Ok(1.0));
+        use rand_xoshiro::rand_core::Rng as _;
+        assert_eq!(rng.next_u64(), untouched.next_u64());
+    }
+
     /// The public lookups as documented (a mutation test found three
     /// untested): a NaN in any one coordinate gives NaN; a slab one value
     /// thick in y or in x (not a column) interpolates as the same values
@@ -1054,19 +1160,28 @@ mod tests {
         assert_eq!(ln_1m_narrow(0.0f32), 0.0);
     }
 
-    /// Where doubles run in hardware, the f32 logarithm is the f64 table's
-    /// `ln(1 − u)` rounded once to f32 (what the docs of `ln_1m` promise),
-    /// not `log1pf`: the same bits at every `u = k/2¹⁶` (a mutation test
-    /// found nothing telling the two routes apart).
+    /// Each route of `ln_1m` is the one its docs give, on hosts with and
+    /// without hardware doubles: f64 always takes the f64 table; f32 takes
+    /// it rounded once to f32 where doubles are fast, else `log1pf`. The
+    /// same bits at every `u = k/2¹⁶` (mutation tests found nothing telling
+    /// the routes apart: `||` → `&&`, and `size_of == 8` → `≠ 8`, which on
+    /// a host without hardware doubles sends f64 through `log1pf`).
     #[test]
-    fn the_f32_logarithm_takes_the_f64_table_where_doubles_are_fast() {
-        if !crate::math::log::WIDE {
-            return;
-        }
+    fn each_logarithm_route_is_the_documented_one() {
         for k in 0..1u32 << 16 {
             let u = k as f32 / 65536.0;
-            let want = crate::math::log::ln_1m(u as f64) as f32;
-            assert_eq!(ln_1m(u).to_bits(), want.to_bits(), "u = {u}");
+            let table = crate::math::log::ln_1m(u as f64);
+            for wide in [false, true] {
+                assert_eq!(ln_1m_on(u as f64, wide).to_bits(), table.to_bits());
+            }
+            assert_eq!(ln_1m_on(u, true).to_bits(), (table as f32).to_bits());
+            assert_eq!(ln_1m_on(u, false).to_bits(), ln_1m_narrow(u).to_bits());
+            let here = if crate::math::log::WIDE {
+                table as f32
+            } else {
+                ln_1m_narrow(u)
+            };
+            assert_eq!(ln_1m(u).to_bits(), here.to_bits(), "u = {u}");
         }
     }
 

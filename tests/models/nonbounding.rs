@@ -263,6 +263,39 @@ fn a_negative_coefficient_is_refused_on_either_side() {
     }
 }
 
+/// At a uniform of exactly 0, weighted delta tracking absorbs only where
+/// σ_a > 0 and collides only where σ_t > 0 (mutation tests let `x < σ_a`
+/// → `≤` absorb in a medium that does not absorb, and `x < σ_t` → `≤`
+/// scatter in a vacuum): a medium of (σ_a, σ_s) = (0, 1) scatters where
+/// the ray enters the box; in a vacuum every tentative collision is null
+/// and every step 0, so the walk stays put until its budget runs out. A
+/// medium exactly at its majorant is bounded: no excess is reported
+/// (`ratio > 1` → `≥`, another, reported one of ratio 1).
+#[test]
+fn a_uniform_of_zero_neither_absorbs_nor_collides_where_nothing_does() {
+    use crate::common::Zero;
+    let one = [1.0];
+    let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0));
+    let maj = Majorants::new(&one, [1; 3], lo, hi).unwrap();
+    let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 3.0);
+    let hit = maj.delta_track_weighted_fn(|_| (0.0, 1.0), ray, 16, &mut Zero);
+    let hit = hit.unwrap();
+    assert_eq!((hit.t, hit.event, hit.weight), (1.0, Event::Scattered, 1.0));
+    let vacuum = maj.delta_track_weighted_fn(|_| (0.0, 0.0), ray, 16, &mut Zero);
+    assert_eq!(vacuum.err(), Some(Error::Budget));
+    let mut r = rng(9);
+    let at_majorant = |_: Vec3<f64>| (0.25, 0.75);
+    let mut crossed = 0;
+    for _ in 0..64 {
+        let tr = maj.ratio_track_signed_fn(at_majorant, ray, 1 << 20, &mut r);
+        let w = maj.delta_track_weighted_fn(at_majorant, ray, 1 << 20, &mut r);
+        let (tr, w) = (tr.unwrap(), w.unwrap());
+        assert!(tr.exceeded.is_none() && w.exceeded.is_none());
+        crossed += (tr.steps > 0) as u32 + (w.steps > 0) as u32;
+    }
+    assert!(crossed > 64, "{crossed}");
+}
+
 /// The roulette runs on the signed weight's magnitude, as documented:
 /// with each tentative collision multiplying the weight by exactly ½, an
 /// estimate is 0 or a power of two no smaller than 2⁻⁴ (the first below

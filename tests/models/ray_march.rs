@@ -9,10 +9,10 @@
 //! tracking.
 
 use super::majorant::{cloud, for_each_grid, mean_se, optical_depth, rays};
-use crate::common::{Zero, rng};
+use crate::common::rng;
 use scatterkit::majorant::Majorants;
 use scatterkit::medium::ray_march::{
-    MAX_LEVEL, Placement, Series, march_grid_within, ray_march_transmittance,
+    MAX_LEVEL, MAX_ORDER, Placement, Series, march_grid_within, ray_march_transmittance,
     ray_march_transmittance_fn, telescoping_transmittance, telescoping_transmittance_fn,
 };
 use scatterkit::{Error, Grid, Ray, Real, Vec3};
@@ -357,12 +357,30 @@ fn an_infinite_majorant_depth_is_refused() {
     }
 }
 
+/// An optical depth that overflows `T` but not f64 (f32, σ_t = 3·10³⁸
+/// over a length of 10) is refused by both series, as documented (a
+/// mutation test's `fine && coarse` finite `|| diff` finite took it: the
+/// sums are finite in f64, and the difference of coarse and fine too).
+#[test]
+fn a_depth_that_overflows_f32_is_refused() {
+    let ray = Ray::new(Vec3::new(0.0f32, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), 10.0);
+    let dense = |_: Vec3<f32>| (0.0f32, 3e38f32);
+    let mut r = rng(11);
+    for _ in 0..32 {
+        let power = ray_march_transmittance_fn(dense, ray, 4, 1 << 20, &mut r);
+        assert_eq!(power.err(), Some(Error::Domain));
+        let telescoping = telescoping_transmittance_fn(dense, ray, 4, 1 << 20, &mut r);
+        assert_eq!(telescoping.err(), Some(Error::Domain));
+    }
+}
+
 /// The telescoping sum's deepest level is [`MAX_LEVEL`], as documented: a
 /// generator whose every uniform is 0 passes every level's coin, so one
 /// stratum marches at levels 0 to 24 (`2^k` points each, `2²⁵ − 1` density
 /// evaluations) and the next coin ends it with [`Error::Budget`] (a
 /// mutation test stopped a level earlier, unnoticed: reached with
-/// probability `3^−24`, no random test gets there).
+/// probability `3^−24`, no random test gets there). That coin is drawn:
+/// failed, it returns the estimate (another ended the loop before it).
 #[test]
 fn every_coin_passing_ends_past_the_deepest_level() {
     let count = core::cell::Cell::new(0u64);
@@ -371,9 +389,78 @@ fn every_coin_passing_ends_past_the_deepest_level() {
         (0.25, 0.25)
     };
     let ray = Ray::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0), 1.0);
-    let got = telescoping_transmittance_fn(medium, ray, 1, u32::MAX, &mut Zero);
+    let mut zero = ZeroThenOne {
+        zeros: u64::MAX,
+        drawn: 0,
+    };
+    let got = telescoping_transmittance_fn(medium, ray, 1, u32::MAX, &mut zero);
     assert_eq!(got.err(), Some(Error::Budget));
     assert_eq!(count.get(), (1u64 << (MAX_LEVEL + 1)) - 1);
+    // The same draws but the last, the coin past the deepest level.
+    let mut last_fails = ZeroThenOne {
+        zeros: zero.drawn - 1,
+        drawn: 0,
+    };
+    let got = telescoping_transmittance_fn(medium, ray, 1, u32::MAX, &mut last_fails);
+    assert!(got.unwrap().tr.is_finite());
+    assert_eq!(last_fails.drawn, zero.drawn);
+}
+
+/// The power series is cut at [`MAX_ORDER`], as documented: with every
+/// roulette passed (uniforms of 0), one stratum marches `MAX_ORDER + 1`
+/// times and the next order ends it with [`Error::Budget`]; with the last
+/// roulette failed, the estimate of those marches is returned (a mutation
+/// test's array of `MAX_ORDER` marches, one short, cut a term earlier,
+/// unnoticed: reached with probability below 10⁻²³).
+#[test]
+fn every_roulette_passing_ends_past_the_highest_order() {
+    let count = core::cell::Cell::new(0u64);
+    let medium = |_: Vec3<f64>| {
+        count.set(count.get() + 1);
+        (0.25, 0.25)
+    };
+    let ray = Ray::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0), 1.0);
+    let mut zero = ZeroThenOne {
+        zeros: u64::MAX,
+        drawn: 0,
+    };
+    let got = ray_march_transmittance_fn(medium, ray, 1, u32::MAX, &mut zero);
+    assert_eq!(got.err(), Some(Error::Budget));
+    assert_eq!(count.get(), u64::from(MAX_ORDER) + 1);
+    count.set(0);
+    let mut last_fails = ZeroThenOne {
+        zeros: zero.drawn - 1,
+        drawn: 0,
+    };
+    let got = ray_march_transmittance_fn(medium, ray, 1, u32::MAX, &mut last_fails);
+    assert!(got.unwrap().tr.is_finite());
+    assert_eq!(count.get(), u64::from(MAX_ORDER) + 1);
+}
+
+/// A generator giving `zeros` words of 0 (uniforms of 0), then words of
+/// all ones (uniforms of `1 − 2⁻⁵³`), counting its draws.
+struct ZeroThenOne {
+    zeros: u64,
+    drawn: u64,
+}
+
+impl rand_xoshiro::rand_core::TryRng for ZeroThenOne {
+    type Error = core::convert::Infallible;
+    fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+        self.try_next_u64().map(|x| (x >> 32) as u32)
+    }
+    fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+        self.drawn += 1;
+        Ok(if self.drawn <= self.zeros {
+            0
+        } else {
+            u64::MAX
+        })
+    }
+    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+        dst.fill(0);
+        Ok(())
+    }
 }
 
 /// The budget is the most density evaluations a call may make: a call

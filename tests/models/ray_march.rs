@@ -12,8 +12,9 @@ use super::majorant::{cloud, for_each_grid, mean_se, optical_depth, rays};
 use crate::common::rng;
 use scatterkit::majorant::Majorants;
 use scatterkit::medium::ray_march::{
-    MAX_LEVEL, MAX_ORDER, Placement, Series, march_grid_within, ray_march_transmittance,
-    ray_march_transmittance_fn, telescoping_transmittance, telescoping_transmittance_fn,
+    MAX_LEVEL, MAX_ORDER, Placement, Series, march_grid_within, march_within,
+    ray_march_transmittance, ray_march_transmittance_fn, telescoping_transmittance,
+    telescoping_transmittance_fn,
 };
 use scatterkit::{Error, Grid, Ray, Real, Vec3};
 
@@ -354,6 +355,32 @@ fn an_infinite_majorant_depth_is_refused() {
             let r = march_grid_within(series, place, &g, ray, strata, 1000, &mut rng(3));
             assert_eq!(r.unwrap_err(), Error::Domain, "{strata} strata");
         }
+    }
+}
+
+/// A medium exactly at its majorant is within it, as documented: marched,
+/// not refused, and (constant) estimated exactly by both series (a
+/// mutation test's `σ > σ_maj` → `≥` refused it, unnoticed: every other
+/// test's bound had room).
+#[test]
+fn a_medium_at_its_majorant_is_marched() {
+    let half = [0.5f64];
+    let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0));
+    let max = Majorants::from_parts(&half, [1; 3], lo, hi).unwrap();
+    let ray = Ray::new(Vec3::new(0.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 1.0);
+    for series in [Series::Power, Series::Telescoping] {
+        let place = Placement { max, min: None };
+        let got = march_within(
+            series,
+            place,
+            |_| (0.25, 0.25),
+            ray,
+            4,
+            1 << 20,
+            &mut rng(4),
+        );
+        let tr = got.unwrap().tr;
+        assert!((tr - (-0.5f64).exp()).abs() < 1e-12, "{series:?}: {tr}");
     }
 }
 

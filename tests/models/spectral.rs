@@ -310,3 +310,48 @@ fn no_absorption_at_zero_and_low_majorants_are_refused() {
     }
     assert!(refused > 0);
 }
+
+/// Delta tracking's `r_l` is the channel's free-flight density over the
+/// hero's path density, as pbrt-v4 keeps it: with one channel, every null
+/// collision multiplies it by `m/(m − ρ)` (the majorant's density over
+/// the null collision's), so a path that escapes a constant density of ½
+/// under a majorant of 1 carries `r_l = 2^steps`, `r_u = 1` and weight 1
+/// (a mutation test's `k·m` → `k + m` in the factor went unnoticed: no
+/// test read delta tracking's `r_l`).
+#[test]
+fn delta_tracking_keeps_the_free_flight_ratio() {
+    let half = [0.5; 8];
+    let g = Grid::new(&half, 2, 2, 2, 1.0, 1.0).unwrap();
+    let (lo, hi) = g.bounds();
+    let maj = Majorants::from_parts(&[1.0], [1; 3], lo, hi).unwrap();
+    let s = Spectrum {
+        sigma_a: &[0.25],
+        sigma_s: &[0.75],
+        hero: 0,
+    };
+    let ray = Ray::new(Vec3::new(-0.5, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 2.0);
+    let mut r = rng(17);
+    let mut checked = 0;
+    for _ in 0..256 {
+        let (mut w, mut u, mut l) = ([0.0], [0.0], [0.0]);
+        let mut out = Ratios {
+            weight: &mut w,
+            r_u: &mut u,
+            r_l: &mut l,
+        };
+        let tk = maj.delta_track_spectral(&g, &s, ray, 1 << 20, &mut r, &mut out);
+        let tk = tk.unwrap();
+        if tk.event == Event::Escaped && tk.steps > 0 {
+            let want = 2f64.powi(tk.steps as i32);
+            assert!(
+                (l[0] - want).abs() <= 1e-12 * want,
+                "{} steps: {}",
+                tk.steps,
+                l[0]
+            );
+            assert!((u[0] - 1.0).abs() <= 1e-12 && (w[0] - 1.0).abs() <= 1e-12);
+            checked += 1;
+        }
+    }
+    assert!(checked >= 32, "{checked}");
+}

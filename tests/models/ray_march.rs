@@ -410,27 +410,11 @@ fn a_depth_that_overflows_f32_is_refused() {
 /// failed, it returns the estimate (another ended the loop before it).
 #[test]
 fn every_coin_passing_ends_past_the_deepest_level() {
-    let count = core::cell::Cell::new(0u64);
-    let medium = |_: Vec3<f64>| {
-        count.set(count.get() + 1);
-        (0.25, 0.25)
-    };
-    let ray = Ray::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0), 1.0);
-    let mut zero = ZeroThenOne {
-        zeros: u64::MAX,
-        drawn: 0,
-    };
-    let got = telescoping_transmittance_fn(medium, ray, 1, u32::MAX, &mut zero);
-    assert_eq!(got.err(), Some(Error::Budget));
-    assert_eq!(count.get(), (1u64 << (MAX_LEVEL + 1)) - 1);
-    // The same draws but the last, the coin past the deepest level.
-    let mut last_fails = ZeroThenOne {
-        zeros: zero.drawn - 1,
-        drawn: 0,
-    };
-    let got = telescoping_transmittance_fn(medium, ray, 1, u32::MAX, &mut last_fails);
-    assert!(got.unwrap().tr.is_finite());
-    assert_eq!(last_fails.drawn, zero.drawn);
+    let [stuck, last_fails] = zeros_then_last_fails(Series::Telescoping);
+    assert_eq!(stuck.0.err(), Some(Error::Budget));
+    assert_eq!(stuck.1, (1u64 << (MAX_LEVEL + 1)) - 1);
+    assert!(last_fails.0.unwrap().is_finite());
+    assert_eq!((last_fails.1, last_fails.2), (stuck.1, stuck.2));
 }
 
 /// The power series is cut at [`MAX_ORDER`], as documented: with every
@@ -441,27 +425,35 @@ fn every_coin_passing_ends_past_the_deepest_level() {
 /// unnoticed: reached with probability below 10⁻²³).
 #[test]
 fn every_roulette_passing_ends_past_the_highest_order() {
+    let [stuck, last_fails] = zeros_then_last_fails(Series::Power);
+    assert_eq!(stuck.0.err(), Some(Error::Budget));
+    assert_eq!(stuck.1, u64::from(MAX_ORDER) + 1);
+    assert!(last_fails.0.unwrap().is_finite());
+    assert_eq!((last_fails.1, last_fails.2), (stuck.1, stuck.2));
+}
+
+/// One stratum of a constant medium estimated by `series` twice: with
+/// every uniform 0 (every coin or roulette passed), then with the same
+/// draws but the last, a uniform of `1 − 2⁻⁵³`. Each run's estimate,
+/// density evaluations and draws.
+fn zeros_then_last_fails(series: Series) -> [(Result<f64, Error>, u64, u64); 2] {
     let count = core::cell::Cell::new(0u64);
     let medium = |_: Vec3<f64>| {
         count.set(count.get() + 1);
         (0.25, 0.25)
     };
     let ray = Ray::new(Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0), 1.0);
-    let mut zero = ZeroThenOne {
-        zeros: u64::MAX,
-        drawn: 0,
+    let run = |zeros: u64| {
+        count.set(0);
+        let mut g = ZeroThenOne { zeros, drawn: 0 };
+        let got = match series {
+            Series::Power => ray_march_transmittance_fn(medium, ray, 1, u32::MAX, &mut g),
+            Series::Telescoping => telescoping_transmittance_fn(medium, ray, 1, u32::MAX, &mut g),
+        };
+        (got.map(|t| t.tr), count.get(), g.drawn)
     };
-    let got = ray_march_transmittance_fn(medium, ray, 1, u32::MAX, &mut zero);
-    assert_eq!(got.err(), Some(Error::Budget));
-    assert_eq!(count.get(), u64::from(MAX_ORDER) + 1);
-    count.set(0);
-    let mut last_fails = ZeroThenOne {
-        zeros: zero.drawn - 1,
-        drawn: 0,
-    };
-    let got = ray_march_transmittance_fn(medium, ray, 1, u32::MAX, &mut last_fails);
-    assert!(got.unwrap().tr.is_finite());
-    assert_eq!(count.get(), u64::from(MAX_ORDER) + 1);
+    let stuck = run(u64::MAX);
+    [stuck, run(stuck.2 - 1)]
 }
 
 /// A generator giving `zeros` words of 0 (uniforms of 0), then words of

@@ -108,10 +108,7 @@ fn both_are_unbiased_under_low_majorants() {
 /// to the majorant escapes with `e^{−0.5}` and fails.
 #[test]
 fn a_homogeneous_medium_under_a_low_majorant() {
-    let one = [0.5];
-    let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0));
-    let maj = Majorants::new(&one, [1; 3], lo, hi).unwrap();
-    let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 3.0);
+    let (maj, ray) = unit_cell(&[0.5]);
     let mut r = rng(73);
     let (mut esc, mut abs, mut early) = (vec![], vec![], vec![]);
     for _ in 0..N {
@@ -211,10 +208,7 @@ fn the_excess_is_reported_where_it_is() {
 /// finite weight; a walk with two overflows and is refused.
 #[test]
 fn huge_finite_coefficients_are_taken() {
-    let one = [1.0];
-    let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0));
-    let maj = Majorants::new(&one, [1; 3], lo, hi).unwrap();
-    let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 3.0);
+    let (maj, ray) = unit_cell(&[1.0]);
     let mut r = rng(5);
     let mut taken = 0;
     for _ in 0..64 {
@@ -234,10 +228,7 @@ fn huge_finite_coefficients_are_taken() {
 /// trackers.
 #[test]
 fn a_negative_coefficient_is_refused_on_either_side() {
-    let one = [1.0];
-    let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0));
-    let maj = Majorants::new(&one, [1; 3], lo, hi).unwrap();
-    let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 3.0);
+    let (maj, ray) = unit_cell(&[1.0]);
     let mut r = rng(6);
     for c in [(-0.25, 0.5), (0.5, -0.25), (-0.25, -0.25)] {
         // The first tentative collision inside the box reads them: refused
@@ -274,10 +265,7 @@ fn a_negative_coefficient_is_refused_on_either_side() {
 #[test]
 fn a_uniform_of_zero_neither_absorbs_nor_collides_where_nothing_does() {
     use crate::common::Zero;
-    let one = [1.0];
-    let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0));
-    let maj = Majorants::new(&one, [1; 3], lo, hi).unwrap();
-    let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 3.0);
+    let (maj, ray) = unit_cell(&[1.0]);
     let hit = maj.delta_track_weighted_fn(|_| (0.0, 1.0), ray, 16, &mut Zero);
     let hit = hit.unwrap();
     assert_eq!((hit.t, hit.event, hit.weight), (1.0, Event::Scattered, 1.0));
@@ -322,4 +310,13 @@ fn the_signed_roulette_keeps_weights_above_its_threshold() {
         }
     }
     assert!(survived > 0);
+}
+
+/// One cell of majorant `value` over the unit box, and a ray along x from
+/// one unit before it to two past it.
+fn unit_cell(value: &[f64; 1]) -> (Majorants<'_, f64>, Ray<f64>) {
+    let (lo, hi) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1.0));
+    let maj = Majorants::new(value, [1; 3], lo, hi).unwrap();
+    let ray = Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 3.0);
+    (maj, ray)
 }

@@ -218,7 +218,8 @@ fn all_unit<T: Real>(u: &[T]) -> bool {
 #[cfg(test)]
 mod check_tests {
     /// The bit-pattern test of `all_unit` agrees with the rule for every
-    /// 4099th f32 pattern and every pattern near 0, 1, −0, +∞ and NaN.
+    /// 4099th f32 pattern and every pattern near 0, 1, −0, +∞ and NaN, once
+    /// and twice in a slice, and the f64 loop for each as a double.
     #[test]
     fn bit_test_is_the_rule() {
         extern crate std;
@@ -238,11 +239,13 @@ mod check_tests {
         }
         for b in bits {
             let x = f32::from_bits(b);
-            assert_eq!(
-                super::all_unit(&[0.5, x, 0.25]),
-                (0.0..=1.0).contains(&x),
-                "{b:#x}"
-            );
+            let rule = (0.0..=1.0).contains(&x);
+            assert_eq!(super::all_unit(&[0.5, x, 0.25]), rule, "{b:#x}");
+            // Twice: a fold that cancels bad values in pairs (a sign bit
+            // or a flag toggled by `^`) would take these.
+            assert_eq!(super::all_unit(&[x, 0.5, x]), rule, "{b:#x} twice");
+            let wide = x as f64;
+            assert_eq!(super::all_unit(&[wide, 0.5, wide]), rule, "{b:#x} in f64");
         }
     }
 }

@@ -107,3 +107,81 @@ fn interpolate(node: impl Fn(usize) -> Option<f32>, t: f64) -> f64 {
         _ => f64::NAN,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A tail whose `z = y/t` is linear in `t` (`y = t(a + bt)`), with its
+    /// pole density `1/a`: the table's interpolation is then exact up to the
+    /// rounding of its f32 nodes. Each row its own `(a, b)`.
+    const ROWS: [(f64, f64); 2] = [(0.75, 1.5), (3.0, -2.0)];
+
+    fn linear_z() -> Seeds {
+        let ab = |m: bool| ROWS[m as usize];
+        Seeds::build(|m| 1.0 / ab(m).0, |m, t| t * (ab(m).0 + ab(m).1 * t))
+    }
+
+    /// Every `t` of a fine grid over `[0, ½]` (nodes, between them and the
+    /// ends), in both rows, and the half table within its 2⁻¹¹ besides.
+    #[test]
+    fn a_linear_z_is_interpolated_exactly_in_both_rows() {
+        let (full, half) = (linear_z(), linear_z().to_half());
+        for (m, (a, b)) in [false, true].into_iter().zip(ROWS) {
+            for i in 0..=240 {
+                let t = 0.5 * i as f64 / 240.0;
+                let want = t * (a + b * t);
+                let got = full.y(m, t);
+                assert!(
+                    (got - want).abs() <= 1e-7 * want,
+                    "{m} {t}: {got} for {want}"
+                );
+                let got = half.y(m, t);
+                assert!(
+                    (got - want).abs() <= 1e-3 * want,
+                    "half {m} {t}: {got} for {want}"
+                );
+            }
+        }
+    }
+
+    /// A pole density of 0 or ∞ leaves no limit `1/f`: the first node is
+    /// the next one's value; interpolation past `y = 2` is kept at
+    /// [`Y_MAX`], just below it.
+    #[test]
+    fn the_pole_node_and_the_cap() {
+        for pole in [0.0, f64::INFINITY] {
+            let s = Seeds::build(|_| pole, |_, t| 0.5 * t);
+            assert_eq!(s.0[0][0], s.0[0][1]);
+            assert_eq!(s.0[1][0], 0.5);
+        }
+        let steep = Seeds::build(|_| 0.25, |_, t| 4.5 * t);
+        assert_eq!(steep.y(false, 0.5), Y_MAX);
+        let y = steep.y(false, 0.5);
+        assert!(y < 2.0 && y > 2.0 - 1e-5, "{y}");
+    }
+
+    /// The 16-bit nodes: rounded to nearest (relative error ≤ 2⁻¹¹) over
+    /// `[2⁻³¹, 2³³)`, a tie rounding up, and clamped into that range.
+    #[test]
+    fn half_nodes_round_to_nearest_and_clamp() {
+        let mut z = 2f32.powi(-31);
+        while z < 2f32.powi(33) * 0.999 {
+            let back = half_decode(half_encode(z));
+            assert!(((back - z) / z).abs() <= 2f32.powi(-11), "{z:e}: {back:e}");
+            z *= 1.013;
+        }
+        let tie = f32::from_bits(1.5f32.to_bits() + (1 << 12));
+        assert_eq!(
+            half_decode(half_encode(tie)),
+            f32::from_bits(1.5f32.to_bits() + (1 << 13))
+        );
+        assert_eq!(half_decode(half_encode(1.5)), 1.5);
+        assert_eq!(half_decode(half_encode(1e-30)), 2f32.powi(-31));
+        assert_eq!(half_encode(f32::MAX), half_encode(2f32.powi(33) * 0.9999));
+        assert_eq!(
+            half_decode(half_encode(f32::MAX)),
+            2f32.powi(33) * (1.0 - 2f32.powi(-11))
+        );
+    }
+}

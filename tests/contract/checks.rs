@@ -185,6 +185,70 @@ pub fn inverse_monotone<T: Real>(p: &impl PhaseFunction<T>, mu_tol: f64) -> Chec
     Ok(())
 }
 
+/// The loops and the in-range form give `sample_cos`'s bits:
+/// `sample_cos_each` at every `u` (outside `[0, 1]` and NaN too, clamped or
+/// passed alike), and `sample_cos_in_range`, `sample_cos_each_in_range` and
+/// `sample_cos_n` at `u` in `[0, 1]`, where the last also refuses a batch
+/// with two bad uniforms (a check that cancels them in pairs would not).
+pub fn batch_forms_agree<T: Real>(p: &impl PhaseFunction<T>) -> Check {
+    let same = |a: T, b: T| a == b || (a.is_nan() && b.is_nan());
+    let inside: Vec<T> = uniform_grid(1025)
+        .map(T::from_f64)
+        .chain([T::EPSILON, T::ONE - T::EPSILON])
+        .collect();
+    let mut all = inside.clone();
+    all.extend([-T::HALF, T::TWO, T::INFINITY, -T::INFINITY, T::NAN]);
+    let mut out = vec![T::NAN; all.len()];
+    p.sample_cos_each(&all, &mut out);
+    for (&u, &c) in all.iter().zip(&out) {
+        if !same(c, p.sample_cos(u)) {
+            return Err(format!("sample_cos_each differs at u = {u:?}"));
+        }
+    }
+    let mut each = vec![T::NAN; inside.len()];
+    p.sample_cos_each_in_range(&inside, &mut each);
+    let mut n = vec![T::NAN; inside.len()];
+    if p.sample_cos_n(&inside, &mut n).is_err() {
+        return Err("sample_cos_n refused uniforms in [0, 1]".into());
+    }
+    for (i, &u) in inside.iter().enumerate() {
+        let want = p.sample_cos(u);
+        if ![p.sample_cos_in_range(u), each[i], n[i]]
+            .iter()
+            .all(|&c| same(c, want))
+        {
+            return Err(format!("an in-range form differs at u = {u:?}"));
+        }
+    }
+    let two_bad = [-T::TWO, T::HALF, -T::TWO];
+    if p.sample_cos_n(&two_bad, &mut [T::ZERO; 3]).is_ok() {
+        return Err("sample_cos_n took two bad uniforms".into());
+    }
+    Ok(())
+}
+
+/// The density's support as documented: a `μ` up to 8 ulp beyond ±1 (the
+/// rounding of a dot product of unit vectors) is read at ±1, one ulp
+/// further it is 0.
+pub fn pdf_support<T: Real>(p: &impl PhaseFunction<T>) -> Check {
+    let eps = T::EPSILON;
+    for pole in [T::ONE, -T::ONE] {
+        let at = p.pdf(pole);
+        for k in 1..=8 {
+            let mu = pole + pole * T::from_f64(k as f64) * eps;
+            let got = p.pdf(mu);
+            if !(got == at || (got.is_nan() && at.is_nan())) {
+                return Err(format!("pdf({mu:?}) = {got:?}, not pdf({pole:?}) = {at:?}"));
+            }
+        }
+        let out = pole + pole * T::from_f64(9.0) * eps;
+        if p.pdf(out) != T::ZERO {
+            return Err(format!("pdf({out:?}) = {:?}, not 0", p.pdf(out)));
+        }
+    }
+    Ok(())
+}
+
 fn unit<T: Real>(w: [f64; 3]) -> Vec3<T> {
     Vec3::new(T::from_f64(w[0]), T::from_f64(w[1]), T::from_f64(w[2]))
         .try_normalize()

@@ -155,6 +155,77 @@ fn inverses_are_monotone_and_invert_the_cdf() {
 }
 
 #[test]
+fn batches_and_in_range_forms_give_the_scalar_bits() {
+    on_every_case("batch forms", |m, s| {
+        let (a, b) = built(m, s);
+        both(checks::batch_forms_agree(&a), checks::batch_forms_agree(&b))
+    });
+}
+
+#[test]
+fn densities_read_the_poles_within_8_ulp_and_nothing_beyond() {
+    on_every_case("support", |m, s| {
+        let (a, b) = built(m, s);
+        both(checks::pdf_support(&a), checks::pdf_support(&b))
+    });
+}
+
+/// The parameters a model reports rebuild it, and `from_params` refuses
+/// one more or one fewer with `Error::Size` (isotropic's none included).
+fn params_rebuild<T: Real>(p: &Phase<T>) -> Check {
+    let (tag, n, stored) = p.params();
+    if Phase::from_params(tag, &stored[..n]).as_ref() != Ok(p) {
+        return Err(format!("params {:?} do not rebuild it", &stored[..n]));
+    }
+    let mut more = stored[..n].to_vec();
+    more.push(T::HALF);
+    if Phase::from_params(tag, &more) != Err(Error::Size) {
+        return Err(format!("{} parameters were not refused", n + 1));
+    }
+    if n > 0 && Phase::from_params(tag, &stored[..n - 1]) != Err(Error::Size) {
+        return Err(format!("{} parameters were not refused", n - 1));
+    }
+    Ok(())
+}
+
+#[test]
+fn params_rebuild_the_model_and_other_counts_are_refused() {
+    on_every_case("params", |m, s| {
+        let (a, b) = built(m, s);
+        both(params_rebuild(&a), params_rebuild(&b))
+    });
+}
+
+/// A parameter that must stay below 1 in magnitude, cast to f32 from an
+/// f64 that rounds onto ±1 there, becomes the largest f32 below 1 (`1 −
+/// 2⁻²⁴`), with its sign, in every model that has one.
+#[test]
+fn a_cast_keeps_a_parameter_below_one_at_the_largest_float_below_it() {
+    let near = 1.0 - 1e-9;
+    let top = 1.0 - f32::EPSILON as f64 / 2.0;
+    let cases = [
+        (Phase::henyey_greenstein(near), 0, top),
+        (Phase::henyey_greenstein(-near), 0, -top),
+        (Phase::draine(-near, 2.0), 0, -top),
+        (Phase::gegenbauer(0.5, near), 1, top),
+        (Phase::rayleigh_depolarized(near), 0, top),
+        (
+            scatterkit::phase::schlick::Schlick::new(-near).map(Phase::from),
+            0,
+            -top,
+        ),
+        (Phase::fog(near, -near, 1.0, 0.5), 0, top),
+        (Phase::fog(near, -near, 1.0, 0.5), 1, -top),
+    ];
+    for (p, i, want) in cases {
+        let p = p.unwrap();
+        let (_, n, q) = p.cast::<f32>().params();
+        assert!(i < n, "{p:?}");
+        assert_eq!(q[i] as f64, want, "{p:?}, parameter {i}");
+    }
+}
+
+#[test]
 fn directions_follow_the_density_over_the_sphere() {
     on_every_case("chi²", |m, s| {
         let (a, b) = built(m, s);

@@ -94,6 +94,15 @@ fn mixtures<T: Real + core::fmt::Debug>() {
         }
         let m = fog.mean_cosine();
         assert!(m.is_finite() && m.abs() <= T::ONE);
+        // A Dirac lobe of weight 1 beside a continuous lobe of weight 0
+        // (either lobe): every u, 0 included, samples the pole, never the
+        // empty lobe (whose rescaled uniform would be 0/0).
+        let only_hg = Fog::new(g, T::from_f64(0.6), T::from_f64(20.0), T::ZERO).unwrap();
+        let only_d = Phase::two_lobe_hg(g, T::from_f64(0.5), T::ONE).unwrap();
+        for u in uniforms::<T>() {
+            assert_eq!(only_hg.sample_cos_sin(u), (g, T::ZERO), "{u:?}");
+            assert_eq!(only_d.sample_cos(u), g, "{u:?}");
+        }
         // Two Dirac lobes: all mass at the poles.
         let both = Phase::two_lobe_hg(T::ONE, -T::ONE, w).unwrap();
         assert_eq!(both.sample_cos(T::from_f64(0.8)), T::ONE);

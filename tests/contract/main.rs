@@ -1,15 +1,18 @@
 //! The contract every phase model keeps, run over the registry of every
 //! model (`registry.rs`), in f32 and f64: the constructor refuses exactly
-//! its bad parameters, the density is normalised and its mean cosine
-//! right, `cdf` integrates `pdf` (in f64; the f32 density and CDF follow
-//! the f64 ones at every f32 argument), the inverse is monotone and inverts
-//! `cdf`, sampled directions follow the density (chi² over the sphere),
-//! `sample_dir` reports the density of what it drew, f32 follows f64, and
-//! golden bits hold. The last test shows the checks catch a sampler that is
-//! wrong by a 2 % slope. `reach.rs` finds each constructor's accepted range
-//! to the bit, holds it to the docs, and runs the checks at its ends;
-//! `media_reach.rs` does the same for the media's constructors and
-//! calls.
+//! its bad parameters, the density is normalised and its mean cosine right,
+//! `cdf` integrates `pdf` (in f64; the f32 density and CDF follow the f64
+//! ones at every f32 argument), the inverse is monotone and inverts `cdf`,
+//! sampled directions follow the density (chi² over the sphere),
+//! `sample_dir` reports the density of what it drew, the batch and in-range
+//! forms give `sample_cos`'s bits, the density is read at the pole within 8
+//! ulp beyond it and is 0 further out, the reported parameters rebuild the
+//! model (another count refused), f32 follows f64, and golden bits hold; a
+//! cast to f32 keeps a parameter below 1 below it. The last test shows the
+//! checks catch a sampler that is wrong by a 2 % slope. `reach.rs` finds
+//! each constructor's accepted range to the bit, holds it to the docs, and
+//! runs the checks at its ends; `media_reach.rs` does the same for the
+//! media's constructors and calls.
 
 #[path = "../common/mod.rs"]
 mod common;

@@ -154,6 +154,16 @@ fn depolarized_inverse_is_accurate() {
     }
 }
 
+/// The accessors: `ρ` as given and `γ = ρ/(2 − ρ)`.
+#[test]
+fn depolarized_reports_rho_and_gamma() {
+    for rho in [0.0, 0.028, 0.5, 0.999] {
+        let p = scatterkit::RayleighDepolarized::new(rho).unwrap();
+        assert_eq!(p.rho(), rho);
+        assert_eq!(p.gamma(), rho / (2.0 - rho));
+    }
+}
+
 #[test]
 fn rho_zero_is_plain_rayleigh() {
     let a = Phase::rayleigh_depolarized(0.0f64).unwrap();

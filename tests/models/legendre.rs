@@ -67,6 +67,16 @@ fn a_negative_expansion_is_refused() {
     assert_eq!(LegendreSeries::new(&chi).err(), Some(Error::Domain));
     let neg = LegendreSeries::unchecked(&chi).unwrap().check().unwrap();
     assert!(neg.pdf < 0.0, "{neg:?}");
+    // Found on the documented grid of 64 (L + 1) + 1 cosines, the first
+    // negative one: the grid point before it is not negative.
+    let m = 64.0 * chi.len() as f64;
+    let i = (neg.cos_theta + 1.0) * m / 2.0;
+    assert!((i - i.round()).abs() < 1e-9, "{neg:?} is not on the grid");
+    let s = LegendreSeries::unchecked(&chi).unwrap();
+    assert!(i > 0.0 && s.pdf(neg.cos_theta - 2.0 / m) >= 0.0, "{neg:?}");
+    // A density that touches 0 without going below (`(1 + μ)/4π`, zero at
+    // μ = −1) is taken.
+    assert!(LegendreSeries::new(&[1.0, 1.0 / 3.0]).is_ok());
     // The same HG with enough terms is fine.
     assert!(LegendreSeries::new(&hg_moments(0.9, 300)).is_ok());
 }
@@ -74,8 +84,16 @@ fn a_negative_expansion_is_refused() {
 #[test]
 fn bad_input_is_refused() {
     assert_eq!(LegendreSeries::<f64>::new(&[]).err(), Some(Error::Size));
-    let long = vec![0.0f64; 1025];
+    // Up to L = 1023: 1024 moments (isotropic, χ_0 = 1) taken, 1025 not.
+    let mut long = vec![0.0f64; 1025];
+    long[0] = 1.0;
+    assert!(LegendreSeries::new(&long[..1024]).is_ok());
     assert_eq!(LegendreSeries::new(&long).err(), Some(Error::Size));
+    // A moment beyond [−1, 1] is refused before the sign check runs.
+    assert_eq!(
+        LegendreSeries::unchecked(&[1.0, 0.0, 1.5]).err(),
+        Some(Error::Domain)
+    );
     for chi in [
         [0.5, 0.1],
         [1.0, f64::NAN],

@@ -7,7 +7,7 @@
 //! `χ_1` against every model's mean cosine.
 
 use crate::common::chi2::integrate;
-use scatterkit::phase::moments::{legendre_moments, legendre_moments_by_quadrature};
+use scatterkit::phase::moments::{closed_form, legendre_moments, legendre_moments_by_quadrature};
 use scatterkit::{Phase, PhaseFunction};
 
 /// `χ_0 … χ_8` of Draine's function, by mpmath `quad` at 40 digits of
@@ -106,6 +106,9 @@ fn quadrature_agrees_with_the_closed_forms() {
         Phase::two_lobe_hg(0.8, -0.3, 0.9).unwrap(),
     ];
     for p in cases {
+        // Each of these declares its closed form (the others are summed by
+        // quadrature, to 10⁻¹² of it: only the declaration tells them apart).
+        assert!(closed_form(&p).is_some(), "{p:?} has no closed form");
         let (a, b) = (moments(&p, 33), by_quadrature(&p, 33));
         let worst = a
             .iter()

@@ -65,14 +65,14 @@ fn rayleigh_from_three_moments() {
 fn a_negative_expansion_is_refused() {
     let chi = hg_moments(0.9, 5);
     assert_eq!(LegendreSeries::new(&chi).err(), Some(Error::Domain));
-    let neg = LegendreSeries::unchecked(&chi).unwrap().check().unwrap();
+    let s = LegendreSeries::unchecked(&chi).unwrap();
+    let neg = s.check().unwrap();
     assert!(neg.pdf < 0.0, "{neg:?}");
     // Found on the documented grid of 64 (L + 1) + 1 cosines, the first
     // negative one: the grid point before it is not negative.
     let m = 64.0 * chi.len() as f64;
     let i = (neg.cos_theta + 1.0) * m / 2.0;
     assert!((i - i.round()).abs() < 1e-9, "{neg:?} is not on the grid");
-    let s = LegendreSeries::unchecked(&chi).unwrap();
     assert!(i > 0.0 && s.pdf(neg.cos_theta - 2.0 / m) >= 0.0, "{neg:?}");
     // A density that touches 0 without going below (`(1 + μ)/4π`, zero at
     // μ = −1) is taken.

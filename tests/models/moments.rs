@@ -106,8 +106,9 @@ fn quadrature_agrees_with_the_closed_forms() {
         Phase::two_lobe_hg(0.8, -0.3, 0.9).unwrap(),
     ];
     for p in cases {
-        // Each of these declares its closed form (the others are summed by
-        // quadrature, to 10⁻¹² of it: only the declaration tells them apart).
+        // Each of these declares its closed form: without it the moments
+        // would come from quadrature, which agrees to 10⁻¹², so only the
+        // declaration tells the two apart.
         assert!(closed_form(&p).is_some(), "{p:?} has no closed form");
         let (a, b) = (moments(&p, 33), by_quadrature(&p, 33));
         let worst = a

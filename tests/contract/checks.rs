@@ -4,7 +4,7 @@
 
 use crate::common::chi2::{chi2_directions_by_cells, integrate, threshold};
 use crate::common::{CHI2_SAMPLES, rng, test_directions, uniform_grid};
-use scatterkit::{PhaseFunction, Real, Vec3};
+use scatterkit::{Error, Phase, PhaseFunction, Real, Vec3};
 use std::f64::consts::TAU;
 
 pub type Check = Result<(), String>;
@@ -245,6 +245,25 @@ pub fn pdf_support<T: Real>(p: &impl PhaseFunction<T>) -> Check {
         if p.pdf(out) != T::ZERO {
             return Err(format!("pdf({out:?}) = {:?}, not 0", p.pdf(out)));
         }
+    }
+    Ok(())
+}
+
+/// The parameters a model reports rebuild it, and `from_params` refuses
+/// one more or one fewer with `Error::Size` (isotropic's none included):
+/// a model saved and restored, or handed through the C layer's params.
+pub fn params_rebuild<T: Real>(p: &Phase<T>) -> Check {
+    let (tag, n, stored) = p.params();
+    if Phase::from_params(tag, &stored[..n]).as_ref() != Ok(p) {
+        return Err(format!("params {:?} do not rebuild it", &stored[..n]));
+    }
+    let mut more = stored[..n].to_vec();
+    more.push(T::HALF);
+    if Phase::from_params(tag, &more) != Err(Error::Size) {
+        return Err(format!("{} parameters were not refused", n + 1));
+    }
+    if n > 0 && Phase::from_params(tag, &stored[..n - 1]) != Err(Error::Size) {
+        return Err(format!("{} parameters were not refused", n - 1));
     }
     Ok(())
 }

@@ -173,29 +173,11 @@ fn densities_read_the_poles_within_8_ulp_and_nothing_beyond() {
     });
 }
 
-/// The parameters a model reports rebuild it, and `from_params` refuses
-/// one more or one fewer with `Error::Size` (isotropic's none included).
-fn params_rebuild<T: Real>(p: &Phase<T>) -> Check {
-    let (tag, n, stored) = p.params();
-    if Phase::from_params(tag, &stored[..n]).as_ref() != Ok(p) {
-        return Err(format!("params {:?} do not rebuild it", &stored[..n]));
-    }
-    let mut more = stored[..n].to_vec();
-    more.push(T::HALF);
-    if Phase::from_params(tag, &more) != Err(Error::Size) {
-        return Err(format!("{} parameters were not refused", n + 1));
-    }
-    if n > 0 && Phase::from_params(tag, &stored[..n - 1]) != Err(Error::Size) {
-        return Err(format!("{} parameters were not refused", n - 1));
-    }
-    Ok(())
-}
-
 #[test]
 fn params_rebuild_the_model_and_other_counts_are_refused() {
     on_every_case("params", |m, s| {
         let (a, b) = built(m, s);
-        both(params_rebuild(&a), params_rebuild(&b))
+        both(checks::params_rebuild(&a), checks::params_rebuild(&b))
     });
 }
 

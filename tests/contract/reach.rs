@@ -485,13 +485,7 @@ fn contract_at<T: Walk>(r: &Reach, x: T) -> Check {
     let Some(p) = build::<T>(r, x) else {
         return Err(format!("{x:?} refused"));
     };
-    // The parameters a model reports rebuild it, bit for bit (a model
-    // saved and restored, or handed through the C layer's params).
-    let (tag, n, stored) = p.params();
-    match Phase::<T>::from_params(tag, &stored[..n]) {
-        Ok(q) if q == p => {}
-        other => return Err(format!("params {:?} rebuild {other:?}", &stored[..n])),
-    }
+    checks::params_rebuild(&p)?;
     finite_in_range(&p)?;
     let mut params = r.base.to_vec();
     params[r.param] = x.to_f64();

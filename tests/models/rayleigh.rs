@@ -116,6 +116,24 @@ fn every_method_gives_unit_directions_and_zero_mean_cosine() {
     }
 }
 
+/// The four inversion methods (Frisvad's direct forms and the table) say
+/// so, and only they fill `inverse_cdf_fill` with cosines; the others fill
+/// NaN, as documented.
+#[test]
+fn the_inversion_methods_are_the_ones_with_an_inverse() {
+    use RayleighMethod::*;
+    let u = [0.0f64, 0.25, 0.5, 1.0];
+    for m in RayleighMethod::ALL {
+        let inversion = matches!(m, Direct | DirectFast | DirectMinimax | Table);
+        assert_eq!(m.is_inversion(), inversion, "{m:?}");
+        let mut c = [0.0f64; 4];
+        rayleigh::inverse_cdf_fill(m, &u, &mut c);
+        let finite = c.iter().all(|x| (-1.0..=1.0).contains(x));
+        assert_eq!(finite, inversion, "{m:?}: {c:?}");
+        assert!(inversion || c.iter().all(|x| x.is_nan()), "{m:?}: {c:?}");
+    }
+}
+
 #[test]
 fn method_values_match_the_c_enum() {
     for (i, m) in RayleighMethod::ALL.into_iter().enumerate() {
@@ -347,5 +365,74 @@ fn a_stuck_generator_ends_with_the_direct_method() {
     ] {
         let w = rayleigh::sample_dir(m, z, &mut Stuck(word));
         assert!((w.z - want).abs() < 1e-12, "{m:?}: {} against {want}", w.z);
+    }
+}
+
+/// A generator that counts the words drawn from the one it wraps.
+struct Counting(rand_xoshiro::Xoshiro256PlusPlus, u64);
+
+impl rand_xoshiro::rand_core::TryRng for Counting {
+    type Error = core::convert::Infallible;
+    fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+        self.1 += 1;
+        Ok(self.0.next_u32())
+    }
+    fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+        self.1 += 1;
+        Ok(self.0.next_u64())
+    }
+    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+        self.1 += 1;
+        self.0.fill_bytes(dst);
+        Ok(())
+    }
+}
+
+/// Each rejection method accepts at its published rate, read from the
+/// uniforms it draws per cosine: the fallback after `MAX_TRIALS` keeps the
+/// distribution right whatever the acceptance test does, so the chi² tests
+/// cannot see an acceptance that never passes (a mutation test replaced
+/// each acceptance by `false`, and the cube's point by `None`, unnoticed).
+/// Expected draws per sample, a trial's draws over its acceptance `p`:
+/// simplified 2/(2/3) = 3; Baranoski's with Frisvad's correction
+/// 2/(√6/π) = 2π/√6; spherical (μ, azimuth, test) 3/(2/3) = 4.5; cube
+/// `(3 + π/6)/(π/9)` (three coordinates, a test for the π/6 of points
+/// inside the ball; the ball about the centre left out is 10⁻⁹ of it).
+/// Within 1 % over 2·10⁵ samples, at least 5.5 standard errors for each.
+#[test]
+fn rejection_methods_draw_at_their_acceptance_rate() {
+    use std::f64::consts::PI;
+    let cases = [
+        (RayleighMethod::Simplified, 3.0),
+        (RayleighMethod::Baranoski, 2.0 * PI / 6f64.sqrt()),
+        (RayleighMethod::RejectSpherical, 4.5),
+        (RayleighMethod::RejectCube, (3.0 + PI / 6.0) * 9.0 / PI),
+    ];
+    let n = 200_000;
+    for (m, want) in cases {
+        let mut g = Counting(rng(11), 0);
+        for _ in 0..n {
+            let _: f64 = rayleigh::sample_cos(m, &mut g);
+        }
+        let per = g.1 as f64 / n as f64;
+        assert!(
+            (per / want - 1.0).abs() < 0.01,
+            "{m:?}: {per} draws per sample, want {want}"
+        );
+    }
+}
+
+/// `sample_cos_fill` gives, element by element, what `sample_cos` gives on
+/// the same generator (a mutation test emptied it unnoticed).
+#[test]
+fn sample_cos_fill_is_sample_cos_in_a_loop() {
+    for m in RayleighMethod::ALL {
+        let mut out = [f64::NAN; 37];
+        rayleigh::sample_cos_fill(m, &mut rng(5), &mut out);
+        let mut r = rng(5);
+        for (i, &c) in out.iter().enumerate() {
+            let want: f64 = rayleigh::sample_cos(m, &mut r);
+            assert_eq!(c.to_bits(), want.to_bits(), "{m:?} at {i}");
+        }
     }
 }

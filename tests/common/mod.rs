@@ -16,6 +16,33 @@ pub fn rng(seed: u64) -> Xoshiro256PlusPlus {
     Xoshiro256PlusPlus::seed_from_u64(seed)
 }
 
+/// A generator that counts the words drawn from the one it wraps (`.1`),
+/// for the tests that pin how many uniforms a call draws.
+pub struct Counting(pub Xoshiro256PlusPlus, pub u64);
+
+impl Counting {
+    /// The fixed-seed generator [`rng`]`(seed)`, nothing drawn yet.
+    pub fn new(seed: u64) -> Self {
+        Counting(rng(seed), 0)
+    }
+}
+
+impl rand_xoshiro::rand_core::TryRng for Counting {
+    type Error = core::convert::Infallible;
+    fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+        self.1 += 1;
+        self.0.try_next_u32()
+    }
+    fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+        self.1 += 1;
+        self.0.try_next_u64()
+    }
+    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+        self.1 += 1;
+        self.0.try_fill_bytes(dst)
+    }
+}
+
 /// A generator stuck on 0: every uniform is exactly 0 (every free path 0,
 /// every coin `u < p`), for the edges no seeded generator reaches.
 pub struct Zero;

@@ -512,31 +512,11 @@ fn get_is_zero_outside_on_every_axis() {
     }
 }
 
-/// A generator that counts its draws.
-struct Counting(rand_xoshiro::Xoshiro256PlusPlus, usize);
-
-impl rand_xoshiro::rand_core::TryRng for Counting {
-    type Error = core::convert::Infallible;
-    fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
-        self.1 += 1;
-        self.0.try_next_u32()
-    }
-    fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
-        self.1 += 1;
-        self.0.try_next_u64()
-    }
-    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
-        self.1 += 1;
-        self.0.try_fill_bytes(dst)
-    }
-}
-
 /// An empty cell (majorant 0) is crossed without a draw, as documented,
 /// so a seed's draws do not depend on how many empty cells a ray crosses
 /// (a mutation test let the walk draw once in each, unnoticed).
 #[test]
 fn an_empty_cell_is_crossed_without_a_draw() {
-    use rand_xoshiro::rand_core::SeedableRng;
     let sigma = [2.0, 0.0, 0.0, 2.0];
     let maj = Majorants::new(
         &sigma,
@@ -545,7 +525,7 @@ fn an_empty_cell_is_crossed_without_a_draw() {
         Vec3::new(1.0, 1.0, 1.0),
     )
     .unwrap();
-    let mut r = Counting(rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(3), 0);
+    let mut r = crate::common::Counting::new(3);
     // From inside cell 1 to inside cell 2: only empty cells.
     let ray = Ray::new(Vec3::new(0.3, 0.5, 0.5), Vec3::new(1.0, 0.0, 0.0), 0.4);
     let hit = maj

@@ -6,7 +6,7 @@ use crate::common;
 
 use common::chi2::{chi2_directions, gamma_q, threshold};
 use common::dd;
-use common::{CHI2_SAMPLES, rng, test_directions};
+use common::{CHI2_SAMPLES, Counting, rng, test_directions};
 use rand_xoshiro::rand_core::Rng;
 use scatterkit::{PhaseFunction, Rayleigh, RayleighMethod, Real, Table, Vec3, rayleigh};
 
@@ -368,26 +368,6 @@ fn a_stuck_generator_ends_with_the_direct_method() {
     }
 }
 
-/// A generator that counts the words drawn from the one it wraps.
-struct Counting(rand_xoshiro::Xoshiro256PlusPlus, u64);
-
-impl rand_xoshiro::rand_core::TryRng for Counting {
-    type Error = core::convert::Infallible;
-    fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
-        self.1 += 1;
-        Ok(self.0.next_u32())
-    }
-    fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
-        self.1 += 1;
-        Ok(self.0.next_u64())
-    }
-    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
-        self.1 += 1;
-        self.0.fill_bytes(dst);
-        Ok(())
-    }
-}
-
 /// Each rejection method accepts at its published rate, read from the
 /// uniforms it draws per cosine: the fallback after `MAX_TRIALS` keeps the
 /// distribution right whatever the acceptance test does, so the chi² tests
@@ -410,7 +390,7 @@ fn rejection_methods_draw_at_their_acceptance_rate() {
     ];
     let n = 200_000;
     for (m, want) in cases {
-        let mut g = Counting(rng(11), 0);
+        let mut g = Counting::new(11);
         for _ in 0..n {
             let _: f64 = rayleigh::sample_cos(m, &mut g);
         }

@@ -168,9 +168,12 @@ fn check_eval<T: Real>(tol: f64, near: f64, seed: u64) -> f64 {
         for case in 0..400 {
             let (k, e1) = random_frame(&mut r);
             let (w0, _) = random_frame(&mut r);
-            // Every fourth direction is within `near` of forward or backward.
-            let w = match case % 4 {
-                0 => {
+            // Every fourth direction is within `near` of forward or
+            // backward, and two in 32 exactly there (no scattering plane).
+            let w = match case % 32 {
+                4 => k,
+                12 => [-k[0], -k[1], -k[2]],
+                c if c % 4 == 0 => {
                     let off = [
                         k[0] + near * e1[0],
                         k[1] + near * e1[1],
@@ -188,14 +191,15 @@ fn check_eval<T: Real>(tol: f64, near: f64, seed: u64) -> f64 {
             let (kt, e1t, wt) = (to_t(k), to_t(e1), to_t(w));
             let f1t = meridian_reference(wt, T::ZERO);
             let f = |v: Vec3<T>| [v.x.to_f64(), v.y.to_f64(), v.z.to_f64()];
-            // A random physical Stokes vector.
+            // A random physical Stokes vector, of intensity in [½, 4]
+            // (the result is linear in it; the density does not depend on it).
             let mut u = || (r.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-            let (p, a, b) = (u(), 2.0 * PI * u(), PI * u());
+            let (i, p, a, b) = (0.5 + 3.5 * u(), u(), 2.0 * PI * u(), PI * u());
             let st = [
-                1.0,
-                p * a.cos() * b.sin(),
-                p * a.sin() * b.sin(),
-                p * b.cos(),
+                i,
+                i * p * a.cos() * b.sin(),
+                i * p * a.sin() * b.sin(),
+                i * p * b.cos(),
             ];
             let tt = |x: f64| T::from_f64(x);
             let s = Stokes {
@@ -221,11 +225,10 @@ fn check_eval<T: Real>(tol: f64, near: f64, seed: u64) -> f64 {
             );
             worst = worst.max(err);
             // The density is the scattered intensity per unit incident.
-            let pdf = m.pdf(kt, &s, wt).to_f64();
+            let (pdf, per_unit) = (m.pdf(kt, &s, wt).to_f64(), want[0] / st_t[0]);
             assert!(
-                (pdf - want[0]).abs() <= tol * want[0],
-                "pdf {pdf} vs {}",
-                want[0]
+                (pdf - per_unit).abs() <= tol * per_unit,
+                "pdf {pdf} vs {per_unit}"
             );
         }
     }
@@ -237,6 +240,43 @@ fn eval_matches_the_dipole_field() {
     let e64 = check_eval::<f64>(1e-13, 1e-6, 1);
     let e32 = check_eval::<f32>(1e-5, 1e-3, 2);
     println!("eval against the dipole field: f64 {e64:.1e}, f32 {e32:.1e} (relative to I)");
+}
+
+/// Dark light (a zero Stokes vector, as a path whose weight has run out
+/// carries): nothing scattered, every number finite, and the density of
+/// unpolarised light (a mutation taking `V/I` at `I = 0` gave a NaN `V`).
+#[test]
+fn dark_light_scatters_nothing_and_stays_finite() {
+    fn check<T: Real>() {
+        let m = RayleighPolarized::<T>::new(T::from_f64(0.028)).unwrap();
+        let (k, e1) = (unit::<T>(0.0, 0.0, 1.0), unit::<T>(1.0, 0.0, 0.0));
+        let dark = Stokes {
+            i: T::ZERO,
+            q: T::ZERO,
+            u: T::ZERO,
+            v: T::ZERO,
+            reference: e1,
+        };
+        let unpolarised = Stokes { i: T::ONE, ..dark };
+        for w in [unit::<T>(0.3, -0.4, 0.5), k, -k] {
+            let out = m.eval(k, &dark, w, meridian_reference(w, T::ZERO));
+            for x in [out.i, out.q, out.u, out.v] {
+                assert!(x == T::ZERO, "{out:?}");
+            }
+            assert_eq!(m.pdf(k, &dark, w), m.pdf(k, &unpolarised, w));
+        }
+        let s = m.sample(k, &dark, T::from_f64(0.3), T::from_f64(0.7));
+        let st = s.stokes;
+        assert!(
+            [st.i, st.q, st.u, st.v, s.pdf, s.dir.x, s.dir.y, s.dir.z]
+                .iter()
+                .all(|x| x.is_finite())
+                && st.i == T::ZERO,
+            "{s:?}"
+        );
+    }
+    check::<f32>();
+    check::<f64>();
 }
 
 #[test]

@@ -14,7 +14,9 @@
 //! * chi² over (cos Θ, φ) about the incident reference against the
 //!   analytic density, for several `(q, u, V)`, at the suite's level; the
 //!   variants with `U` flipped, `Q` flipped, `ρ` ignored and the inverse
-//!   ratio in the azimuth CDF are rejected at the same level.
+//!   ratio in the azimuth CDF are rejected at the same level;
+//! * both samplers carry `eval/pdf` and the exact one reports `pdf` within
+//!   `10⁻¹² I` in f64 and `10⁻⁴ I` in f32.
 
 use crate::common;
 
@@ -240,6 +242,69 @@ fn eval_matches_the_dipole_field() {
     let e64 = check_eval::<f64>(1e-13, 1e-6, 1);
     let e32 = check_eval::<f32>(1e-5, 1e-3, 2);
     println!("eval against the dipole field: f64 {e64:.1e}, f32 {e32:.1e} (relative to I)");
+}
+
+/// Both samplers return the importance weight's form: the Stokes vector
+/// carried on is `eval(k, s, dir)/pdf` referred to the sample's own
+/// reference, and the exact sampler's density is `pdf(k, s, dir)` (the
+/// scalar one's `P11/4π`). Within `10⁻¹² I` in f64 and `10⁻⁴ I` in f32,
+/// fixed before the run (a mutation zeroing the carried `Q, U, V`, or
+/// adding to the density, went unnoticed: the other tests read the
+/// directions and the bounds `|Q|, |U|, |V| ≤ I` only).
+#[test]
+fn samples_carry_the_matrix_over_their_density() {
+    fn check<T: Real>(tol: f64, seed: u64) {
+        let mut r = rng(seed);
+        for rho in [0.0, 0.028, 0.3] {
+            let m = RayleighPolarized::<T>::new(T::from_f64(rho)).unwrap();
+            for case in 0..300 {
+                let (k, e1) = random_frame(&mut r);
+                let (k, e1) = (unit::<T>(k[0], k[1], k[2]), unit::<T>(e1[0], e1[1], e1[2]));
+                let mut u = || (r.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+                let (i, p, a, b) = (0.5 + 3.5 * u(), u(), 2.0 * PI * u(), PI * u());
+                // Every fifth case unpolarised (the depolarised route).
+                let p = if case % 5 == 0 { 0.0 } else { p };
+                let s = Stokes {
+                    i: T::from_f64(i),
+                    q: T::from_f64(i * p * a.cos() * b.sin()),
+                    u: T::from_f64(i * p * a.sin() * b.sin()),
+                    v: T::from_f64(i * p * b.cos()),
+                    reference: e1,
+                };
+                let (u1, u2) = (T::from_f64(u()), T::from_f64(u()));
+                let scalar_pdf = |x: &scatterkit::phase::StokesSample<T>| {
+                    m.scalar().pdf(x.dir.dot(k).clamp_unit())
+                };
+                for (exact, x) in [
+                    (true, m.sample(k, &s, u1, u2)),
+                    (false, m.sample_scalar(k, &s, u1, u2)),
+                ] {
+                    let st = x.stokes;
+                    let e = m.eval(k, &s, x.dir, st.reference);
+                    let want_pdf = if exact {
+                        m.pdf(k, &s, x.dir)
+                    } else {
+                        scalar_pdf(&x)
+                    };
+                    let (pdf, want_pdf) = (x.pdf.to_f64(), want_pdf.to_f64());
+                    assert!(
+                        (pdf - want_pdf).abs() <= tol * want_pdf,
+                        "exact {exact} rho {rho} case {case}: pdf {pdf} against {want_pdf}"
+                    );
+                    let got = [st.i, st.q, st.u, st.v].map(|y| y.to_f64());
+                    let want = [e.i, e.q, e.u, e.v].map(|y| y.to_f64() / pdf);
+                    for (g, w) in got.iter().zip(want) {
+                        assert!(
+                            (g - w).abs() <= tol * i,
+                            "exact {exact} rho {rho} case {case}: {got:?} against {want:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+    check::<f32>(1e-4, 21);
+    check::<f64>(1e-12, 22);
 }
 
 /// Dark light (a zero Stokes vector, as a path whose weight has run out

@@ -46,9 +46,11 @@ impl<T: Real> Phase<T> {
     /// `χ_2 = β g_HG² + (1 − β) 2/5`, so `g_HG = x` solves
     /// `g x² + (γ(1 − g) − 3/5) x − 2g/5 = 0` (the positive root) and
     /// `β = g/x`. It reaches `0.6 < γ ≤ 1 + g` for `0 < g < 1`
-    /// (`γ = 1 + g` is HG itself), less the values so close to 0.6 that
-    /// `g_HG` rounds to 1 in `T` (γ − 0.6 below about 10⁻¹⁵ in f64, 10⁻⁶
-    /// in f32 at g = 0.95); other `(g, γ)` are [`Error::Domain`]. As
+    /// (`γ = 1 + g` is HG itself), less the values where `g_HG` rounds to
+    /// 1 in `T`: γ so close to 0.6 (γ − 0.6 below about 10⁻¹⁵ in f64,
+    /// 10⁻⁶ in f32 at g = 0.95), or, below `γ = 1 + g`, g so close to 1
+    /// (1 − g below 10⁻¹⁵ in f64, 2.4·10⁻⁷ in f32 at γ = 0.8); other
+    /// `(g, γ)` are [`Error::Domain`]. As
     /// `γ → 0.6` the HG lobe narrows below the spacing of floats near
     /// `μ = 1`; densities, CDF and the exact inverse stay accurate there
     /// (`tests/models/edges.rs`: within 10⁻⁹ of 50-digit values down to

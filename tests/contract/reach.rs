@@ -159,6 +159,9 @@ fn reaches() -> Vec<Reach> {
         ),
         // The HG families' tops carry 4ε of slack (their module docs).
         r("modified hg", 1, &[0.5, 1.2], Measured, Closed(top(1.5))),
+        // g over its whole range (γ = 0.8 ≤ 1 + g for every g > 0): refused
+        // at 0; near 1, where g_HG rounds to 1, a measured edge.
+        r("modified hg", 0, &[0.5, 0.8], Open(0.0), Measured),
         r(
             "modified hg by δ",
             1,

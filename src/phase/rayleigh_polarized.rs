@@ -465,8 +465,9 @@ mod tests {
 
     /// `cos_given` against Newton's method on its own equation, `aμ +
     /// bμ³/3 = x(a + b/3)` with `x = 2u − 1`, on both sides of the switch
-    /// to the series (`b ≤ 10⁻⁸ a`): within 10⁻¹⁵. The test above only
-    /// holds the two routes together within 10⁻⁷, where the series' own
+    /// to the series (`b ≤ 10⁻⁸ a`): within 10⁻¹⁵.
+    /// `the_series_meets_the_cubic_where_they_switch` only holds the two
+    /// routes together within 10⁻⁷, where the series' own
     /// terms are below 10⁻⁸: mutations of them went unnoticed.
     #[test]
     fn cos_given_solves_its_cubic_on_both_sides_of_the_series() {

@@ -7,7 +7,7 @@
 //!   field projected on the output frame, through coherency matrices, with
 //!   no scattering plane formed) within `10⁻¹³ I` in f64 and `10⁻⁵ I` in
 //!   f32, including `10⁻⁶` rad (f64) and `10⁻³` rad (f32) from forward and
-//!   backward;
+//!   backward and exactly there, for intensities in `[½, 4]`;
 //! * with unpolarised input `sample` is `RayleighDepolarized::sample_dir`
 //!   bit for bit; every sample keeps `I` and `|Q|, |U|, |V| ≤ I`; samples
 //!   are monotone in each uniform;

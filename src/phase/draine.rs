@@ -263,13 +263,20 @@ impl Params {
     /// mirrored tail `P(cos θ ≥ μ)`. (Through `y = 1 + μ`, `F` near
     /// `μ = 1` of a lobe with `g → 1` was 1.0 where it is 0.197.)
     pub(crate) fn cdf(&self, mu: f64) -> f64 {
-        let f = self.eval_at(1.0 + mu, self.s_mu(mu), mu).cdf;
+        let f = self.cdf_direct(mu);
         if f > 0.5 {
             let m = self.mirrored();
             1.0 - m.eval_at(1.0 - mu, m.s_mu(-mu), -mu).cdf
         } else {
             f
         }
+    }
+
+    /// `F(μ)` from `μ` itself ([`s_mu`](Self::s_mu)): to its own
+    /// relative precision where `F ≤ ½`, to `F`'s rounding above.
+    #[inline(always)]
+    pub(crate) fn cdf_direct(&self, mu: f64) -> f64 {
+        self.eval_at(1.0 + mu, self.s_mu(mu), mu).cdf
     }
 
     /// `F`, `F'` and `F''` at `y = 1 + μ` (the variable the solver works in,

@@ -183,6 +183,14 @@ fn reaches() -> Vec<Reach> {
             Open(1.0),
             Closed(top(1.75)),
         ),
+        // The lower ends again at g = 0.1, where 1 − (1 − g) is not g:
+        // at g = ½ the end's g_HG is exactly 1 and refused on that ground
+        // alone, which hid a check on γ or δ taking the end itself (its
+        // g_HG rounds below 1 at g = 0.1). The tops there: 1 + g rounded
+        // in each precision, measured.
+        r("two-lobe hg by γ", 1, &[0.1, 1.05], Open(1.0), Measured),
+        r("two-lobe hg by δ", 1, &[0.1, 1.05], Open(1.0), Measured),
+        r("modified hg by δ", 1, &[0.1, 1.05], Open(1.0), Measured),
         r(
             "fournier-forand by backscatter",
             0,

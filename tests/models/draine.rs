@@ -552,3 +552,45 @@ fn eq6_is_the_published_inverse_where_it_is_well_conditioned() {
     }
     assert!(worst < 1e-9, "eq. 6 is {worst:e} from the exact inverse");
 }
+
+/// The fog's CDF where `F < ½` at `μ ≥ 0` (a forward HG lobe with
+/// `g → 1` and a light second lobe): against its lobes' own CDFs,
+/// `(1 − w) F_HG + w F_D` (each tested to 50 digits in `edges.rs`),
+/// within 10⁻¹² relative, and non-decreasing across `μ = 0`. Found by
+/// the reach sweep of the modified HG's `g` near 1: the CDF there was
+/// taken as one minus the upper tail, which rounded a CDF of 2.4·10⁻¹⁶ at
+/// `μ = 0` to 0 while `F` just below 0, taken directly, kept it.
+#[test]
+fn fog_cdf_keeps_small_values_beyond_the_equator() {
+    use scatterkit::{Fog, HenyeyGreenstein};
+    for (g_hg, g_d, alpha, w_d) in [
+        (1.0 - 1e-15, 0.0, 2f64.powi(70), 4.9e-16),
+        (1.0 - 1e-10, 0.0, 2f64.powi(70), 1e-10),
+        (0.999, -0.5, 1.0, 1e-6),
+        (0.9999, 0.3, 12.0, 0.01),
+    ] {
+        let fog = Fog::<f64>::new(g_hg, g_d, alpha, w_d).unwrap();
+        let (hg, d) = (
+            HenyeyGreenstein::<f64>::new(g_hg).unwrap(),
+            Draine::<f64>::new(g_d, alpha).unwrap(),
+        );
+        let mut mus: Vec<f64> = (-100..=1000).map(|i| i as f64 * 1e-3).collect();
+        mus.extend([-1e-300, -0.0, 1e-300, 1e-16, 1.0 - 1e-9, 1.0 - 1e-12]);
+        mus.sort_by(f64::total_cmp);
+        let mut prev = 0.0;
+        for mu in mus {
+            let (got, want) = (fog.cdf(mu), (1.0 - w_d) * hg.cdf(mu) + w_d * d.cdf(mu));
+            if want < 0.5 {
+                assert!(
+                    (got - want).abs() <= 1e-12 * want,
+                    "fog ({g_hg}, {g_d}, {alpha}, {w_d}) at {mu}: {got:e} against {want:e}"
+                );
+            }
+            assert!(
+                got >= prev,
+                "fog ({g_hg}, {g_d}, {alpha}, {w_d}): F({mu}) = {got:e} after {prev:e}"
+            );
+            prev = got;
+        }
+    }
+}

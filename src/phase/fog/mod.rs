@@ -274,6 +274,15 @@ impl<T: Real> Fog<T> {
         (mixture(h, d, self.w_d.to_f64(), y), mirrored)
     }
 
+    /// `F(μ)` as the weighted lobes' own `F`, each from `μ` itself (not
+    /// through `1 + μ`, which near `μ = 1` rounds away the `1 − μ` a
+    /// forward lobe depends on): a sum of two positive terms, to its own
+    /// relative precision where each lobe's is.
+    fn unmirrored(&self, mu: f64) -> f64 {
+        let (h, d, w) = self.lobes();
+        (1.0 - w) * h.cdf_direct(mu) + w * d.cdf_direct(mu)
+    }
+
     /// The lobes as f64 Draine parameters (HG is Draine with α = 0).
     fn lobes(&self) -> (Params, Params, f64) {
         (
@@ -563,8 +572,18 @@ impl<T: Real> PhaseFunction<T> for Fog<T> {
         if let Some(d) = self.dirac() {
             return d.cdf(cos_theta);
         }
-        let (eval, mirrored) = self.near_pole(cos_theta.to_f64().clamp(-1.0, 1.0));
-        let f = if mirrored { 1.0 - eval.cdf } else { eval.cdf };
+        let mu = cos_theta.to_f64().clamp(-1.0, 1.0);
+        let (eval, mirrored) = self.near_pole(mu);
+        // The smaller of F and 1 − F to its own relative precision (as
+        // Draine's): where the tail P(cos θ ≥ μ) at μ ≥ 0 exceeds ½, F
+        // itself, unmirrored. As 1 − tail, a forward lobe with g → 1 and a
+        // Draine lobe of weight 5·10⁻¹⁶ gave F(0) = 0 where F just below
+        // 0, taken directly, was 2.4·10⁻¹⁶: the CDF stepped back.
+        let f = match (mirrored, eval.cdf > 0.5) {
+            (false, _) => eval.cdf,
+            (true, true) => self.unmirrored(mu),
+            (true, false) => 1.0 - eval.cdf,
+        };
         T::from_f64(f.clamp(0.0, 1.0))
     }
     fn sample_cos(&self, u: T) -> T {

@@ -566,7 +566,9 @@ impl<T: Real> PhaseFunction<T> for Fog<T> {
         T::from_f64(eval.density / core::f64::consts::TAU)
     }
     /// In the frame of the nearer pole, as [`pdf`](Self::pdf): for
-    /// `μ ≥ 0`, one minus the mirrored tail.
+    /// `μ ≥ 0`, one minus the mirrored tail, unless that tail exceeds ½
+    /// (then the lobes' own `F` from `μ`): the smaller of `F` and `1 − F`
+    /// to its own relative precision.
     #[inline]
     fn cdf(&self, cos_theta: T) -> T {
         if let Some(d) = self.dirac() {

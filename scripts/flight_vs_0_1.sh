@@ -16,7 +16,7 @@ cargo=${CARGO:-cargo}
 if [ ! -d "$old" ]; then
   git -C "$root" worktree add --detach "$old" 950c067 >&2
 fi
-(cd "$old" && "$cargo" build --release -p scatterkit-capi --quiet >&2)
+(cd "$old" && CARGO_TARGET_DIR="$old/target" "$cargo" build --release -p scatterkit-capi --quiet >&2)
 "$cargo" build --release -p scatterkit-capi --manifest-path "$root/Cargo.toml" --quiet >&2
 bin=$target/flight_bench
 mkdir -p "$bin"

@@ -266,3 +266,31 @@ fn f32_nearly_isotropic_lobes_stay_within_the_rescaled_bound() {
     let worst = worst.into_iter().fold(0.0, f64::max);
     eprintln!("f32 nearly isotropic lobes: at most {worst:.1e} from the exact lobe sample");
 }
+
+#[test]
+fn f32_sharp_lobes_with_a_small_share_stay_within_the_rescaled_bound() {
+    // A sharp lobe (g → 1) whose share of [0, 1] is a few f32 steps has an
+    // error bound far past 2^20 (k = (1 − g)L cancels against 2g·w): the
+    // multiplied-through formula is 5e-6 off there, so these objects take
+    // the rescaled path. Fixed before the run: 3e-7 of the lobe's exact
+    // sample at every f32 u from 20 steps below the weight to 1 (the
+    // rescaled path is within 3e-8 on them).
+    let below_one = |k: u32| f32::from_bits(1.0f32.to_bits() - k);
+    for (g1, g2, w) in [
+        (0.5f32, 0.999f32, below_one(1)),
+        (0.5, 0.9999, below_one(4)),
+        (-0.5, 0.99, below_one(1)),
+    ] {
+        let p = Phase::<f32>::two_lobe_hg(g1, g2, w).unwrap();
+        let mut u = f32::from_bits(w.to_bits() - 20);
+        while u <= 1.0 {
+            let got = p.sample_cos_by_lobe(u) as f64;
+            let want = lobe_sample_at(g1 as f64, g2 as f64, w as f64, u as f64);
+            assert!(
+                (got - want).abs() <= 3e-7,
+                "({g1}, {g2}, {w}) u = {u}: {got} against {want}"
+            );
+            u = u.next_up();
+        }
+    }
+}

@@ -182,6 +182,31 @@ fn lobe_sample_at(g1: f64, g2: f64, w: f64, u: f64) -> f64 {
     s * if opm < 1.0 { opm - 1.0 } else { 1.0 - omm }
 }
 
+/// The f32 lobe choice of `p` (made from `g1, g2, w`) at `u` against the
+/// exact lobe sample there: `excess(got, want)`, asserted to be at most
+/// `bound`.
+fn lobe_check(
+    p: &Phase<f32>,
+    (g1, g2, w): (f64, f64, f64),
+    u: f32,
+    bound: f64,
+    excess: impl Fn(f64, f64) -> f64,
+) -> f64 {
+    let got = p.sample_cos_by_lobe(u) as f64;
+    let want = lobe_sample_at(g1, g2, w, u as f64);
+    let e = excess(got, want);
+    assert!(
+        e <= bound,
+        "({g1}, {g2}, {w}) u = {u}: {got} against {want}"
+    );
+    e
+}
+
+/// `|got − want|`.
+fn abs_error(got: f64, want: f64) -> f64 {
+    (got - want).abs()
+}
+
 #[test]
 fn f32_lobe_choice_is_within_half_an_ulp_of_the_lobe_sample() {
     // The f32 lobe choice computes in f64 where its error bound (module
@@ -206,16 +231,12 @@ fn f32_lobe_choice_is_within_half_an_ulp_of_the_lobe_sample() {
             (w as f32).next_up(),
             (w as f32).next_down(),
         ]);
-        for u in us {
-            let got = p.sample_cos_by_lobe(u) as f64;
-            let want = lobe_sample_at(g1, g2, w, u as f64);
+        let beyond_half_ulp = |got: f64, want: f64| {
             let half_ulp = 0.5 * ((got as f32).abs().next_up() as f64 - (got as f32).abs() as f64);
-            let excess = (got - want).abs() - half_ulp;
-            assert!(
-                excess <= 1e-9,
-                "({g1}, {g2}, {w}) u = {u}: {got} against {want}"
-            );
-            worst = worst.max(excess);
+            (got - want).abs() - half_ulp
+        };
+        for u in us {
+            worst = worst.max(lobe_check(&p, (g1, g2, w), u, 1e-9, beyond_half_ulp));
         }
         worst
     });
@@ -252,14 +273,7 @@ fn f32_nearly_isotropic_lobes_stay_within_the_rescaled_bound() {
             if (u as f64 >= w) == first {
                 continue;
             }
-            let got = p.sample_cos_by_lobe(u) as f64;
-            let want = lobe_sample_at(g1, g2, w, u as f64);
-            let err = (got - want).abs();
-            assert!(
-                err <= 3e-7,
-                "({g1}, {g2}, {w}) u = {u}: {got} against {want}"
-            );
-            worst = worst.max(err);
+            worst = worst.max(lobe_check(&p, (g1, g2, w), u, 3e-7, abs_error));
         }
         worst
     });
@@ -283,13 +297,9 @@ fn f32_sharp_lobes_with_a_small_share_stay_within_the_rescaled_bound() {
     ] {
         let p = Phase::<f32>::two_lobe_hg(g1, g2, w).unwrap();
         let mut u = f32::from_bits(w.to_bits() - 20);
+        let params = (g1 as f64, g2 as f64, w as f64);
         while u <= 1.0 {
-            let got = p.sample_cos_by_lobe(u) as f64;
-            let want = lobe_sample_at(g1 as f64, g2 as f64, w as f64, u as f64);
-            assert!(
-                (got - want).abs() <= 3e-7,
-                "({g1}, {g2}, {w}) u = {u}: {got} against {want}"
-            );
+            lobe_check(&p, params, u, 3e-7, abs_error);
             u = u.next_up();
         }
     }

@@ -286,9 +286,9 @@ fn f32_sharp_lobes_with_a_small_share_stay_within_the_rescaled_bound() {
     // A sharp lobe (g → 1) whose share of [0, 1] is a few f32 steps has an
     // error bound far past 2^20 (k = (1 − g)L cancels against 2g·w): the
     // multiplied-through formula is 4.5e-6 to 1e-5 off there, so these
-    // objects take the rescaled path. Fixed before the run: 3e-7 of the lobe's exact
-    // sample at every f32 u from 20 steps below the weight to 1 (the
-    // rescaled path is within 3e-8 on them).
+    // objects take the rescaled path. Fixed before the run: 3e-7 of the
+    // lobe's exact sample at every f32 u from 20 steps below the weight to
+    // 1 (the rescaled path is within 3e-8 on them).
     let below_one = |k: u32| f32::from_bits(1.0f32.to_bits() - k);
     for (g1, g2, w) in [
         (0.5f32, 0.999f32, below_one(1)),

@@ -49,7 +49,7 @@
 //! of `y` (the next term, of order `a⁵`, is then far below f32 resolution);
 //! otherwise, and in segments that fail, the safeguarded Halley solver
 //! takes over from the series' result or the seed. Where the segments that
-//! pass cover less than half of `[0, 1]` (the fits from 11 µm up, whose
+//! pass cover less than half of `[0, 1]` (the fits from 10.35 µm up, whose
 //! HG lobe is too narrow for these rows) the object keeps the iterative
 //! solver's own table (`phase::seeds`) instead. f64 objects always do: their
 //! results need the solver to the last digits.

@@ -83,11 +83,19 @@ const COVERAGE_TIE: f64 = 1e-6;
 /// 15 % and 30 % of `[u_s, 1]` (best where the HG lobe is broad, as at
 /// 1–2 µm), and `u = ½` (where the HG lobe is narrow and the forward pole's
 /// segment had better stay inside its mass).
-const FORWARD_SPLITS: [fn(f32) -> f32; 3] = [
+pub(crate) const FORWARD_SPLITS: [Split; 3] = [
     |u_s| u_s + 0.15 * (1.0 - u_s),
     |u_s| u_s + 0.3 * (1.0 - u_s),
     |_| 0.5,
 ];
+
+/// A candidate end `u_f` of the trough-side segment, from `u_s`.
+pub(crate) type Split = fn(f32) -> f32;
+
+/// The candidates a table build chooses among: trough-side splits
+/// ([`FORWARD_SPLITS`]) and kinds of table (`false` the inverse CDF,
+/// `true` the inverse mean density), each tried in order.
+pub(crate) type Candidates<'a> = (&'a [Split], &'a [bool]);
 
 /// The largest last term `b₄a⁴` of the series, relative to `y`, for which an
 /// f32 object takes the series' result (2⁻³³ ≈ 1.2·10⁻¹⁰).
@@ -284,11 +292,16 @@ impl FogSeeds {
     /// cover most of `[0, 1]`, and of those the one with the closest seeds.
     /// `None` if that covers less than [`MIN_COVERAGE`]: the iterative
     /// solver's own table (`phase::seeds`) serves such a mixture better.
+    ///
+    /// The fog tries every candidate ([`FORWARD_SPLITS`], `[false,
+    /// true]`); the tests build each alone to check that the one chosen is
+    /// the best.
     pub(crate) fn build(
         m: impl Fn(bool) -> Mixture,
         eval: impl Fn(bool, f64) -> Eval,
         exact: impl Fn(bool, f64) -> f64,
         check: impl Fn(bool, f64, f64) -> f64,
+        (splits, kinds): Candidates,
     ) -> Option<FogSeeds> {
         let u_s = (eval(false, 1.0).cdf as f32).clamp(0.0, 1.0);
         let y_a = exact(true, 1.0 - u_s as f64) as f32;
@@ -300,7 +313,7 @@ impl FogSeeds {
         let mut best: Option<(f64, f64, FogSeeds)> = None;
         // The mean density needs a division per sample: tried only where the
         // inverse leaves part of [0, 1] to the solver.
-        for mean_density in [false, true] {
+        for &mean_density in kinds {
             if best.as_ref().is_some_and(|b| b.0 >= 1.0 - COVERAGE_TIE) {
                 break;
             }
@@ -314,7 +327,7 @@ impl FogSeeds {
                 mean_density,
             };
             let (pass0, e0) = seeds.segment(0, fns);
-            for split in FORWARD_SPLITS {
+            for split in splits {
                 let u_f = split(u_s);
                 if !(u_f >= u_s && u_f <= 1.0) {
                     continue;
@@ -421,6 +434,12 @@ impl FogSeeds {
     #[cfg(test)]
     pub(crate) fn splits(&self) -> (f32, f32) {
         (self.u_s, self.u_f)
+    }
+
+    /// Whether the table is of the inverse mean density (module docs).
+    #[cfg(test)]
+    pub(crate) fn mean_density(&self) -> bool {
+        self.mean_density
     }
 
     /// Segment `j`'s frame and anchor `(mirrored, t_a, y_a)`.

@@ -796,6 +796,9 @@ mod tests {
     /// 0.55 and 0.8 µm the inverse CDF is kept at 99.1 % and 99.3 % where
     /// the mean density, with a division per sample, would answer all of
     /// it).
+    /// And each kind alone, with the 15 % split, answers at least 99 % of
+    /// `[0, 1]` for the fits from 0.05 to 1.8 µm, so that neither can fail
+    /// unseen behind the other.
     #[test]
     fn a_table_build_keeps_the_best_candidate() {
         let n = 10_000;
@@ -815,24 +818,28 @@ mod tests {
             Fog::<f32>::new(g_hg as f32, g_d as f32, alpha as f32, w as f32).unwrap()
         });
         let mut tables = 0;
-        for fog in fits.chain(random) {
+        for (f, fog) in fits.chain(random).enumerate() {
             let Aux::Mixture(kept) = fog.aux else {
                 continue;
             };
             tables += 1;
             let kept_density = kept.mean_density();
             let kept = share(&fog, Some(kept));
-            for split in inverse::FORWARD_SPLITS {
+            for (s, split) in inverse::FORWARD_SPLITS.into_iter().enumerate() {
                 for kind in [false, true] {
-                    if kind && !kept_density {
+                    let compare = !kind || kept_density;
+                    // 0.05–1.8 µm, the 15 % split.
+                    let small = f < 8 && s == 0;
+                    if !compare && !small {
                         continue;
                     }
                     let alone = share(&fog, fog.series_table((&[split], &[kind]), |_, _| ()));
+                    let p = fog.params();
                     assert!(
-                        kept >= alone - 1e-3,
-                        "{:?}: kept {kept}, a candidate {alone}",
-                        fog.params()
+                        !compare || kept >= alone - 1e-3,
+                        "{p:?}: kept {kept}, a candidate {alone}"
                     );
+                    assert!(!small || alone >= 0.99, "{p:?}: kind {kind} alone {alone}");
                 }
             }
         }

@@ -286,32 +286,57 @@ fn sweep_segments() -> Vec<Equiangular<f32>> {
     out
 }
 
-/// The distance is non-decreasing in u over every f32 u in [0, 1], for
-/// every segment of the sweep (in f32 rounding, sin and cos alone can step
-/// back by an ULP; the sampler's form must not turn that into a step back
-/// of the distance). Two threads.
-#[test]
-fn distances_are_monotone_in_u_over_every_f32() {
+/// The distance is non-decreasing in u over each run `[lo, hi]` of
+/// consecutive f32 bit patterns in `runs`, for every segment of the sweep
+/// (in f32 rounding, sin and cos alone can step back by an ULP; the
+/// sampler's form must not turn that into a step back of the distance).
+/// Two threads share the runs.
+fn monotone_over(runs: &[(u32, u32)]) {
     let segments = sweep_segments();
-    let top = 1.0f32.to_bits();
-    let half = top / 2;
-    let decreases = |lo: u32, hi: u32| {
+    let decreases = |runs: &[(u32, u32)]| {
         let mut found = Vec::new();
-        for (k, e) in segments.iter().enumerate() {
-            let mut last = e.sample(f32::from_bits(lo));
-            for bits in lo + 1..=hi {
-                let t = e.sample(f32::from_bits(bits));
-                if t < last && found.len() < 4 {
-                    found.push((k, f32::from_bits(bits), last, t));
+        for &(lo, hi) in runs {
+            for (k, e) in segments.iter().enumerate() {
+                let mut last = e.sample(f32::from_bits(lo));
+                for bits in lo + 1..=hi {
+                    let t = e.sample(f32::from_bits(bits));
+                    if t < last && found.len() < 4 {
+                        found.push((k, f32::from_bits(bits), last, t));
+                    }
+                    last = t;
                 }
-                last = t;
             }
         }
         found
     };
+    let (first, second) = runs.split_at(runs.len() / 2);
     let (a, b) = std::thread::scope(|s| {
-        let h = s.spawn(|| decreases(half, top));
-        (decreases(0, half), h.join().unwrap())
+        let h = s.spawn(|| decreases(second));
+        (decreases(first), h.join().unwrap())
     });
     assert!(a.is_empty() && b.is_empty(), "{a:?} {b:?}");
+}
+
+/// Over every f32 u in [0, 1] (about 70 s on two cores, so run by hand:
+/// `cargo test --release --test models -- --ignored equiangular::`). CI
+/// runs the sample below.
+#[test]
+#[ignore = "exhaustive, about 70 s: the sample below runs in CI"]
+fn distances_are_monotone_in_u_over_every_f32() {
+    let (top, half) = (1.0f32.to_bits(), 1.0f32.to_bits() / 2);
+    monotone_over(&[(0, half), (half, top)]);
+}
+
+/// Over 64 runs of 2²⁰ consecutive f32 u, evenly spaced from `u = 0` to
+/// `u = 1` (both ends included): a sixteenth of the floats.
+#[test]
+fn distances_are_monotone_in_u_over_sampled_runs() {
+    let (top, run) = (1.0f32.to_bits(), 1u32 << 20);
+    let runs: Vec<(u32, u32)> = (0..64u64)
+        .map(|k| {
+            let lo = (k * (top - run) as u64 / 63) as u32;
+            (lo, lo + run)
+        })
+        .collect();
+    monotone_over(&runs);
 }

@@ -764,7 +764,7 @@ mod tests {
     /// their nodes at the same points, and its memo keeps every solution.
     /// The exact solutions a build computes equal the distinct (frame,
     /// target) pairs it asks for, for f32 fogs of the fits from 0.05 to
-    /// 10.3 µm by 0.25 µm (those with a table).
+    /// 10.3 µm by 0.25 µm (each has a table).
     #[test]
     fn a_table_build_solves_each_node_once() {
         use core::cell::Cell;

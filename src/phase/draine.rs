@@ -815,6 +815,37 @@ mod tests {
         std::println!("eq. 6 rearranged: worst {worst:?}");
     }
 
+    /// What an object keeps beside its parameters ([`Aux`]), as
+    /// [`Draine::from_parts`] documents it: f32 objects eq. 6's constants
+    /// in the eq. 6 region, a seed table above α = 10 outside it, nothing
+    /// at or below; f64 objects nothing. (The sampler gives the same
+    /// answers from any seed, so only this tells the cases apart.)
+    #[test]
+    fn f32_objects_keep_what_their_region_needs() {
+        fn kind<T: Real>(g: f64, a: f64) -> &'static str {
+            match Draine::<T>::from_parts(T::from_f64(g), T::from_f64(a)).aux {
+                Aux::None => "none",
+                Aux::Seeds(_) => "seeds",
+                Aux::Eq6(_) => "eq6",
+            }
+        }
+        let cases = [
+            (0.5, 1.0, "eq6"),
+            (-0.9, 1e4, "eq6"),
+            (2e-3, 1e-3, "eq6"),
+            (1e-4, 100.0, "seeds"),
+            (0.0, 10.5, "seeds"),
+            (0.5, 2e4, "seeds"),
+            (1e-4, 10.0, "none"),
+            (0.0, 5.0, "none"),
+            (0.5, 1e-5, "none"),
+        ];
+        for (g, a, want) in cases {
+            assert_eq!(kind::<f32>(g, a), want, "f32 g = {g}, α = {a}");
+            assert_eq!(kind::<f64>(g, a), "none", "f64 g = {g}, α = {a}");
+        }
+    }
+
     #[test]
     fn mirror_symmetry_of_the_cdf() {
         let p = Params::new(0.6, 3.0);

@@ -81,6 +81,19 @@ pub fn uniform_grid(n: usize) -> impl Iterator<Item = f64> {
     (0..n).map(move |i| i as f64 / (n - 1) as f64)
 }
 
+/// `count ≥ 2` runs `(lo, lo + len)` of consecutive f32 bit patterns,
+/// evenly spaced from 0 to `top` (the first starts at 0, the last ends at
+/// `top`): the neighbours a test of monotonicity needs, at `count·len` of
+/// the floats.
+pub fn runs_of_neighbours(top: u32, len: u32, count: u64) -> Vec<(u32, u32)> {
+    (0..count)
+        .map(|k| {
+            let lo = (k * (top - len) as u64 / (count - 1)) as u32;
+            (lo, lo + len)
+        })
+        .collect()
+}
+
 /// Calls `f` on every item, on as many threads as the machine has cores
 /// (items taken in order as threads free up). A panic in `f` fails the
 /// caller when the threads are joined.

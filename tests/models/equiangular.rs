@@ -331,12 +331,9 @@ fn distances_are_monotone_in_u_over_every_f32() {
 /// `u = 1` (both ends included): a sixteenth of the floats.
 #[test]
 fn distances_are_monotone_in_u_over_sampled_runs() {
-    let (top, run) = (1.0f32.to_bits(), 1u32 << 20);
-    let runs: Vec<(u32, u32)> = (0..64u64)
-        .map(|k| {
-            let lo = (k * (top - run) as u64 / 63) as u32;
-            (lo, lo + run)
-        })
-        .collect();
-    monotone_over(&runs);
+    monotone_over(&crate::common::runs_of_neighbours(
+        1.0f32.to_bits(),
+        1 << 20,
+        64,
+    ));
 }

@@ -257,11 +257,7 @@ fn hg_f32_is_monotone_on_every_float() {
 /// first starting at 0 and the last ending at 1.
 #[test]
 fn hg_f32_is_monotone_over_sampled_runs() {
-    let (len, last) = (1u32 << 20, 0x3f80_0000u32);
-    let step = (last - len) / 63;
-    let mut runs: Vec<(u32, u32)> = (0..63).map(|k| (k * step, k * step + len)).collect();
-    runs.push((last - len, last));
-    hg_f32_monotone_over(&runs);
+    hg_f32_monotone_over(&common::runs_of_neighbours(1.0f32.to_bits(), 1 << 20, 64));
 }
 
 /// `HenyeyGreenstein::f64_path_constants`, as documented: `Some` for an

@@ -850,6 +850,35 @@ mod tests {
         }
     }
 
+    /// An f32 object's stored eq. 6 constants ([`Eq6::pack`] and
+    /// [`Eq6::unpack`]) give, in both orientations, the bits of the
+    /// constants formed per sample ([`seed_eq6`]). Where they would not,
+    /// the sampler can still return the right answer, since a wrong eq. 6
+    /// value out of range falls to the solver, only slower: so only this
+    /// tells them apart.
+    #[test]
+    fn stored_eq6_constants_are_those_formed_per_sample() {
+        for g in [1e-3, 0.3, 0.9, 0.9999] {
+            for g in [g, -g] {
+                for a in [1e-4, 1.0, 250.0, 1e4] {
+                    let c = Eq6::pack(g, a);
+                    for mirrored in [false, true] {
+                        let g_oriented = if mirrored { -g } else { g };
+                        for t in [1e-6, 1e-3, 0.1, 0.3, 0.5] {
+                            let stored = Eq6::unpack(&c, mirrored, g_oriented).seed(t);
+                            let formed = seed_eq6(g_oriented, a, t);
+                            assert_eq!(
+                                stored.to_bits(),
+                                formed.to_bits(),
+                                "g {g}, α {a}, mirrored {mirrored}, t {t}: {stored} vs {formed}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn mirror_symmetry_of_the_cdf() {
         let p = Params::new(0.6, 3.0);

@@ -879,6 +879,31 @@ mod tests {
         }
     }
 
+    /// [`resolvent`] refuses what the cube root cannot take: below 10⁻²⁰⁰
+    /// (the bound itself included), infinities and NaN. Above, `m` cannot
+    /// be finite beyond 2.7·10¹⁵⁴ (`t5²` overflows first), so the upper
+    /// bound only keeps out infinity.
+    #[test]
+    fn resolvent_refuses_what_the_cube_root_cannot_take() {
+        let above = |x: f64| f64::from_bits(x.to_bits() + 1);
+        assert_eq!(resolvent(1.0, 0.0), Some(2.0));
+        assert_eq!(resolvent(-1.0, -3.0), Some(-3.0));
+        assert_eq!(resolvent(above(1e-200), 0.0), Some(above(1e-200)));
+        // The largest finite m.
+        assert_eq!(resolvent(0.0, -f64::MAX), Some(f64::MAX.sqrt()));
+        for (t5, t6_3) in [(1e-200, 0.0), (-1e-200, 0.0), (1e-250, 0.0), (-1e-250, 0.0)] {
+            assert_eq!(resolvent(t5, t6_3), None, "t5 = {t5:e}");
+        }
+        for (t5, t6_3) in [
+            (1e200, 0.0),
+            (0.0, -f64::INFINITY),
+            (f64::NAN, 0.0),
+            (1.0, 2.0),
+        ] {
+            assert_eq!(resolvent(t5, t6_3), None, "t5 = {t5:e}, t6³ = {t6_3:e}");
+        }
+    }
+
     #[test]
     fn mirror_symmetry_of_the_cdf() {
         let p = Params::new(0.6, 3.0);

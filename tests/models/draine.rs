@@ -502,6 +502,9 @@ fn step64(v: f64, k: i32) -> f64 {
 /// it) and the fog's exact inverse pass KS against the fog's CDF, counted
 /// for rounding to f64 (`ks_rounded`: most of such a lobe lies within an
 /// ulp of μ = ±1), α = 0.01 at significance 10⁻³ with 2·10⁵ samples each.
+/// With `α = 0` (the HG limit, whose far-pole step takes HG's closed form
+/// in the mirrored frame) in both orientations: no other test reached that
+/// step, and a wrong target there sent the samples to the other pole.
 /// The standalone sampler solved near μ = 1 in `y = 1 + μ`, which cannot
 /// resolve `1 − μ` there: it gave `1 − 2⁻⁵¹` where the answer rounds to 1,
 /// and `by_lobe` failed with p = 0.
@@ -515,6 +518,8 @@ fn lobes_at_the_poles_pass_ks_by_lobe_and_exact() {
         (0.5, 1.0 - 3e-9, 1.0, 0.9),
         (0.2, -(1.0 - 1e-9), 12.0, 0.5),
         (0.8, 1.0 - 1e-10, 0.5, 1.0),
+        (0.3, 1.0 - 1e-9, 0.0, 0.6),
+        (0.3, -(1.0 - 1e-9), 0.0, 0.6),
     ] {
         let fog = scatterkit::Fog::<f64>::new(g_hg, g_d, alpha, w_d).unwrap();
         let lobe = Draine::<f64>::new(g_d, alpha).unwrap();

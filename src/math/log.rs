@@ -207,7 +207,10 @@ mod tests {
             // ln(v.0 + v.1) = ln v.0 + v.1/v.0 to far below an ulp.
             let r = dd_add(reference(v.0), (v.1 / v.0, 0.0));
             if r.0 != 0.0 {
-                worst = worst.max(ulps(ln_1m(u), r));
+                // Each point on its own: a running `max` passes over NaN.
+                let e = ulps(ln_1m(u), r);
+                assert!(e <= 1.0, "u = {u:e}: {e} ulp");
+                worst = worst.max(e);
             } else {
                 assert_eq!(ln_1m(u), 0.0);
             }
@@ -236,7 +239,8 @@ mod tests {
                 }
             }
         }
-        assert!(worst <= 1.0, "worst {worst} ulp");
+        extern crate std;
+        std::println!("ln(1 − u): worst {worst} ulp");
         assert_eq!(ln_1m(0.0).to_bits(), (-0.0f64).to_bits());
         assert_eq!(ln_1m(-0.0).to_bits(), 0);
         assert_eq!(ln_1m(1.0), f64::NEG_INFINITY);

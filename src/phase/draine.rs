@@ -850,56 +850,36 @@ mod tests {
         }
     }
 
-    /// An f32 object's stored eq. 6 constants ([`Eq6::pack`] and
+    /// An f32 object's stored eq. 6 constants ([`Eq6::pack`],
     /// [`Eq6::unpack`]) give, in both orientations, the bits of the
-    /// constants formed per sample ([`seed_eq6`]). Where they would not,
-    /// the sampler can still return the right answer, since a wrong eq. 6
-    /// value out of range falls to the solver, only slower: so only this
-    /// tells them apart.
+    /// constants formed per sample ([`seed_eq6`]), and [`eq6_stored`]
+    /// answers (`Ok`, with that value) exactly where its docs say, leaving
+    /// the rest to the solver: the smallest tails (`y < 10⁻⁵`, where eq. 6's
+    /// absolute error would show in f32's `sin θ`), `t = 0` and NaN. The
+    /// solver gives the same answer from any seed, so wrong constants, or a
+    /// shortcut never taken or taken too often, changed no other test.
     #[test]
-    fn stored_eq6_constants_are_those_formed_per_sample() {
-        for g in [1e-3, 0.3, 0.9, 0.9999] {
-            for g in [g, -g] {
-                for a in [1e-4, 1.0, 250.0, 1e4] {
-                    let c = Eq6::pack(g, a);
-                    for mirrored in [false, true] {
-                        let g_oriented = if mirrored { -g } else { g };
-                        for t in [1e-6, 1e-3, 0.1, 0.3, 0.5] {
-                            let stored = Eq6::unpack(&c, mirrored, g_oriented).seed(t);
-                            let formed = seed_eq6(g_oriented, a, t);
-                            assert_eq!(
-                                stored.to_bits(),
-                                formed.to_bits(),
-                                "g {g}, α {a}, mirrored {mirrored}, t {t}: {stored} vs {formed}"
-                            );
-                        }
-                    }
-                }
-            }
-        }
-    }
-
-    /// [`eq6_stored`] answers (`Ok`) exactly where its docs say, with eq.
-    /// 6's value, and leaves the rest to the solver: the smallest tails
-    /// (`y < 10⁻⁵`, where eq. 6's absolute error would show in f32's
-    /// `sin θ`), `t = 0` and NaN. The solver gives the same answer, so a
-    /// shortcut never taken or taken too often changed no other test.
-    #[test]
-    fn stored_eq6_answers_where_documented() {
+    fn stored_eq6_is_the_per_sample_eq6_and_answers_where_documented() {
+        extern crate std;
         let (mut answered, mut left) = (0, 0);
-        for (g, a) in [(0.3, 1.0), (0.9, 1e-4), (-0.9, 250.0), (0.999, 1e4)] {
-            let c = Eq6::pack(g, a);
-            for mirrored in [false, true] {
-                let g = if mirrored { -g } else { g };
-                for t in [0.0, 1e-12, 1e-9, 1e-6, 1e-3, 0.1, 0.5, f64::NAN] {
-                    let seed = Eq6::unpack(&c, mirrored, g).seed(t);
-                    let answers = t > 0.0 && (EQ6_MIN_Y..=2.0).contains(&(1.0 + seed));
-                    match eq6_stored(&c, mirrored, g, t) {
-                        Ok(mu) if answers => assert_eq!(mu.to_bits(), seed.to_bits()),
-                        Err(_) if !answers => {}
-                        r => panic!("g {g}, α {a}, t {t:e}: {r:?}, eq. 6 gives {seed:e}"),
+        for g in [1e-3, 0.3, 0.9, 0.9999].into_iter().flat_map(|g| [g, -g]) {
+            for a in [1e-4, 1.0, 250.0, 1e4] {
+                let c = Eq6::pack(g, a);
+                for mirrored in [false, true] {
+                    let g = if mirrored { -g } else { g };
+                    for t in [0.0, 1e-12, 1e-9, 1e-6, 1e-3, 0.1, 0.3, 0.5, f64::NAN] {
+                        let formed = seed_eq6(g, a, t);
+                        let stored = Eq6::unpack(&c, mirrored, g).seed(t);
+                        let at = std::format!("g {g}, α {a}, mirrored {mirrored}, t {t:e}");
+                        assert_eq!(stored.to_bits(), formed.to_bits(), "{at}");
+                        let answers = t > 0.0 && (EQ6_MIN_Y..=2.0).contains(&(1.0 + formed));
+                        match eq6_stored(&c, mirrored, g, t) {
+                            Ok(mu) if answers => assert_eq!(mu.to_bits(), formed.to_bits()),
+                            Err(_) if !answers => {}
+                            r => panic!("{at}: {r:?}, eq. 6 gives {formed:e}"),
+                        }
+                        if answers { answered += 1 } else { left += 1 }
                     }
-                    if answers { answered += 1 } else { left += 1 }
                 }
             }
         }

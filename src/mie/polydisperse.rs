@@ -335,7 +335,12 @@ impl Polydisperse {
         let mut phase_error = 0.0f64;
         for (p, s) in phase.iter_mut().zip(scratch.iter()) {
             let (pf, pc) = (*p / s_f, *s / s_c);
-            phase_error = phase_error.max(rel(pf, pc));
+            // Not `f64::max`, which passes over NaN: a NaN in the phase
+            // function must show in its error estimate.
+            let e = rel(pf, pc);
+            if e > phase_error || e.is_nan() {
+                phase_error = e;
+            }
             *p = pf;
         }
         Ok(Averages {

@@ -1,5 +1,7 @@
 //! The one-sample Kolmogorov–Smirnov test.
 
+use super::nan_max;
+
 /// KS statistic `D = sup |F_n(x) − F(x)|` of `samples` against the CDF `f`
 /// (sorts `samples`).
 pub fn ks_statistic(samples: &mut [f64], f: impl Fn(f64) -> f64) -> f64 {
@@ -10,11 +12,9 @@ pub fn ks_statistic(samples: &mut [f64], f: impl Fn(f64) -> f64) -> f64 {
         .enumerate()
         .map(|(i, &x)| {
             let fx = f(x);
-            (fx - i as f64 / n)
-                .abs()
-                .max(((i + 1) as f64 / n - fx).abs())
+            nan_max((fx - i as f64 / n).abs(), ((i + 1) as f64 / n - fx).abs())
         })
-        .fold(0.0, f64::max)
+        .fold(0.0, nan_max)
 }
 
 /// The asymptotic critical value of D for significance `alpha` and `n`
@@ -46,18 +46,18 @@ pub fn ks_rounded(
     let mut i = 0;
     while i < n {
         let v = samples[i];
-        let mut j = i;
+        // From `i + 1`: a NaN equals nothing, not even itself, and would
+        // hold `i` in place.
+        let mut j = i + 1;
         while j < n && samples[j] == v {
             j += 1;
         }
         // #{< v}/n and #{≤ v}/n.
         let (below, upto) = (i as f64 / n as f64, j as f64 / n as f64);
         let (lo, at, hi) = (f(step(v, -1)), f(v), f(step(v, 1)));
-        d = d
-            .max(lo - below)
-            .max(below - at)
-            .max(lo - upto)
-            .max(upto - hi);
+        for e in [lo - below, below - at, lo - upto, upto - hi] {
+            d = nan_max(d, e);
+        }
         i = j;
     }
     d

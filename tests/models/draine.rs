@@ -6,6 +6,7 @@
 //! Regenerate the map: `SK_BLESS=1 cargo test --release --test models draine::`.
 
 use crate::common;
+use crate::common::nan_max;
 
 use common::chi2::{chi2_directions, threshold};
 use common::dd;
@@ -316,7 +317,7 @@ fn fog_inverse_is_accurate() {
         let (mut e64, mut e32) = (0.0f64, 0.0f64);
         for u in u_values() {
             let exact = dd::fog_inverse(f64p.g_hg, f64p.g_d, f64p.alpha, f64p.w_d, u);
-            e64 = e64.max((p.sample_cos(u) - exact).abs());
+            e64 = nan_max(e64, (p.sample_cos(u) - exact).abs());
             let u32 = u as f32;
             let exact32 = dd::fog_inverse(
                 t(f32p.g_hg),
@@ -325,7 +326,7 @@ fn fog_inverse_is_accurate() {
                 t(f32p.w_d),
                 u32 as f64,
             );
-            e32 = e32.max((p32.sample_cos(u32) as f64 - exact32).abs());
+            e32 = nan_max(e32, (p32.sample_cos(u32) as f64 - exact32).abs());
         }
         println!("fog d = {d}: f32 {e32:.1e}, f64 {e64:.1e}");
         assert!(
@@ -427,7 +428,7 @@ fn eq6_region_f32_is_within_half_an_ulp() {
                 let want = p64.sample_cos(u as f64);
                 let got = p32.sample_cos(u) as f64;
                 let excess = (got - want).abs() - half_ulp(want);
-                worst = worst.max(excess);
+                worst = nan_max(worst, excess);
                 assert!(
                     excess <= 2e-11,
                     "g {g}, α {alpha}, u {u:e}: {got} against {want}"
@@ -465,8 +466,8 @@ fn pdf_and_cdf_near_the_poles_as_g_goes_to_one() {
         let d = Draine::<f64>::new(g, alpha).unwrap();
         let (e_pdf, got) = (rel(d.pdf(mu), pdf), d.cdf(mu));
         let tail = cdf.min(1.0 - cdf);
-        worst_pdf = worst_pdf.max(e_pdf);
-        worst_cdf = worst_cdf.max(rel(got, cdf));
+        worst_pdf = nan_max(worst_pdf, e_pdf);
+        worst_cdf = nan_max(worst_cdf, rel(got, cdf));
         assert!(e_pdf <= 1e-12, "pdf {e_pdf:e} at {line}: {}", d.pdf(mu));
         assert!(
             rel(got, cdf) <= 1e-12,
@@ -560,7 +561,7 @@ fn eq6_is_the_published_inverse_where_it_is_well_conditioned() {
                 // Each point on its own: `max` would pass over a NaN (a
                 // mutant's `g² = g/g` made eq. 6 NaN, unseen).
                 assert!(err < 1e-9, "g {g}, α {a}, u {u}: eq. 6 is {err:e} off");
-                worst = worst.max(err);
+                worst = nan_max(worst, err);
             }
         }
     }

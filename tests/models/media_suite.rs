@@ -9,6 +9,7 @@
 //! seeds; and the default power-series marcher keeps fewer than 1 % of its
 //! estimates outside [0, 1] on every medium.
 
+use crate::common::nan_max;
 #[path = "../../benches/cloud.rs"]
 mod cloud;
 #[path = "../../benches/media_suite.rs"]
@@ -206,7 +207,7 @@ fn telescoping_f32_against_f64(rays: &[Ray<f32>], calls: usize) -> (f64, f64) {
                 continue;
             };
             let (x, y) = (f64::from(x.tr), y.tr);
-            worst_abs = worst_abs.max(x.abs());
+            worst_abs = nan_max(worst_abs, x.abs());
             assert!(
                 x.abs() <= 10.0,
                 "ray {i}: an f32 estimate of {x} (f64 twin {y})"
@@ -220,7 +221,7 @@ fn telescoping_f32_against_f64(rays: &[Ray<f32>], calls: usize) -> (f64, f64) {
         let var = |s: [f64; 2]| (s[1] / used as f64 - (s[0] / used as f64).powi(2)).max(0.0);
         let (v32, v64) = (var(s32), var(s64));
         if v64 > 0.0 {
-            worst_ratio = worst_ratio.max((v32 / v64).sqrt());
+            worst_ratio = nan_max(worst_ratio, (v32 / v64).sqrt());
         }
         assert!(
             v32.sqrt() <= 10.0 * v64.sqrt() + 1e-6,

@@ -13,6 +13,7 @@
 //! suite's significance.
 
 use crate::common;
+use crate::common::nan_max;
 
 use common::chi2::{pearson, threshold};
 use common::rng;
@@ -71,7 +72,7 @@ fn accuracy(reference: &Reference, table: &Table<f64>) -> Accuracy {
     let points = 200_000;
     for k in 0..=points {
         let u = k as f64 / points as f64;
-        cdf_error = cdf_error.max((reference.cdf(table.sample_cos(u)) - u).abs());
+        cdf_error = nan_max(cdf_error, (reference.cdf(table.sample_cos(u)) - u).abs());
     }
     let h = reference.theta[1];
     let mut tv = 0.0;

@@ -9,6 +9,7 @@
 //! ratio tracking; the excess is reported in the right cell.
 
 use super::majorant::{cloud, for_each_grid, mean_se, optical_depth};
+use crate::common::nan_max;
 use crate::common::rng;
 use scatterkit::majorant::Majorants;
 use scatterkit::medium::Event;
@@ -62,7 +63,7 @@ fn both_are_unbiased_under_low_majorants() {
                 let t = low
                     .ratio_track_signed_fn(coefficients(g), ray, 1 << 20, &mut r)
                     .unwrap();
-                worst = worst.max(t.exceeded.map_or(1.0, |e| e.ratio));
+                worst = nan_max(worst, t.exceeded.map_or(1.0, |e| e.ratio));
                 tr.push(t.tr);
                 let w = low
                     .delta_track_weighted_fn(coefficients(g), ray, 1 << 20, &mut r)

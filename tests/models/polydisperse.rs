@@ -3,6 +3,7 @@
 //! single sphere, the phase function's normalisation, and the quadrature's
 //! error estimate against converged sums (it must bound the actual error).
 
+use crate::common::nan_max;
 use scatterkit::mie::{Complex, Mie, buffer_len};
 use scatterkit::polydisperse::{Averages, Polydisperse, SizeDistribution};
 use std::f64::consts::PI;
@@ -144,7 +145,7 @@ fn error_estimate_against_converged_sums() {
                 .iter()
                 .zip(&ref_phase)
                 .map(|(&p, &q)| rel(p, q))
-                .fold(0.0, f64::max);
+                .fold(0.0, nan_max);
             let cell = |a: f64, e: f64| format!("{a:.1e} ({e:.1e})");
             doc += &format!(
                 "| {name} | {x_max:.0} | {intervals} | {} | {} | {} | {} | {} |\n",

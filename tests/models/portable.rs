@@ -9,6 +9,7 @@
 //! `docs/measured/portable.md`'s.
 
 use crate::common::dd;
+use crate::common::nan_max;
 use scatterkit::portable as p;
 
 /// Every 251st of the 2²⁴ + 1 uniforms `k/2²⁴`, and the ends.
@@ -45,7 +46,7 @@ fn hg_cosine_sine_and_density() {
             // the poles where sin θ is 0.
             let s_want = ((1.0 - want) * (1.0 + want)).max(0.0).sqrt();
             if s_want > 1e-3 {
-                sin_err = sin_err.max((s as f64 / s_want - 1.0).abs());
+                sin_err = nan_max(sin_err, (s as f64 / s_want - 1.0).abs());
             }
             // The density at the sample is d³/(4π(1 − g²)²) with
             // d = 1 − g + 2gu, exact in f64 but for one rounding (the
@@ -53,7 +54,7 @@ fn hg_cosine_sine_and_density() {
             let c = (1.0 - g64) * (1.0 + g64);
             let d = (1.0 - g64) + 2.0 * g64 * u as f64;
             let pdf_want = d * d * d / (4.0 * std::f64::consts::PI * c * c);
-            pdf_err = pdf_err.max((pdf as f64 / pdf_want - 1.0).abs());
+            pdf_err = nan_max(pdf_err, (pdf as f64 / pdf_want - 1.0).abs());
             // The density at the returned cosine, q = 1 + g² − 2gμ as a
             // sum of non-negative terms (1 ∓ μ is exact).
             let q = if g64 >= 0.0 {
@@ -63,7 +64,7 @@ fn hg_cosine_sine_and_density() {
             };
             let at_want = c / (4.0 * std::f64::consts::PI * q * q.sqrt());
             let at = p::hg_pdf(&h, got) as f64;
-            pdf_err = pdf_err.max((at / at_want - 1.0).abs());
+            pdf_err = nan_max(pdf_err, (at / at_want - 1.0).abs());
         }
     }
     println!(
@@ -187,7 +188,7 @@ fn logarithm_and_free_flight() {
         let got = p::ln(x) as f64;
         let ulp =
             f32::from_bits((want as f32).abs().to_bits() + 1) as f64 - (want as f32).abs() as f64;
-        ulps = ulps.max((got - want).abs() / ulp);
+        ulps = nan_max(ulps, (got - want).abs() / ulp);
     }
     let mut rel = 0.0f64;
     for u in uniforms()
@@ -195,7 +196,7 @@ fn logarithm_and_free_flight() {
         .chain([1e-30, 1e-10, 0.999_999_9])
     {
         let want = -(-(u as f64)).ln_1p() / 2.5;
-        rel = rel.max((p::free_path(2.5, u) as f64 / want - 1.0).abs());
+        rel = nan_max(rel, (p::free_path(2.5, u) as f64 / want - 1.0).abs());
     }
     println!("ln within {ulps:.2} ulp; free flight within {rel:.2e} relative");
     assert!(ulps <= 1.0 && rel <= 2e-7, "{ulps} {rel}");
@@ -236,7 +237,7 @@ fn table_lookups_are_the_librarys_and_their_density_agrees() {
             // The library solves t from cos θ; here it is the sample's own.
             let want = t.pdf(mu) as f64;
             if mu.abs() < 1.0 && want.is_finite() && want > 0.0 {
-                worst = worst.max((pdf as f64 / want - 1.0).abs());
+                worst = nan_max(worst, (pdf as f64 / want - 1.0).abs());
             }
         }
     }
@@ -252,7 +253,7 @@ fn table_lookups_are_the_librarys_and_their_density_agrees() {
             assert_eq!(mu.to_bits(), t2.sample_cos(x, u).to_bits(), "x {x}, u {u}");
             let want = t2.pdf(x, mu) as f64;
             if mu.abs() < 1.0 && want.is_finite() && want > 0.0 {
-                worst = worst.max((pdf as f64 / want - 1.0).abs());
+                worst = nan_max(worst, (pdf as f64 / want - 1.0).abs());
             }
         }
     }
@@ -278,9 +279,9 @@ fn draine_is_never_worse_than_eq6() {
             for k in (0..=(1u32 << 24)).step_by(16_411) {
                 let u = k as f32 / 16_777_216.0;
                 let want = dd::draine_inverse(g as f64, a as f64, u as f64);
-                ours = ours.max((p::draine_sample_cos(&d, u) as f64 - want).abs());
+                ours = nan_max(ours, (p::draine_sample_cos(&d, u) as f64 - want).abs());
                 let e6 = (sample_cos_eq6(g, a, u) as f64 - want).abs();
-                peer = peer.max(if e6.is_nan() { 2.0 } else { e6 });
+                peer = nan_max(peer, if e6.is_nan() { 2.0 } else { e6 });
             }
             assert!(
                 ours <= peer,
@@ -397,7 +398,7 @@ fn exponential_and_spectral_free_flight() {
                 continue;
             }
             let ulp = f32::from_bits(w32.to_bits() + 1) as f64 - w32 as f64;
-            ulps = ulps.max((p::exp(x) as f64 - want).abs() / ulp);
+            ulps = nan_max(ulps, (p::exp(x) as f64 - want).abs() / ulp);
         }
     }
     assert!(p::exp(f32::NAN).is_nan() && p::exp(f32::NEG_INFINITY) == 0.0);
@@ -428,7 +429,7 @@ fn exponential_and_spectral_free_flight() {
                     (-(sc - sh) * at).exp()
                 };
                 if want > 0.0 {
-                    ratio_err = ratio_err.max((r[c] as f64 / want - 1.0).abs());
+                    ratio_err = nan_max(ratio_err, (r[c] as f64 / want - 1.0).abs());
                 }
             }
         }
@@ -540,7 +541,7 @@ fn a_walk_spends_the_drawn_optical_depth() {
             match step {
                 p::Step::Collision { .. } => {
                     collisions += 1;
-                    worst = worst.max((depth - tau).abs() / tol);
+                    worst = nan_max(worst, (depth - tau).abs() / tol);
                     assert!((depth - tau).abs() <= tol, "τ {tau} spent {depth}");
                 }
                 _ => {
@@ -592,9 +593,9 @@ fn schlick_against_the_f64_library() {
         let exact = Schlick::new(k as f64).unwrap();
         for u in uniforms() {
             let mu = p::schlick_sample_cos(&p, u);
-            cos_err = cos_err.max((mu as f64 - exact.sample_cos(u as f64)).abs());
+            cos_err = nan_max(cos_err, (mu as f64 - exact.sample_cos(u as f64)).abs());
             let want = exact.pdf(mu as f64);
-            pdf_err = pdf_err.max((p::schlick_pdf(&p, mu) as f64 / want - 1.0).abs());
+            pdf_err = nan_max(pdf_err, (p::schlick_pdf(&p, mu) as f64 / want - 1.0).abs());
         }
     }
     println!("Schlick: cos θ within {cos_err:.2e}, density {pdf_err:.2e} relative");

@@ -11,6 +11,7 @@
 //! f64 sampler takes one Newton step on a double-double residual.
 
 use crate::common;
+use crate::common::nan_max;
 
 use common::chi2::{chi2_directions, threshold};
 use common::{CHI2_SAMPLES, dd, rng};
@@ -61,11 +62,11 @@ fn inverse_is_accurate_over_the_whole_domain() {
             let ex32 = dd::fog_inverse(t(g2), t(g1), 0.0, t(w), u32 as f64);
             let got32 = p32.sample_cos(u32);
             assert!(!got32.is_nan() && got32.abs() <= 1.0);
-            e32 = e32.max((got32 as f64 - ex32).abs());
+            e32 = nan_max(e32, (got32 as f64 - ex32).abs());
         }
         (e32, e64)
     });
-    let e32 = errors.iter().map(|e| e.0).fold(0.0, f64::max);
+    let e32 = errors.iter().map(|e| e.0).fold(0.0, nan_max);
     let e64 = errors
         .iter()
         .map(|e| e.1)
@@ -236,11 +237,11 @@ fn f32_lobe_choice_is_within_half_an_ulp_of_the_lobe_sample() {
             (got - want).abs() - half_ulp
         };
         for u in us {
-            worst = worst.max(lobe_check(&p, (g1, g2, w), u, 1e-9, beyond_half_ulp));
+            worst = nan_max(worst, lobe_check(&p, (g1, g2, w), u, 1e-9, beyond_half_ulp));
         }
         worst
     });
-    let worst = worst.into_iter().fold(0.0, f64::max);
+    let worst = worst.into_iter().fold(0.0, nan_max);
     eprintln!("f32 lobe choice: at most {worst:.1e} beyond half an ULP");
 }
 
@@ -273,11 +274,11 @@ fn f32_nearly_isotropic_lobes_stay_within_the_rescaled_bound() {
             if (u as f64 >= w) == first {
                 continue;
             }
-            worst = worst.max(lobe_check(&p, (g1, g2, w), u, 3e-7, abs_error));
+            worst = nan_max(worst, lobe_check(&p, (g1, g2, w), u, 3e-7, abs_error));
         }
         worst
     });
-    let worst = worst.into_iter().fold(0.0, f64::max);
+    let worst = worst.into_iter().fold(0.0, nan_max);
     eprintln!("f32 nearly isotropic lobes: at most {worst:.1e} from the exact lobe sample");
 }
 

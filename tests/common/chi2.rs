@@ -26,7 +26,8 @@ pub struct Chi2 {
     pub stat: f64,
     pub dof: usize,
     pub p_value: f64,
-    /// Samples that fell in cells the pdf gives zero probability.
+    /// Samples that fell in cells the pdf gives zero probability, and
+    /// directions that are not unit vectors (NaN among them).
     pub impossible: u64,
 }
 
@@ -161,8 +162,17 @@ pub fn chi2_directions_by_cells(
     let w_in = norm(w_in);
     let (b1, b2) = frame(w_in);
     let mut observed = vec![0u64; N_MU * N_PHI];
+    let mut not_unit = 0;
     for _ in 0..n_samples {
         let w = sample();
+        // A NaN would land in cell (0, 0) (`NaN as usize` is 0) and a few
+        // of them pass unseen: a direction that is not a unit vector
+        // (f32's are within 10⁻⁶) counts as impossible.
+        let off = (dot(w, w) - 1.0).abs();
+        if off > 1e-5 || off.is_nan() {
+            not_unit += 1;
+            continue;
+        }
         let mu = dot(w, w_in).clamp(-1.0, 1.0);
         let phi = dot(w, b2).atan2(dot(w, b1)) + std::f64::consts::PI;
         let i = (((mu + 1.0) * 0.5 * N_MU as f64) as usize).min(N_MU - 1);
@@ -180,7 +190,9 @@ pub fn chi2_directions_by_cells(
             expected[i * N_PHI + j] = n_samples as f64 * p / N_PHI as f64;
         }
     }
-    pearson(&observed, &expected)
+    let mut c = pearson(&observed, &expected);
+    c.impossible += not_unit;
+    c
 }
 
 /// Pearson's statistic with cells of expected count < 5 pooled into one.

@@ -385,6 +385,10 @@ fn chi2<T: Real>(p: &Phase<T>, seed: u64) -> f64 {
     let mut r = rng(seed);
     for _ in 0..n {
         let mu = p.sample_cos(T::uniform(&mut r)).to_f64();
+        if !(-1.0..=1.0).contains(&mu) {
+            // NaN among them, which `partition_point` would put in bin 0.
+            return 0.0;
+        }
         let k = edges.partition_point(|&e| e < mu);
         count[k] += 1;
     }

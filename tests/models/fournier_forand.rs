@@ -191,7 +191,10 @@ fn chi2_over_the_sphere() {
                 } else {
                     z
                 };
-                observed[((p64.cdf(mu) * bins as f64) as usize).min(bins - 1)] += 1;
+                // NaN would land in bin 0 (`NaN as usize` is 0).
+                let f = p64.cdf(mu);
+                assert!((0.0..=1.0).contains(&f), "μ = {mu}: F = {f}");
+                observed[((f * bins as f64) as usize).min(bins - 1)] += 1;
             }
             let expected = vec![CHI2_SAMPLES as f64 / bins as f64; bins];
             let res = pearson(&observed, &expected);

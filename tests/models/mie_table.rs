@@ -198,6 +198,8 @@ fn chi2_of_the_mie_table_sampler() {
         for _ in 0..samples {
             let u = (r.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
             let f = reference.cdf(table.sample_cos(u));
+            // NaN would land in bin 0 (`NaN as usize` is 0).
+            assert!((0.0..=1.0).contains(&f), "x = {x}, u = {u}: F = {f}");
             observed[((f * bins as f64) as usize).min(bins - 1)] += 1;
         }
         let expected = vec![samples as f64 / bins as f64; bins];

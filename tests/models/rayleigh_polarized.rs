@@ -464,6 +464,8 @@ fn chi2(rho: f64, q: f64, u: f64, v: f64, sampled: (f64, f64, f64), seed: u64) -
         let x = m.sample(k, &s, f64::uniform(&mut r), f64::uniform(&mut r));
         let mu = x.dir.dot(k).clamp(-1.0, 1.0);
         let phi = x.dir.dot(e2).atan2(x.dir.dot(e1)).rem_euclid(2.0 * PI);
+        // NaN would land in cell (0, 0) (`NaN as usize` is 0).
+        assert!(mu.is_finite() && phi.is_finite(), "{:?}", x.dir);
         let i = (((mu + 1.0) * 0.5 * nm as f64) as usize).min(nm - 1);
         let j = ((phi / (2.0 * PI) * np as f64) as usize).min(np - 1);
         observed[i * np + j] += 1;

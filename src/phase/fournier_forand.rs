@@ -618,4 +618,40 @@ mod tests {
             }
         }
     }
+    /// `R(δ)` at `δ = 1` exactly (`ln δ = 0`, where the quotient is `0/0`
+    /// and `R` takes its limit `−ν`): the CDF and density there match
+    /// their neighbours a float away, at each `n` where some `μ` gives
+    /// `k s = 1` exactly.
+    #[test]
+    fn the_cdf_and_density_are_continuous_through_delta_one() {
+        let mut found = 0;
+        for n in [1.05, 1.1, 1.15, 1.2, 1.3, 1.4, 1.5, 1.6, 1.8] {
+            let obj = FournierForand::<f64>::new(n, 4.0).unwrap();
+            let ff = Ff::from_bits(obj.ff);
+            let start = (1.0 - 2.0 / ff.k).to_bits();
+            let Some(mu) = (start - 64..start + 64)
+                .map(f64::from_bits)
+                .find(|&m| ff.k * (0.5 * (1.0 - m)) == 1.0)
+            else {
+                continue;
+            };
+            found += 1;
+            let (below, above) = (
+                f64::from_bits(mu.to_bits() - 1),
+                f64::from_bits(mu.to_bits() + 1),
+            );
+            for (what, f) in [
+                ("cdf", &(|m: f64| obj.cdf(m)) as &dyn Fn(f64) -> f64),
+                ("pdf", &|m: f64| obj.pdf(m)),
+            ] {
+                let (a, b, c) = (f(below), f(mu), f(above));
+                let near = |x: f64, y: f64| (x - y).abs() <= 1e-12 * y.abs();
+                assert!(
+                    near(b, a) && near(b, c),
+                    "n {n}, μ {mu}: {what} {a}, {b}, {c}"
+                );
+            }
+        }
+        assert!(found >= 3, "only {found} n have k s = 1 exactly");
+    }
 }

@@ -621,12 +621,17 @@ mod tests {
     /// `R(δ)` at `δ = 1` exactly (`ln δ = 0`, where the quotient is `0/0`
     /// and `R` takes its limit `−ν`): the CDF and density there match
     /// their neighbours a float away, at each `n` where some `μ` gives
-    /// `k s = 1` exactly.
+    /// `k s = 1` exactly, in both of the CDF's forms.
     #[test]
     fn the_cdf_and_density_are_continuous_through_delta_one() {
         let mut found = 0;
-        for n in [1.05, 1.1, 1.15, 1.2, 1.3, 1.4, 1.5, 1.6, 1.8] {
-            let obj = FournierForand::<f64>::new(n, 4.0).unwrap();
+        // μ_J = 3.5 puts δ = 1 where the CDF is its lower form, 4.5 (the
+        // forward mass there `≈ 1 + ν = ¼`) where it is 1 − the upper one.
+        for (n, mu_j) in [1.05, 1.1, 1.15, 1.2, 1.3, 1.4, 1.5, 1.6, 1.8]
+            .into_iter()
+            .flat_map(|n| [(n, 3.5), (n, 4.5)])
+        {
+            let obj = FournierForand::<f64>::new(n, mu_j).unwrap();
             let ff = Ff::from_bits(obj.ff);
             let start = (1.0 - 2.0 / ff.k).to_bits();
             let Some(mu) = (start - 64..start + 64)
@@ -652,6 +657,6 @@ mod tests {
                 );
             }
         }
-        assert!(found >= 3, "only {found} n have k s = 1 exactly");
+        assert!(found >= 6, "only {found} objects have k s = 1 exactly");
     }
 }

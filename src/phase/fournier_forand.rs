@@ -379,25 +379,19 @@ impl Ff {
     /// s)^{−ν} corrected by the seed table. Each tail in its own form: u −
     /// F (u ≤ ½) or F_fwd − (1 − u), both exact targets.
     fn forward_s(&self, u: f64, seeds: &[f32; SEEDS]) -> f64 {
-        if u <= 0.5 {
-            let ln_k = libm::log(self.k);
-            let fd = |x: f64| {
-                let s = libm::exp(x);
-                let (f, _, rho) = self.eval_ln(s, ln_k + x);
-                (u - f, 2.0 * s * rho)
-            };
-            self.solve_log(fd, libm::log1p(-u), seeds)
-        } else {
-            let t = 1.0 - u;
-            let lt = libm::log(t);
-            let ln_k = libm::log(self.k);
-            let fd = |x: f64| {
-                let s = libm::exp(x);
-                let (_, g, rho) = self.eval_ln(s, ln_k + x);
-                (g - t, 2.0 * s * rho)
-            };
-            self.solve_log(fd, lt, seeds)
-        }
+        let (fd, lt) = self.forward_problem(u);
+        self.solve_log(fd, lt, seeds)
+    }
+    /// [`forward_s`](Self::forward_s)'s equation in `x = ln s`, `(residual,
+    /// slope)`, and the log of its forward mass `1 − u` (for the seed).
+    fn forward_problem(&self, u: f64) -> (impl Fn(f64) -> (f64, f64) + '_, f64) {
+        let (low, t, ln_k) = (u <= 0.5, 1.0 - u, libm::log(self.k));
+        let fd = move |x: f64| {
+            let s = libm::exp(x);
+            let (f, g, rho) = self.eval_ln(s, ln_k + x);
+            (if low { u - f } else { g - t }, 2.0 * s * rho)
+        };
+        (fd, if low { libm::log1p(-u) } else { libm::log(t) })
     }
     /// The floor of `x = ln s`: below it `s` is 0.
     const LN_S_MIN: f64 = -745.0;
@@ -547,21 +541,17 @@ mod tests {
     use super::*;
     use core::cell::Cell;
 
-    /// Newton's evaluations to solve the forward tail `F_fwd = e^{lt}`
-    /// with `seeds` (as `inverse_sin` sets it up, both of its forms).
-    fn evaluations(ff: &Ff, lt: f64, seeds: &[f32; SEEDS]) -> (usize, f64) {
+    /// Newton's evaluations in `forward_s` at `u` with `seeds`, and its
+    /// answer; and whether the root lies below the floor's e-fold.
+    fn evaluations(ff: &Ff, u: f64, seeds: &[f32; SEEDS]) -> (usize, f64, bool) {
         let calls = Cell::new(0);
-        let (t, ln_k) = (libm::exp(lt), libm::log(ff.k));
-        let fd = |x: f64| {
+        let (fd, lt) = ff.forward_problem(u);
+        let counted = |x: f64| {
             calls.set(calls.get() + 1);
-            let s = libm::exp(x);
-            let (f, g, rho) = ff.eval_ln(s, ln_k + x);
-            // u − F below ½, F_fwd − (1 − u) above: the same root.
-            let r = if t >= 0.5 { (1.0 - t) - f } else { g - t };
-            (r, 2.0 * s * rho)
+            fd(x)
         };
-        let s = ff.solve_log(fd, lt, seeds);
-        (calls.get(), s)
+        let s = ff.solve_log(counted, lt, seeds);
+        (calls.get(), s, fd(Ff::LN_S_MIN + 1.0).0 >= 0.0)
     }
 
     /// The seed table does what its docs say: over the span it covers
@@ -586,16 +576,13 @@ mod tests {
                 // backward solve's).
                 for i in 1..=200 {
                     let lt = t_max - SEED_SPAN * (i as f64 / 200.0);
-                    let (a, s) = evaluations(&ff, lt, &obj.seeds);
-                    if s == 0.0 {
-                        // The root lies below the floor's e-fold.
-                        let x = Ff::LN_S_MIN + 1.0;
-                        let (f, g, _) = ff.eval_ln(libm::exp(x), libm::log(ff.k) + x);
-                        let t = libm::exp(lt);
-                        let r = if t >= 0.5 { (1.0 - t) - f } else { g - t };
-                        assert!(r >= 0.0, "n {n}, ν {nu}, ln F_fwd {lt}: s = 0, r {r}");
-                    }
-                    let (b, s_plain) = evaluations(&ff, lt, &[0.0; SEEDS]);
+                    let u = -libm::expm1(lt);
+                    let (a, s, below_floor) = evaluations(&ff, u, &obj.seeds);
+                    assert!(
+                        s != 0.0 || below_floor,
+                        "n {n}, ν {nu}, ln F_fwd {lt}: s = 0"
+                    );
+                    let (b, s_plain, _) = evaluations(&ff, u, &[0.0; SEEDS]);
                     // The same root to the solver's tolerance in x = ln s.
                     let (x, x_plain) = (libm::log(s), libm::log(s_plain));
                     assert!(

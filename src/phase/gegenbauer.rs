@@ -146,10 +146,15 @@ struct K {
     e: f64,
     /// `expm1(−s)` for `s > 0`, else `expm1(s)`.
     m: f64,
-    /// Where the inverse changes route for `α ≤ 0`: `F` at
+    /// Where the inverse changes route (where both are finite, see
+    /// [`both_routes`](Self::both_routes)): `F` at
     /// [`switch`](Self::switch).
     u0: f64,
 }
+
+/// Up to this `|s| = |α L_1|` both routes of the inverse keep their
+/// exponentials finite (`e^{|s|}` ≤ 10³⁰⁴).
+const BOTH_ROUTES_S: f64 = 700.0;
 
 impl K {
     fn new(a: f64, g: f64) -> K {
@@ -165,10 +170,16 @@ impl K {
             m: libm::expm1(t),
             u0: 0.0,
         };
-        if g != 0.0 && a <= 0.0 {
+        if g != 0.0 && k.both_routes() {
             k.u0 = k.cdf(k.switch());
         }
         k
+    }
+    /// Whether the inverse may take either route (`|s| ≤ 700`: every
+    /// `α ≤ 0`, where `|s| ≤ 38`, and `α > 0` short of the narrowest
+    /// lobes).
+    fn both_routes(&self) -> bool {
+        self.s.abs() <= BOTH_ROUTES_S
     }
     /// Where the two routes of the inverse are equally accurate: `1 − μ`
     /// from `D` carries an error of about `|D| ε (1 − μ)`, `1 + μ` from
@@ -283,12 +294,15 @@ impl K {
     }
     /// The inverse of [`cdf`](Self::cdf) for `u ∈ [0, 1]`: solved for `D`
     /// (giving `1 − μ`) or for `L_y` (giving `1 + μ`). For `α > 0` the
-    /// sign of `s` picks the route whose exponents cannot overflow, which
-    /// is also the pole the kernel peaks at. For `α ≤ 0`, `|s| ≤ 38` and
-    /// either route is safe: the more accurate one at the answer (`D` for
-    /// `u` at or above `F` at [`switch`](Self::switch)), so that a kernel
-    /// with `g → 1` and `α < 0` keeps `1 − μ` where `1 + μ` would round it
-    /// away, and `μ` near 0 is not taken from a `D` of 40.
+    /// sign of `s` picks the route whose exponents cannot overflow (the
+    /// pole the kernel peaks at) where `|s| > 700`. Elsewhere (every `α ≤
+    /// 0`, where `|s| ≤ 38`) either route is safe: the more accurate one
+    /// at the answer (`D` for `u` at or above `F` at
+    /// [`switch`](Self::switch)), so that a kernel with `g → 1` and `α < 0`
+    /// keeps `1 − μ` where `1 + μ` would round it away, `μ` near 0 is not
+    /// taken from a `D` of 40, and a kernel peaked at one pole keeps the
+    /// distance to the other in its far tail (from `1 ± μ` near 2 it was
+    /// 3·10⁻⁸ in `sin θ` at the far pole itself, `α = ½`, `g = −0.999999`).
     fn inverse(&self, u: f64) -> f64 {
         Self::mu_of(self.route(u), u)
     }
@@ -310,7 +324,7 @@ impl K {
         if self.g == 0.0 {
             return None;
         }
-        let by_d = if self.a <= 0.0 {
+        let by_d = if self.both_routes() {
             u >= self.u0
         } else {
             self.s > 0.0
@@ -327,14 +341,16 @@ impl K {
         // μ at `1 − g = 2.4·10⁻¹⁰`, `α = −¼`). There one Newton step on
         // the CDF, which is accurate to a few ε, takes it back.
         if log.abs() > POLISH_LOG {
-            return Some((self.polish(z, by_d, u), by_d));
+            return Some((self.polish(z, by_d, u, log), by_d));
         }
         Some((z, by_d))
     }
     /// One Newton step of `F(μ) = u` from the route's `z` (`1 − μ` if
-    /// `by_d`, else `1 + μ`), kept in `[0, 2]`.
+    /// `by_d`, else `1 + μ`), kept in `[0, 2]`, where it is the more
+    /// accurate: the route's `z` is off by about `|log| ε z`, the step's by
+    /// the CDF's rounding over the density, about `ε u / f`.
     #[cold]
-    fn polish(&self, z: f64, by_d: bool, u: f64) -> f64 {
+    fn polish(&self, z: f64, by_d: bool, u: f64, log: f64) -> f64 {
         // At z itself, not at μ = 1 ∓ z rounded: where the lobe is
         // narrower than the floats' spacing near its pole, a step from the
         // rounded point moved with u by less than its own linearisation
@@ -342,7 +358,10 @@ impl K {
         // 1 − g = 7.3·10⁻¹², u = 2.7·10⁻⁴).
         let at = At::by(z, by_d);
         let f = self.density_at(at);
-        if !(f > 0.0 && f.is_finite()) {
+        // In a peaked kernel's far tail the density is small, and a step
+        // there added the CDF's rounding over it: 3.3·10⁻¹¹ in μ at α = ½,
+        // g = −0.999999, u = 1 − 10⁻⁶ (the route alone: 10⁻¹⁶).
+        if !(f > 0.0 && f.is_finite()) || u > log.abs() * z * f {
             return z;
         }
         let step = (u - self.cdf_at(at)) / f;

@@ -8,6 +8,7 @@
 //! Bounds fixed before the first run: `max |cos θ error|` ≤ 2·10⁻⁷ in f32
 //! and ≤ 10⁻¹⁴ in f64 (issue 15).
 
+use crate::common::nan_max;
 use scatterkit::{Gegenbauer, Phase, PhaseFunction};
 use std::collections::BTreeMap;
 
@@ -119,6 +120,48 @@ fn inverse_against_50_digit_references() {
     }
     assert!(e32.0 <= 2e-7, "f32 {e32:?}");
     assert!(e64.0 <= 1e-14, "f64 {e64:?}");
+}
+
+/// Kernels peaked at a pole (`1 − |g|` from 10⁻⁴ to 10⁻¹⁰, where the
+/// inverse's logarithm passes 16 and it takes a Newton step), in f64 (f32
+/// rounds such `g` to ±1): `cos θ` and `sin θ` from `sample_cos_sin`
+/// against 50-digit references (`tests/data/gegenbauer_reference_poles.txt`)
+/// at every `u` of the test above, 13 α (−0.49 to 1000, and the guides'
+/// forward-peak worst case, 47). Bounds fixed before the first run: `cos θ`
+/// within 10⁻¹⁴ (the f64 bound above) and `sin θ` within 10⁻¹³ relative
+/// (where `sin θ` is below 10⁻³⁰⁰, within 10⁻³⁰⁰).
+#[test]
+fn inverse_near_the_poles_against_50_digit_references() {
+    let text = include_str!("../data/gegenbauer_reference_poles.txt");
+    let (mut worst_cos, mut worst_sin) = ((0.0, [0.0; 3]), (0.0, [0.0; 3]));
+    let mut rows = 0;
+    for l in text.lines().filter(|l| !l.starts_with('#')) {
+        let v: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+        let (a, g, u, mu, sin) = (v[0], v[1], v[2], v[3], v[4]);
+        let p = Gegenbauer::<f64>::new(a, g).unwrap();
+        let (c, s) = p.sample_cos_sin(u);
+        let e_cos = (c - mu).abs();
+        let e_sin = if sin < 1e-300 {
+            (s - sin).abs() / 1e-300
+        } else {
+            (s - sin).abs() / sin
+        };
+        worst_cos = if nan_max(e_cos, worst_cos.0) != worst_cos.0 {
+            (nan_max(e_cos, worst_cos.0), [a, g, u])
+        } else {
+            worst_cos
+        };
+        worst_sin = if nan_max(e_sin, worst_sin.0) != worst_sin.0 {
+            (nan_max(e_sin, worst_sin.0), [a, g, u])
+        } else {
+            worst_sin
+        };
+        rows += 1;
+    }
+    println!("Gegenbauer near the poles: cos θ {worst_cos:?}, sin θ relative {worst_sin:?}");
+    assert_eq!(rows, 13 * 8 * 13);
+    assert!(worst_cos.0 <= 1e-14, "cos θ {worst_cos:?}");
+    assert!(worst_sin.0 <= 1e-13, "sin θ {worst_sin:?}");
 }
 
 #[test]

@@ -164,6 +164,38 @@ fn inverse_near_the_poles_against_50_digit_references() {
     assert!(worst_sin.0 <= 1e-13, "sin θ {worst_sin:?}");
 }
 
+/// `g = 0` is isotropic at every `α`: `cos θ = 2u − 1` and `sin θ =
+/// √(1 − cos² θ)` (within 4 ulp), directions of unit length, in f32 and
+/// f64 (a mutant that broke `sin θ` there, NaN for `cos θ < 0`, passed
+/// every other test).
+#[test]
+fn g_zero_is_isotropic_in_cos_and_sin() {
+    fn check<T: scatterkit::Real + std::fmt::Debug>(eps: f64) {
+        for a in [-0.49, -0.25, 0.0, 0.5, 1.0, 47.0, 1000.0] {
+            for g in [0.0, -0.0] {
+                let p = Gegenbauer::<T>::new(T::from_f64(a), T::from_f64(g)).unwrap();
+                for i in 0..=64 {
+                    let u = i as f64 / 64.0;
+                    let (c, s) = p.sample_cos_sin(T::from_f64(u));
+                    let (c, s) = (c.to_f64(), s.to_f64());
+                    let want = (1.0 - (2.0 * u - 1.0).powi(2)).sqrt();
+                    assert_eq!(c, 2.0 * u - 1.0, "{a} {g} {u}");
+                    assert!(
+                        (s - want).abs() <= 4.0 * eps,
+                        "{a} {g} {u}: sin {s}, not {want}"
+                    );
+                    let w = scatterkit::Vec3::new(T::ZERO, T::ZERO, T::ONE);
+                    let (d, _) = p.sample_dir(w, T::from_f64(u), T::from_f64(0.3));
+                    let n2 = (d.x * d.x + d.y * d.y + d.z * d.z).to_f64();
+                    assert!((n2 - 1.0).abs() <= 8.0 * eps, "{a} {g} {u}: |d|² {n2}");
+                }
+            }
+        }
+    }
+    check::<f64>(f64::EPSILON);
+    check::<f32>(f32::EPSILON as f64);
+}
+
 #[test]
 fn monotone_never_nan_and_hg_at_one_half() {
     for a in [-0.49, -0.25, 0.0, 1e-3, 0.5, 1.0, 10.0, 1000.0] {

@@ -369,8 +369,9 @@ impl K {
         z.clamp(0.0, 2.0)
     }
     /// `(e^{±s}, expm1(±s))` (upper sign for `positive`) from the stored
-    /// `(e^{∓s}, expm1(∓s))`: the mirrored pair is formed only where `|s|`
-    /// is small (`α ≤ 0`).
+    /// `(e^{∓s}, expm1(∓s))`: the mirrored pair is formed only where
+    /// [`both_routes`](Self::both_routes) (`|s| ≤ 700`, so the stored
+    /// `e^{−|s|}` is a normal float and its reciprocal finite).
     fn exp_pair(&self, positive: bool) -> (f64, f64) {
         if (self.s > 0.0) != positive {
             (self.e, self.m)

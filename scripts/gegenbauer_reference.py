@@ -48,7 +48,7 @@ with open("tests/data/gegenbauer_reference.txt", "w") as f:
 # logarithm passes 16 and it takes a Newton step) to 1e-10; alpha as above
 # and the guide's forward-peak worst case (47). sin theta = sqrt((1 - mu)(1 + mu)).
 POLE_ALPHAS = ALPHAS + [0.1, 47.0]
-POLE_GS = [s * (1 - e) for e in (1e-4, 1e-6, 1e-8, 1e-10) for s in (1, -1)]
+POLE_GS = [sign * (1 - e) for e in (1e-4, 1e-6, 1e-8, 1e-10) for sign in (1, -1)]
 with open("tests/data/gegenbauer_reference_poles.txt", "w") as f:
     f.write("# alpha g u mu sin_theta (f64 parameters)\n")
     for a in POLE_ALPHAS:

@@ -139,19 +139,14 @@ fn inverse_near_the_poles_against_50_digit_references() {
         let (a, g, u, mu, sin) = (v[0], v[1], v[2], v[3], v[4]);
         let p = Gegenbauer::<f64>::new(a, g).unwrap();
         let (c, s) = p.sample_cos_sin(u);
-        let e_cos = (c - mu).abs();
-        let e_sin = if sin < 1e-300 {
-            (s - sin).abs() / 1e-300
-        } else {
-            (s - sin).abs() / sin
+        // The worst error and where; a NaN is kept (and fails below).
+        let keep = |w: &mut (f64, [f64; 3]), e: f64| {
+            if e > w.0 || e.is_nan() && !w.0.is_nan() {
+                *w = (e, [a, g, u]);
+            }
         };
-        // A NaN error is kept (and fails below), as `common::nan_max`.
-        if e_cos > worst_cos.0 || e_cos.is_nan() && !worst_cos.0.is_nan() {
-            worst_cos = (e_cos, [a, g, u]);
-        }
-        if e_sin > worst_sin.0 || e_sin.is_nan() && !worst_sin.0.is_nan() {
-            worst_sin = (e_sin, [a, g, u]);
-        }
+        keep(&mut worst_cos, (c - mu).abs());
+        keep(&mut worst_sin, (s - sin).abs() / sin.max(1e-300));
         rows += 1;
     }
     println!("Gegenbauer near the poles: cos θ {worst_cos:?}, sin θ relative {worst_sin:?}");

@@ -23,6 +23,20 @@ pub fn nan_max(a: f64, b: f64) -> f64 {
     }
 }
 
+/// The next cosine up and down, held to [−1, 1] (by the bits: the
+/// crate's MSRV predates `f64::next_up`).
+pub fn up(x: f64) -> f64 {
+    match x {
+        _ if x >= 1.0 => 1.0,
+        _ if x == 0.0 => f64::from_bits(1),
+        _ if x > 0.0 => f64::from_bits(x.to_bits() + 1),
+        _ => f64::from_bits(x.to_bits() - 1),
+    }
+}
+pub fn down(x: f64) -> f64 {
+    -up(-x)
+}
+
 /// A fixed-seed generator: every test is deterministic.
 pub fn rng(seed: u64) -> Xoshiro256PlusPlus {
     Xoshiro256PlusPlus::seed_from_u64(seed)

@@ -27,7 +27,7 @@
 //! script computes the references; the test checks that the constructors
 //! still return exactly those parameters.
 
-use crate::common::{nan_max, rng};
+use crate::common::{down, nan_max, rng, up};
 use scatterkit::phase::schlick::Schlick;
 use scatterkit::{Phase, PhaseFunction, Real};
 
@@ -303,20 +303,6 @@ fn forward_peak_within_1e_12() {
         }
     }
     eprintln!("worst at the forward peak {:.1e} ({})", worst.0, worst.1);
-}
-
-/// The next cosine up and down, held to [−1, 1] (by the bits: the
-/// crate's MSRV predates `f64::next_up`).
-fn up(x: f64) -> f64 {
-    match x {
-        _ if x >= 1.0 => 1.0,
-        _ if x == 0.0 => f64::from_bits(1),
-        _ if x > 0.0 => f64::from_bits(x.to_bits() + 1),
-        _ => f64::from_bits(x.to_bits() - 1),
-    }
-}
-fn down(x: f64) -> f64 {
-    -up(-x)
 }
 
 #[test]

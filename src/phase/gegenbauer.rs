@@ -564,7 +564,8 @@ impl<T: Real> Model<T> for Gegenbauer<T> {
         Self::new(alpha, g)
     }
     fn cast<U: Real>(&self) -> Gegenbauer<U> {
-        // α just above −½ can round onto it: the nearest valid α.
+        // α just above −½ can round onto it: then a valid α just above
+        // (−½ + 10⁻⁷, which f32 holds as −0.49999991).
         let alpha = to::<T, U>(self.alpha);
         let alpha = if alpha.to_f64() > -0.5 {
             alpha

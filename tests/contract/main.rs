@@ -210,6 +210,18 @@ fn a_cast_keeps_a_parameter_below_one_at_the_largest_float_below_it() {
     }
 }
 
+/// A Gegenbauer `α` just above −½ whose f32 rounds onto −½ (outside the
+/// domain) becomes an f32 just above it, which the f32 constructor takes.
+#[test]
+fn a_cast_keeps_the_gegenbauer_alpha_above_minus_one_half() {
+    for a in [-0.5 + 1e-9, -0.5 + 1e-8] {
+        let p = Phase::gegenbauer(a, 0.3).unwrap();
+        let (_, _, q) = p.cast::<f32>().params();
+        assert!(q[0] > -0.5 && q[0] < -0.499_999_7, "{a}: α {}", q[0]);
+        assert!(Phase::<f32>::gegenbauer(q[0], q[1]).is_ok(), "{a}: {q:?}");
+    }
+}
+
 #[test]
 fn directions_follow_the_density_over_the_sphere() {
     on_every_case("chi²", |m, s| {

@@ -469,12 +469,12 @@ fuzz_target!(|data: &[u8]| {
         if (nx as usize) * (ny as usize) <= n
             && sk_grid_new(f.as_ptr(), nx, ny, 1, x(20), x(21), &mut g) == sk_status::SK_OK
         {
-            // A fuzzed budget below 255, or 0, the library's (2^20
-            // steps), for byte 12 = 255: with 0 for a zero or absent
-            // byte, as fuzzed inputs mostly have, a walk through a
-            // fuzzed majorant ran to the library's budget in each of
-            // seven calls, up to a minute per input under the sanitizer
-            // and most of the corpus replay's time in CI.
+            // The trackers' budget from byte 12: 1 to 254 steps, and 255
+            // for 0 (the library's, 2^20 steps). Taken as the byte itself,
+            // 0 for a zero or absent byte (as most fuzzed inputs have),
+            // seven walks through a fuzzed majorant ran to 2^20 steps: up
+            // to a minute per input under the sanitizer, most of the
+            // corpus replay's time in CI.
             let budget = match data.get(12) {
                 Some(255) => 0,
                 Some(&b) => u32::from(b).max(1),

@@ -33,6 +33,7 @@ pub fn up(x: f64) -> f64 {
         _ => f64::from_bits(x.to_bits() - 1),
     }
 }
+/// The next cosine down ([`up`] mirrored).
 pub fn down(x: f64) -> f64 {
     -up(-x)
 }

@@ -146,9 +146,10 @@ struct K {
     e: f64,
     /// `expm1(−s)` for `s > 0`, else `expm1(s)`.
     m: f64,
-    /// Where the inverse changes route (where both are finite, see
-    /// [`both_routes`](Self::both_routes)): `F` at
-    /// [`switch`](Self::switch).
+    /// Where the inverse changes route: `F` at [`switch`](Self::switch)
+    /// where both routes are finite ([`both_routes`](Self::both_routes));
+    /// beyond, 0 for `s > 0` (`D` for every `u`) and `∞` for `s < 0`
+    /// (`L_y` for every `u`), so the route is one comparison either way.
     u0: f64,
 }
 
@@ -170,7 +171,9 @@ impl K {
             m: libm::expm1(t),
             u0: 0.0,
         };
-        if g != 0.0 && k.both_routes() {
+        if !k.both_routes() {
+            k.u0 = if s > 0.0 { 0.0 } else { f64::INFINITY };
+        } else if g != 0.0 {
             k.u0 = k.cdf(k.switch());
         }
         k
@@ -324,11 +327,7 @@ impl K {
         if self.g == 0.0 {
             return None;
         }
-        let by_d = if self.both_routes() {
-            u >= self.u0
-        } else {
-            self.s > 0.0
-        };
+        let by_d = u >= self.u0;
         let (z, log) = if by_d {
             self.one_minus_mu(u)
         } else {

@@ -40,6 +40,21 @@ pub const MAX_STEPS: u32 = 1 << 20;
 /// negative or non-finite `sigma_t`, or NaN `u`.
 #[inline]
 pub fn free_path<T: Real>(sigma_t: T, u: T) -> T {
+    // The call a photon loop makes (σ_t positive and finite, u in [0, 1))
+    // behind one test, with u handed to the logarithm as it is: the checks
+    // below, and the clamp's two min/max on the logarithm's input, were 3
+    // of the 128 ns of a homogeneous slab photon from Rust (four calls;
+    // Intel Xeon, family 6 model 167). The same result for every input.
+    if (sigma_t > T::ZERO) & (sigma_t < T::INFINITY) & (u >= T::ZERO) & (u < T::ONE) {
+        return -ln_1m(u) / sigma_t;
+    }
+    free_path_edge(sigma_t, u)
+}
+
+/// [`free_path`] for the inputs its first test leaves: a zero, negative or
+/// non-finite `sigma_t`, and `u` outside `[0, 1)` or NaN.
+#[cold]
+fn free_path_edge<T: Real>(sigma_t: T, u: T) -> T {
     if !(sigma_t >= T::ZERO && sigma_t.is_finite()) {
         return T::NAN;
     }

@@ -81,9 +81,9 @@ const HELP: &str = "speed_accuracy: every sampler of scatterkit beside the peers
 
 Usage: cargo run --release --example speed_accuracy [-- --help]
 
-Runs about five minutes on two cores; prints a summary (the targets met and
-missed) and writes the full report, PERFORMANCE.md, with speed_accuracy.csv
-and speed_accuracy.svg, to target/speed_accuracy/.
+Runs about a minute and a half on two cores once built; prints a summary
+(the targets met and missed) and writes the full report, PERFORMANCE.md,
+with speed_accuracy.csv and speed_accuracy.svg, to target/speed_accuracy/.
 
 Environment:
   SK_REFRESH_DOCS=1  write the three files to docs/measured/ instead (the

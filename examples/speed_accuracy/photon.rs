@@ -302,7 +302,8 @@ fn rust_rows(s: &mut String) {
         "\nThe same slab from Rust (`examples/speed_accuracy/photon.rs`, rustc -O, xoshiro256++): `lib` makes one \
          `free_path` (homogeneous), `one_majorant_delta_track` (callback; the homogeneous row with no target) or \
          `Grid::delta_track` call per flight and one \
-         `HenyeyGreenstein::sample_dir` per scattering; `inline` is the loop above with Rust's `ln`, `sin_cos`.\n\n\
+         `HenyeyGreenstein::sample_dir` per scattering; `inline` is the loop above with Rust's `ln`, `sin_cos`. \
+         Each medium and loop is compiled as a function of its own, as in the C program.\n\n\
          | medium | lib ns/photon | inline ns/photon | lib R (σ) | lib T (σ) | within 4σ of adding-doubling | lib / inline | ≤ 1.1× |\n|---|---:|---:|---|---|---|---:|---|"
     )
     .unwrap();

@@ -28,7 +28,8 @@ use crate::error::Error;
 use crate::math::geometry::Vec3;
 use crate::math::real::Real;
 use crate::medium::{
-    Event, Grid, Ray, clip_box, exponential_step, grid_len, roulette, to_local, valid_box,
+    Event, Grid, Ray, clip_box, exponential_step, finite_zero, grid_len, roulette, to_local,
+    valid_box,
 };
 use rand_core::Rng;
 
@@ -508,7 +509,9 @@ impl<T: Real> Walker<'_, '_, T> {
             Walker::One(sigma) => *sigma,
         };
         let (o, d) = ray.checked()?;
-        let finite = ray.t_max.is_finite() && sigma >= T::ZERO && sigma.is_finite();
+        // Both finite, in one comparison (see Ray::checked).
+        let both = finite_zero(ray.t_max) + finite_zero(sigma) == T::ZERO;
+        let finite = both & (sigma >= T::ZERO);
         if !finite {
             return Err(Error::Domain);
         }

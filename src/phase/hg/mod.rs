@@ -424,7 +424,15 @@ impl<T: Real> PhaseFunction<T> for HenyeyGreenstein<T> {
     /// The density comes from the sampler's own `d`: with
     /// `1 + g² − 2gμ = ((1 − g²)/d)²`, `p = d³ / (4π (1 − g²)²)`, with no
     /// square root or division.
-    #[inline]
+    ///
+    /// Out of line, as the compiler had left it: inlined into the C
+    /// layer's dispatch (once its body became the inherent `dir_pdf`),
+    /// `sk_phase_sample_dir` took 20–22 ns instead of 14–15 from a program
+    /// built with `-march=native` (Intel Xeon, family 6 model 167; the same
+    /// from `-O2`): an f32 → f64 conversion merges into its destination
+    /// register, and inlined, the first one was no longer preceded by a
+    /// zeroing, so it waited on whatever the caller had last left there.
+    #[inline(never)]
     fn sample_dir(&self, w_in: Vec3<T>, u1: T, u2: T) -> (Vec3<T>, T) {
         self.dir_pdf(w_in, u1, u2)
     }
@@ -432,9 +440,7 @@ impl<T: Real> PhaseFunction<T> for HenyeyGreenstein<T> {
     /// inlined into it, so that it vectorises: the default loop called
     /// `sample_dir` out of line at each element in the C library's build
     /// (15.5 ns per direction from C, the scalar call's time; 6.3–7.2 ns
-    /// inlined, Intel Xeon, family 6 model 167). `sample_dir` itself stays
-    /// a plain inline function: forced into the C layer's scalar call, it
-    /// made that call 2–5 ns slower.
+    /// inlined, Intel Xeon, family 6 model 167).
     fn sample_dir_each(
         &self,
         w_in: [&[T]; 3],

@@ -424,14 +424,13 @@ impl<T: Real> PhaseFunction<T> for HenyeyGreenstein<T> {
     /// The density comes from the sampler's own `d`: with
     /// `1 + g² − 2gμ = ((1 − g²)/d)²`, `p = d³ / (4π (1 − g²)²)`, with no
     /// square root or division.
-    ///
-    /// Out of line, as the compiler had left it: inlined into the C
-    /// layer's dispatch (once its body became the inherent `dir_pdf`),
-    /// `sk_phase_sample_dir` took 20–22 ns instead of 14–15 from a program
-    /// built with `-march=native` (Intel Xeon, family 6 model 167; the same
-    /// from `-O2`): an f32 → f64 conversion merges into its destination
-    /// register, and inlined, the first one was no longer preceded by a
-    /// zeroing, so it waited on whatever the caller had last left there.
+    // Out of line, as the compiler had left it: inlined into the C layer's
+    // dispatch (once its body became `dir_pdf`), `sk_phase_sample_dir`
+    // took 20–22 ns instead of 14–15 from a program built with
+    // `-march=native` (14–15 from `-O2` either way; Intel Xeon, family 6
+    // model 167): an f32 → f64 conversion merges into its destination
+    // register, and inlined, the first one was no longer preceded by a
+    // zeroing, so it waited on whatever the caller had last left there.
     #[inline(never)]
     fn sample_dir(&self, w_in: Vec3<T>, u1: T, u2: T) -> (Vec3<T>, T) {
         self.dir_pdf(w_in, u1, u2)

@@ -2248,8 +2248,9 @@ sk_status sk_phase_sample_cos_n_f64(const sk_phase_f64 *p,
  or outside [0, 1], or an unconstructed p. SK_ERR_NULL for a NULL p or a
  NULL array (other than pdf_out) with n > 0; SK_ERR_SIZE if n floats
  cannot exist. On error nothing is written; n = 0 is SK_OK. The loop runs
- in blocks of 64 through stack buffers and vectorises for the closed-form
- phase functions (isotropic, Rayleigh, HG).
+ in blocks of 64 through stack buffers and vectorises for isotropic and
+ HG, and for Rayleigh in double (its float table lookup runs at about the
+ scalar call's pace).
  */
 sk_status sk_phase_sample_dir_n(const sk_phase *p,
                                 const float *w_x,

@@ -8,7 +8,7 @@
 //! what follows, so the output distribution stays exact, and a broken RNG
 //! (one that returns a constant) cannot hang the caller.
 
-use super::function::PhaseFunction;
+use super::function::{PhaseFunction, dir_each};
 use super::model::{Lobes, Model, exactly};
 use crate::error::{Error, try_from_u32};
 use crate::math::geometry::{Vec3, direction_about_turns, sin_from_cos};
@@ -206,6 +206,26 @@ impl<T: Real> PhaseFunction<T> for Rayleigh {
     #[inline(always)]
     fn mean_cosine(&self) -> T {
         T::ZERO
+    }
+    /// The default loop with the default `sample_dir`'s body inlined into
+    /// it, so that it vectorises in f64: calling `sample_dir` at each
+    /// element (left out of line in the C library's build),
+    /// `sk_phase_sample_dir_n_f64` took the scalar call's 38 ns per
+    /// direction (Intel Xeon, family 6 model 167). In f32 the table lookup
+    /// does not vectorise either way.
+    fn sample_dir_each(
+        &self,
+        w_in: [&[T]; 3],
+        u1: &[T],
+        u2: &[T],
+        out: [&mut [T]; 3],
+        pdf_out: &mut [T],
+    ) {
+        dir_each(w_in, [u1, u2], out, pdf_out, |w, a, b| {
+            let (mu, sin_theta) = self.sample_cos_sin(a);
+            let dir = direction_about_turns(w, mu, sin_theta, b.clamp01());
+            (dir, self.pdf(mu))
+        });
     }
 }
 

@@ -111,6 +111,9 @@ pub trait Real:
     /// `u` as an f32 slice if `Self` is f32, else `None`.
     #[doc(hidden)]
     fn as_f32s(u: &[Self]) -> Option<&[f32]>;
+    /// `out` as an f32 slice if `Self` is f32, else `None`.
+    #[doc(hidden)]
+    fn as_f32s_mut(out: &mut [Self]) -> Option<&mut [f32]>;
     /// True unless NaN or ±∞.
     fn is_finite(self) -> bool;
     /// True for NaN.
@@ -268,6 +271,10 @@ macro_rules! impl_real {
             #[inline(always)]
             fn as_f32s(u: &[Self]) -> Option<&[f32]> {
                 Self::as_f32_io(u, &mut []).map(|(u, _)| u)
+            }
+            #[inline(always)]
+            fn as_f32s_mut(out: &mut [Self]) -> Option<&mut [f32]> {
+                Self::as_f32_io(&[], out).map(|(_, o)| o)
             }
             #[inline(always)]
             fn is_finite(self) -> bool {

@@ -152,19 +152,24 @@ const fn table() -> [[f64; 4]; N] {
     let mut t = [[0.0; 4]; N];
     let mut i = 0;
     while i < N {
-        // i < 80: z in [0.5 (1 + m/128), + 2⁻⁸), m = i + 48; else z in
-        // [1 + m/128, + 2⁻⁷), m = i − 80.
-        let (a, w) = if i < 80 {
-            (0.5 * (1.0 + (i + 48) as f64 / 128.0), 1.0 / 256.0)
-        } else {
-            (1.0 + (i - 80) as f64 / 128.0, 1.0 / 128.0)
-        };
+        let (a, w) = interval(i);
         let c = if i == 79 || i == 80 { 1.0 } else { a + 0.5 * w };
         let l = ln_dd(c);
         t[i] = [1.0 / c, c, l.0, l.1];
         i += 1;
     }
     t
+}
+
+/// Interval `i` of `z` as `(start, width)`: for `i < 80`, `z` in
+/// `[0.5 (1 + m/128), + 2⁻⁸)` with `m = i + 48`; else `[1 + m/128, + 2⁻⁷)`
+/// with `m = i − 80`.
+const fn interval(i: usize) -> (f64, f64) {
+    if i < 80 {
+        (0.5 * (1.0 + (i + 48) as f64 / 128.0), 1.0 / 256.0)
+    } else {
+        (1.0 + (i - 80) as f64 / 128.0, 1.0 / 128.0)
+    }
 }
 
 #[cfg(test)]
@@ -253,11 +258,7 @@ mod tests {
         // Each interval's ends, where |r| is largest (2⁻⁷ just below 1 +
         // 2⁻⁷, the interval whose c is 1), at v = 2⁻ʲ z.
         for i in 0..N {
-            let (a, w) = if i < 80 {
-                (0.5 * (1.0 + (i + 48) as f64 / 128.0), 1.0 / 256.0)
-            } else {
-                (1.0 + (i - 80) as f64 / 128.0, 1.0 / 128.0)
-            };
+            let (a, w) = interval(i);
             let top = f64::from_bits((a + w).to_bits() - 1);
             for z in [a, top] {
                 for j in [0, 1, 2, 10, 40] {

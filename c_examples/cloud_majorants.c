@@ -13,7 +13,7 @@
  * and the local majorants need fewer evaluations.
  *
  *   cc -std=c99 -I include c_examples/cloud_majorants.c \
- *      target/release/libscatterkit.a -lpthread -ldl -lm
+ *      -lm target/release/libscatterkit.a -lpthread -ldl -lm
  */
 #include <math.h>
 #include <stdint.h>

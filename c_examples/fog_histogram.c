@@ -9,7 +9,7 @@
  * for 17 degrees of freedom (40.79).
  *
  *   cc -std=c99 -I include c_examples/fog_histogram.c \
- *      target/release/libscatterkit.a -lpthread -ldl -lm
+ *      -lm target/release/libscatterkit.a -lpthread -ldl -lm
  */
 #include <math.h>
 #include <stdint.h>

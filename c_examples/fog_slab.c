@@ -10,7 +10,7 @@
  * deviations, and the three shares must add to 1. Exits 0 when they do.
  *
  *   cc -std=c99 -I include c_examples/fog_slab.c \
- *      target/release/libscatterkit.a -lpthread -ldl -lm
+ *      -lm target/release/libscatterkit.a -lpthread -ldl -lm
  */
 #include <math.h>
 #include <stdint.h>

@@ -7,7 +7,7 @@
  * is within 1e-4 of g and the output is sorted.
  *
  *   cc -std=c99 -I include c_examples/hg_stratified.c \
- *      target/release/libscatterkit.a -lpthread -ldl -lm
+ *      -lm target/release/libscatterkit.a -lpthread -ldl -lm
  */
 #include <math.h>
 #include <stdio.h>

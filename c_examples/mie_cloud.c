@@ -11,7 +11,7 @@
  * value for 18 degrees of freedom (42.31).
  *
  *   cc -std=c99 -I include c_examples/mie_cloud.c \
- *      target/release/libscatterkit.a -lpthread -ldl -lm
+ *      -lm target/release/libscatterkit.a -lpthread -ldl -lm
  */
 #include <math.h>
 #include <stdint.h>

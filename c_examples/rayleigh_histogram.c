@@ -6,7 +6,7 @@
  * bins is below the 0.1% critical value (27.88 for 9 degrees of freedom).
  *
  *   cc -std=c99 -I include c_examples/rayleigh_histogram.c \
- *      target/release/libscatterkit.a -lpthread -ldl -lm
+ *      -lm target/release/libscatterkit.a -lpthread -ldl -lm
  */
 #include <math.h>
 #include <stdint.h>

@@ -13,7 +13,7 @@
  * standard errors of the table.
  *
  *   cc -std=c99 -O2 -I include c_examples/rayleigh_sky.c \
- *      target/release/libscatterkit.a -lpthread -ldl -lm
+ *      -lm target/release/libscatterkit.a -lpthread -ldl -lm
  */
 #include <math.h>
 #include <stdint.h>

@@ -12,7 +12,7 @@
  * mean deviation within 1% of its limit.
  *
  *   cc -std=c99 -I include c_examples/surface_shares.c \
- *      target/release/libscatterkit.a -lpthread -ldl -lm
+ *      -lm target/release/libscatterkit.a -lpthread -ldl -lm
  */
 #include <math.h>
 #include <stdint.h>

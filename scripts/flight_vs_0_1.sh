@@ -21,9 +21,9 @@ fi
 bin=$target/flight_bench
 mkdir -p "$bin"
 cc -std=c99 -D_POSIX_C_SOURCE=199309L -O2 -DSK_API_0_1 -I "$old/include" \
-  "$root/benches/c_flight.c" -o "$bin/flight_0_1" "$old/target/release/libscatterkit.a" -lpthread -ldl -lm
+  "$root/benches/c_flight.c" -o "$bin/flight_0_1" -lm "$old/target/release/libscatterkit.a" -lpthread -ldl -lm
 cc -std=c99 -D_POSIX_C_SOURCE=199309L -O2 -I "$root/include" \
-  "$root/benches/c_flight.c" -o "$bin/flight_main" "$target/release/libscatterkit.a" -lpthread -ldl -lm
+  "$root/benches/c_flight.c" -o "$bin/flight_main" -lm "$target/release/libscatterkit.a" -lpthread -ldl -lm
 echo "processor: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), family $(grep -m1 'cpu family' /proc/cpuinfo | cut -d: -f2 | tr -d ' ') model $(grep -m1 '^model\s' /proc/cpuinfo | cut -d: -f2 | tr -d ' ')"
 i=1
 while [ "$i" -le "$runs" ]; do

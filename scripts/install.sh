@@ -31,7 +31,27 @@ native="-lgcc_s -lutil -lrt -lpthread -lm -ldl -lc"
 mkdir -p "$prefix/lib/pkgconfig" "$prefix/include"
 cp "$root/include/scatterkit.h" "$root/include/scatterkit_table.h" "$root/include/scatterkit_inline.h" \
   "$root/include/scatterkit_portable.h" "$prefix/include/"
-[ "$mode" = "--shared-only" ] || cp "$target/libscatterkit.a" "$prefix/lib/"
+if [ "$mode" != "--shared-only" ]; then
+  cp "$target/libscatterkit.a" "$prefix/lib/"
+  # Rust's compiler-builtins puts weak, hidden copies of C math functions
+  # (cbrt, fma, fmax, floor, sqrt, ...) in every static library it builds.
+  # A linker that reaches the archive before -lm gives the program those
+  # instead of the C library's, changing the user's own results
+  # (rust-lang/rust#142119). Made local in the installed copy, they still
+  # serve the library, never the program.
+  archive="$prefix/lib/libscatterkit.a"
+  if command -v readelf >/dev/null 2>&1 && command -v objcopy >/dev/null 2>&1; then
+    names=$(mktemp)
+    readelf -s --wide "$archive" 2>/dev/null |
+      awk '$4 == "FUNC" && $5 == "WEAK" && $6 == "HIDDEN" && $7 != "UND" && $8 !~ /^_/ { print $8 }' |
+      sort -u >"$names"
+    objcopy --localize-symbols="$names" "$archive"
+    rm -f "$names"
+  else
+    echo "install.sh: no readelf/objcopy: link -lm before libscatterkit.a," \
+      "or the program may get Rust's copies of cbrt, fma, fmax, ..." >&2
+  fi
+fi
 soname=libscatterkit.so.$(echo "$version" | cut -d. -f1-2)
 if [ "$mode" != "--static-only" ]; then
   cp "$target/libscatterkit.so" "$prefix/lib/$soname"

@@ -6,7 +6,9 @@
 //! lines after the README's `scripts/install.sh` line (its own options, into
 //! a temporary prefix instead of its own). Each builds the README's C quick
 //! start as `app.c`, and the program runs (the shared one without
-//! `LD_LIBRARY_PATH`: the line records the library's directory). The CMake
+//! `LD_LIBRARY_PATH`: the line records the library's directory). Each line
+//! also builds a program calling C math functions, which must get the C
+//! library's and not the copies Rust puts in the static archive. The CMake
 //! route is built too (where `cmake` is installed; `.ci/run` installs it).
 
 mod common;
@@ -91,6 +93,60 @@ fn install(prefix: &Path, mode: Option<&str>) {
     );
 }
 
+/// A program calling C math functions that Rust's compiler-builtins also
+/// defines, weak and hidden, in every static library it builds.
+const MATH_PROBE: &str = r#"#include <math.h>
+#include <stdio.h>
+#include "scatterkit.h"
+
+int main(int argc, char **argv) {
+    volatile double x = argc + 0.5;
+    sk_phase hg;
+    (void)argv;
+    if (sk_phase_new_hg(0.5f, &hg) != SK_OK) return 1;
+    printf("%g %g %g %g\n", cbrt(x), fma(x, x, x), fmax(x, 2.0), floor(x));
+    return 0;
+}
+"#;
+
+/// Builds [`MATH_PROBE`] with the README's `line` (in place of `app.c`,
+/// `-lm` added at the end) and checks that the program gets the C library's math functions, not
+/// copies from the archive (rust-lang/rust#142119: a linker that meets the
+/// archive before `-lm` takes them from it): none of them is defined in
+/// the program, and `cbrt`, which no compiler inlines, is left to the C
+/// library (so the check cannot pass by the calls having gone).
+fn assert_math_is_the_c_librarys(dir: &Path, line: &str, env: &[(&str, &Path)]) {
+    std::fs::write(dir.join("probe.c"), MATH_PROBE).unwrap();
+    // As a program using math links: `-lm` at the end of its line.
+    let probe_line = format!("{} -lm", line.replace("app.c", "probe.c"));
+    sh(dir, &probe_line, env);
+    let exe = dir.join("a.out");
+    let nm = Command::new("nm").arg(&exe).output().unwrap();
+    let symbols = String::from_utf8_lossy(&nm.stdout);
+    let kind = |name: &str| {
+        symbols.lines().find_map(|l| {
+            let f: Vec<&str> = l.split_whitespace().collect();
+            let (k, n) = (f[f.len().saturating_sub(2)], *f.last()?);
+            (n == name || n.starts_with(&format!("{name}@"))).then(|| k.to_string())
+        })
+    };
+    for name in ["cbrt", "fma", "fmax", "floor"] {
+        let k = kind(name);
+        assert!(
+            k.as_deref().is_none_or(|k| k == "U"),
+            "`{probe_line}`: the program's {name} is a copy from the archive ({k:?}), \
+             not the C library's"
+        );
+    }
+    assert_eq!(
+        kind("cbrt").as_deref(),
+        Some("U"),
+        "`{probe_line}`: cbrt is not left to the C library:\n{symbols}"
+    );
+    let run = Command::new(&exe).current_dir(dir).output().unwrap();
+    assert!(run.status.success(), "`{probe_line}`: the probe failed");
+}
+
 #[test]
 fn every_readme_link_line_builds_and_runs() {
     if !crate::common::repository("every_readme_link_line_builds_and_runs") {
@@ -130,6 +186,7 @@ fn every_readme_link_line_builds_and_runs() {
             run.status.success() && out.contains(QUICK_START_SAYS),
             "`{line}`: {out}"
         );
+        assert_math_is_the_c_librarys(&dir, line, &env_ref);
         if line.contains("--gc-sections") {
             // The code the program keeps (`size`'s text column), not the
             // file, which also holds debug information.

@@ -117,6 +117,9 @@ pub(crate) fn run_c_env(
         .arg(root.join(src))
         .arg("-o")
         .arg(&bin)
+        // -lm first, as a user's line: the C library's math, not the copies
+        // Rust's compiler-builtins puts in the archive (rust-lang/rust#142119).
+        .arg("-lm")
         .arg(target.join("release/libscatterkit.a"))
         .args(["-lpthread", "-ldl", "-lm"])
         .stderr(std::process::Stdio::null())

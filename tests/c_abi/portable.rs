@@ -681,6 +681,7 @@ fn tables_built_on_the_host_are_looked_up_with_the_same_bits() {
         .arg(root().join("tests/c/portable_tables.c"))
         .arg("-o")
         .arg(&exe)
+        .arg("-lm")
         .arg(common::cbuild::static_lib())
         .args(["-lOpenCL", "-lpthread", "-ldl", "-lm"])
         .output()

@@ -88,6 +88,9 @@ pub fn build_program_with(src: &Path, cpp: bool, extra: &[&str], suffix: &str) -
         .arg(src)
         .arg("-o")
         .arg(&exe)
+        // -lm first, as the README's line: the C library's math, not the
+        // copies Rust's compiler-builtins puts in the archive.
+        .arg("-lm")
         .arg(lib)
         .args(["-lpthread", "-ldl", "-lm"]);
     let out = cmd.output().expect("C compiler failed to start");

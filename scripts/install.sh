@@ -37,8 +37,9 @@ if [ "$mode" != "--shared-only" ]; then
   # (cbrt, fma, fmax, floor, sqrt, ...) in every static library it builds.
   # A linker that reaches the archive before -lm gives the program those
   # instead of the C library's, changing the user's own results
-  # (rust-lang/rust#142119). Made local in the installed copy, they still
-  # serve the library, never the program.
+  # (rust-lang/rust#142119). Made local in the installed copy, they answer
+  # no call from outside their own member: the program's calls reach the
+  # C library's (-lm is among the libraries a static link needs).
   archive="$prefix/lib/libscatterkit.a"
   if command -v readelf >/dev/null 2>&1 && command -v objcopy >/dev/null 2>&1; then
     names=$(mktemp)

@@ -110,11 +110,12 @@ int main(int argc, char **argv) {
 "#;
 
 /// Builds [`MATH_PROBE`] with the README's `line` (in place of `app.c`,
-/// `-lm` added at the end) and checks that the program gets the C library's math functions, not
-/// copies from the archive (rust-lang/rust#142119: a linker that meets the
-/// archive before `-lm` takes them from it): none of them is defined in
-/// the program, and `cbrt`, which no compiler inlines, is left to the C
-/// library (so the check cannot pass by the calls having gone).
+/// `-lm` added at the end) and checks that the program gets the C
+/// library's math functions, not copies from the archive
+/// (rust-lang/rust#142119: a linker that meets the archive before `-lm`
+/// takes them from it): none of them is defined in the program, and
+/// `cbrt`, which no compiler inlines, is left to the C library (so the
+/// check cannot pass by the calls having gone).
 fn assert_math_is_the_c_librarys(dir: &Path, line: &str, env: &[(&str, &Path)]) {
     std::fs::write(dir.join("probe.c"), MATH_PROBE).unwrap();
     // As a program using math links: `-lm` at the end of its line.
@@ -186,7 +187,6 @@ fn every_readme_link_line_builds_and_runs() {
             run.status.success() && out.contains(QUICK_START_SAYS),
             "`{line}`: {out}"
         );
-        assert_math_is_the_c_librarys(&dir, line, &env_ref);
         if line.contains("--gc-sections") {
             // The code the program keeps (`size`'s text column), not the
             // file, which also holds debug information.
@@ -201,6 +201,8 @@ fn every_readme_link_line_builds_and_runs() {
             println!("  .text {text} bytes");
             assert!(text < 200_000, "`{line}` kept {text} bytes of code");
         }
+        // Last: it builds its own a.out in the same directory.
+        assert_math_is_the_c_librarys(&dir, line, &env_ref);
     }
 }
 

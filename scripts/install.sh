@@ -46,8 +46,10 @@ if [ "$mode" != "--shared-only" ]; then
     readelf -s --wide "$archive" 2>/dev/null |
       awk '$4 == "FUNC" && $5 == "WEAK" && $6 == "HIDDEN" && $7 != "UND" && $8 !~ /^_/ { print $8 }' |
       sort -u >"$names"
-    objcopy --localize-symbols="$names" "$archive"
+    status=0
+    objcopy --localize-symbols="$names" "$archive" || status=$?
     rm -f "$names"
+    [ "$status" -eq 0 ] || exit "$status"
   else
     echo "install.sh: no readelf/objcopy: link -lm before libscatterkit.a," \
       "or the program may get Rust's copies of cbrt, fma, fmax, ..." >&2

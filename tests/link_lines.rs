@@ -126,9 +126,12 @@ fn assert_math_is_the_c_librarys(dir: &Path, line: &str, env: &[(&str, &Path)]) 
     let symbols = String::from_utf8_lossy(&nm.stdout);
     let kind = |name: &str| {
         symbols.lines().find_map(|l| {
+            // `[address] kind name`: the last two fields.
             let f: Vec<&str> = l.split_whitespace().collect();
-            let (k, n) = (f[f.len().saturating_sub(2)], *f.last()?);
-            (n == name || n.starts_with(&format!("{name}@"))).then(|| k.to_string())
+            let [.., k, n] = f.as_slice() else {
+                return None;
+            };
+            (*n == name || n.starts_with(&format!("{name}@"))).then(|| k.to_string())
         })
     };
     for name in ["cbrt", "fma", "fmax", "floor"] {

@@ -577,7 +577,7 @@ fn quick_grid<T: Real>(
 ) -> Result<Found<T>, sk_status> {
     let found = if delta {
         g.delta_track_within(ray, budget, rng)
-            .map(|(t, event, steps)| Found::track(t, event, steps))
+            .map(|x| Found::track(x.t, x.event, x.steps))
     } else {
         g.ratio_track_within(ray, budget, rng)
             .map(|(tr, steps)| Found::transmittance(tr, steps))
@@ -754,8 +754,8 @@ fn estimate<P: Prec>(
     }
     match (e, own, grid) {
         (Estimator::Delta, None, Some(g)) => {
-            let (t, event, steps) = g.delta_track_within(ray, budget, rng)?;
-            Ok(Found::track(t, event, steps))
+            let x = g.delta_track_within(ray, budget, rng)?;
+            Ok(Found::track(x.t, x.event, x.steps))
         }
         (Estimator::Ratio, None, Some(g)) => {
             let (tr, steps) = g.ratio_track_within(ray, budget, rng)?;

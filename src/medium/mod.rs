@@ -623,7 +623,9 @@ impl<'a, T: Real> Grid<'a, T> {
 
     /// Delta (Woodcock) tracking along `ray`, first clipped to the grid's
     /// box. Returns the distance and the event (a real collision scatters
-    /// with probability σ_s/σ_t; an escape reports `ray.t_max`).
+    /// with probability σ_s/σ_t; an escape reports `ray.t_max`; for where
+    /// the ray leaves the box, see
+    /// [`delta_track_within`](Self::delta_track_within)).
     /// [`Error::Domain`] for a ray [`Ray`] does not accept (a zero or
     /// non-finite direction, a non-finite origin, a bad interval);
     /// [`Error::Budget`] when [`MAX_STEPS`] is reached.
@@ -633,28 +635,40 @@ impl<'a, T: Real> Grid<'a, T> {
         rng: &mut R,
     ) -> Result<(T, Event), Error> {
         self.delta_track_within(ray, MAX_STEPS, rng)
-            .map(|(t, e, _)| (t, e))
+            .map(|x| match x.event {
+                Event::Escaped => (ray.t_max, x.event),
+                _ => (x.t, x.event),
+            })
     }
 
     /// [`delta_track`](Self::delta_track) with at most `budget` tentative
-    /// collisions ([`Error::Budget`] beyond), also returning how many it
-    /// drew.
+    /// collisions ([`Error::Budget`] beyond), the same draws, as a
+    /// [`Track`](majorant::Track): the step count, and for an escape where
+    /// the ray leaves the box (clipped to `[t_min, t_max]`; `t_min` for a
+    /// ray that never enters it), as
+    /// [`Majorants::delta_track`](majorant::Majorants::delta_track)
+    /// reports it and the C layer's `sk_delta_track` for every medium.
     #[inline(always)]
-    pub(crate) fn delta_track_within<R: Rng + ?Sized>(
+    pub fn delta_track_within<R: Rng + ?Sized>(
         &self,
         ray: Ray<T>,
         budget: u32,
         rng: &mut R,
-    ) -> Result<(T, Event, u32), Error> {
+    ) -> Result<majorant::Track<T>, Error> {
         let (o, d) = ray.checked()?;
-        let t_max = ray.t_max;
-        let Some((t0, t1)) = clip(o, d, (self.lo, self.hi), ray.t_min, t_max) else {
-            return Ok((t_max, Event::Escaped, 0));
+        let Some((t0, t1)) = clip(o, d, (self.lo, self.hi), ray.t_min, ray.t_max) else {
+            return Ok(majorant::Track {
+                t: ray.t_min,
+                event: Event::Escaped,
+                steps: 0,
+            });
         };
         let span = (t0, t1, budget);
         let (t, hit, steps) = delta(GridSigmaT(self), self.rate(), o, d, span, rng)?;
         if !hit {
-            return Ok((t_max, Event::Escaped, steps));
+            // t is t1, where the clipped segment ends.
+            let event = Event::Escaped;
+            return Ok(majorant::Track { t, event, steps });
         }
         // A second uniform picks scattering with probability σ_s/σ_t (the
         // grid's albedo): the draws 0.1 made, so a seed gives what it gave.
@@ -663,7 +677,7 @@ impl<'a, T: Real> Grid<'a, T> {
         } else {
             Event::Absorbed
         };
-        Ok((t, event, steps))
+        Ok(majorant::Track { t, event, steps })
     }
 
     /// Ratio tracking: an unbiased estimate of the transmittance along
@@ -1154,6 +1168,40 @@ mod tests {
         assert_eq!(rng.next_u64(), untouched.next_u64());
     }
 
+    /// An escape: `delta_track` reports `t_max`, `delta_track_within`
+    /// where the ray leaves the box (the segment clipped to it, `t_min` for
+    /// a miss), as the majorant walk does, with the same draws; in a vacuum
+    /// (no tentative collision) and in a thin medium (the walk steps past
+    /// the box). The C layer reports the second for every medium; its grid
+    /// route reported `t_max`.
+    #[test]
+    fn an_escape_within_reports_where_the_ray_leaves_the_box() {
+        let below = Vec3::new(0.5, 0.5, -1.0);
+        // (origin, t_max, where the clipped segment ends).
+        let cases = [
+            (Vec3::new(0.5, 0.5, 0.5), 10.0, 0.5),
+            (below, 10.0, 2.0),
+            (below, 1.5, 1.5),
+            (Vec3::new(5.0, 0.5, -1.0), 10.0, 0.125),
+        ];
+        for value in [0.0f64, 1e-9] {
+            let values = [value; 8];
+            let grid = Grid::new(&values, 2, 2, 2, 0.0, 1.0).unwrap();
+            let ((lo, hi), one) = (grid.bounds(), [grid.majorant()]);
+            let maj = majorant::Majorants::new(&one, [1; 3], lo, hi).unwrap();
+            for (o, t_max, exit) in cases {
+                let ray = Ray::new(o, Vec3::new(0.0, 0.0, 1.0), t_max).segment(0.125, t_max);
+                let mut a = Xoshiro256PlusPlus::seed_from_u64(3);
+                let (mut b, mut c) = (a.clone(), a.clone());
+                let within = grid.delta_track_within(ray, MAX_STEPS, &mut a).unwrap();
+                assert_eq!((within.t, within.event), (exit, Event::Escaped), "{o:?}");
+                assert_eq!(grid.delta_track(ray, &mut b), Ok((t_max, Event::Escaped)));
+                let walked = maj.delta_track(&grid, ray, MAX_STEPS, &mut c).unwrap();
+                assert_eq!((walked.t, walked.event), (exit, Event::Escaped), "{o:?}");
+            }
+        }
+    }
+
     /// The public lookups as documented (a mutation test found three
     /// untested): a NaN in any one coordinate gives NaN; a slab one value
     /// thick in y or in x (not a column) interpolates as the same values
@@ -1262,8 +1310,13 @@ mod tests {
         let ray = Ray::new(Vec3::new(0.5, 0.5, 0.0), Vec3::new(0.0, 0.0, 1.0), 1.0);
         for seed in 0..16 {
             let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-            let (t, event, steps) = g.delta_track_within(ray, 100, &mut rng).unwrap();
-            assert_eq!((event, steps), (Event::Scattered, 1), "seed {seed}, t {t}");
+            let x = g.delta_track_within(ray, 100, &mut rng).unwrap();
+            assert_eq!(
+                (x.event, x.steps),
+                (Event::Scattered, 1),
+                "seed {seed}, t {}",
+                x.t
+            );
         }
     }
 

@@ -432,7 +432,7 @@ static void media(void) {
     {
         sk_vec3 away = {5.0f, 5.0f, 5.0f};
         a = track_args(&g, NULL, away, d, 0.0f, 3.0f, &rng);
-        CHECK(sk_delta_track(&a, &r) == SK_OK && r.event == SK_TRACK_ESCAPED && r.t == 3.0f);
+        CHECK(sk_delta_track(&a, &r) == SK_OK && r.event == SK_TRACK_ESCAPED && r.t == 0.0f); /* t_min */
         CHECK(sk_ratio_track(&a, &r) == SK_OK && r.tr == 1.0f && r.steps == 0);
     }
 

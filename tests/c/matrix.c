@@ -952,8 +952,9 @@ static void media(void) {
     CHECK(sk_delta_track(&a, &r) == SK_ERR_METHOD);
     a.flags = SK_TRACK_NONBOUNDING; /* needs majorants */
     CHECK(sk_ratio_track(&a, &r) == SK_ERR_DOMAIN);
-    /* An escape through the grid's one majorant reports t_max; the budget
-     * is the caller's. */
+    /* An escape through the grid's one majorant reports where the segment
+     * leaves the box (t_max here, inside the box: see escapes()); the
+     * budget is the caller's. */
     a = targs(&g, NULL, NULL, NULL, o, d, 0, 1.5f, 0, &rng);
     CHECK(sk_delta_track(&a, &r) == SK_OK && (r.event != SK_TRACK_ESCAPED || r.t == 1.5f));
     a = targs(&g, NULL, NULL, NULL, o, d, 0, 1e6f, 1, &rng);
@@ -961,6 +962,72 @@ static void media(void) {
 }
 
 /* Grid boxes and sampling, majorant grids and tracking through them. */
+static sk_coefficients thin32(void *ctx, sk_vec3 p) {
+    sk_coefficients c = {0, *(const float *)ctx};
+    (void)p;
+    return c;
+}
+static sk_coefficients_f64 thin64(void *ctx, sk_vec3_f64 p) {
+    sk_coefficients_f64 c = {0, *(const double *)ctx};
+    (void)p;
+    return c;
+}
+
+/* Delta tracking reports an escape where the ray leaves the medium: its box
+ * (the segment clipped to it; t_min for a ray that misses it), or t_max for
+ * a callback with one majorant, which has no box. The same t whichever way
+ * the medium is given (a grid, with or without majorants, or a callback with
+ * majorants), in a vacuum (no tentative collision) and in a thin medium (the
+ * walk steps past the end). The grid without majorants reported t_max. */
+static void escapes(void) {
+    /* Rays from inside, from below (entering at 1, leaving at 2), from below
+     * with t_max inside the box, and one that misses it; t_min = 0.125. */
+    const float oz[4] = {0.5f, -1, -1, -1}, ox[4] = {0.5f, 0.5f, 0.5f, 5}, tmax[4] = {10, 10, 1.5f, 10};
+    const float box_t[4] = {0.5f, 2, 1.5f, 0.125f};
+    float dens[8], mx[1], mn[1], thin[2] = {0, 1e-6f};
+    double densd[8], mxd[1], mnd[1], thind[2] = {0, 1e-6};
+    uint64_t st = 11;
+    sk_rng rng = {&st, counter};
+    sk_grid g;
+    sk_grid_f64 gd;
+    sk_majorants m, cm;
+    sk_majorants_f64 md, cmd;
+    int i, k, v;
+    for (v = 0; v < 2; v++) {
+        for (k = 0; k < 8; k++) dens[k] = thin[v], densd[k] = thind[v];
+        sk_grid_new(dens, 2, 2, 2, 0, 1, &g);
+        sk_grid_new_f64(densd, 2, 2, 2, 0, 1, &gd);
+        sk_majorants_new_from_grid(&g, 1, 1, 1, mx, mn, 1, &m);
+        sk_majorants_new_from_grid_f64(&gd, 1, 1, 1, mxd, mnd, 1, &md);
+        sk_majorants_new(mx, NULL, 1, 1, 1, (sk_vec3){0, 0, 0}, (sk_vec3){1, 1, 1}, &cm);
+        sk_majorants_new_f64(mxd, NULL, 1, 1, 1, (sk_vec3_f64){0, 0, 0}, (sk_vec3_f64){1, 1, 1}, &cmd);
+        for (i = 0; i < 4; i++) {
+            sk_vec3 o = {ox[i], 0.5f, oz[i]}, d = {0, 0, 1};
+            sk_vec3_f64 od = {ox[i], 0.5, oz[i]}, dd = {0, 0, 1};
+            sk_track_args a[4];
+            sk_track_args_f64 ad[4];
+            sk_track_result r;
+            sk_track_result_f64 rd;
+            a[0] = targs(&g, NULL, NULL, NULL, o, d, 0.125f, tmax[i], 0, &rng);
+            a[1] = targs(&g, NULL, NULL, &m, o, d, 0.125f, tmax[i], 0, &rng);
+            a[2] = targs(NULL, thin32, &thin[v], &cm, o, d, 0.125f, tmax[i], 0, &rng);
+            a[3] = targs(NULL, thin32, &thin[v], NULL, o, d, 0.125f, tmax[i], 0, &rng);
+            ad[0] = targs64(&gd, NULL, NULL, NULL, od, dd, 0.125, tmax[i], 0, &rng);
+            ad[1] = targs64(&gd, NULL, NULL, &md, od, dd, 0.125, tmax[i], 0, &rng);
+            ad[2] = targs64(NULL, thin64, &thind[v], &cmd, od, dd, 0.125, tmax[i], 0, &rng);
+            ad[3] = targs64(NULL, thin64, &thind[v], NULL, od, dd, 0.125, tmax[i], 0, &rng);
+            a[3].medium.sigma_maj = thin[v], ad[3].medium.sigma_maj = thind[v];
+            for (k = 0; k < 4; k++) {
+                float want = k < 3 ? box_t[i] : tmax[i];
+                /* The thin medium collides with probability below 1e-5. */
+                CHECK(sk_delta_track(&a[k], &r) == SK_OK && r.event == SK_TRACK_ESCAPED && r.t == want);
+                CHECK(sk_delta_track_f64(&ad[k], &rd) == SK_OK && rd.event == SK_TRACK_ESCAPED && rd.t == want);
+            }
+        }
+    }
+    i = 0;
+}
+
 static void majorants(void) {
     int i;
     uint64_t st = 5;
@@ -2089,6 +2156,7 @@ int main(void) {
     surfaces();
     media();
     majorants();
+    escapes();
     mie();
     polarization();
     mixtures();

@@ -237,8 +237,11 @@ fn rust_lines() -> String {
     let mut r = SplitMix(13);
     s += "\ndelta_track f32";
     for _ in 0..K {
-        let (t, ev) = g.delta_track(Ray::new(o, d, 3.0), &mut r).unwrap();
-        write!(s, " {}:{}", h32(t), ev as u32).unwrap();
+        // `sk_delta_track`'s route: an escape at the box's face.
+        let x = g
+            .delta_track_within(Ray::new(o, d, 3.0), medium::MAX_STEPS, &mut r)
+            .unwrap();
+        write!(s, " {}:{}", h32(x.t), x.event as u32).unwrap();
     }
     s += "\nratio_track f32";
     for _ in 0..K {

@@ -174,17 +174,21 @@ impl Series {
     /// "Strata placed by the majorants"): `⌈4·depth⌉` for the power series
     /// (a quarter of a mean free path of the bound per stratum),
     /// `16⌈depth⌉` for the telescoping sum; at least 1. [`Error::Domain`]
-    /// for a depth that is negative, NaN or needs more than `u32::MAX`
-    /// strata.
+    /// for a depth that is negative, NaN or infinite; [`Error::Budget`] for
+    /// a finite one that needs more than `u32::MAX` strata (more density
+    /// evaluations than any budget allows, as a shorter segment that
+    /// needs more than its budget reports).
     pub fn default_strata(self, depth: f64) -> Result<u32, Error> {
         let n = match self {
             Series::Power => libm::ceil(4.0 * depth),
             Series::Telescoping => 16.0 * libm::ceil(depth),
         };
-        if depth >= 0.0 && n <= f64::from(u32::MAX) {
+        if !(depth >= 0.0 && depth.is_finite()) {
+            Err(Error::Domain)
+        } else if n <= f64::from(u32::MAX) {
             Ok(n.max(1.0) as u32)
         } else {
-            Err(Error::Domain)
+            Err(Error::Budget)
         }
     }
 }

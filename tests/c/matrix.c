@@ -1028,6 +1028,35 @@ static void escapes(void) {
     i = 0;
 }
 
+/* A march longer than any budget is SK_ERR_BUDGET whether it needs more
+ * evaluations than the budget (depth 7.5e5: 3e6 strata) or more strata than
+ * a uint32_t holds (depth 7.5e15); the second was SK_ERR_DOMAIN. Through a
+ * callback with one majorant and with majorants over the segment's box. */
+static void long_marches(void) {
+    const double ends[2] = {1e6, 1e16};
+    const double one[1] = {0.75};
+    uint64_t st = 5;
+    sk_rng rng = {&st, counter};
+    double thind = 0.5;
+    sk_majorants_f64 md;
+    sk_vec3_f64 o = {0.5, 0.5, 0}, d = {0, 0, 1};
+    int i, k;
+    for (i = 0; i < 2; i++) {
+        sk_vec3_f64 lo = {0, 0, 0}, hi = {1, 1, ends[i]};
+        sk_track_args_f64 a[2];
+        sk_track_result_f64 r;
+        sk_majorants_new_f64(one, NULL, 1, 1, 1, lo, hi, &md);
+        a[0] = targs64(NULL, thin64, &thind, NULL, o, d, 0, ends[i], 0, &rng);
+        a[0].medium.sigma_maj = 0.75;
+        a[1] = targs64(NULL, thin64, &thind, &md, o, d, 0, ends[i], 0, &rng);
+        for (k = 0; k < 2; k++) {
+            CHECK(sk_ray_march_f64(&a[k], &r) == SK_ERR_BUDGET);
+            CHECK(sk_telescoping_march_f64(&a[k], &r) == SK_ERR_BUDGET);
+        }
+    }
+    i = 0;
+}
+
 static void majorants(void) {
     int i;
     uint64_t st = 5;
@@ -2157,6 +2186,7 @@ int main(void) {
     media();
     majorants();
     escapes();
+    long_marches();
     mie();
     polarization();
     mixtures();

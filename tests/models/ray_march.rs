@@ -311,7 +311,8 @@ fn placed_strata_refuse_bounds_that_do_not_hold() {
 
 /// The strata the library picks when the caller passes 0, exactly as
 /// documented: ⌈4τ⌉ for the power series, 16⌈τ⌉ for the telescoping sum,
-/// at least 1; a depth needing more than `u32::MAX` strata is refused.
+/// at least 1; a depth needing more than `u32::MAX` strata is a spent
+/// budget, a negative, NaN or infinite one refused.
 #[test]
 fn default_strata_are_the_documented_counts() {
     for (depth, power, telescoping) in [
@@ -330,12 +331,24 @@ fn default_strata_are_the_documented_counts() {
             "τ {depth}"
         );
     }
-    for bad in [-1.0, f64::NAN, 2e9] {
+    for bad in [-1.0, f64::NAN, f64::INFINITY] {
         assert_eq!(
             Series::Power.default_strata(bad),
             Err(Error::Domain),
             "τ {bad}"
         );
+    }
+    // More strata than a u32 holds: more evaluations than any budget.
+    let (most_power, most_telescoping) = (f64::from(u32::MAX) / 4.0, 268_435_455.0);
+    assert_eq!(Series::Power.default_strata(most_power), Ok(u32::MAX));
+    assert_eq!(
+        Series::Telescoping.default_strata(most_telescoping),
+        Ok(u32::MAX - 15)
+    );
+    for series in [Series::Power, Series::Telescoping] {
+        for long in [2e9, 1e300] {
+            assert_eq!(series.default_strata(long), Err(Error::Budget), "τ {long}");
+        }
     }
 }
 

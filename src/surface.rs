@@ -102,12 +102,21 @@ fn positive<T: Real>(x: T) -> bool {
 
 /// Unpolarised Fresnel reflectance of a dielectric interface, `(R_s + R_p)/2`,
 /// for light arriving at `|cos_i|` (either direction of travel) from index
-/// `n_i` into `n_t`; 1 on total internal reflection. NaN for indices that are
-/// not finite and positive or `|cos_i| > 1`.
+/// `n_i` into `n_t`; 1 on total internal reflection, 0 for matched indices
+/// (no interface, grazing incidence included). NaN for indices that are not
+/// finite and positive or `|cos_i| > 1`.
 pub fn fresnel_dielectric<T: Real>(cos_i: T, n_i: T, n_t: T) -> T {
     let c = cos_i.abs();
     if !(positive(n_i) && positive(n_t) && c <= T::ONE) {
         return T::NAN;
+    }
+    // Matched indices: no interface. The formula below gives 0 there only
+    // where `cₜ` comes out as `c`, but `cₜ = √(1 − sin²θₜ)` loses `c²`
+    // against 1: at n = 1.33 it gave R = 1.4·10⁻⁴ at |c| = 10⁻³ and 1 at
+    // 10⁻⁴ in f32 (9·10⁻⁶ at 10⁻⁷ and 1 at 10⁻⁹ in f64), and at `c = 0`
+    // both ratios were 0/0 (NaN).
+    if n_i == n_t {
+        return T::ZERO;
     }
     let Some(ct) = cos_transmitted(c, n_i, n_t) else {
         return T::ONE;

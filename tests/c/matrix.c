@@ -723,6 +723,10 @@ static void surfaces(void) {
         CHECK((f > 0.0f && isfinite(f)) ? sk_fresnel_dielectric(0.5f, f, 1.5f) >= 0.0f : isnan(sk_fresnel_dielectric(0.5f, f, 1.5f)));
         CHECK(fabsf(f) <= 1.0f ? sk_fresnel_dielectric(f, 1.0f, 1.5f) >= 0.0f : isnan(sk_fresnel_dielectric(f, 1.0f, 1.5f)));
         CHECK(isnan(sk_fresnel_dielectric_f64(0.5, 1.0, g)) == !(g > 0.0 && isfinite(g)));
+        /* Matched indices: no interface at any angle, grazing included (0
+           was NaN, and a |cos| below 1e-4 reflected everything in float). */
+        CHECK(fabsf(f) <= 1.0f ? sk_fresnel_dielectric(f, 1.33f, 1.33f) == 0.0f : isnan(sk_fresnel_dielectric(f, 1.33f, 1.33f)));
+        CHECK(fabs(g) <= 1.0 ? sk_fresnel_dielectric_f64(g, 1.33, 1.33) == 0.0 : isnan(sk_fresnel_dielectric_f64(g, 1.33, 1.33)));
         CHECK((f > 0.0f && isfinite(f)) == !isnan(sk_scatter_fraction_reflect(f, 1e-8f, 1.5f, 1.0f)));
         CHECK((f >= 0.0f && isfinite(f)) == !isnan(sk_scatter_fraction_reflect(600e-9f, f, 1.5f, 1.0f)));
         CHECK((g >= 0.0 && isfinite(g)) == !isnan(sk_scatter_fraction_reflect_f64(600e-9, g, 1.5, 1.0)));

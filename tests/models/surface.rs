@@ -242,6 +242,17 @@ fn fresnel_matches_the_closed_forms() {
             assert!(1.0 - below < 2e-3, "{below}");
         }
     }
+    // Matched indices: no interface, R = 0 at every angle, grazing too
+    // (there both ratios were 0/0 and R was NaN); any other interface
+    // reflects everything at grazing incidence.
+    for n in [1.0f64, 1.33, 3.5] {
+        for c in [1.0, 0.5, 1e-300, 0.0, -0.0, -0.5] {
+            assert_eq!(fresnel_dielectric(c, n, n), 0.0, "n {n} cos {c}");
+            assert_eq!(fresnel_dielectric(c as f32, n as f32, n as f32), 0.0);
+        }
+        assert_eq!(fresnel_dielectric(0.0, n, n * 1.5), 1.0);
+        assert_eq!(fresnel_dielectric(0.0, n * 1.5, n), 1.0);
+    }
     assert!(fresnel_dielectric(0.5f32, -1.0, 1.5).is_nan());
     assert!(fresnel_dielectric(1.5f32, 1.0, 1.5).is_nan());
     assert!(fresnel_dielectric(0.5f32, 1.0, f32::INFINITY).is_nan());

@@ -4048,7 +4048,8 @@ double sk_mie_size_parameter_f64(double diameter, double wavelength, double n_me
 /*
  The number of sk_complex_f64 values sk_mie_new_f64 needs for (x, m); 0 for input
  it rejects: x outside [1e-20, 1e5], re outside (0, 1000], im outside
- [0, 1000], |m| x above 2e6, or NaN.
+ [0, 1000], |m| below 1e-100, |m| x above 2e6, m = 1 (a sphere of the
+ medium's own index does not scatter: it has no phase function), or NaN.
  */
 size_t sk_mie_len_f64(double x, sk_complex_f64 m);
 
@@ -4058,7 +4059,11 @@ size_t sk_mie_len_f64(double x, sk_complex_f64 m);
  buf. Wiscombe's term count (two more below x = 8), the logarithmic
  derivative by downward
  recurrence. SK_ERR_NULL for NULL buf or out; SK_ERR_DOMAIN for input
- sk_mie_len_f64 rejects; SK_ERR_SIZE for a short buffer.
+ sk_mie_len_f64 rejects, and for a sphere the series cannot represent:
+ scattering that underflows to 0 (m within about 1e-150 of 1 at the
+ smallest x: no phase function) or terms that overflow (a complex m of
+ modulus below about 1e-60 at x = 1e-20); SK_ERR_SIZE for a short
+ buffer.
  */
 sk_status sk_mie_new_f64(double x,
                          sk_complex_f64 m,

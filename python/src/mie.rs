@@ -28,7 +28,7 @@ impl PyMie {
     fn new(py: Python<'_>, x: f64, m_re: f64, m_im: f64) -> PyResult<Self> {
         let m = Complex::new(m_re, m_im);
         let len = mie::buffer_len(x, m).ok_or_else(|| {
-            PyValueError::new_err("Mie(x, m): x must be in [1e-20, 1e5], Re m in (0, 1000], Im m in [0, 1000], |m| x <= 2e6")
+            PyValueError::new_err("Mie(x, m): x must be in [1e-20, 1e5], Re m in (0, 1000], Im m in [0, 1000], |m| >= 1e-100, |m| x <= 2e6, and m != 1 (a sphere of the medium's index does not scatter)")
         })?;
         let (ab, eff) = py
             .detach(|| {

@@ -148,17 +148,26 @@ pub fn buffer_len(x: f64, m: Complex) -> Option<usize> {
 pub const MAX_INDEX: f64 = 1e3;
 /// The largest `|m| x` accepted (see [`MAX_INDEX`]).
 pub const MAX_MX: f64 = 2e6;
+/// The smallest `|m|` accepted. The series breaks down (NaN efficiencies
+/// and phase function) once `|m|²` or `|m x|²` underflows: from
+/// `|m| = 10⁻¹⁵⁴` at `x ≥ 1`, `10⁻¹³⁵` at `x = 10⁻²⁰`.
+pub const MIN_INDEX: f64 = 1e-100;
 
 fn valid(x: f64, m: Complex) -> bool {
     // x from 10⁻²⁰ (below, the real parts of the coefficients, of order
     // x⁶, approach f64's underflow and the efficiencies would lose them)
     // to 10⁵ (a few hundred thousand terms); 0 < n ≤ 1000, 0 ≤ k ≤ 1000,
-    // |m| x ≤ 2·10⁶.
+    // 10⁻¹⁰⁰ ≤ |m|, |m| x ≤ 2·10⁶. Not m = 1: a sphere of the medium's own
+    // index does not scatter (Q_sca = 0), and its phase function, the
+    // scattered intensity over Q_sca, is 0/0.
+    let size = libm::sqrt(m.norm_sqr());
     (1e-20..=1e5).contains(&x)
         && m.re > 0.0
         && m.re <= MAX_INDEX
         && (0.0..=MAX_INDEX).contains(&m.im)
-        && libm::sqrt(m.norm_sqr()) * x <= MAX_MX
+        && size >= MIN_INDEX
+        && size * x <= MAX_MX
+        && !(m.re == 1.0 && m.im == 0.0)
 }
 
 /// Efficiencies and asymmetry of one sphere.
@@ -187,9 +196,14 @@ pub struct Mie<'a> {
 
 impl<'a> Mie<'a> {
     /// Solves the sphere of size parameter `x ∈ [10⁻²⁰, 10⁵]` and relative
-    /// index `m` (`0 < n ≤ 1000`, `0 ≤ k ≤ 1000`, `|m| x ≤ 2·10⁶`) into `buf` (at least
-    /// [`buffer_len`] values). [`Error::Domain`] for other input,
-    /// [`Error::Size`] for a short buffer.
+    /// index `m` (`0 < n ≤ 1000`, `0 ≤ k ≤ 1000`, `|m| ≥ 10⁻¹⁰⁰`,
+    /// `|m| x ≤ 2·10⁶`, `m ≠ 1`: a sphere of the medium's own index does not
+    /// scatter, so it has no phase function) into `buf` (at least
+    /// [`buffer_len`] values). [`Error::Domain`] for other input, and for a
+    /// sphere the series cannot represent: scattering that underflows to 0
+    /// (`m` within about 10⁻¹⁵⁰ of 1 at the smallest `x`) or terms that
+    /// overflow (a complex `m` of modulus below about 10⁻⁶⁰ at `x =
+    /// 10⁻²⁰`); [`Error::Size`] for a short buffer.
     pub fn new(x: f64, m: Complex, buf: &'a mut [Complex]) -> Result<Self, Error> {
         let len = buffer_len(x, m).ok_or(Error::Domain)?;
         let buf = buf.get_mut(..len).ok_or(Error::Size)?;
@@ -281,12 +295,20 @@ impl<'a> Mie<'a> {
             q_ext: 2.0 / x2 * q_ext,
             q_sca: q_sca_v,
             q_back: back.norm_sqr() / x2,
-            g: if q_sca_v > 0.0 {
-                4.0 / x2 * g_sum / q_sca_v
-            } else {
-                0.0
-            },
+            g: 4.0 / x2 * g_sum / q_sca_v,
         };
+        // No scattering to normalise the phase function by (m so close to 1,
+        // 1 + 10⁻³⁰⁰ i at x = 10⁻²⁰, that every |a_n|², |b_n|² underflows,
+        // as m = 1 itself, refused by `valid`, scatters nothing), or a
+        // series that overflowed (a tiny complex m at a small x).
+        let e = efficiencies;
+        if !(q_sca_v > 0.0
+            && [e.q_ext, e.q_sca, e.q_back, e.g]
+                .iter()
+                .all(|v| v.is_finite()))
+        {
+            return Err(Error::Domain);
+        }
         Ok(Mie {
             x,
             ab: ab.get(..2 * n_terms).unwrap_or(&[]),

@@ -334,11 +334,75 @@ fn bad_input_is_rejected() {
         (1.0, Complex::new(1.5, f64::MAX)),
         (1.0, Complex::new(1001.0, 0.0)),
         (1e4, Complex::new(300.0, 0.0)),
+        // The medium's own index: no scattering, no phase function (its
+        // pdf was 0/0, NaN, beside Q_sca = 0).
+        (1.0, Complex::new(1.0, 0.0)),
+        (1e-6, Complex::new(1.0, 0.0)),
+        // |m| below 10⁻¹⁰⁰ (from 10⁻¹⁵⁴ every output was NaN).
+        (1.0, Complex::new(0.99e-100, 0.0)),
+        (1.0, Complex::new(1e-154, 0.0)),
+        (1e5, Complex::new(f64::MIN_POSITIVE, 0.0)),
     ] {
         assert!(buffer_len(x, m).is_none());
         assert_eq!(Mie::new(x, m, &mut buf).err(), Some(Error::Domain));
     }
     assert_eq!(Mie::new(100.0, m, &mut buf).err(), Some(Error::Size));
+}
+
+/// At the edges of the index domain a sphere is refused (`Error::Domain`)
+/// or every output is finite and the phase function normalised; never NaN
+/// with `Ok` (m = 1 gave a NaN phase function; from `|m| = 10⁻¹⁵⁴`, and a
+/// complex `|m|` of 10⁻⁶¹ at `x = 10⁻²⁰`, everything was NaN). The real
+/// `|m| = 10⁻¹⁰⁰` and the neighbours of 1 are accepted at every `x`.
+#[test]
+fn the_index_domain_edges_give_finite_answers_or_domain() {
+    let mut buf = vec![Complex::new(0.0, 0.0); 1 << 20];
+    let accepted = [
+        Complex::new(1e-100, 0.0),
+        Complex::new(1.0 + f64::EPSILON, 0.0),
+        Complex::new(1.0 - f64::EPSILON / 2.0, 0.0),
+        Complex::new(1.0, 1e-12),
+    ];
+    let either = [
+        Complex::new(1.2e-100, 1.6e-100),
+        Complex::new(1e-60, 1e-60),
+        Complex::new(1.0, 1e-300),
+    ];
+    for (m, must) in accepted
+        .iter()
+        .map(|m| (m, true))
+        .chain(either.iter().map(|m| (m, false)))
+    {
+        for x in [1e-20, 1e-6, 1.0, 30.0, 1e3, 1e5] {
+            let s = match Mie::new(x, *m, &mut buf) {
+                Err(scatterkit::Error::Domain) if !must => continue,
+                r => r.unwrap_or_else(|e| panic!("x {x} m {m:?}: {e:?}")),
+            };
+            let e = s.efficiencies;
+            let finite = [e.q_ext, e.q_sca, e.q_back, e.g]
+                .iter()
+                .all(|v| v.is_finite());
+            assert!(
+                finite && e.q_sca > 0.0 && (-1.0..=1.0).contains(&e.g),
+                "x {x} m {m:?}: {e:?}"
+            );
+            for mu in [-1.0, -0.3, 0.0, 0.9, 1.0] {
+                let p = s.phase(mu);
+                assert!(p.is_finite() && p >= 0.0, "x {x} m {m:?} mu {mu}: {p}");
+            }
+            if x <= 30.0 {
+                // Midpoint rule over μ; the peak is wider than 1/x.
+                let k = 20_000;
+                let total: f64 = (0..k)
+                    .map(|i| s.phase(-1.0 + 2.0 * (i as f64 + 0.5) / k as f64))
+                    .sum::<f64>()
+                    * core::f64::consts::TAU
+                    * 2.0
+                    / k as f64;
+                assert!((total - 1.0).abs() < 1e-4, "x {x} m {m:?}: {total}");
+            }
+        }
+    }
 }
 
 /// Backscatter of large spheres against the series summed in 60 digits

@@ -73,6 +73,12 @@ pub fn refract<T: Real>(d: Vec3<T>, n: Vec3<T>, n_i: T, n_t: T) -> Result<Vec3<T
 #[inline]
 fn snell(d: Vec3<f64>, nf: Vec3<f64>, eta: f64) -> Option<Vec3<f64>> {
     let (d, nf) = (d.try_normalize()?, nf.try_normalize()?);
+    // Matched indices: no interface, the ray goes on. (`cos θₜ` from
+    // `1 − η² sin²θᵢ` loses `cos²θᵢ` against 1 at grazing incidence, and
+    // bent the ray by up to 10⁻⁸ there.)
+    if eta == 1.0 {
+        return Some(d);
+    }
     let cos_i = -d.dot(nf);
     let cos_t = cos_transmitted(cos_i, eta, 1.0)?;
     // η d and the normal term nearly cancel for large η: renormalise so the

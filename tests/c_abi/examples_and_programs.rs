@@ -129,6 +129,21 @@ fn bad_input_from_c() {
     assert!(out.contains(" 0 failed"), "{out}");
 }
 
+/// The edge sweep (`tests/c/edges.c`): valid calls at the edges of every
+/// documented domain (tracking in float and double, surfaces, equiangular
+/// and homogeneous spectral sampling, Mie), each answer inside its range
+/// or a documented status, never NaN with SK_OK.
+#[test]
+fn edge_sweep_from_c() {
+    if !crate::common::repository("edge_sweep_from_c") {
+        return;
+    }
+    let exe = common::cbuild::build_program(&root().join("tests/c/edges.c"), false);
+    let (code, out) = run(&exe);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains(" 0 failed"), "{out}");
+}
+
 /// The one-call-per-flight slab benchmark (`benches/c_flight.c`) builds
 /// strictly and runs every mode on 20 000 photons: the reflected and
 /// transmitted weights of each mode match the slab's adding-doubling

@@ -8,7 +8,7 @@ use common::cbuild::{build_program, build_program_with, root};
 use std::process::Command;
 
 /// The longest under valgrind first, so that the parallel runs end together.
-const PROGRAMS: [&str; 13] = [
+const PROGRAMS: [&str; 14] = [
     "tests/c/matrix.c",
     "c_examples/cloud_majorants.c",
     "c_examples/surface_shares.c",
@@ -19,6 +19,7 @@ const PROGRAMS: [&str; 13] = [
     "c_examples/mie_cloud.c",
     "c_examples/rayleigh_sky.c",
     "tests/c/bad_input.c",
+    "tests/c/edges.c",
     "tests/c/dirac.c",
     "tests/c/golden.c",
     "tests/c/batch.c",

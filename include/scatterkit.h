@@ -3872,8 +3872,10 @@ sk_vec3_f64 sk_reflect_f64(sk_vec3_f64 d, sk_vec3_f64 n);
 /*
  Snell refraction of direction d through a surface of normal n (either
  side, any length; both made unit) from index n_i into n_t. SK_ERR_DOMAIN
- on total internal reflection, for zero or non-finite vectors, or indices
- that are not finite and positive; SK_ERR_NULL for a NULL out.
+ on total internal reflection, for zero or non-finite vectors, indices
+ that are not finite and positive, or n_i/n_t above 2^26 (past it the
+ direction's error, about (n_i/n_t) DBL_EPSILON, is no longer small);
+ SK_ERR_NULL for a NULL out.
  */
 sk_status sk_refract(sk_vec3 d, sk_vec3 n, float n_i, float n_t, sk_vec3 *out);
 
@@ -4004,7 +4006,8 @@ sk_status sk_surface_new_f64(sk_surface_model model,
  picks the direction (unit, written to dir_out); event_out gets
  SK_EVENT_TRANSMITTED and SK_EVENT_SCATTERED bits. SK_ERR_NULL for NULL s,
  rng, rng->next_u64 or outputs; SK_ERR_DOMAIN for zero or non-finite
- vectors, invalid indices or wavelength; SK_ERR_METHOD for a corrupted s.
+ vectors, invalid indices (as sk_refract) or wavelength; SK_ERR_METHOD for
+ a corrupted s.
  */
 sk_status sk_surface_interact(const sk_surface *s,
                               sk_vec3 d,

@@ -54,10 +54,10 @@ fn facing<T: Real>(d: Vec3<T>, n: Vec3<T>) -> Vec3<T> {
 /// `η d + (η cos θᵢ − cos θₜ) n_f` with `η = n_i/n_t` and `n_f` facing
 /// against `d`, computed in f64 and rounded once (so f32 results keep
 /// `nᵢ sin θᵢ = nₜ sin θₜ` to the rounding of the output). [`Error::Domain`]
-/// on total internal reflection or for indices that are not finite and
-/// positive.
+/// on total internal reflection, for indices that are not finite and
+/// positive, or for `n_i/n_t` above [`MAX_INDEX_RATIO`].
 pub fn refract<T: Real>(d: Vec3<T>, n: Vec3<T>, n_i: T, n_t: T) -> Result<Vec3<T>, Error> {
-    if !(positive(n_i) && positive(n_t)) {
+    if !refractive(n_i, n_t) {
         return Err(Error::Domain);
     }
     let eta = n_i.to_f64() / n_t.to_f64();
@@ -104,6 +104,20 @@ fn cos_transmitted<T: Real>(cos_i: T, n_i: T, n_t: T) -> Option<T> {
 #[inline(always)]
 fn positive<T: Real>(x: T) -> bool {
     x > T::ZERO && x.is_finite()
+}
+
+/// The largest `n_i/n_t` refraction takes: 2²⁶. Near normal incidence the
+/// refracted direction is `η d + (η cos θᵢ − cos θₜ) n_f`, two terms of
+/// size `η` that cancel to a unit vector, so its error is about `η ε`
+/// (below 1.5·10⁻⁸ here); from `η ≈ 10⁸` the direction was noise, and
+/// from 2⁵³ NaN at normal incidence.
+pub const MAX_INDEX_RATIO: f64 = 67_108_864.0;
+
+/// Indices refraction accepts: finite and positive, `n_i/n_t` at most
+/// [`MAX_INDEX_RATIO`].
+#[inline(always)]
+fn refractive<T: Real>(n_i: T, n_t: T) -> bool {
+    positive(n_i) && positive(n_t) && n_i.to_f64() / n_t.to_f64() <= MAX_INDEX_RATIO
 }
 
 /// Unpolarised Fresnel reflectance of a dielectric interface, `(R_s + R_p)/2`,
@@ -436,7 +450,9 @@ impl<T: Real> Surface<T> {
     /// direction. Returns the new unit direction and what happened.
     ///
     /// [`Error::Domain`] for zero or non-finite vectors, indices that are not
-    /// finite and positive, or (scalar model) a wavelength that is not.
+    /// finite and positive or whose ratio `n_i/n_t` is above
+    /// [`MAX_INDEX_RATIO`] (as [`refract`]), or (scalar model) a wavelength
+    /// that is not.
     pub fn interact<R: Rng + ?Sized>(
         &self,
         d: Vec3<T>,
@@ -450,7 +466,7 @@ impl<T: Real> Surface<T> {
             return Err(Error::Domain);
         };
         let scalar = matches!(self.fraction, Fraction::Scalar(_));
-        if !(positive(n_i) && positive(n_t)) || (scalar && !positive(wavelength)) {
+        if !refractive(n_i, n_t) || (scalar && !positive(wavelength)) {
             return Err(Error::Domain);
         }
         let nf = facing(d, n);

@@ -273,8 +273,10 @@ pub extern "C" fn sk_reflect_f64(d: sk_vec3_f64, n: sk_vec3_f64) -> sk_vec3_f64 
 
 /// Snell refraction of direction d through a surface of normal n (either
 /// side, any length; both made unit) from index n_i into n_t. SK_ERR_DOMAIN
-/// on total internal reflection, for zero or non-finite vectors, or indices
-/// that are not finite and positive; SK_ERR_NULL for a NULL out.
+/// on total internal reflection, for zero or non-finite vectors, indices
+/// that are not finite and positive, or n_i/n_t above 2^26 (past it the
+/// direction's error, about (n_i/n_t) DBL_EPSILON, is no longer small);
+/// SK_ERR_NULL for a NULL out.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_refract(
     d: sk_vec3,
@@ -452,7 +454,8 @@ pub unsafe extern "C" fn sk_surface_new_f64(
 /// picks the direction (unit, written to dir_out); event_out gets
 /// SK_EVENT_TRANSMITTED and SK_EVENT_SCATTERED bits. SK_ERR_NULL for NULL s,
 /// rng, rng->next_u64 or outputs; SK_ERR_DOMAIN for zero or non-finite
-/// vectors, invalid indices or wavelength; SK_ERR_METHOD for a corrupted s.
+/// vectors, invalid indices (as sk_refract) or wavelength; SK_ERR_METHOD for
+/// a corrupted s.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sk_surface_interact(
     s: *const sk_surface,

@@ -529,3 +529,39 @@ fn constructors_and_interact_reject_bad_input() {
     );
     let _ = surface::RESAMPLE_ATTEMPTS;
 }
+
+/// Refraction refuses `n_i/n_t` above 2²⁶, where its direction's error
+/// (about `η ε`, two terms of size `η` cancelling to a unit vector) stops
+/// being small: at `η = 10⁸` it was noise, at `η = 10¹⁷` NaN at normal
+/// incidence with `Ok`. At 2²⁶ normal incidence still goes straight on.
+#[test]
+fn refraction_refuses_an_index_ratio_beyond_two_to_the_26() {
+    let n = Vec3::new(0.0, 0.0, 1.0);
+    let d = Vec3::new(0.0, 0.0, -1.0);
+    let top = surface::MAX_INDEX_RATIO;
+    assert_eq!(top, 67_108_864.0);
+    let straight = refract(d, n, top, 1.0).unwrap();
+    assert!((straight - d).length() < 1e-15, "{straight:?}");
+    for eta in [top * (1.0 + f64::EPSILON), 1e8, 1e17] {
+        assert_eq!(
+            refract(d, n, eta, 1.0),
+            Err(scatterkit::Error::Domain),
+            "{eta}"
+        );
+        let s = Surface::new(
+            SurfaceModel::Specular,
+            1.0,
+            Fraction::Constant(0.0f64),
+            CrossingPolicy::Fold,
+        )
+        .unwrap();
+        let x = s.interact(d, n, eta, 1.0, 600e-9, &mut rng(1));
+        assert_eq!(x.err(), Some(scatterkit::Error::Domain), "{eta}");
+    }
+    // The other way round, n_t far above n_i, nothing cancels: accepted.
+    let down = refract(Vec3::new(0.6, 0.0, -0.8), n, 1.0, 1e17).unwrap();
+    assert!(
+        (down.length() - 1.0).abs() < 1e-15 && down.z < 0.0,
+        "{down:?}"
+    );
+}

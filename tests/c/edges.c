@@ -10,9 +10,10 @@
  * mismatched interfaces; rays through the point an equiangular sampler aims
  * at; vacuum and DBL_MAX channels; Mie spheres at the ends of x and m.
  * Written with the faults it found: a matched Fresnel interface gave NaN at
- * grazing incidence and bent the refracted ray, and Mie gave NaN with SK_OK
- * at m = 1 and at tiny |m| (518 failed checks against the library before
- * those fixes). The sweep also found two that tests/c/matrix.c now checks
+ * grazing incidence and bent the refracted ray, refraction at an index
+ * ratio of 1e17 gave NaN with SK_OK, and Mie gave NaN with SK_OK at m = 1
+ * and at tiny |m| (598 failed checks against the library before those
+ * fixes). The sweep also found two that tests/c/matrix.c now checks
  * by value: an escape through a grid without majorants reported t_max,
  * and a march too long for any budget SK_ERR_DOMAIN. */
 #include <float.h>

@@ -92,7 +92,7 @@ static int answer_ok(int e, double t_min, double t_max, double t, double tr, dou
 }
 
 static void tracking_f64(void) {
-    static double dens[64], mx[8], mn[8], em[64], cm[8];
+    static double dens[64], mx[8], mn[8], em[64], cm[8], zero[8];
     sk_grid_f64 grid, emg;
     sk_majorants_f64 maj, cmaj;
     uint64_t st = 1;
@@ -110,12 +110,8 @@ static void tracking_f64(void) {
     for (k = 0; k < 8; k++) cm[k] = 0.75;
     CHECK(sk_grid_new_f64(dens, 4, 4, 4, 0.3, 0.7, &grid) == SK_OK && sk_grid_new_f64(em, 4, 4, 4, 0, 1, &emg) == SK_OK);
     CHECK(sk_majorants_new_from_grid_f64(&grid, 2, 2, 2, mx, mn, 8, &maj) == SK_OK);
-    CHECK(sk_majorants_new_f64(cm, NULL, 2, 2, 2, lo, hi, &cmaj) == SK_OK);
-    {
-        static double zero[8];
-        /* minorants 0 under the callback's majorants */
-        CHECK(sk_majorants_new_f64(cm, zero, 2, 2, 2, lo, hi, &cmaj) == SK_OK);
-    }
+    /* The callback's majorants, with minorants of 0 for residual ratio tracking. */
+    CHECK(sk_majorants_new_f64(cm, zero, 2, 2, 2, lo, hi, &cmaj) == SK_OK);
     for (m = 0; m < 6; m++)
         for (e = 0; e < ESTIMATORS; e++)
             for (o = 0; o < 10; o++)

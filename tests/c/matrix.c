@@ -740,7 +740,9 @@ static void surfaces(void) {
         CHECK(sk_surface_new(SK_SURFACE_LAMBERT, 1, SK_FRACTION_SCALAR, 0, f, SK_CROSSING_FOLD, &s) ==
               (f >= 0.0f && isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
         if (sk_surface_new(SK_SURFACE_PHONG, 10, SK_FRACTION_SCALAR, 0, 5e-8f, SK_CROSSING_FOLD, &s) != SK_OK) failed++;
-        CHECK(sk_surface_interact(&s, d, n, f, 1.5f, 600e-9f, &rng, &out, &ev) == (f > 0.0f && isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
+        /* n_i: finite and positive, at most 2^26 times n_t. */
+        CHECK(sk_surface_interact(&s, d, n, f, 1.5f, 600e-9f, &rng, &out, &ev) ==
+              (f > 0.0f && isfinite(f) && (double)f / 1.5 <= 67108864.0 ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_surface_interact(&s, d, n, 1.0f, 1.5f, f, &rng, &out, &ev) == (f > 0.0f && isfinite(f) ? SK_OK : SK_ERR_DOMAIN));
         CHECK(sk_surface_interact(&s, v, n, 1.0f, 1.5f, 600e-9f, &rng, &out, &ev) == (bad(f) ? SK_ERR_DOMAIN : SK_OK));
         sk_surface_new_f64(SK_SURFACE_LAMBERT, 1, SK_FRACTION_CONSTANT, 0.5, 0, SK_CROSSING_MIRROR, &sd);
@@ -965,7 +967,7 @@ static void media(void) {
     CHECK(sk_ratio_track(&a, &r) == SK_ERR_BUDGET || r.steps <= 1);
 }
 
-/* Grid boxes and sampling, majorant grids and tracking through them. */
+/* A callback medium of sigma_s = *ctx everywhere. */
 static sk_coefficients thin32(void *ctx, sk_vec3 p) {
     sk_coefficients c = {0, *(const float *)ctx};
     (void)p;
@@ -1061,6 +1063,7 @@ static void long_marches(void) {
     i = 0;
 }
 
+/* Grid boxes and sampling, majorant grids and tracking through them. */
 static void majorants(void) {
     int i;
     uint64_t st = 5;

@@ -167,8 +167,13 @@ impl<T: Real> RayleighPolarized<T> {
         let vn = if s.i > T::ZERO { s.v / s.i } else { T::ZERO };
         let q_r = cos2 * qb + sin2 * ub;
         let u_r = cos2 * ub - sin2 * qb;
+        // P11 + P12 q_r ≥ 0 (|P12| ≤ P11, |q_r| ≤ 1), but at its zero (ρ = 0,
+        // fully polarised light, 90° along the field) it rounded to
+        // −1.8·10⁻¹⁷: a negative density, and an I < 0 that eval returned
+        // and would then refuse as input. Held at 0 (NaN passes).
+        let i = m.p11 + m.p12 * q_r;
         let ps = [
-            m.p11 + m.p12 * q_r,
+            if i < T::ZERO { T::ZERO } else { i },
             m.p12 + m.p22 * q_r,
             m.p33 * u_r,
             m.p44 * vn,
@@ -343,6 +348,13 @@ impl<T: Real> RayleighPolarized<T> {
         let a_coef = self.k34 * (T::ONE - q_phi) + self.one_minus;
         let b_coef = self.k34 * (T::ONE + q_phi);
         let x = T::TWO * u1 - T::ONE;
+        if x == T::ZERO {
+            // The median of a density even in c is 0. The cubic's root
+            // would be 0/0 where A = 0 too (ρ = 0, light polarised in the
+            // scattering plane: q_φ = 1), a NaN direction with fully
+            // polarised light at u1 = ½.
+            return T::ZERO;
+        }
         let mu = if b_coef <= a_coef * T::from_f64(1e-8) {
             let inv3a = b_coef / (T::from_f64(3.0) * a_coef);
             let x0 = x * (T::ONE + inv3a);
@@ -507,6 +519,67 @@ mod tests {
                 assert!(r.abs() <= 2.0 * ulp, "e {e} m {m}: {r:e}");
             }
         }
+    }
+
+    /// Fully polarised light with ρ = 0 where the sampled azimuth lands on
+    /// the plane of polarisation (`q_φ = 1`, so `A = 0`, at the `u2` that
+    /// put it there for Q = ±I along the basis) and `u1 = ½`: a unit
+    /// direction at `cos Θ = 0` with a finite density. The cubic's root
+    /// was 0/0 there, a NaN direction and density with no error; in float
+    /// a generator's `u1 = ½` comes once in 2²⁴ draws.
+    fn median_on_the_plane<T: Real>() {
+        let r = RayleighPolarized::<T>::new(T::ZERO).unwrap();
+        let h = T::from_f64(core::f64::consts::FRAC_1_SQRT_2);
+        let ks = [
+            Vec3::new(T::ZERO, T::ZERO, T::ONE),
+            Vec3::new(T::ONE, T::ZERO, T::ZERO),
+            Vec3::new(h, h, T::ZERO),
+        ];
+        for k in ks {
+            let k = k * (T::ONE / k.length());
+            // The basis's own reference, and the meridian one (with it, U
+            // polarised light along (1, 1, 0) rounded the density to
+            // −1.8·10⁻¹⁷ at u = (½, ¼)).
+            let (b1, _) = onb(k);
+            let refs = [b1, crate::stokes::meridian_reference(k, T::from_f64(0.3))];
+            let pol = [(T::ONE, T::ZERO), (-T::ONE, T::ZERO), (T::ZERO, T::ONE)];
+            for (reference, (q, u)) in refs.into_iter().flat_map(|r| pol.map(|p| (r, p))) {
+                let s = Stokes::new(T::ONE, q, u, T::ZERO, reference).unwrap();
+                for u2 in [0.0, 0.25, 0.5, 0.75, 1.0] {
+                    let x = r.sample(k, &s, T::HALF, T::from_f64(u2));
+                    let len = x.dir.length().to_f64();
+                    assert!(
+                        (len - 1.0).abs() < 1e-6,
+                        "{k:?} q {q:?} u2 {u2}: {:?}",
+                        x.dir
+                    );
+                    assert!(
+                        x.dir.dot(k).abs() < T::from_f64(1e-6),
+                        "{k:?} q {q:?} u2 {u2}"
+                    );
+                    assert!(x.pdf.is_finite() && x.pdf >= T::ZERO, "{:?}", x.pdf);
+                    let st = x.stokes;
+                    assert!(
+                        [st.i, st.q, st.u, st.v].iter().all(|v| v.is_finite()),
+                        "{st:?}"
+                    );
+                    // At the null of the dipole pattern the density and the
+                    // intensity round to 0, never below (a negative I would
+                    // be refused as the next input).
+                    let pdf = r.pdf(k, &s, x.dir);
+                    assert!(pdf >= T::ZERO, "{k:?} q {q:?} u {u:?} u2 {u2}: {pdf:?}");
+                    let (reference, _) = onb(x.dir);
+                    let e = r.eval(k, &s, x.dir, reference);
+                    assert!(Stokes::new(e.i, e.q, e.u, e.v, reference).is_ok(), "{e:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_median_on_the_plane_of_polarisation_is_a_direction() {
+        median_on_the_plane::<f32>();
+        median_on_the_plane::<f64>();
     }
 
     #[test]

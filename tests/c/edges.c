@@ -8,12 +8,14 @@
  * +-DBL_MAX, subnormal, huge and axis-aligned directions, empty, infinite,
  * tiny and huge segments; grazing and normal incidence on matched and
  * mismatched interfaces; rays through the point an equiangular sampler aims
- * at; vacuum and DBL_MAX channels; Mie spheres at the ends of x and m.
+ * at; vacuum and DBL_MAX channels; dark, tiny, huge and fully polarised
+ * Stokes vectors; Mie spheres at the ends of x and m.
  * Written with the faults it found: a matched Fresnel interface gave NaN at
  * grazing incidence and bent the refracted ray, refraction at an index
- * ratio of 1e17 gave NaN with SK_OK, and Mie gave NaN with SK_OK at m = 1
- * and at tiny |m| (598 failed checks against the library before those
- * fixes). The sweep also found two that tests/c/matrix.c now checks
+ * ratio of 1e17 gave NaN with SK_OK, polarised Rayleigh a NaN direction
+ * for fully polarised light at u1 = 1/2 and a density of -1.8e-17 at the
+ * dipole's null, and Mie gave NaN with SK_OK at m = 1 and at tiny |m|
+ * (766 failed checks against the library before those fixes). The sweep also found two that tests/c/matrix.c now checks
  * by value: an escape through a grid without majorants reported t_max,
  * and a march too long for any budget SK_ERR_DOMAIN. */
 #include <float.h>
@@ -327,6 +329,58 @@ static void homogeneous(void) {
     i = 0;
 }
 
+/* ---- polarised Rayleigh ------------------------------------------------ */
+
+/* |(Q, U, V)| <= I (to rounding), scaled so that huge and tiny I do not
+   overflow or underflow the check itself. */
+static int physical(const sk_stokes_f64 *s) {
+    double q, u, v;
+    if (!(s->i >= 0.0) || !isfinite(s->i)) return 0;
+    if (s->i == 0.0) return s->q == 0.0 && s->u == 0.0 && s->v == 0.0;
+    q = s->q / s->i, u = s->u / s->i, v = s->v / s->i;
+    return q * q + u * u + v * v <= 1.0 + 1e-12;
+}
+
+static void polarization(void) {
+    const double rhos[4] = {0, 0.03, 0.5, 1 - 1e-9}, r2 = 0.70710678118654752;
+    const V ks[7] = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {r2, r2, 0}, {0.6, 0, 0.8}, {1e-9, 0, 1}, {0, 1e-17, -1}};
+    /* Unpolarised; fully polarised along Q (both signs), U and V; dark;
+       tiny; huge; partly. */
+    const double st[10][4] = {{1, 0, 0, 0}, {1, 1, 0, 0},       {1, -1, 0, 0},      {1, 0, 1, 0},     {1, 0, 0, 1},
+                              {0, 0, 0, 0}, {1e-300, 1e-300, 0, 0}, {1e300, 0, 1e300, 0}, {1, 0.6, 0.8, 0}, {1, 0.3, 0, 0.4}};
+    const double us[6] = {0, 1e-300, 0.25, 0.5, 1 - 1e-16, 1};
+    int a, b, c, p, q;
+    for (a = 0; a < 4; a++) {
+        sk_rayleigh_polarized_f64 r;
+        CHECK(sk_rayleigh_polarized_new_f64(rhos[a], &r) == SK_OK);
+        for (b = 0; b < 7; b++)
+            for (c = 0; c < 10; c++)
+                for (p = 0; p < 6; p++)
+                    for (q = 0; q < 6; q++) {
+                        const V k = along(ks[b], 1.0 / len3(ks[b]));
+                        sk_stokes_f64 s;
+                        sk_stokes_sample_f64 o, o2;
+                        s.i = st[c][0], s.q = st[c][1], s.u = st[c][2], s.v = st[c][3];
+                        s.reference = sk_meridian_reference_f64(k, 0.3);
+                        i = (((a * 7 + b) * 10 + c) * 6 + p) * 6 + q;
+                        CHECK(sk_rayleigh_polarized_sample_f64(&r, k, &s, us[p], us[q], &o) == SK_OK);
+                        CHECK(unit(o.dir) && isfinite(o.pdf) && o.pdf >= 0.0 && physical(&o.stokes));
+                        CHECK(fabs(len3(o.stokes.reference) - 1.0) < 1e-9 && fabs(dot(o.stokes.reference, o.dir)) < 1e-9);
+                        {
+                            /* The density of the sampled direction, as eval and pdf give it. */
+                            sk_stokes_f64 e;
+                            double pdf = sk_rayleigh_polarized_pdf_f64(&r, k, &s, o.dir);
+                            CHECK(sk_rayleigh_polarized_eval_f64(&r, k, &s, o.dir, sk_meridian_reference_f64(o.dir, 0.1), &e) ==
+                                  SK_OK);
+                            CHECK(physical(&e) && fabs(pdf - o.pdf) <= 1e-9 * o.pdf);
+                        }
+                        CHECK(sk_rayleigh_polarized_sample_scalar_f64(&r, k, &s, us[p], us[q], &o2) == SK_OK);
+                        CHECK(unit(o2.dir) && isfinite(o2.pdf) && o2.pdf >= 0.0 && physical(&o2.stokes));
+                    }
+    }
+    i = 0;
+}
+
 /* ---- Mie --------------------------------------------------------------- */
 
 static void mie(void) {
@@ -374,6 +428,7 @@ int main(void) {
     surfaces();
     equiangular();
     homogeneous();
+    polarization();
     mie();
     printf("edges: %d checks passed, %d failed\n", passed, failed);
     return failed != 0;

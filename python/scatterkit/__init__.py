@@ -412,7 +412,9 @@ class Mie:
 
     ``x`` is the size parameter ``pi d n_medium / wavelength`` in ``[1e-20, 1e5]``;
     ``m`` the complex refractive index relative to the medium, ``m = n + i k``
-    with ``0 < n <= 1000``, ``0 <= k <= 1000`` (absorbing: ``k > 0``).
+    with ``0 < n <= 1000``, ``0 <= k <= 1000`` (absorbing: ``k > 0``), ``|m| >= 1e-100``,
+    ``|m| x <= 2e6``, and ``m != 1``: a sphere of the medium's own index does not
+    scatter, so it has no phase function (``ValueError``).
 
     >>> s = Mie(10.0, 1.33)
     >>> 2.0 < s.q_ext < 2.2

@@ -159,6 +159,9 @@ class PhaseTest(unittest.TestCase):
             lambda: sk.Phase.henyey_greenstein(0.5).legendre(0),
             lambda: sk.Mie(-1.0, 1.33),
             lambda: sk.Mie(1.0, complex(1.33, -0.1)),
+            # The medium's own index scatters nothing (its phase function was NaN).
+            lambda: sk.Mie(1.0, 1.0),
+            lambda: sk.Mie(1.0, 1e-160),
             lambda: cv.convert_normalization([1.0], "sr", "per-degree"),
         ):
             with self.assertRaises(ValueError):

@@ -57,10 +57,7 @@ fn facing<T: Real>(d: Vec3<T>, n: Vec3<T>) -> Vec3<T> {
 /// on total internal reflection, for indices that are not finite and
 /// positive, or for `n_i/n_t` above [`MAX_INDEX_RATIO`].
 pub fn refract<T: Real>(d: Vec3<T>, n: Vec3<T>, n_i: T, n_t: T) -> Result<Vec3<T>, Error> {
-    if !refractive(n_i, n_t) {
-        return Err(Error::Domain);
-    }
-    let eta = n_i.to_f64() / n_t.to_f64();
+    let eta = index_ratio(n_i, n_t).ok_or(Error::Domain)?;
     snell(d.cast(), facing(d, n).cast(), eta)
         .map(Vec3::cast)
         .ok_or(Error::Domain)
@@ -113,11 +110,12 @@ fn positive<T: Real>(x: T) -> bool {
 /// from 2⁵³ NaN at normal incidence.
 pub const MAX_INDEX_RATIO: f64 = 67_108_864.0;
 
-/// Indices refraction accepts: finite and positive, `n_i/n_t` at most
-/// [`MAX_INDEX_RATIO`].
+/// `η = n_i/n_t` in f64 for indices refraction accepts (finite and
+/// positive, `η` at most [`MAX_INDEX_RATIO`]), else `None`.
 #[inline(always)]
-fn refractive<T: Real>(n_i: T, n_t: T) -> bool {
-    positive(n_i) && positive(n_t) && n_i.to_f64() / n_t.to_f64() <= MAX_INDEX_RATIO
+fn index_ratio<T: Real>(n_i: T, n_t: T) -> Option<f64> {
+    let eta = n_i.to_f64() / n_t.to_f64();
+    (positive(n_i) && positive(n_t) && eta <= MAX_INDEX_RATIO).then_some(eta)
 }
 
 /// Unpolarised Fresnel reflectance of a dielectric interface, `(R_s + R_p)/2`,
@@ -466,7 +464,10 @@ impl<T: Real> Surface<T> {
             return Err(Error::Domain);
         };
         let scalar = matches!(self.fraction, Fraction::Scalar(_));
-        if !refractive(n_i, n_t) || (scalar && !positive(wavelength)) {
+        let Some(eta) = index_ratio(n_i, n_t) else {
+            return Err(Error::Domain);
+        };
+        if scalar && !positive(wavelength) {
             return Err(Error::Domain);
         }
         let nf = facing(d, n);
@@ -479,7 +480,6 @@ impl<T: Real> Surface<T> {
         };
         let reflected = T::uniform(rng) < reflectance;
         // The specular direction and the normal on the side the ray leaves to.
-        let eta = n_i.to_f64() / n_t.to_f64();
         let refracted = if reflected {
             None
         } else {

@@ -1231,14 +1231,17 @@ SKP_FN float skp_walk_face_(const skp_walk *w, int a) {
    is a unit vector). 1: the walk is ready; 0: the segment misses the box
    (or touches it in one point); -1: bad input (origin or dir not finite,
    dir = 0, not lo < hi, a dimension 0 or >= 2^24, nx ny nz >= 2^32,
-   t_min < 0 or not finite, t_max < t_min). */
+   t_min < 0 or not finite, t_max < t_min), or a ray or box beyond float
+   range in cell units: hi - lo, (origin - lo) n/(hi - lo) or dir n/(hi - lo)
+   on some axis overflows (a box from -FLT_MAX to FLT_MAX, an origin near
+   FLT_MAX from a small box, a direction of length near FLT_MAX). */
 SKP_FN int skp_walk_begin(skp_walk *w, skp_vec3 origin, skp_vec3 dir, skp_vec3 lo, skp_vec3 hi,
                           skp_u32 nx, skp_u32 ny, skp_u32 nz, float t_min, float t_max) {
     SKP_BEGIN
     float org[3], dv[3], lov[3], hiv[3];
     float span, scale, o, d, t0, t1, p, inf = skp_from_bits(0x7f800000u);
     skp_u32 c;
-    int a;
+    int a, miss = 0;
     if (!(t_min >= 0.0f && t_min < inf && t_max >= t_min)) {
         return -1;
     }
@@ -1270,9 +1273,9 @@ SKP_FN int skp_walk_begin(skp_walk *w, skp_vec3 origin, skp_vec3 dir, skp_vec3 l
         w->next[a] = inf;
         w->cell[a] = 0u;
         if (d == 0.0f) {
-            if (o < 0.0f || o > (float)n) {
-                return 0;
-            }
+            /* a miss, reported once every axis is checked (a ray beyond
+               float range on a later axis is refused whichever it misses on) */
+            miss |= o < 0.0f || o > (float)n;
             continue;
         }
         t0 = (0.0f - o) / d;
@@ -1285,7 +1288,7 @@ SKP_FN int skp_walk_begin(skp_walk *w, skp_vec3 origin, skp_vec3 dir, skp_vec3 l
             if (t0 < w->t_end) w->t_end = t0;
         }
     }
-    if (!(w->t < w->t_end)) {
+    if (miss || !(w->t < w->t_end)) {
         return 0;
     }
     for (a = 0; a < 3; ++a) {

@@ -67,8 +67,13 @@ impl Walk {
     /// `origin` and `dir` are finite, `dir ≠ 0`, `lo < hi` (finite),
     /// every dimension is `≥ 1` and `< 2²⁴` with `nx·ny·nz < 2³²`,
     /// `0 ≤ t_min` (finite) and
-    /// `t_min ≤ t_max` (+∞ allowed). The header's `skp_walk_begin`
-    /// (return values 1, 0 and −1).
+    /// `t_min ≤ t_max` (+∞ allowed), and unless the ray and box are within
+    /// float range in cell units: `Err(())` too where `hi − lo`,
+    /// `(origin − lo)·n/(hi − lo)` or `dir·n/(hi − lo)` overflows on some
+    /// axis (a box from `−f32::MAX` to `f32::MAX`, an origin near
+    /// `f32::MAX` from a small box, a direction of length near
+    /// `f32::MAX`). The header's `skp_walk_begin` (return values 1, 0 and
+    /// −1).
     #[allow(clippy::result_unit_err)]
     pub fn new(
         origin: [f32; 3],
@@ -96,6 +101,7 @@ impl Walk {
             cell: [0; 3],
             dims,
         };
+        let mut miss = false;
         for a in 0..3 {
             let n = dims[a];
             let span = hi[a] - lo[a];
@@ -109,11 +115,11 @@ impl Walk {
                 return Err(());
             }
             (w.o[a], w.d[a]) = (o, d);
-            // The slab [0, n] along this axis.
+            // The slab [0, n] along this axis. A miss here is reported
+            // after every axis is checked, so that a ray beyond float
+            // range on a later axis is refused whichever axis it misses on.
             if d == 0.0 {
-                if o < 0.0 || o > n as f32 {
-                    return Ok(None);
-                }
+                miss |= o < 0.0 || o > n as f32;
                 continue;
             }
             let (t0, t1) = ((0.0 - o) / d, (n as f32 - o) / d);
@@ -127,7 +133,7 @@ impl Walk {
         }
         // Neither is NaN: t_min and t_max are numbers, the slab times
         // quotients of finite numbers by non-zero ones.
-        if w.t >= w.t_end {
+        if miss || w.t >= w.t_end {
             return Ok(None);
         }
         #[allow(clippy::needless_range_loop)] // w.face(a) borrows w whole

@@ -9,13 +9,19 @@
  * tiny and huge segments; grazing and normal incidence on matched and
  * mismatched interfaces; rays through the point an equiangular sampler aims
  * at; vacuum and DBL_MAX channels; dark, tiny, huge and fully polarised
- * Stokes vectors; Mie spheres at the ends of x and m.
+ * Stokes vectors; Mie spheres at the ends of x and m; the portable header's
+ * majorant walk (skp_walk_begin and skp_walk_step) through seven boxes, from
+ * a unit cube to one spanning -FLT_MAX to FLT_MAX, each collision in its
+ * cell with its cell's majorant.
  * Written with the faults it found: a matched Fresnel interface gave NaN at
  * grazing incidence and bent the refracted ray, refraction at an index
  * ratio of 1e17 gave NaN with SK_OK, polarised Rayleigh a NaN direction
  * for fully polarised light at u1 = 1/2 and a density of -1.8e-17 at the
  * dipole's null, and Mie gave NaN with SK_OK at m = 1 and at tiny |m|
- * (820 failed checks against the library before those fixes). The sweep also found two that tests/c/matrix.c now checks
+ * (820 failed checks against the library before those fixes), and the walk
+ * returned 0 (a miss) for a ray beyond float range in cell units when an
+ * earlier axis missed, -1 when none did (6412 failed checks). The sweep
+ * also found two that tests/c/matrix.c now checks
  * by value: an escape through a grid without majorants reported t_max,
  * and a march too long for any budget SK_ERR_DOMAIN. */
 #include <float.h>
@@ -26,6 +32,7 @@
 #include <string.h>
 
 #include "scatterkit.h"
+#include "scatterkit_portable.h"
 
 static int i;
 #define CHECK_CASE i
@@ -425,6 +432,152 @@ static void polarization_f32(void) {
     i = 0;
 }
 
+/* ---- the portable tier's majorant walk ---------------------------------- */
+
+/* A box of n cells over [lo, hi], the walk's grid. */
+typedef struct {
+    float lo[3], hi[3];
+    unsigned n[3];
+} walk_box;
+
+static float walk_maj[1000];
+
+/* The cell coordinate of axis a beyond float range: the walk's -1 for a
+   finite ray and box (computed in double, so beyond is > FLT_MAX). */
+static int beyond(const walk_box *b, const float o[3], const float d[3]) {
+    int a, out = 0;
+    for (a = 0; a < 3; a++) {
+        double span = (double)b->hi[a] - b->lo[a], scale = b->n[a] / span;
+        out |= span > FLT_MAX || fabs(((double)o[a] - b->lo[a]) * scale) > FLT_MAX ||
+               fabs((double)d[a] * scale) > FLT_MAX;
+    }
+    return out;
+}
+
+/* Within float range by a factor of 2 (no rounding can take it over). */
+static int well_within(const walk_box *b, const float o[3], const float d[3]) {
+    int a, in = 1;
+    for (a = 0; a < 3; a++) {
+        double span = (double)b->hi[a] - b->lo[a], scale = b->n[a] / span;
+        in &= span < FLT_MAX / 2 && fabs(((double)o[a] - b->lo[a]) * scale) < FLT_MAX / 2 &&
+              fabs((double)d[a] * scale) < FLT_MAX / 2;
+    }
+    return in;
+}
+
+/* Each collision of a walk lies in its cell (within the rounding of the
+   ray's position in float), with that cell's majorant, in order along the
+   segment; the walk ends at t_end with majorant 0. */
+static void walk_steps(const walk_box *b, const skp_walk *start, const float o[3], const float d[3]) {
+    static const float us[6] = {0.1f, 0.5f, 0.9f, 0.999f, 0.99999994f, 1.0f};
+    int k, a, steps, r = 1;
+    for (k = 0; k < 6; k++) {
+        skp_walk w = *start;
+        float prev = w.t, t = 0.0f, maj = 0.0f;
+        for (steps = 0; steps < 40 && (r = skp_walk_step(&w, walk_maj, us[k], &t, &maj)) == 1; steps++) {
+            unsigned c = skp_walk_cell(&w), in = 1;
+            CHECK(c < b->n[0] * b->n[1] * b->n[2] && maj == walk_maj[c]);
+            CHECK(t >= prev && t <= start->t_end);
+            for (a = 0; a < 3; a++) {
+                unsigned ca = a == 0 ? c % b->n[0] : (a == 1 ? c / b->n[0] % b->n[1] : c / (b->n[0] * b->n[1]));
+                double h = ((double)b->hi[a] - b->lo[a]) / b->n[a], lo = b->lo[a] + ca * h;
+                double p = (double)o[a] + (double)t * d[a];
+                double tol = 1e-4 * h + 1e-6 * (fabs(p) + fabs((double)b->lo[a]) + fabs((double)b->hi[a]));
+                in &= p >= lo - tol && p <= lo + h + tol;
+            }
+            CHECK(in);
+            prev = t;
+        }
+        if (r == 1) continue; /* 40 collisions on a long ray, each checked */
+        CHECK(r == 0 && t == start->t_end && maj == 0.0f);
+    }
+}
+
+/* One ray: the walk's status against the documented conditions, the
+   segment it walks against the clip in double, then its collisions. */
+static void walk_ray(const walk_box *b, const float o[3], const float d[3], float t_min, float t_max) {
+    skp_vec3 org, dir, lo, hi;
+    skp_walk w;
+    double t0 = t_min, t1 = t_max;
+    int a, r, miss = 0;
+    int bad = !(t_min >= 0.0f && t_min <= FLT_MAX && t_max >= t_min) || (d[0] == 0.0f && d[1] == 0.0f && d[2] == 0.0f);
+    org.x = o[0], org.y = o[1], org.z = o[2];
+    dir.x = d[0], dir.y = d[1], dir.z = d[2];
+    lo.x = b->lo[0], lo.y = b->lo[1], lo.z = b->lo[2];
+    hi.x = b->hi[0], hi.y = b->hi[1], hi.z = b->hi[2];
+    r = skp_walk_begin(&w, org, dir, lo, hi, b->n[0], b->n[1], b->n[2], t_min, t_max);
+    if (bad || beyond(b, o, d)) {
+        CHECK(r == -1);
+        return;
+    }
+    CHECK(r == 0 || r == 1 || (r == -1 && !well_within(b, o, d)));
+    for (a = 0; a < 3; a++) {
+        double ta, tb;
+        if (d[a] == 0.0f) {
+            miss |= o[a] < b->lo[a] || o[a] > b->hi[a];
+            continue;
+        }
+        ta = ((double)b->lo[a] - o[a]) / d[a], tb = ((double)b->hi[a] - o[a]) / d[a];
+        if (ta > tb) {
+            double x = ta;
+            ta = tb, tb = x;
+        }
+        t0 = ta > t0 ? ta : t0, t1 = tb < t1 ? tb : t1;
+    }
+    miss |= !(t0 < t1);
+    if (r == 0) {
+        /* a miss, or a segment the float clip rounds to a point */
+        CHECK(miss || t1 - t0 <= 1e-5 * (fabs(t0) + fabs(t1)));
+    } else if (r == 1) {
+        CHECK(w.t >= t_min && w.t_end <= t_max && w.t < w.t_end && w.t < FLT_MAX);
+        walk_steps(b, &w, o, d);
+    }
+}
+
+static void portable_walk(void) {
+    static const walk_box boxes[7] = {
+        {{0, 0, 0}, {1, 1, 1}, {1, 1, 1}},
+        {{-1, -0.5f, 0}, {1.5f, 0.5f, 2}, {5, 3, 4}},
+        {{0, 0, 0}, {1, 1, 1}, {1, 1, 64}},
+        {{-1e30f, -1e30f, -1e30f}, {1e30f, 1e30f, 1e30f}, {4, 4, 4}},
+        {{1e6f, 1e6f, 1e6f}, {1e6f + 1, 1e6f + 1, 1e6f + 1}, {3, 3, 3}},
+        {{0, 0, 0}, {1e-30f, 1e-30f, 1e-30f}, {2, 2, 2}},
+        {{-FLT_MAX, -1, -1}, {FLT_MAX, 1, 1}, {2, 1, 1}},
+    };
+    static const float vals[12] = {0, -0.0f, 1, -1, 0.5f, 1.4e-45f, FLT_MAX, -FLT_MAX, 1e30f, -1e30f, 1e6f, 1.5f};
+    static const float dirs[11][3] = {{0, 0, 1},          {0, 0, -1},         {1, 0, 0},
+                                      {0.6f, 0, -0.8f},   {0.57735f, 0.57735f, 0.57735f},
+                                      {-0.6f, 0.8f, 0},   {1.4e-45f, 0, 1},   {1e-40f, -1e-40f, -1},
+                                      {1e30f, 1e30f, 0},  {1e-30f, 0, 1e-30f}, {FLT_MAX, 0, 0}};
+    static const float segs[8][2] = {{0, 0}, {0, 1}, {0.5f, 4}, {0, FLT_MAX}, {1.4e-45f, 1e-44f}, {3, 3}, {0, 1e-30f}, {-1, 1}};
+    int bi, x, y, z, k, s;
+    for (k = 0; k < 1000; k++) walk_maj[k] = (float)(k * 7 % 5) * 0.75f + 0.5f;
+    for (bi = 0; bi < 7; bi++) {
+        const walk_box *b = &boxes[bi];
+        for (x = 0; x < 12 + 27; x++)
+            for (y = 0; y < 12; y += 5)
+                for (z = 0; z < 12; z += 3) {
+                    float o[3];
+                    i = ((bi * 39 + x) * 12 + y) * 12 + z;
+                    if (x < 12) {
+                        o[0] = vals[x], o[1] = vals[y], o[2] = vals[z];
+                    } else { /* the box's faces, edges, corners and centre */
+                        int f = x - 12;
+                        o[0] = f % 3 == 0 ? b->lo[0] : (f % 3 == 1 ? b->hi[0] : 0.5f * b->lo[0] + 0.5f * b->hi[0]);
+                        o[1] = f / 3 % 3 == 0 ? b->lo[1] : (f / 3 % 3 == 1 ? b->hi[1] : 0.5f * b->lo[1] + 0.5f * b->hi[1]);
+                        o[2] = f / 9 == 0 ? b->lo[2] : (f / 9 == 1 ? b->hi[2] : 0.5f * b->lo[2] + 0.5f * b->hi[2]);
+                        if (y > 0 || z > 0) continue;
+                    }
+                    for (k = 0; k < 11; k++)
+                        for (s = 0; s < 8; s++) {
+                            walk_ray(b, o, dirs[k], segs[s][0], segs[s][1]);
+                            walk_ray(b, o, dirs[k], segs[s][0], segs[s][1] == 0 ? (float)INFINITY : segs[s][1] * 1e3f);
+                        }
+                }
+    }
+    i = 0;
+}
+
 /* ---- Mie --------------------------------------------------------------- */
 
 static void mie(void) {
@@ -475,6 +628,7 @@ int main(void) {
     polarization();
     polarization_f32();
     mie();
+    portable_walk();
     printf("edges: %d checks passed, %d failed\n", passed, failed);
     return failed != 0;
 }

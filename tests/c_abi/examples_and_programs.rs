@@ -131,8 +131,9 @@ fn bad_input_from_c() {
 
 /// The edge sweep (`tests/c/edges.c`): valid calls at the edges of every
 /// documented domain (tracking in float and double, surfaces, equiangular
-/// and homogeneous spectral sampling, Mie), each answer inside its range
-/// or a documented status, never NaN with SK_OK.
+/// and homogeneous spectral sampling, polarised Rayleigh, Mie, and the
+/// portable header's majorant walk), each answer inside its range or a
+/// documented status, never NaN with SK_OK.
 #[test]
 fn edge_sweep_from_c() {
     if !crate::common::repository("edge_sweep_from_c") {

@@ -574,6 +574,16 @@ fn a_walk_spends_the_drawn_optical_depth() {
     ));
     assert!(bad([0.0; 3], [1.0, 0.0, 0.0], dims, -1.0, 1.0));
     assert!(bad([0.0; 3], [1.0, 0.0, 0.0], dims, 2.0, 1.0));
+    // Beyond float range in cell units, whichever axis the ray misses on
+    // (x here: the direction has no x and the origin is outside).
+    assert!(bad([9.0, 1.0, f32::MAX], [0.0, 0.0, 1.0], dims, 0.0, 1.0));
+    assert!(bad([9.0, 1.0, 0.0], [0.0, 0.0, f32::MAX], dims, 0.0, 1.0));
+    assert_eq!(
+        p::Walk::new([9.0, 1.0, 0.0], [0.0, 0.0, 1.0], lo, hi, dims, 0.0, 1.0),
+        Ok(None)
+    );
+    let huge = ([-f32::MAX, 0.5, -2.0], [f32::MAX, 2.0, 1.0]);
+    assert!(p::Walk::new([0.0; 3], [1.0, 0.0, 0.0], huge.0, huge.1, dims, 0.0, 1.0).is_err());
     let mut w = p::Walk::new([0.0, 1.0, 0.0], [1.0, 0.0, 0.0], lo, hi, dims, 0.0, 9.0)
         .unwrap()
         .unwrap();

@@ -485,9 +485,36 @@ class ConventionsTest(unittest.TestCase):
         np.testing.assert_allclose(cv.mu_from_angle(0.0, backward=True), -1.0)
         np.testing.assert_allclose(cv.angle_from_mu(cv.mu_from_angle(1.2)), 1.2)
 
+    def test_tabphase_is_checked_for_what_mitsuba_renders(self):
+        # Mitsuba interpolates the values linearly over evenly spaced cosines
+        # and divides by the interpolant's integral: the table must
+        # integrate to 1 and keep the mean cosine, within the tolerance
+        # (1e-3), measured here on an interpolant 8x finer than the table.
+        for phase in (sk.Phase.henyey_greenstein(0.95), sk.Phase.fog_diameter(5.0), sk.Phase.rayleigh()):
+            values = np.array([float(v) for v in cv.to_mitsuba_tabphase(phase).split(",")])
+            mu = np.linspace(-1.0, 1.0, values.size)
+            fine = np.linspace(-1.0, 1.0, 8 * (values.size - 1) + 1)
+            p = np.interp(fine, mu, values)
+            def integral(f):  # the trapezoid rule (numpy 1.21 has no np.trapezoid)
+                return float(np.sum((f[1:] + f[:-1]) * np.diff(fine)) / 2.0)
+
+            norm = 2.0 * np.pi * integral(p)
+            g = integral(fine * p) / integral(p)
+            self.assertLessEqual(abs(norm - 1.0), 1e-3, repr(phase))
+            self.assertLessEqual(abs(g - phase.mean_cosine), 1.01e-3, repr(phase))
+            self.assertLessEqual(values.size, 262145)
+        # A table too coarse, or no table at all: a ValueError that says so.
+        with self.assertRaisesRegex(ValueError, "misrepresent"):
+            cv.to_mitsuba_tabphase(sk.Phase.henyey_greenstein(0.9), 1025)
+        for phase in (sk.Phase.henyey_greenstein(0.995), sk.Phase.henyey_greenstein(1.0), sk.Phase.fog_diameter(20.0)):
+            with self.assertRaisesRegex(ValueError, "scatterkit.mitsuba"):
+                cv.to_mitsuba_tabphase(phase)
+        with self.assertRaises(ValueError):
+            cv.to_mitsuba_tabphase(sk.Phase.isotropic(), tolerance=0.0)
+
     def test_exporters(self):
         hg = sk.Phase.henyey_greenstein(0.8)
-        values = [float(v) for v in cv.to_mitsuba_tabphase(hg, 5).split(",")]
+        values = [float(v) for v in cv.to_mitsuba_tabphase(hg, 5, tolerance=math.inf).split(",")]
         np.testing.assert_allclose(values, hg.pdf(np.linspace(-1, 1, 5)), rtol=1e-8)
         inv = cv.to_mcx_invcdf(hg, 100)
         self.assertEqual(len(inv), 100)

@@ -128,20 +128,38 @@ def _tabphase_table(phase, n: int):
     return mu, values
 
 
-def _tabphase_errors(phase, mu, values):
-    """What Mitsuba's ``tabphase`` renders of ``values``, against ``phase``:
-    its linear interpolant's integral over the sphere less 1 (Mitsuba divides
-    by it), and the mean cosine of the normalised interpolant less the
-    phase's. Both integrals are exact for the interpolant."""
+# Gauss-Legendre's three nodes and weights on [0, 1]: exact for polynomials
+# of degree 5.
+_GAUSS3 = (
+    np.array([0.5 - 0.5 * np.sqrt(0.6), 0.5, 0.5 + 0.5 * np.sqrt(0.6)]),
+    np.array([5.0, 8.0, 5.0]) / 18.0,
+)
+
+
+def _interpolant_errors(phase, x, values, mu_of, dmu_dx):
+    """What a renderer evaluates from ``values`` linear in ``x`` between
+    nodes, where ``mu = mu_of(x)``: the interpolant's integral over the sphere
+    less 1 (``tabphase`` divides by it; ``scatterkit_native`` does not, and a
+    render gains or loses that much per scattering), and the mean cosine of
+    the normalised interpolant less the phase function's. Both integrals are
+    exact where ``mu_of`` is a polynomial of degree 2 or less (degree 4 with
+    the interpolant and ``|dmu/dx|``)."""
     if not np.all(np.isfinite(values)):
         return np.inf, np.inf
-    h = np.diff(mu)
-    a, b, pa, pb = mu[:-1], mu[1:], values[:-1], values[1:]
-    m0 = float(np.sum(h * (pa + pb)) / 2.0)
-    m1 = float(np.sum(h * (a * (2.0 * pa + pb) + b * (pa + 2.0 * pb))) / 6.0)
+    t, w = _GAUSS3
+    h = np.diff(x)[:, None]
+    xs = x[:-1, None] + h * t
+    p = values[:-1, None] + (values[1:] - values[:-1])[:, None] * t
+    weight = w * h * np.abs(dmu_dx(xs)) * p
+    m0, m1 = float(np.sum(weight)), float(np.sum(weight * mu_of(xs)))
     if not m0 > 0.0:
         return np.inf, np.inf
     return abs(2.0 * np.pi * m0 - 1.0), abs(m1 / m0 - float(phase.mean_cosine))
+
+
+def _tabphase_errors(phase, mu, values):
+    """:func:`_interpolant_errors` of ``tabphase``'s table, linear in ``mu``."""
+    return _interpolant_errors(phase, mu, values, lambda x: x, np.ones_like)
 
 
 def to_mitsuba_tabphase(phase, n=None, *, tolerance: float = 1e-3) -> str:

@@ -72,15 +72,33 @@ impl<'d, T: Real> Measured<'d, T> {
         mut emit: impl FnMut(usize, f64, f64),
     ) {
         let m = self.x.len();
+        // The last segment with mass: F⁻¹(1) is where the support ends,
+        // its right end. Summed in the caller's order, the masses can
+        // total a rounding below 1, and u = 1 then walked on through the
+        // zero-density segments beyond the support (to the last one's
+        // start: a table that sampled where the data says 0); or a
+        // rounding above 1, and u = 1 stopped short of the end.
+        let end = (0..m - 1)
+            .rev()
+            .find(|&k| {
+                let ((x0, q0), (x1, q1)) = (self.point(k), self.point(k + 1));
+                (x1 - x0) * (q0 + q1) > 0.0
+            })
+            .unwrap_or(m - 2);
         let (mut k, mut cdf0) = (0usize, 0.0f64);
         for i in 0..count {
             let u = target(i);
+            if u >= 1.0 {
+                let (x1, q1) = self.point(end + 1);
+                emit(i, x1, q1);
+                continue;
+            }
             // Advance to the segment [k, k+1] holding u.
             loop {
                 let ((x0, q0), (x1, q1)) = (self.point(k), self.point(k + 1));
                 let mass = 0.5 * (x1 - x0) * (q0 + q1);
                 // Zero-mass segments are skipped: F⁻¹(0) is where the support starts.
-                if (mass > 0.0 && cdf0 + mass >= u) || k + 2 >= m {
+                if (mass > 0.0 && cdf0 + mass >= u) || k >= end {
                     let r = (u - cdf0).max(0.0);
                     let tau = segment_root(x1 - x0, q0, q1, r);
                     // max/min rather than clamp, which asserts its bounds are ordered.

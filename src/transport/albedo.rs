@@ -25,7 +25,11 @@
 //! the inverse solves the interpolant by bisection. The reported error
 //! includes the interpolation's (see [`AlbedoCurve::std_error`]). Paths are cut after [`MAX_EVENTS`] scatterings, where the
 //! largest `ω` below 1 weighs them by `e^{−16}`; for the semi-infinite
-//! layer the value at `ω = 1` is 1 (every path returns), not estimated.
+//! layer the value at `ω = 1` is 1 (every path returns), not estimated,
+//! and for a slab a cut path adds to the value at `ω = 1` the share of
+//! its light diffusion sends back through the lit face from its depth
+//! (a path cut there is not absorbed; dropped, it put a deep slab's albedo
+//! at `ω = 1` 1.2 % low).
 
 use crate::error::Error;
 use crate::math::real::Real;
@@ -133,13 +137,29 @@ impl AlbedoCurve {
             *l = libm::log1p(-s * s);
         }
         let (mut sum, mut sum2) = ([0.0; NODES], [0.0; NODES]);
+        let g = phase.mean_cosine();
         for _ in 0..paths {
-            if let Some(n) = walk(phase, layer, light, rng) {
-                for k in 0..NODES {
-                    let w = libm::exp(n as f64 * ln_omega[k]);
-                    sum[k] += w;
-                    sum2[k] += w * w;
+            match walk(phase, layer, light, rng) {
+                End::Reflected(n) => {
+                    for k in 0..NODES {
+                        let w = libm::exp(n as f64 * ln_omega[k]);
+                        sum[k] += w;
+                        sum2[k] += w * w;
+                    }
                 }
+                // At ω = 1 a cut path is not absorbed: it leaves through
+                // one face or the other. Dropped, it biased a deep slab's
+                // albedo at ω = 1 low by the share of paths cut (1.25 %
+                // at τ = 10⁴, HG 0.85, diffuse light: 22σ below
+                // adding-doubling). Below ω = 1 it weighs at most e^{−16}.
+                End::Cut(z) => {
+                    if let Layer::Slab(tau) = layer {
+                        let w = lit_face_share(z, tau, g);
+                        sum[0] += w;
+                        sum2[0] += w * w;
+                    }
+                }
+                End::Lost => {}
             }
         }
         let m = paths as f64;
@@ -360,7 +380,7 @@ fn walk<P: PhaseFunction<f64> + ?Sized, R: Rng + ?Sized>(
     layer: Layer,
     light: Illumination,
     rng: &mut R,
-) -> Option<u32> {
+) -> End {
     let mut mu = match light {
         // Incident cosines with density 2μ: μ = √u.
         Illumination::Diffuse => libm::sqrt(f64::uniform(rng)),
@@ -370,11 +390,11 @@ fn walk<P: PhaseFunction<f64> + ?Sized, R: Rng + ?Sized>(
     for n in 0..=MAX_EVENTS {
         z += mu * -libm::log1p(-f64::uniform(rng));
         if z < 0.0 {
-            return Some(n);
+            return End::Reflected(n);
         }
         if let Layer::Slab(tau) = layer {
             if z > tau {
-                return None;
+                return End::Lost;
             }
         }
         // Scatter: the new direction cosine from cos θ and the azimuth.
@@ -386,7 +406,34 @@ fn walk<P: PhaseFunction<f64> + ?Sized, R: Rng + ?Sized>(
         );
         mu = (mu * c + sm * s * libm::cos(phi)).clamp(-1.0, 1.0);
     }
-    None
+    End::Cut(z)
+}
+
+/// How a path ended.
+enum End {
+    /// Back out through the lit face after this many scatterings.
+    Reflected(u32),
+    /// Out through the bottom of a slab.
+    Lost,
+    /// Cut after [`MAX_EVENTS`] scatterings, at this optical depth.
+    Cut(f64),
+}
+
+/// The share of the light at optical depth `z` of a conservative slab of
+/// thickness `τ` that leaves through the lit face, by diffusion: a path
+/// cut after [`MAX_EVENTS`] scatterings has long forgotten its direction
+/// (2¹⁶ (1 − g) transport events). With the extrapolated boundary
+/// `z_e = 0.7104 / (1 − g)` beyond each face (Milne's extrapolation length
+/// in transport mean free paths), the diffusion solution between them is
+/// linear: `(τ + z_e − z) / (τ + 2 z_e)`. 0 for `g = 1` (a path that never
+/// turns does not come back).
+fn lit_face_share(z: f64, tau: f64, g: f64) -> f64 {
+    // g ≥ 1 or NaN: no diffusion to speak of.
+    if g.is_nan() || g >= 1.0 {
+        return 0.0;
+    }
+    let ze = 0.7104 / (1.0 - g);
+    ((tau + ze - z) / (tau + 2.0 * ze)).clamp(0.0, 1.0)
 }
 
 /// Fritsch–Carlson slopes (per node step) for values `y` that fall with

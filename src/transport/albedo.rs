@@ -371,10 +371,11 @@ fn interval(s: f64) -> (usize, f64) {
     (i, x - i as f64)
 }
 
-/// One path with `ω = 1`: `Some(N)` if it leaves through the lit face
-/// after `N` scatterings, `None` if it leaves through a slab's bottom or
-/// exceeds [`MAX_EVENTS`]. Only the depth `z` (optical) and the direction
-/// cosine `μ` to the inward normal matter in a plane-parallel layer.
+/// One path with `ω = 1`: how it ended ([`End`]: through the lit face
+/// after `N` scatterings, through a slab's bottom, or cut after
+/// [`MAX_EVENTS`] at a depth). Only the depth `z` (optical) and the
+/// direction cosine `μ` to the inward normal matter in a plane-parallel
+/// layer.
 fn walk<P: PhaseFunction<f64> + ?Sized, R: Rng + ?Sized>(
     phase: &P,
     layer: Layer,

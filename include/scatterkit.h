@@ -65,6 +65,12 @@
 #define SK_ALBEDO_NODES 65
 
 /*
+ Fine nodes of an sk_albedo_curve_f64 between the first two:
+ omega_j = 1 - 4^-(j+1)/4096, j = 0..9.
+ */
+#define SK_ALBEDO_FINE 10
+
+/*
  Bit of `event_out`: the ray was transmitted (else reflected).
  */
 #define SK_EVENT_TRANSMITTED 1
@@ -1556,8 +1562,13 @@ typedef struct {
  The multiple-scattering albedo of a layer as a function of the
  single-scattering albedo omega, from sk_albedo_curve_new_f64: at
  omega_k = 1 - (k/64)^2, k = 0..64, the albedo `rho[k]` and its standard
- error `se[k]` (the functions below interpolate between them). A plain
- value: copy it, store it, read the nodes.
+ error `se[k]`, and between the first two nodes (where a slab thick
+ against its diffusion length bends) at omega_j = 1 - 4^-(j+1)/4096,
+ j = 0..9, `fine_rho[j]` and `fine_se[j]`; the functions below
+ interpolate between them. A plain value: copy it, store it, read the
+ nodes. A curve whose fine arrays are all zero (stored from the coarse
+ nodes alone) is interpolated between the first two nodes by the cubic
+ through the first four, which misses that bend.
  */
 typedef struct {
     /*
@@ -1572,6 +1583,14 @@ typedef struct {
      Paths traced.
      */
     uint64_t paths;
+    /*
+     The albedo at the fine node omega_j.
+     */
+    double fine_rho[SK_ALBEDO_FINE];
+    /*
+     Its standard error.
+     */
+    double fine_se[SK_ALBEDO_FINE];
 } sk_albedo_curve_f64;
 
 /*

@@ -536,7 +536,8 @@ def size_parameter(diameter: ArrayLike, wavelength: float, n_medium: float = 1.0
 class AlbedoCurve:
     """The albedo of a layer (the fraction of light it reflects) against the
     single-scattering albedo ``omega`` of its medium, traced once by Monte Carlo
-    at 65 nodes ``omega_k = 1 - (k/64)^2`` and interpolated monotonically.
+    at 65 nodes ``omega_k = 1 - (k/64)^2`` (and 10 more between the first two,
+    where a thick slab bends) and interpolated monotonically.
 
     ``phase``: a :class:`Phase`; ``thickness``: the optical thickness of a slab,
     or ``None`` for a semi-infinite layer; ``mu0``: the cosine of a beam's angle

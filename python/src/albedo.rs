@@ -40,25 +40,41 @@ impl PyAlbedo {
         Ok(PyAlbedo { curve })
     }
     /// What pickling keeps: the albedo and its standard error at each
-    /// node, and the paths traced.
-    fn _state(&self) -> (Vec<f64>, Vec<f64>, u64) {
+    /// node, the paths traced, and the albedo and its error at each fine
+    /// node.
+    #[allow(clippy::type_complexity)]
+    fn _state(&self) -> (Vec<f64>, Vec<f64>, u64, Vec<f64>, Vec<f64>) {
         let (rho, se) = self.curve.nodes();
-        (rho.to_vec(), se.to_vec(), self.curve.paths())
+        let (fine, fine_se) = self.curve.fine_nodes().unwrap_or_default();
+        (
+            rho.to_vec(),
+            se.to_vec(),
+            self.curve.paths(),
+            fine.to_vec(),
+            fine_se.to_vec(),
+        )
     }
     /// The curve of a [`_state`](Self::_state); `ValueError` for one that
-    /// is not a curve's (node count, values outside `[0, 1]` or not
+    /// is not a curve's (node counts, values outside `[0, 1]` or not
     /// finite).
     #[staticmethod]
-    fn _from_state(state: (Vec<f64>, Vec<f64>, u64)) -> PyResult<Self> {
-        let (rho, se, paths) = state;
+    #[allow(clippy::type_complexity)]
+    fn _from_state(state: (Vec<f64>, Vec<f64>, u64, Vec<f64>, Vec<f64>)) -> PyResult<Self> {
+        let (rho, se, paths, fine, fine_se) = state;
         let ok = |v: &[f64]| v.iter().all(|x| x.is_finite() && (0.0..=1.0).contains(x));
         match (
             <[f64; _]>::try_from(rho.as_slice()),
             <[f64; _]>::try_from(se.as_slice()),
+            <[f64; _]>::try_from(fine.as_slice()),
+            <[f64; _]>::try_from(fine_se.as_slice()),
         ) {
-            (Ok(rho), Ok(se)) if ok(&rho) && ok(&se) => Ok(PyAlbedo {
-                curve: AlbedoCurve::from_nodes(rho, se, paths),
-            }),
+            (Ok(rho), Ok(se), Ok(fine), Ok(fine_se))
+                if ok(&rho) && ok(&se) && ok(&fine) && ok(&fine_se) =>
+            {
+                Ok(PyAlbedo {
+                    curve: AlbedoCurve::from_stored(rho, se, fine, fine_se, paths),
+                })
+            }
             _ => Err(pyo3::exceptions::PyValueError::new_err(
                 "AlbedoCurve: not a pickled albedo curve",
             )),

@@ -105,9 +105,16 @@ class Pickling(unittest.TestCase):
         ):
             with self.assertRaises(ValueError, msg=str(state)):
                 _sk._Phase._from_state(state)
-        for state in (([0.5] * 3, [0.0] * 3, 1), ([2.0] * 65, [0.0] * 65, 1)):
+        for state in (
+            ([0.5] * 3, [0.0] * 3, 1, [0.5] * 10, [0.0] * 10),
+            ([2.0] * 65, [0.0] * 65, 1, [0.5] * 10, [0.0] * 10),
+            ([0.5] * 65, [0.0] * 65, 1, [0.5] * 9, [0.0] * 9),
+            ([0.5] * 65, [0.0] * 65, 1, [np.nan] * 10, [0.0] * 10),
+        ):
             with self.assertRaises(ValueError, msg=str(state)):
                 _sk._AlbedoCurve._from_state(state)
+        with self.assertRaises((TypeError, ValueError)):  # the coarse nodes alone
+            _sk._AlbedoCurve._from_state(([0.5] * 65, [0.0] * 65, 1))
 
 
 if __name__ == "__main__":

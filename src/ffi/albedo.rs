@@ -3,17 +3,27 @@
 use super::phase::load;
 use super::{CRng, sk_phase_f64, sk_rng, sk_status, write_result};
 use crate::error::Error;
-use crate::transport::albedo::{AlbedoCurve, Illumination, Layer, NODES};
+use crate::transport::albedo::{AlbedoCurve, FINE, Illumination, Layer, NODES};
 
 /// Nodes of an sk_albedo_curve_f64: omega_k = 1 - (k/64)^2, k = 0..64.
 pub const SK_ALBEDO_NODES: usize = 65;
 const _: () = assert!(SK_ALBEDO_NODES == NODES);
 
+/// Fine nodes of an sk_albedo_curve_f64 between the first two:
+/// omega_j = 1 - 4^-(j+1)/4096, j = 0..9.
+pub const SK_ALBEDO_FINE: usize = 10;
+const _: () = assert!(SK_ALBEDO_FINE == FINE);
+
 /// The multiple-scattering albedo of a layer as a function of the
 /// single-scattering albedo omega, from sk_albedo_curve_new_f64: at
 /// omega_k = 1 - (k/64)^2, k = 0..64, the albedo `rho[k]` and its standard
-/// error `se[k]` (the functions below interpolate between them). A plain
-/// value: copy it, store it, read the nodes.
+/// error `se[k]`, and between the first two nodes (where a slab thick
+/// against its diffusion length bends) at omega_j = 1 - 4^-(j+1)/4096,
+/// j = 0..9, `fine_rho[j]` and `fine_se[j]`; the functions below
+/// interpolate between them. A plain value: copy it, store it, read the
+/// nodes. A curve whose fine arrays are all zero (stored from the coarse
+/// nodes alone) is interpolated between the first two nodes by the cubic
+/// through the first four, which misses that bend.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct sk_albedo_curve_f64 {
@@ -23,10 +33,18 @@ pub struct sk_albedo_curve_f64 {
     pub se: [f64; SK_ALBEDO_NODES],
     /// Paths traced.
     pub paths: u64,
+    /// The albedo at the fine node omega_j.
+    pub fine_rho: [f64; SK_ALBEDO_FINE],
+    /// Its standard error.
+    pub fine_se: [f64; SK_ALBEDO_FINE],
 }
 
 fn curve(c: &sk_albedo_curve_f64) -> AlbedoCurve {
-    AlbedoCurve::from_nodes(c.rho, c.se, c.paths)
+    if c.fine_rho == [0.0; FINE] && c.fine_se == [0.0; FINE] {
+        AlbedoCurve::from_nodes(c.rho, c.se, c.paths)
+    } else {
+        AlbedoCurve::from_stored(c.rho, c.se, c.fine_rho, c.fine_se, c.paths)
+    }
 }
 
 /// Traces `paths` paths through a plane-parallel layer with index-matched
@@ -68,10 +86,13 @@ pub unsafe extern "C" fn sk_albedo_curve_new_f64(
     };
     let result = AlbedoCurve::simulate(p, layer, light, paths, &mut r).map(|c| {
         let (rho, se) = c.nodes();
+        let (fine_rho, fine_se) = c.fine_nodes().unwrap_or(([0.0; FINE], [0.0; FINE]));
         sk_albedo_curve_f64 {
             rho,
             se,
             paths: c.paths(),
+            fine_rho,
+            fine_se,
         }
     });
     unsafe { write_result(out, result) }

@@ -31,18 +31,24 @@
 //! (a path cut there is not absorbed; dropped, it put a deep slab's albedo
 //! at `ω = 1` 1.2 % low).
 //!
-//! **Where the nodes do not reach.** A slab thick against its diffusion
+//! **Between the first two nodes.** A slab thick against its diffusion
 //! length bends between `ω = 1` and the first node, on a scale of
 //! `1 − ω ≈ 1/(3 τ² (1 − g))`, from its own albedo at `ω = 1` onto the
-//! semi-infinite curve, and two nodes do not resolve that bend. Against
-//! adding-doubling (iadpython 0.5.3; HG g = 0, 0.5, 0.85, 0.9, 0.95,
-//! 0.99; τ from 1 to 10⁴ and semi-infinite; beam and diffuse; 20 000
-//! paths): at 273 points at the nodes' reach (`ω ≤ 1 − 1/4096`, or `ω = 1`)
-//! the largest |z| is 2.7; at 126 points inside the first interval 16
-//! slabs lie beyond 3σ, all low, up to 0.8 % (τ = 1000, g = 0.9,
-//! `ω = 0.99999`: 6.8σ); semi-infinite layers there stay within 2.7σ.
-//! Finer nodes there would need paths far longer than [`MAX_EVENTS`] (at
-//! `1 − ω = 10⁻⁵` a path cut at 2¹⁶ still weighs `e^{−0.66}`).
+//! semi-infinite curve; the curve keeps [`FINE`] more nodes there, at
+//! `s = 2^{−(j+1)}/64` (`1 − ω` from 1/16384 to 2.3·10⁻¹⁰), and
+//! interpolates them by a monotone cubic in `s`. At those `ω` a path cut
+//! after [`MAX_EVENTS`] scatterings still weighs `ω^{2¹⁶}` (`e^{−4}` at
+//! the first fine node, nearly 1 at the last), so it adds that times the
+//! share of its light diffusion returns through the lit face with
+//! absorption (Milne's extrapolated boundaries, `κ = √(3(1 − ω)(1 − ωg))`).
+//! Against adding-doubling (iadpython 0.5.3; HG g = 0 to 0.99, τ = 1 to 10⁴ and semi-infinite, beam and
+//! diffuse, `ω` from 0.1 to 0.999999, 20 000 paths): the 126 points inside
+//! the first interval have a mean z of −0.02 and none beyond 3σ (with the
+//! first two nodes alone, the cubic through nodes 0–3: mean −0.88, 16
+//! beyond 3σ, all slabs, up to 0.8 % low at τ = 1000, g = 0.9,
+//! `ω = 0.99999`); the 273 others are unchanged (largest |z| 2.7). A curve
+//! rebuilt from the coarse nodes alone ([`AlbedoCurve::from_nodes`]) takes
+//! that cubic there.
 
 use crate::error::Error;
 use crate::math::real::Real;
@@ -57,6 +63,12 @@ pub const NODES: usize = 65;
 /// `(1 − 64⁻²)^{2¹⁶} = e^{−16}` ≈ 1.1·10⁻⁷, so dropping it biases that
 /// node by less than 1.1·10⁻⁷ times the share of paths dropped.
 pub const MAX_EVENTS: u32 = 1 << 16;
+
+/// Fine nodes inside the first interval, `s_j = 2^{−(j+1)}/64`,
+/// `j = 0 … 9` (`1 − ω` from 1/16384 down to 2.3·10⁻¹⁰): a slab thick
+/// against its diffusion length bends there, on a scale of
+/// `1 − ω ≈ 1/(3τ²(1 − g))`, which the first two nodes do not resolve.
+pub const FINE: usize = 10;
 
 /// The layer: semi-infinite, or a slab of optical thickness `τ` (finite,
 /// positive) with nothing beneath (light leaving the bottom is lost).
@@ -110,12 +122,33 @@ pub struct AlbedoCurve {
     se: [f64; NODES],
     /// Fritsch–Carlson slopes of `ρ` in `s` at each node (per node step).
     slope: [f64; NODES],
+    /// The fine nodes ([`FINE`]), if the curve has them (a curve rebuilt
+    /// from the coarse nodes alone does not).
+    fine: Option<Fine>,
     paths: u64,
+}
+
+/// The first interval on its fine nodes: the albedo and its error at the
+/// grid `s_k = 2^{k − FINE}/64`, `k = 0 … FINE` (the fine nodes from the
+/// smallest, then node 1), and monotone slopes `dρ/ds` there. The grid is
+/// geometric, and the interpolation is in `s` itself: where the curve is
+/// near `1 − a s` (a semi-infinite layer, a slab beyond its bend) a cubic
+/// in `log s` bent between the nodes (3σ at 10⁵ paths).
+#[derive(Clone, Copy, Debug)]
+struct Fine {
+    y: [f64; FINE + 1],
+    se: [f64; FINE + 1],
+    slope: [f64; FINE + 1],
 }
 
 /// `s = √(1 − ω)` at node `k`.
 fn node_s(k: usize) -> f64 {
     k as f64 / (NODES - 1) as f64
+}
+
+/// `s = √(1 − ω)` at fine node `j`: `2^{−(j+1)}/64`.
+fn fine_s(j: usize) -> f64 {
+    libm::ldexp(1.0 / (NODES - 1) as f64, -(j as i32) - 1)
 }
 
 impl AlbedoCurve {
@@ -124,7 +157,8 @@ impl AlbedoCurve {
     /// `paths = 0`, a slab thickness not finite and positive, or `μ_0`
     /// outside `(0, 1]`. Cost: the paths' scatterings (a deep medium with
     /// a forward phase function takes many: about 10³ per path at
-    /// `g = 0.9`), plus 65 exponentials per reflected path.
+    /// `g = 0.9`), plus 75 exponentials per reflected path and 10 per
+    /// path cut after [`MAX_EVENTS`] scatterings.
     pub fn simulate<P: PhaseFunction<f64> + ?Sized, R: Rng + ?Sized>(
         phase: &P,
         layer: Layer,
@@ -150,6 +184,13 @@ impl AlbedoCurve {
             *l = libm::log1p(-s * s);
         }
         let (mut sum, mut sum2) = ([0.0; NODES], [0.0; NODES]);
+        // 1 − ω_j and ln ω_j at the fine nodes.
+        let mut fine_omega = [(0.0, 0.0); FINE];
+        for (j, f) in fine_omega.iter_mut().enumerate() {
+            let s = fine_s(j);
+            *f = (s * s, libm::log1p(-s * s));
+        }
+        let (mut fsum, mut fsum2) = ([0.0; FINE], [0.0; FINE]);
         let g = phase.mean_cosine();
         for _ in 0..paths {
             match walk(phase, layer, light, rng) {
@@ -159,50 +200,107 @@ impl AlbedoCurve {
                         sum[k] += w;
                         sum2[k] += w * w;
                     }
+                    for (j, &(_, ln)) in fine_omega.iter().enumerate() {
+                        let w = libm::exp(n as f64 * ln);
+                        fsum[j] += w;
+                        fsum2[j] += w * w;
+                    }
                 }
-                // At ω = 1 a cut path is not absorbed: it leaves through
-                // one face or the other. Dropped, it biased a deep slab's
-                // albedo at ω = 1 low by the share of paths cut (1.25 %
-                // at τ = 10⁴, HG 0.85, diffuse light: 22σ below
-                // adding-doubling). Below ω = 1 it weighs at most e^{−16}.
+                // A cut path is not absorbed at ω = 1, and at the fine
+                // nodes it still weighs ω^{2¹⁶} (e^{−4} at the first):
+                // it adds that times the share diffusion returns through
+                // the lit face from its depth. Dropped, it biased a deep
+                // slab's albedo at ω = 1 low by the share of paths cut
+                // (1.25 % at τ = 10⁴, HG 0.85, diffuse light: 22σ below
+                // adding-doubling). At the coarse nodes below ω = 1 it
+                // weighs at most e^{−16}.
                 End::Cut(z) => {
-                    if let Layer::Slab(tau) = layer {
-                        let w = lit_face_share(z, tau, g);
+                    if layer != Layer::SemiInfinite {
+                        let w = lit_face_share(z, layer, g, 0.0);
                         sum[0] += w;
                         sum2[0] += w * w;
+                    }
+                    for (j, &(one_minus, ln)) in fine_omega.iter().enumerate() {
+                        let w = libm::exp(MAX_EVENTS as f64 * ln)
+                            * lit_face_share(z, layer, g, one_minus);
+                        fsum[j] += w;
+                        fsum2[j] += w * w;
                     }
                 }
                 End::Lost => {}
             }
         }
         let m = paths as f64;
+        let mean_se = |sum: f64, sum2: f64| {
+            let mean = sum / m;
+            (mean, ((sum2 / m - mean * mean).max(0.0) / m).sqrt())
+        };
         let (mut rho, mut se) = ([0.0; NODES], [0.0; NODES]);
         for k in 0..NODES {
-            rho[k] = sum[k] / m;
-            let var = (sum2[k] / m - rho[k] * rho[k]).max(0.0);
-            se[k] = (var / m).sqrt();
+            (rho[k], se[k]) = mean_se(sum[k], sum2[k]);
         }
         if layer == Layer::SemiInfinite {
             // ω = 1: nothing is absorbed and nothing leaves below.
             rho[0] = 1.0;
             se[0] = 0.0;
         }
-        Ok(AlbedoCurve {
+        let (mut fine, mut fine_se) = ([0.0; FINE], [0.0; FINE]);
+        for j in 0..FINE {
+            (fine[j], fine_se[j]) = mean_se(fsum[j], fsum2[j]);
+        }
+        Ok(Self::from_stored(rho, se, fine, fine_se, paths))
+    }
+
+    /// A curve from everything [`simulate`](Self::simulate) keeps: the
+    /// nodes ([`nodes`](Self::nodes)), the fine nodes
+    /// ([`fine_nodes`](Self::fine_nodes)) and the number of paths.
+    pub fn from_stored(
+        rho: [f64; NODES],
+        se: [f64; NODES],
+        fine: [f64; FINE],
+        fine_se: [f64; FINE],
+        paths: u64,
+    ) -> Self {
+        // Increasing s: the fine nodes from the smallest, then node 1.
+        let (mut y, mut e) = ([0.0; FINE + 1], [0.0; FINE + 1]);
+        for k in 0..FINE {
+            (y[k], e[k]) = (fine[FINE - 1 - k], fine_se[FINE - 1 - k]);
+        }
+        (y[FINE], e[FINE]) = (rho[1], se[1]);
+        AlbedoCurve {
             rho,
             se,
             slope: fritsch_carlson(&rho),
+            fine: Some(Fine::new(y, e)),
             paths,
-        })
+        }
+    }
+
+    /// The albedos and their standard errors at the fine nodes
+    /// `ω_j = 1 − 4^{−(j+1)}/4096` ([`FINE`]), or `None` for a curve
+    /// rebuilt from the coarse nodes alone
+    /// ([`from_nodes`](Self::from_nodes)).
+    pub fn fine_nodes(&self) -> Option<([f64; FINE], [f64; FINE])> {
+        let f = self.fine.as_ref()?;
+        let (mut y, mut e) = ([0.0; FINE], [0.0; FINE]);
+        for j in 0..FINE {
+            (y[j], e[j]) = (f.y[FINE - 1 - j], f.se[FINE - 1 - j]);
+        }
+        Some((y, e))
     }
 
     /// A curve from node values stored earlier ([`nodes`](Self::nodes)):
     /// the albedos and standard errors at the [`NODES`] values of `ω`, and
-    /// the number of paths; the interpolant is rebuilt from them.
+    /// the number of paths; the interpolant is rebuilt from them. Without
+    /// the fine nodes the first interval takes the cubic through the first
+    /// four nodes, which misses a thick slab's bend there (module docs);
+    /// [`from_stored`](Self::from_stored) keeps them.
     pub fn from_nodes(rho: [f64; NODES], se: [f64; NODES], paths: u64) -> Self {
         AlbedoCurve {
             rho,
             se,
             slope: fritsch_carlson(&rho),
+            fine: None,
             paths,
         }
     }
@@ -249,9 +347,12 @@ impl AlbedoCurve {
         if !(0.0..=1.0).contains(&omega) {
             return f64::NAN;
         }
-        let (i, t) = interval(libm::sqrt(1.0 - omega));
+        let s = libm::sqrt(1.0 - omega);
+        let (i, t) = interval(s);
+        if let (0, Some(f)) = (i, &self.fine) {
+            return f.std_error(self.se[0], s);
+        }
         let e = |k: usize| self.se.get(k).copied().unwrap_or(f64::NAN);
-        let y = |k: usize| self.rho.get(k).copied().unwrap_or(f64::NAN);
         let monte_carlo = if i == 0 && self.near_one(t).is_some() {
             // The cubic's Lagrange weights on nodes 0..3 at t.
             let w = [
@@ -264,16 +365,7 @@ impl AlbedoCurve {
         } else {
             e(i) + t * (e(i + 1) - e(i))
         };
-        // The four nodes j..j+3 around the interval (t − j measured from
-        // node j), and the fourth difference over j..j+4 (or j−1..j+3
-        // at the last nodes).
-        let j = i.saturating_sub(1).min(NODES - 4);
-        let x = (i - j) as f64 + t;
-        let first = j.min(NODES - 5);
-        let d4 =
-            y(first) - 4.0 * y(first + 1) + 6.0 * y(first + 2) - 4.0 * y(first + 3) + y(first + 4);
-        let poly = x * (x - 1.0) * (x - 2.0) * (x - 3.0);
-        let interpolation = libm::fabs(d4 / 24.0 * poly);
+        let interpolation = fourth_difference_term(&self.rho, i, t);
         libm::sqrt(monte_carlo * monte_carlo + interpolation * interpolation)
     }
 
@@ -310,6 +402,9 @@ impl AlbedoCurve {
     fn at_s(&self, s: f64) -> f64 {
         let (i, t) = interval(s);
         if i == 0 {
+            if let Some(f) = &self.fine {
+                return f.at(self.rho[0], s);
+            }
             if let Some(v) = self.near_one(t) {
                 return v;
             }
@@ -357,23 +452,128 @@ impl AlbedoCurve {
 
     /// The monotone cubic Hermite interpolant on interval `i` at `t`.
     fn hermite(&self, i: usize, t: f64) -> f64 {
-        let v = |a: &[f64; NODES], k: usize| a.get(k).copied().unwrap_or(f64::NAN);
-        let (y0, y1) = (v(&self.rho, i), v(&self.rho, i + 1));
-        let (d0, d1) = (v(&self.slope, i), v(&self.slope, i + 1));
-        let dy = y1 - y0;
-        let c2 = 3.0 * dy - 2.0 * d0 - d1;
-        let c3 = d0 + d1 - 2.0 * dy;
-        // The monotone cubic stays between its ends; the clamp only keeps
-        // rounding from leaving them (an albedo of −10⁻¹⁸ at ω = 0).
-        let v = y0 + t * (d0 + t * (c2 + t * c3));
-        if v > y0 {
-            y0
-        } else if v < y1 {
-            y1
-        } else {
-            v
-        }
+        hermite(&self.rho, &self.slope, i, t)
     }
+}
+
+/// `s` at point `k` of the fine grid: `2^{k − FINE}/64`.
+fn grid_s(k: usize) -> f64 {
+    libm::ldexp(1.0 / (NODES - 1) as f64, k as i32 - FINE as i32)
+}
+
+impl Fine {
+    /// The fine grid's values, errors and monotone slopes in `s`: at an
+    /// inner point the slope of the parabola through it and its
+    /// neighbours, held within `[3δ, 0]` of both neighbouring secants `δ`
+    /// (Fritsch–Carlson's condition for a monotone cubic), 0 where they
+    /// differ in sign; at the ends the adjacent secant.
+    fn new(y: [f64; FINE + 1], se: [f64; FINE + 1]) -> Self {
+        let secant = |k: usize| (y[k + 1] - y[k]) / (grid_s(k + 1) - grid_s(k));
+        let mut slope = [0.0; FINE + 1];
+        slope[0] = secant(0);
+        slope[FINE] = secant(FINE - 1);
+        for (k, sk) in slope.iter_mut().enumerate().take(FINE).skip(1) {
+            let (hl, hr) = (grid_s(k) - grid_s(k - 1), grid_s(k + 1) - grid_s(k));
+            let (dl, dr) = (secant(k - 1), secant(k));
+            let d = (hr * dl + hl * dr) / (hl + hr);
+            *sk = if dl * dr <= 0.0 {
+                0.0
+            } else {
+                d.max(3.0 * dl).max(3.0 * dr).min(0.0)
+            };
+        }
+        Fine { y, se, slope }
+    }
+
+    /// The first interval's interpolant at `s ∈ [0, 1/64]` (`rho0` the
+    /// albedo at `ω = 1`): the monotone cubic Hermite in `s` on the fine
+    /// grid, and linear below its first point (`1 − ω < 2.3·10⁻¹⁰`).
+    fn at(&self, rho0: f64, s: f64) -> f64 {
+        let first = grid_s(0);
+        if s <= first {
+            return rho0 + (self.y[0] - rho0) * (s / first);
+        }
+        let (i, t) = Self::interval(s);
+        let h = grid_s(i + 1) - grid_s(i);
+        hermite_step(
+            (self.y[i], self.y[i + 1]),
+            (self.slope[i] * h, self.slope[i + 1] * h),
+            t,
+        )
+    }
+
+    /// The fine grid's interval `i` holding `s ∈ (s_0, 1/64]` and the
+    /// position `t ∈ [0, 1]` in it.
+    fn interval(s: f64) -> (usize, f64) {
+        let x = libm::log2(s * (NODES - 1) as f64) + FINE as f64;
+        let i = (x.max(0.0) as usize).min(FINE - 1);
+        let (a, b) = (grid_s(i), grid_s(i + 1));
+        (i, ((s - a) / (b - a)).clamp(0.0, 1.0))
+    }
+
+    /// The first interval's error at `s`, as [`AlbedoCurve::std_error`]
+    /// computes it on the coarse nodes: the nodes' errors interpolated,
+    /// and the next term of the polynomial through the four grid points
+    /// around `s`, from the fourth divided difference over five.
+    fn std_error(&self, se0: f64, s: f64) -> f64 {
+        let first = grid_s(0);
+        if s <= first {
+            return se0 + (self.se[0] - se0) * (s / first);
+        }
+        let (i, t) = Self::interval(s);
+        let monte_carlo = self.se[i] + t * (self.se[i + 1] - self.se[i]);
+        let j = i.saturating_sub(1).min(FINE + 1 - 5);
+        let xs: [f64; 5] = core::array::from_fn(|m| grid_s(j + m));
+        let mut dd: [f64; 5] = core::array::from_fn(|m| self.y[j + m]);
+        for order in 1..5 {
+            for m in (order..5).rev() {
+                dd[m] = (dd[m] - dd[m - 1]) / (xs[m] - xs[m - order]);
+            }
+        }
+        let poly: f64 = xs[..4].iter().map(|x| s - x).product();
+        let interpolation = libm::fabs(dd[4] * poly);
+        libm::sqrt(monte_carlo * monte_carlo + interpolation * interpolation)
+    }
+}
+
+/// The cubic Hermite between `y0` and `y1` with end slopes `d0`, `d1`
+/// (per interval), at `t ∈ [0, 1]`, held between its ends.
+fn hermite_step((y0, y1): (f64, f64), (d0, d1): (f64, f64), t: f64) -> f64 {
+    let dy = y1 - y0;
+    let c2 = 3.0 * dy - 2.0 * d0 - d1;
+    let c3 = d0 + d1 - 2.0 * dy;
+    // The monotone cubic stays between its ends; the clamp only keeps
+    // rounding from leaving them (an albedo of −10⁻¹⁸ at ω = 0).
+    let v = y0 + t * (d0 + t * (c2 + t * c3));
+    if v > y0 {
+        y0
+    } else if v < y1 {
+        y1
+    } else {
+        v
+    }
+}
+
+/// The monotone cubic Hermite interpolant of `y` with slopes `d` (per
+/// grid step) on interval `i` at `t ∈ [0, 1]`.
+fn hermite<const N: usize>(y: &[f64; N], d: &[f64; N], i: usize, t: f64) -> f64 {
+    let v = |a: &[f64; N], k: usize| a.get(k).copied().unwrap_or(f64::NAN);
+    hermite_step((v(y, i), v(y, i + 1)), (v(d, i), v(d, i + 1)), t)
+}
+
+/// The interpolation's error on interval `i` at `t` of a grid of values
+/// `y` (`N ≥ 5`): the next term of the polynomial through the four nodes
+/// `j … j+3` around it (`x = t` measured from node `j`),
+/// `|Δ⁴y|/4! · |x(x − 1)(x − 2)(x − 3)|`, the fourth difference over
+/// `j … j+4` (or the last five nodes).
+fn fourth_difference_term<const N: usize>(y: &[f64; N], i: usize, t: f64) -> f64 {
+    let v = |k: usize| y.get(k).copied().unwrap_or(f64::NAN);
+    let j = i.saturating_sub(1).min(N - 4);
+    let x = (i - j) as f64 + t;
+    let first = j.min(N - 5);
+    let d4 = v(first) - 4.0 * v(first + 1) + 6.0 * v(first + 2) - 4.0 * v(first + 3) + v(first + 4);
+    let poly = x * (x - 1.0) * (x - 2.0) * (x - 3.0);
+    libm::fabs(d4 / 24.0 * poly)
 }
 
 /// The node interval `i` holding `s ∈ [0, 1]` and the position `t ∈ [0, 1]`
@@ -433,33 +633,51 @@ enum End {
     Cut(f64),
 }
 
-/// The share of the light at optical depth `z` of a conservative slab of
-/// thickness `τ` that leaves through the lit face, by diffusion: a path
-/// cut after [`MAX_EVENTS`] scatterings has long forgotten its direction
-/// (2¹⁶ (1 − g) transport events). With the extrapolated boundary
-/// `z_e = 0.7104 / (1 − g)` beyond each face (Milne's extrapolation length
-/// in transport mean free paths), the diffusion solution between them is
-/// linear: `(τ + z_e − z) / (τ + 2 z_e)`. 0 for `g = 1` (a path that never
-/// turns does not come back).
-fn lit_face_share(z: f64, tau: f64, g: f64) -> f64 {
+/// The share of the light at optical depth `z` that leaves through the
+/// lit face, by diffusion, where a share `1 − ω` of each collision is
+/// absorbed: a path cut after [`MAX_EVENTS`] scatterings has long
+/// forgotten its direction (2¹⁶ (1 − g) transport events). In optical
+/// depth units the transport coefficient is `1 − ω g`, the extrapolated
+/// boundary `z_e = 0.7104/(1 − ω g)` beyond each face (Milne's
+/// extrapolation length in transport mean free paths) and the diffusion
+/// constant `κ = √(3 (1 − ω)(1 − ω g))`; the density from a source at `z`
+/// that reaches the lit face's extrapolated boundary is
+/// `sinh(κ(τ + z_e − z)) / sinh(κ(τ + 2 z_e))` in a slab (written
+/// `e^{−κ(z + z_e)} · expm1(−2a)/expm1(−2b)`, `a`, `b` the two arguments,
+/// so that a thick slab's `sinh` does not overflow), `e^{−κ(z + z_e)}`
+/// below a semi-infinite face, and at `ω = 1` the slab's linear
+/// `(τ + z_e − z) / (τ + 2 z_e)` (1 for a semi-infinite layer). 0 for
+/// `g = 1` (a path that never turns does not come back).
+fn lit_face_share(z: f64, layer: Layer, g: f64, one_minus_omega: f64) -> f64 {
     // g ≥ 1 or NaN: no diffusion to speak of.
     if g.is_nan() || g >= 1.0 {
         return 0.0;
     }
-    let ze = 0.7104 / (1.0 - g);
-    ((tau + ze - z) / (tau + 2.0 * ze)).clamp(0.0, 1.0)
+    let transport = one_minus_omega + (1.0 - one_minus_omega) * (1.0 - g);
+    let ze = 0.7104 / transport;
+    let kappa = libm::sqrt(3.0 * one_minus_omega * transport);
+    let share = match layer {
+        Layer::SemiInfinite if kappa == 0.0 => 1.0,
+        Layer::SemiInfinite => libm::exp(-kappa * (z + ze)),
+        Layer::Slab(tau) if kappa == 0.0 => (tau + ze - z) / (tau + 2.0 * ze),
+        Layer::Slab(tau) => {
+            let (a, b) = (kappa * (tau + ze - z), kappa * (tau + 2.0 * ze));
+            libm::exp(-kappa * (z + ze)) * libm::expm1(-2.0 * a) / libm::expm1(-2.0 * b)
+        }
+    };
+    share.clamp(0.0, 1.0)
 }
 
 /// Fritsch–Carlson slopes (per node step) for values `y` that fall with
 /// the node index: the three-point estimate clamped to `[3Δ, 0]` of both
 /// neighbouring secants `Δ` (≤ 0), so the cubic Hermite interpolant is
 /// monotone.
-fn fritsch_carlson(y: &[f64; NODES]) -> [f64; NODES] {
-    let mut d = [0.0; NODES];
+fn fritsch_carlson<const N: usize>(y: &[f64; N]) -> [f64; N] {
+    let mut d = [0.0; N];
     let v = |k: usize| y.get(k).copied().unwrap_or(f64::NAN);
     for (k, dk) in d.iter_mut().enumerate() {
         let left = if k > 0 { v(k) - v(k - 1) } else { v(1) - v(0) };
-        let right = if k + 1 < NODES { v(k + 1) - v(k) } else { left };
+        let right = if k + 1 < N { v(k + 1) - v(k) } else { left };
         let mut s = 0.5 * (left + right);
         for secant in [left, right] {
             s = s.max(3.0 * secant).min(0.0);

@@ -231,13 +231,21 @@ impl AlbedoCurve {
             }
         }
         let m = paths as f64;
-        let mean_se = |sum: f64, sum2: f64| {
+        // The sample's standard error, and one path's largest weight there
+        // (ω: a path comes back after one scattering at least) over the
+        // paths in quadrature: where no path came back (a thin slab: τ =
+        // 10⁻⁴ reflects 10⁻⁵ to 10⁻⁴, and 20 000 paths brought none) the
+        // estimate is 0, and its error not 0 but the weight one more path
+        // would have added.
+        let mean_se = |sum: f64, sum2: f64, omega: f64| {
             let mean = sum / m;
-            (mean, ((sum2 / m - mean * mean).max(0.0) / m).sqrt())
+            let var = (sum2 / m - mean * mean).max(0.0) / m;
+            (mean, libm::sqrt(var + (omega / m) * (omega / m)))
         };
         let (mut rho, mut se) = ([0.0; NODES], [0.0; NODES]);
         for k in 0..NODES {
-            (rho[k], se[k]) = mean_se(sum[k], sum2[k]);
+            let s = node_s(k);
+            (rho[k], se[k]) = mean_se(sum[k], sum2[k], 1.0 - s * s);
         }
         if layer == Layer::SemiInfinite {
             // ω = 1: nothing is absorbed and nothing leaves below.
@@ -246,7 +254,7 @@ impl AlbedoCurve {
         }
         let (mut fine, mut fine_se) = ([0.0; FINE], [0.0; FINE]);
         for j in 0..FINE {
-            (fine[j], fine_se[j]) = mean_se(fsum[j], fsum2[j]);
+            (fine[j], fine_se[j]) = mean_se(fsum[j], fsum2[j], 1.0 - fine_omega[j].0);
         }
         Ok(Self::from_stored(rho, se, fine, fine_se, paths))
     }
@@ -342,7 +350,11 @@ impl AlbedoCurve {
     /// interpolating polynomial, `|Δ⁴ρ|/4! · |Π(t − t_j)|` over the four
     /// nodes around `ω` (the fourth difference over five nodes); it also
     /// carries the nodes' noise, so it errs high. At a node both are the
-    /// node's own error; at `ω = 1` of a semi-infinite layer, 0.
+    /// node's own error: the paths' standard error and `ω/paths` (the
+    /// most one more path could add) in quadrature, so that a node no path
+    /// reached is 0 with that error, not exactly 0; at `ω = 1` of a
+    /// semi-infinite layer, 0, and at `ω = 0`, 0 (no path comes back
+    /// unscattered).
     pub fn std_error(&self, omega: f64) -> f64 {
         if !(0.0..=1.0).contains(&omega) {
             return f64::NAN;

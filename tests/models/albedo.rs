@@ -214,6 +214,29 @@ fn the_inverse_and_the_slab() {
     );
 }
 
+/// A slab so thin that no path comes back (τ = 10⁻⁶, 2000 paths; it
+/// reflects about 10⁻⁷): the curve is 0, and its error is not 0 but the
+/// most one more path would have added, `ω/paths` (0 at `ω = 0`). It was
+/// reported as exactly 0 ± 0.
+#[test]
+fn a_curve_no_path_came_back_has_an_error() {
+    let hg = HenyeyGreenstein::new(0.5).unwrap();
+    let mut r = rng(81);
+    let c =
+        AlbedoCurve::simulate(&hg, Layer::Slab(1e-6), Illumination::Diffuse, 2000, &mut r).unwrap();
+    for omega in [1.0, 0.99999, 0.5, 0.0] {
+        assert_eq!(c.albedo(omega), 0.0, "ω = {omega}");
+        let want = omega / 2000.0;
+        let se = c.std_error(omega);
+        // Between nodes the error is interpolated (linearly in s): within
+        // 10⁻³ of ω/paths.
+        assert!(
+            (se - want).abs() <= 1e-3 * want,
+            "ω = {omega}: {se} against {want}"
+        );
+    }
+}
+
 /// Van de Hulst's fit of the spherical albedo of a semi-infinite medium,
 /// `A = (1 − s)(1 − 0.139 s)/(1 + 1.17 s)` with the similarity parameter
 /// `s = √((1 − ω)/(1 − ω g))` (OpenPBR), inverted: `s` from the quadratic

@@ -270,11 +270,13 @@ impl AlbedoCurve {
         paths: u64,
     ) -> Self {
         // Increasing s: the fine nodes from the smallest, then node 1.
-        let (mut y, mut e) = ([0.0; FINE + 1], [0.0; FINE + 1]);
-        for k in 0..FINE {
-            (y[k], e[k]) = (fine[FINE - 1 - k], fine_se[FINE - 1 - k]);
+        let (mut y, mut e) = ([rho[1]; FINE + 1], [se[1]; FINE + 1]);
+        for (dst, src) in y.iter_mut().zip(fine.iter().rev()) {
+            *dst = *src;
         }
-        (y[FINE], e[FINE]) = (rho[1], se[1]);
+        for (dst, src) in e.iter_mut().zip(fine_se.iter().rev()) {
+            *dst = *src;
+        }
         AlbedoCurve {
             rho,
             se,
@@ -291,8 +293,11 @@ impl AlbedoCurve {
     pub fn fine_nodes(&self) -> Option<([f64; FINE], [f64; FINE])> {
         let f = self.fine.as_ref()?;
         let (mut y, mut e) = ([0.0; FINE], [0.0; FINE]);
-        for j in 0..FINE {
-            (y[j], e[j]) = (f.y[FINE - 1 - j], f.se[FINE - 1 - j]);
+        for (dst, src) in y.iter_mut().zip(f.y.iter().take(FINE).rev()) {
+            *dst = *src;
+        }
+        for (dst, src) in e.iter_mut().zip(f.se.iter().take(FINE).rev()) {
+            *dst = *src;
         }
         Some((y, e))
     }
@@ -473,6 +478,11 @@ fn grid_s(k: usize) -> f64 {
     libm::ldexp(1.0 / (NODES - 1) as f64, k as i32 - FINE as i32)
 }
 
+/// A reader of a fine-grid array (NaN past its end).
+fn fine_at(a: &[f64; FINE + 1]) -> impl Fn(usize) -> f64 + '_ {
+    move |k| a.get(k).copied().unwrap_or(f64::NAN)
+}
+
 impl Fine {
     /// The fine grid's values, errors and monotone slopes in `s`: at an
     /// inner point the slope of the parabola through it and its
@@ -480,7 +490,8 @@ impl Fine {
     /// (Fritsch–Carlson's condition for a monotone cubic), 0 where they
     /// differ in sign; at the ends the adjacent secant.
     fn new(y: [f64; FINE + 1], se: [f64; FINE + 1]) -> Self {
-        let secant = |k: usize| (y[k + 1] - y[k]) / (grid_s(k + 1) - grid_s(k));
+        let v = |k: usize| y.get(k).copied().unwrap_or(f64::NAN);
+        let secant = |k: usize| (v(k + 1) - v(k)) / (grid_s(k + 1) - grid_s(k));
         let mut slope = [0.0; FINE + 1];
         slope[0] = secant(0);
         slope[FINE] = secant(FINE - 1);
@@ -507,11 +518,8 @@ impl Fine {
         }
         let (i, t) = Self::interval(s);
         let h = grid_s(i + 1) - grid_s(i);
-        hermite_step(
-            (self.y[i], self.y[i + 1]),
-            (self.slope[i] * h, self.slope[i + 1] * h),
-            t,
-        )
+        let (y, d) = (fine_at(&self.y), fine_at(&self.slope));
+        hermite_step((y(i), y(i + 1)), (d(i) * h, d(i + 1) * h), t)
     }
 
     /// The fine grid's interval `i` holding `s ∈ (s_0, 1/64]` and the
@@ -533,17 +541,21 @@ impl Fine {
             return se0 + (self.se[0] - se0) * (s / first);
         }
         let (i, t) = Self::interval(s);
-        let monte_carlo = self.se[i] + t * (self.se[i + 1] - self.se[i]);
+        let (y, e) = (fine_at(&self.y), fine_at(&self.se));
+        let monte_carlo = e(i) + t * (e(i + 1) - e(i));
+        // Newton's divided differences over the five grid points j … j+4,
+        // one order at a time (order k: points j … j+4−k).
         let j = i.saturating_sub(1).min(FINE + 1 - 5);
-        let xs: [f64; 5] = core::array::from_fn(|m| grid_s(j + m));
-        let mut dd: [f64; 5] = core::array::from_fn(|m| self.y[j + m]);
+        let mut dd: [f64; 5] = core::array::from_fn(|m| y(j + m));
         for order in 1..5 {
-            for m in (order..5).rev() {
-                dd[m] = (dd[m] - dd[m - 1]) / (xs[m] - xs[m - order]);
+            let prev = dd;
+            for (m, d) in dd.iter_mut().enumerate().take(5 - order) {
+                let at = |k: usize| prev.get(k).copied().unwrap_or(f64::NAN);
+                *d = (at(m + 1) - at(m)) / (grid_s(j + m + order) - grid_s(j + m));
             }
         }
-        let poly: f64 = xs[..4].iter().map(|x| s - x).product();
-        let interpolation = libm::fabs(dd[4] * poly);
+        let poly: f64 = (0..4).map(|m| s - grid_s(j + m)).product();
+        let interpolation = libm::fabs(dd[0] * poly);
         libm::sqrt(monte_carlo * monte_carlo + interpolation * interpolation)
     }
 }

@@ -629,6 +629,12 @@ impl<'a, T: Real> Grid<'a, T> {
     /// [`Error::Domain`] for a ray [`Ray`] does not accept (a zero or
     /// non-finite direction, a non-finite origin, a bad interval);
     /// [`Error::Budget`] when [`MAX_STEPS`] is reached.
+    // Inlined: once it took its result from `delta_track_within`'s `Track`,
+    // LLVM left it out of line in a photon loop that calls it once per
+    // flight, and the loop ran 23 % more instructions (54.6 against 44.4
+    // million for 20 000 photons through the 1 × 1 × 64 slab grid,
+    // callgrind).
+    #[inline(always)]
     pub fn delta_track<R: Rng + ?Sized>(
         &self,
         ray: Ray<T>,

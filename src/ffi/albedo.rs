@@ -21,9 +21,10 @@ const _: () = assert!(SK_ALBEDO_FINE == FINE);
 /// against its diffusion length bends) at omega_j = 1 - 4^-(j+1)/4096,
 /// j = 0..9, `fine_rho[j]` and `fine_se[j]`; the functions below
 /// interpolate between them. A plain value: copy it, store it, read the
-/// nodes. A curve whose fine arrays are all zero (stored from the coarse
-/// nodes alone) is interpolated between the first two nodes by the cubic
-/// through the first four, which misses that bend.
+/// nodes. A curve whose fine arrays are all zero (a semi-infinite layer's,
+/// smooth there, or one stored from the coarse nodes alone) is
+/// interpolated between the first two nodes by the cubic through the
+/// first four, which misses a slab's bend.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct sk_albedo_curve_f64 {

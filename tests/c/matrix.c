@@ -667,16 +667,19 @@ static void albedo_curves(void) {
     CHECK(sk_albedo_curve_new_f64(&hg, 2.0, 0.5, 500, &rng, &slab) == SK_OK && slab.rho[0] < 1.0);
     CHECK(sk_albedo_curve_single_scattering_albedo_f64(&slab, 0.99, &omega) == SK_ERR_DOMAIN);
     {
-        /* The fine nodes lie between the first two, falling; a curve whose
-           fine arrays are zero (stored from the coarse nodes alone) is the
-           same beyond the first interval and at omega = 1. */
-        sk_albedo_curve_f64 coarse = c;
-        CHECK(c.fine_rho[0] <= c.rho[0] && c.fine_rho[0] >= c.rho[1] && c.fine_rho[SK_ALBEDO_FINE - 1] >= c.fine_rho[0]);
+        /* A slab's fine nodes lie between the first two, falling; a curve
+           whose fine arrays are zero (a semi-infinite layer's, or one stored
+           from the coarse nodes alone) is the same beyond the first interval
+           and at omega = 1. */
+        sk_albedo_curve_f64 coarse = slab;
+        CHECK(slab.fine_rho[0] <= slab.rho[0] && slab.fine_rho[0] >= slab.rho[1] &&
+              slab.fine_rho[SK_ALBEDO_FINE - 1] >= slab.fine_rho[0]);
+        CHECK(c.fine_rho[0] == 0.0 && c.fine_se[SK_ALBEDO_FINE - 1] == 0.0);
         memset(coarse.fine_rho, 0, sizeof coarse.fine_rho);
         memset(coarse.fine_se, 0, sizeof coarse.fine_se);
-        CHECK(sk_albedo_curve_albedo_f64(&coarse, 0.5) == sk_albedo_curve_albedo_f64(&c, 0.5));
-        CHECK(sk_albedo_curve_albedo_f64(&coarse, 1.0) == sk_albedo_curve_albedo_f64(&c, 1.0));
-        CHECK(sk_albedo_curve_albedo_f64(&coarse, 0.99999) > 0.0 && sk_albedo_curve_albedo_f64(&c, 0.99999) > 0.0);
+        CHECK(sk_albedo_curve_albedo_f64(&coarse, 0.5) == sk_albedo_curve_albedo_f64(&slab, 0.5));
+        CHECK(sk_albedo_curve_albedo_f64(&coarse, 1.0) == sk_albedo_curve_albedo_f64(&slab, 1.0));
+        CHECK(sk_albedo_curve_albedo_f64(&coarse, 0.99999) > 0.0 && sk_albedo_curve_albedo_f64(&slab, 0.99999) > 0.0);
     }
     CHECK(sk_albedo_curve_new_f64(NULL, INFINITY, 0.0, 10, &rng, &c) == SK_ERR_NULL && sk_albedo_curve_new_f64(&hg, INFINITY, 0.0, 10, NULL, &c) == SK_ERR_NULL);
     CHECK(sk_albedo_curve_new_f64(&hg, INFINITY, 0.0, 10, &no_fn, &c) == SK_ERR_NULL && sk_albedo_curve_new_f64(&hg, INFINITY, 0.0, 10, &rng, NULL) == SK_ERR_NULL);

@@ -147,44 +147,6 @@ fn the_inverse_and_the_slab() {
         &mut r,
     )
     .unwrap();
-    // Every thousandth ω, and inside the first interval every tenth of each
-    // fine grid step (ω from 1 − 2.3·10⁻¹⁰ to 1 − 1/4096).
-    let fine = (0..100).map(|k| {
-        let s = 2f64.powf(-10.0 + k as f64 / 10.0) / 64.0;
-        1.0 - s * s
-    });
-    for omega in (0..=1000).map(|i| i as f64 / 1000.0).chain(fine) {
-        let back = c.single_scattering_albedo(c.albedo(omega)).unwrap();
-        assert!((back - omega).abs() <= 1e-12, "{omega}: {back}");
-    }
-    // Monotone through the first interval and across its end.
-    let mut last = c.albedo(1.0);
-    for k in 0..=4000 {
-        let s = k as f64 / 4000.0 / 32.0;
-        let a = c.albedo(1.0 - s * s);
-        assert!(a <= last, "s = {s}: {a} after {last}");
-        last = a;
-    }
-    for k in 1..NODES {
-        assert!(c.node(k).unwrap().1 < c.node(k - 1).unwrap().1, "node {k}");
-    }
-    // Stored and restored: the same curve; from the coarse nodes alone,
-    // the same beyond the first interval.
-    let (rho, se) = c.nodes();
-    let (fine, fine_se) = c.fine_nodes().unwrap();
-    let back = AlbedoCurve::from_stored(rho, se, fine, fine_se, c.paths());
-    for omega in [0.0, 0.37, 0.9, 0.999, 0.99999, 0.9999999, 1.0] {
-        assert_eq!(back.albedo(omega).to_bits(), c.albedo(omega).to_bits());
-        assert_eq!(
-            back.std_error(omega).to_bits(),
-            c.std_error(omega).to_bits()
-        );
-    }
-    let coarse = AlbedoCurve::from_nodes(rho, se, c.paths());
-    assert!(coarse.fine_nodes().is_none());
-    for omega in [0.0, 0.37, 0.9, 0.999, 1.0 - 1.0 / 4096.0] {
-        assert_eq!(coarse.albedo(omega).to_bits(), c.albedo(omega).to_bits());
-    }
     let mut r = rng(78);
     let slab = AlbedoCurve::simulate(
         &hg,
@@ -194,6 +156,55 @@ fn the_inverse_and_the_slab() {
         &mut r,
     )
     .unwrap();
+    // The semi-infinite curve keeps the coarse nodes alone (smooth in s
+    // through the first interval); a slab keeps the fine nodes too.
+    assert!(c.fine_nodes().is_none() && slab.fine_nodes().is_some());
+    for curve in [&c, &slab] {
+        // Every thousandth ω, and inside the first interval every tenth of
+        // each fine grid step (ω from 1 − 2.3·10⁻¹⁰ to 1 − 1/4096).
+        let fine = (0..100).map(|k| {
+            let s = 2f64.powf(-10.0 + k as f64 / 10.0) / 64.0;
+            1.0 - s * s
+        });
+        for omega in (0..=1000).map(|i| i as f64 / 1000.0).chain(fine) {
+            let back = curve.single_scattering_albedo(curve.albedo(omega)).unwrap();
+            assert!((back - omega).abs() <= 1e-12, "{omega}: {back}");
+        }
+        // Monotone through the first interval and across its end.
+        let mut last = curve.albedo(1.0);
+        for k in 0..=4000 {
+            let s = k as f64 / 4000.0 / 32.0;
+            let a = curve.albedo(1.0 - s * s);
+            assert!(a <= last, "s = {s}: {a} after {last}");
+            last = a;
+        }
+        for k in 1..NODES {
+            assert!(
+                curve.node(k).unwrap().1 < curve.node(k - 1).unwrap().1,
+                "node {k}"
+            );
+        }
+        // Stored and restored: the same curve; from the coarse nodes
+        // alone, the same beyond the first interval.
+        let (rho, se) = curve.nodes();
+        let (fine, fine_se) = curve.fine_nodes().unwrap_or_default();
+        let back = AlbedoCurve::from_stored(rho, se, fine, fine_se, curve.paths());
+        for omega in [0.0, 0.37, 0.9, 0.999, 0.99999, 0.9999999, 1.0] {
+            assert_eq!(back.albedo(omega).to_bits(), curve.albedo(omega).to_bits());
+            assert_eq!(
+                back.std_error(omega).to_bits(),
+                curve.std_error(omega).to_bits()
+            );
+        }
+        let coarse = AlbedoCurve::from_nodes(rho, se, curve.paths());
+        assert!(coarse.fine_nodes().is_none());
+        for omega in [0.0, 0.37, 0.9, 0.999, 1.0 - 1.0 / 4096.0] {
+            assert_eq!(
+                coarse.albedo(omega).to_bits(),
+                curve.albedo(omega).to_bits()
+            );
+        }
+    }
     for omega in [0.3, 0.6, 0.9, 0.97, 0.99] {
         let (a, b) = (c.albedo(omega), slab.albedo(omega));
         let se = c.std_error(omega).hypot(slab.std_error(omega));

@@ -40,12 +40,10 @@ pub struct sk_albedo_curve_f64 {
     pub fine_se: [f64; SK_ALBEDO_FINE],
 }
 
+/// The curve (all-zero fine arrays: the coarse nodes alone, as
+/// `from_stored` reads them).
 fn curve(c: &sk_albedo_curve_f64) -> AlbedoCurve {
-    if c.fine_rho == [0.0; FINE] && c.fine_se == [0.0; FINE] {
-        AlbedoCurve::from_nodes(c.rho, c.se, c.paths)
-    } else {
-        AlbedoCurve::from_stored(c.rho, c.se, c.fine_rho, c.fine_se, c.paths)
-    }
+    AlbedoCurve::from_stored(c.rho, c.se, c.fine_rho, c.fine_se, c.paths)
 }
 
 /// Traces `paths` paths through a plane-parallel layer with index-matched

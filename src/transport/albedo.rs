@@ -161,8 +161,8 @@ impl AlbedoCurve {
     /// `paths = 0`, a slab thickness not finite and positive, or `μ_0`
     /// outside `(0, 1]`. Cost: the paths' scatterings (a deep medium with
     /// a forward phase function takes many: about 10³ per path at
-    /// `g = 0.9`), plus 75 exponentials per reflected path and 10 per
-    /// path cut after [`MAX_EVENTS`] scatterings.
+    /// `g = 0.9`), plus 65 exponentials per reflected path (75 in a
+    /// slab, and 10 per path a slab cuts after [`MAX_EVENTS`] scatterings).
     pub fn simulate<P: PhaseFunction<f64> + ?Sized, R: Rng + ?Sized>(
         phase: &P,
         layer: Layer,
@@ -204,10 +204,13 @@ impl AlbedoCurve {
                         sum[k] += w;
                         sum2[k] += w * w;
                     }
-                    for (j, &(_, ln)) in fine_omega.iter().enumerate() {
-                        let w = libm::exp(n as f64 * ln);
-                        fsum[j] += w;
-                        fsum2[j] += w * w;
+                    // The fine nodes serve slabs alone (below).
+                    if layer != Layer::SemiInfinite {
+                        for (j, &(_, ln)) in fine_omega.iter().enumerate() {
+                            let w = libm::exp(n as f64 * ln);
+                            fsum[j] += w;
+                            fsum2[j] += w * w;
+                        }
                     }
                 }
                 // A cut path is not absorbed at ω = 1, and at the fine
@@ -217,18 +220,19 @@ impl AlbedoCurve {
                 // slab's albedo at ω = 1 low by the share of paths cut
                 // (1.25 % at τ = 10⁴, HG 0.85, diffuse light: 22σ below
                 // adding-doubling). At the coarse nodes below ω = 1 it
-                // weighs at most e^{−16}.
+                // weighs at most e^{−16}. (A semi-infinite layer's value at
+                // ω = 1 is 1, not estimated.)
                 End::Cut(z) => {
-                    if layer != Layer::SemiInfinite {
-                        let w = lit_face_share(z, layer, g, 0.0);
+                    if let Layer::Slab(tau) = layer {
+                        let w = lit_face_share(z, tau, g, 0.0);
                         sum[0] += w;
                         sum2[0] += w * w;
-                    }
-                    for (j, &(one_minus, ln)) in fine_omega.iter().enumerate() {
-                        let w = libm::exp(MAX_EVENTS as f64 * ln)
-                            * lit_face_share(z, layer, g, one_minus);
-                        fsum[j] += w;
-                        fsum2[j] += w * w;
+                        for (j, &(one_minus, ln)) in fine_omega.iter().enumerate() {
+                            let w = libm::exp(MAX_EVENTS as f64 * ln)
+                                * lit_face_share(z, tau, g, one_minus);
+                            fsum[j] += w;
+                            fsum2[j] += w * w;
+                        }
                     }
                 }
                 End::Lost => {}
@@ -255,18 +259,16 @@ impl AlbedoCurve {
             // ω = 1: nothing is absorbed and nothing leaves below.
             rho[0] = 1.0;
             se[0] = 0.0;
-        }
-        let (mut fine, mut fine_se) = ([0.0; FINE], [0.0; FINE]);
-        for j in 0..FINE {
-            (fine[j], fine_se[j]) = mean_se(fsum[j], fsum2[j], 1.0 - fine_omega[j].0);
-        }
-        if layer == Layer::SemiInfinite {
             // Smooth in s through the first interval (1 − a s + b s²): the
             // cubic through nodes 0–3 held `1 − ω` at A = 0.99 within
             // 0.35 % at 10⁷ paths, where the fine nodes, leaning on the
             // diffusion share of the paths cut there, were 1.06 % off
             // (g = 0.5, beam). The fine nodes serve slabs.
             return Ok(Self::from_nodes(rho, se, paths));
+        }
+        let (mut fine, mut fine_se) = ([0.0; FINE], [0.0; FINE]);
+        for j in 0..FINE {
+            (fine[j], fine_se[j]) = mean_se(fsum[j], fsum2[j], 1.0 - fine_omega[j].0);
         }
         Ok(Self::from_stored(rho, se, fine, fine_se, paths))
     }
@@ -594,8 +596,8 @@ fn hermite_step((y0, y1): (f64, f64), (d0, d1): (f64, f64), t: f64) -> f64 {
 
 /// The monotone cubic Hermite interpolant of `y` with slopes `d` (per
 /// grid step) on interval `i` at `t ∈ [0, 1]`.
-fn hermite<const N: usize>(y: &[f64; N], d: &[f64; N], i: usize, t: f64) -> f64 {
-    let v = |a: &[f64; N], k: usize| a.get(k).copied().unwrap_or(f64::NAN);
+fn hermite(y: &[f64; NODES], d: &[f64; NODES], i: usize, t: f64) -> f64 {
+    let v = |a: &[f64; NODES], k: usize| a.get(k).copied().unwrap_or(f64::NAN);
     hermite_step((v(y, i), v(y, i + 1)), (v(d, i), v(d, i + 1)), t)
 }
 
@@ -604,11 +606,11 @@ fn hermite<const N: usize>(y: &[f64; N], d: &[f64; N], i: usize, t: f64) -> f64 
 /// `j … j+3` around it (`x = t` measured from node `j`),
 /// `|Δ⁴y|/4! · |x(x − 1)(x − 2)(x − 3)|`, the fourth difference over
 /// `j … j+4` (or the last five nodes).
-fn fourth_difference_term<const N: usize>(y: &[f64; N], i: usize, t: f64) -> f64 {
+fn fourth_difference_term(y: &[f64; NODES], i: usize, t: f64) -> f64 {
     let v = |k: usize| y.get(k).copied().unwrap_or(f64::NAN);
-    let j = i.saturating_sub(1).min(N - 4);
+    let j = i.saturating_sub(1).min(NODES - 4);
     let x = (i - j) as f64 + t;
-    let first = j.min(N - 5);
+    let first = j.min(NODES - 5);
     let d4 = v(first) - 4.0 * v(first + 1) + 6.0 * v(first + 2) - 4.0 * v(first + 3) + v(first + 4);
     let poly = x * (x - 1.0) * (x - 2.0) * (x - 3.0);
     libm::fabs(d4 / 24.0 * poly)
@@ -671,22 +673,21 @@ enum End {
     Cut(f64),
 }
 
-/// The share of the light at optical depth `z` that leaves through the
-/// lit face, by diffusion, where a share `1 − ω` of each collision is
-/// absorbed: a path cut after [`MAX_EVENTS`] scatterings has long
-/// forgotten its direction (2¹⁶ (1 − g) transport events). In optical
-/// depth units the transport coefficient is `1 − ω g`, the extrapolated
-/// boundary `z_e = 0.7104/(1 − ω g)` beyond each face (Milne's
-/// extrapolation length in transport mean free paths) and the diffusion
-/// constant `κ = √(3 (1 − ω)(1 − ω g))`; the density from a source at `z`
-/// that reaches the lit face's extrapolated boundary is
-/// `sinh(κ(τ + z_e − z)) / sinh(κ(τ + 2 z_e))` in a slab (written
+/// The share of the light at optical depth `z` of a slab of thickness `τ`
+/// that leaves through the lit face, by diffusion, where a share `1 − ω`
+/// of each collision is absorbed: a path cut after [`MAX_EVENTS`]
+/// scatterings has long forgotten its direction (2¹⁶ (1 − g) transport
+/// events). In optical depth units the transport coefficient is
+/// `1 − ω g`, the extrapolated boundary `z_e = 0.7104/(1 − ω g)` beyond
+/// each face (Milne's extrapolation length in transport mean free paths)
+/// and the diffusion constant `κ = √(3 (1 − ω)(1 − ω g))`; the density
+/// from a source at `z` that reaches the lit face's extrapolated boundary
+/// is `sinh(κ(τ + z_e − z)) / sinh(κ(τ + 2 z_e))` (written
 /// `e^{−κ(z + z_e)} · expm1(−2a)/expm1(−2b)`, `a`, `b` the two arguments,
-/// so that a thick slab's `sinh` does not overflow), `e^{−κ(z + z_e)}`
-/// below a semi-infinite face, and at `ω = 1` the slab's linear
-/// `(τ + z_e − z) / (τ + 2 z_e)` (1 for a semi-infinite layer). 0 for
-/// `g = 1` (a path that never turns does not come back).
-fn lit_face_share(z: f64, layer: Layer, g: f64, one_minus_omega: f64) -> f64 {
+/// so that a thick slab's `sinh` does not overflow), and at `ω = 1` the
+/// linear `(τ + z_e − z) / (τ + 2 z_e)`. 0 for `g = 1` (a path that never
+/// turns does not come back).
+fn lit_face_share(z: f64, tau: f64, g: f64, one_minus_omega: f64) -> f64 {
     // g ≥ 1 or NaN: no diffusion to speak of.
     if g.is_nan() || g >= 1.0 {
         return 0.0;
@@ -694,14 +695,11 @@ fn lit_face_share(z: f64, layer: Layer, g: f64, one_minus_omega: f64) -> f64 {
     let transport = one_minus_omega + (1.0 - one_minus_omega) * (1.0 - g);
     let ze = 0.7104 / transport;
     let kappa = libm::sqrt(3.0 * one_minus_omega * transport);
-    let share = match layer {
-        Layer::SemiInfinite if kappa == 0.0 => 1.0,
-        Layer::SemiInfinite => libm::exp(-kappa * (z + ze)),
-        Layer::Slab(tau) if kappa == 0.0 => (tau + ze - z) / (tau + 2.0 * ze),
-        Layer::Slab(tau) => {
-            let (a, b) = (kappa * (tau + ze - z), kappa * (tau + 2.0 * ze));
-            libm::exp(-kappa * (z + ze)) * libm::expm1(-2.0 * a) / libm::expm1(-2.0 * b)
-        }
+    let share = if kappa == 0.0 {
+        (tau + ze - z) / (tau + 2.0 * ze)
+    } else {
+        let (a, b) = (kappa * (tau + ze - z), kappa * (tau + 2.0 * ze));
+        libm::exp(-kappa * (z + ze)) * libm::expm1(-2.0 * a) / libm::expm1(-2.0 * b)
     };
     share.clamp(0.0, 1.0)
 }
@@ -710,12 +708,12 @@ fn lit_face_share(z: f64, layer: Layer, g: f64, one_minus_omega: f64) -> f64 {
 /// the node index: the three-point estimate clamped to `[3Δ, 0]` of both
 /// neighbouring secants `Δ` (≤ 0), so the cubic Hermite interpolant is
 /// monotone.
-fn fritsch_carlson<const N: usize>(y: &[f64; N]) -> [f64; N] {
-    let mut d = [0.0; N];
+fn fritsch_carlson(y: &[f64; NODES]) -> [f64; NODES] {
+    let mut d = [0.0; NODES];
     let v = |k: usize| y.get(k).copied().unwrap_or(f64::NAN);
     for (k, dk) in d.iter_mut().enumerate() {
         let left = if k > 0 { v(k) - v(k - 1) } else { v(1) - v(0) };
-        let right = if k + 1 < N { v(k + 1) - v(k) } else { left };
+        let right = if k + 1 < NODES { v(k + 1) - v(k) } else { left };
         let mut s = 0.5 * (left + right);
         for secant in [left, right] {
             s = s.max(3.0 * secant).min(0.0);

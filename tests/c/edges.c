@@ -442,27 +442,18 @@ typedef struct {
 
 static float walk_maj[1000];
 
-/* The cell coordinate of axis a beyond float range: the walk's -1 for a
-   finite ray and box (computed in double, so beyond is > FLT_MAX). */
-static int beyond(const walk_box *b, const float o[3], const float d[3]) {
-    int a, out = 0;
+/* The largest of the box's extent and the ray's origin and direction in
+   cell units over the axes, in double: the walk's -1 for a finite ray and
+   box above FLT_MAX, and no rounding can take it there below FLT_MAX / 2. */
+static double cell_extent(const walk_box *b, const float o[3], const float d[3]) {
+    int a;
+    double most = 0.0;
     for (a = 0; a < 3; a++) {
         double span = (double)b->hi[a] - b->lo[a], scale = b->n[a] / span;
-        out |= span > FLT_MAX || fabs(((double)o[a] - b->lo[a]) * scale) > FLT_MAX ||
-               fabs((double)d[a] * scale) > FLT_MAX;
+        double o_cells = fabs(((double)o[a] - b->lo[a]) * scale), d_cells = fabs((double)d[a] * scale);
+        most = fmax(most, fmax(span, fmax(o_cells, d_cells)));
     }
-    return out;
-}
-
-/* Within float range by a factor of 2 (no rounding can take it over). */
-static int well_within(const walk_box *b, const float o[3], const float d[3]) {
-    int a, in = 1;
-    for (a = 0; a < 3; a++) {
-        double span = (double)b->hi[a] - b->lo[a], scale = b->n[a] / span;
-        in &= span < FLT_MAX / 2 && fabs(((double)o[a] - b->lo[a]) * scale) < FLT_MAX / 2 &&
-              fabs((double)d[a] * scale) < FLT_MAX / 2;
-    }
-    return in;
+    return most;
 }
 
 /* Each collision of a walk lies in its cell (within the rounding of the
@@ -506,11 +497,11 @@ static void walk_ray(const walk_box *b, const float o[3], const float d[3], floa
     lo.x = b->lo[0], lo.y = b->lo[1], lo.z = b->lo[2];
     hi.x = b->hi[0], hi.y = b->hi[1], hi.z = b->hi[2];
     r = skp_walk_begin(&w, org, dir, lo, hi, b->n[0], b->n[1], b->n[2], t_min, t_max);
-    if (bad || beyond(b, o, d)) {
+    if (bad || cell_extent(b, o, d) > FLT_MAX) {
         CHECK(r == -1);
         return;
     }
-    CHECK(r == 0 || r == 1 || (r == -1 && !well_within(b, o, d)));
+    CHECK(r == 0 || r == 1 || (r == -1 && cell_extent(b, o, d) >= FLT_MAX / 2));
     for (a = 0; a < 3; a++) {
         double ta, tb;
         if (d[a] == 0.0f) {

@@ -1099,8 +1099,9 @@ SKP_FN float skp_spectral_free_path(const float *sigma_t, skp_u32 n, skp_u32 her
 
 #define SKP_INV_2PI 0.15915494f
 
-/* The Hermite cubic at u in [0, 1] (not clamped here): cos theta, and the
-   cubic's slope in t at *dmu. */
+/* The Hermite cubic at u in [0, 1] (not clamped here): cos theta, held in
+   [y0, y1] (its rounding can pass y1 by an ulp) and then in [-1, 1], and
+   the cubic's slope in t at *dmu. */
 SKP_FN float skp_table_hermite_(const SKP_GLOBAL float *data, skp_u32 n, float u, float *dmu) {
     SKP_BEGIN
     float x, t, y0, d0, y1, d1, dy, c2, c3, mu;
@@ -1122,6 +1123,8 @@ SKP_FN float skp_table_hermite_(const SKP_GLOBAL float *data, skp_u32 n, float u
     c3 = d0 + d1 - SKP_MUL(2.0f, dy);
     mu = y0 + SKP_MUL(t, d0 + SKP_MUL(t, c2 + SKP_MUL(t, c3)));
     *dmu = d0 + SKP_MUL(t, SKP_MUL(2.0f, c2) + SKP_MUL(SKP_MUL(3.0f, t), c3));
+    mu = mu > y1 ? y1 : mu;
+    mu = mu < y0 ? y0 : mu;
     return mu > 1.0f ? 1.0f : (mu < -1.0f ? -1.0f : mu);
 }
 

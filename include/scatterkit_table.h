@@ -25,7 +25,8 @@
  *     mu(t) = mu_i + t (d_i + t (c2 + t c3)),
  *     c2 = 3 (mu_{i+1} - mu_i) - 2 d_i - d_{i+1},
  *     c3 = d_i + d_{i+1} - 2 (mu_{i+1} - mu_i),
- *   clamped to [-1, 1]. Density per steradian: 1 / (2 pi n mu'(t)).
+ *   held in [mu_i, mu_{i+1}] (its rounding can pass mu_{i+1} by an ulp),
+ *   then clamped to [-1, 1]. Density per steradian: 1 / (2 pi n mu'(t)).
  *
  *   SK_TABLE_RAYLEIGH_CDF: n + 1 values F_i, the Rayleigh CDF at
  *   x_i = -1 + 2i/n. Lookup: the largest i < n with F_i <= u by bisection,
@@ -85,6 +86,8 @@ SK_TABLE_FN float sk_table_hermite_lookup(const float *data, size_t n, float u) 
     c2 = 3.0f * dy - 2.0f * d0 - d1;
     c3 = d0 + d1 - 2.0f * dy;
     mu = y0 + t * (d0 + t * (c2 + t * c3));
+    mu = mu > y1 ? y1 : mu;
+    mu = mu < y0 ? y0 : mu;
     mu = mu > 1.0f ? 1.0f : mu;
     return mu < -1.0f ? -1.0f : mu;
 }
@@ -149,6 +152,8 @@ SK_TABLE_FN double sk_table_hermite_lookup_f64(const double *data, size_t n, dou
     c2 = 3.0 * dy - 2.0 * d0 - d1;
     c3 = d0 + d1 - 2.0 * dy;
     mu = y0 + t * (d0 + t * (c2 + t * c3));
+    mu = mu > y1 ? y1 : mu;
+    mu = mu < y0 ? y0 : mu;
     mu = mu > 1.0 ? 1.0 : mu;
     return mu < -1.0 ? -1.0 : mu;
 }

@@ -161,7 +161,8 @@ pub(crate) fn inverse_cdf(eval: impl Fn(f64) -> (f64, f64), u: f64, seed: f64) -
 
 /// Cubic Hermite interpolation of a tabulated inverse CDF (`μ_i, d_i`
 /// interleaved, `n` intervals, `n_t = n` as a float) at `u ∈ [0, 1]`: the
-/// interval `i = ⌊u n⌋` found by arithmetic, no search.
+/// interval `i = ⌊u n⌋` found by arithmetic, no search; the value held in
+/// `[μ_i, μ_{i+1}]`, then in `[−1, 1]` (NaN stays NaN).
 #[inline(always)]
 pub(crate) fn hermite<T: Real>(data: &[T], n: usize, n_t: T, u: T) -> T {
     let x = u * n_t;
@@ -175,7 +176,18 @@ pub(crate) fn hermite<T: Real>(data: &[T], n: usize, n_t: T, u: T) -> T {
     let dy = y1 - y0;
     let c2 = T::from_f64(3.0) * dy - T::TWO * d0 - d1;
     let c3 = d0 + d1 - T::TWO * dy;
-    (y0 + t * (d0 + t * (c2 + t * c3))).clamp_unit()
+    hold(y0 + t * (d0 + t * (c2 + t * c3)), y0, y1).clamp_unit()
+}
+
+/// `mu` held in `[y0, y1]`, the ends of its Hermite interval (NaN stays
+/// NaN). The cubic is monotone from `y0` to `y1` on `t ∈ [0, 1]`, but its
+/// rounding passes `y1` by an ulp near `t = 1`: past the last node, where
+/// the table's density is 0, and above the next interval's first value,
+/// so that `u` to `cos θ` was not monotone.
+#[inline(always)]
+fn hold<T: Real>(mu: T, y0: T, y1: T) -> T {
+    let mu = if mu > y1 { y1 } else { mu };
+    if mu < y0 { y0 } else { mu }
 }
 
 /// The root in `[lo, hi]` of an increasing `f` with `f(lo) ≤ 0 ≤ f(hi)`,

@@ -18,8 +18,9 @@ const INV_2PI: f32 = 0.159_154_94;
 
 /// `(μ, μ'(t))` of the Hermite cubic at `u ∈ [0, 1]` (not clamped here):
 /// `x = u n`, `i = min(⌊x⌋, n − 1)`, `t = x − i`, `μ = y0 + t (d0 + t (c2 +
-/// t c3))` clamped to `[−1, 1]` (the library's operations), and the
-/// cubic's slope in `t`, `d0 + t (2c2 + 3t c3)`.
+/// t c3))` held in `[y0, y1]` (its rounding can pass `y1` by an ulp), then
+/// clamped to `[−1, 1]` (the library's operations), and the cubic's slope
+/// in `t`, `d0 + t (2c2 + 3t c3)`.
 #[inline(always)]
 fn hermite(data: &[f32], n: usize, u: f32) -> (f32, f32) {
     if n == 0 {
@@ -36,7 +37,9 @@ fn hermite(data: &[f32], n: usize, u: f32) -> (f32, f32) {
     let dy = y1 - y0;
     let c2 = 3.0 * dy - 2.0 * d0 - d1;
     let c3 = d0 + d1 - 2.0 * dy;
-    let mu = (y0 + t * (d0 + t * (c2 + t * c3))).clamp(-1.0, 1.0);
+    let mu = y0 + t * (d0 + t * (c2 + t * c3));
+    let mu = if mu > y1 { y1 } else { mu };
+    let mu = (if mu < y0 { y0 } else { mu }).clamp(-1.0, 1.0);
     (mu, d0 + t * (2.0 * c2 + 3.0 * t * c3))
 }
 

@@ -144,6 +144,8 @@ int main(void) {
     static const size_t NS[] = {1, 7, 64, 1000};
     float cx[5] = {-1.0f, -0.3f, 0.2f, 0.8f, 1.0f}, cp[5] = {0.1f, 0.3f, 0.0f, 1.5f, 4.0f};
     double cxd[5] = {-1.0, -0.3, 0.2, 0.8, 1.0}, cpd[5] = {0.1, 0.3, 0.0, 1.5, 4.0};
+    float cq[5] = {0.0f, 0.0f, 2.0f, 0.0f, 0.0f};
+    double cqd[5] = {0.0, 0.0, 2.0, 0.0, 0.0};
     sk_phase phases[4];
     sk_phase_f64 phasesd[4];
     size_t k, j;
@@ -170,6 +172,15 @@ int main(void) {
         if (sk_table_new_measured(cx, cp, 5, buf, 2 * (MAXN + 1), n, &t) ||
             sk_table_new_measured_f64(cxd, cpd, 5, bufd, 2 * (MAXN + 1), n, &td) ||
             0) {
+            printf("measured table failed\n");
+            return 1;
+        }
+        sweep32(&t);
+        sweep64(&td);
+        /* A support inside (-1, 1), from -0.3 to 0.8: the cubic's rounding
+           near either end must not pass it. */
+        if (sk_table_new_measured(cx, cq, 5, buf, 2 * (MAXN + 1), n, &t) ||
+            sk_table_new_measured_f64(cxd, cqd, 5, bufd, 2 * (MAXN + 1), n, &td)) {
             printf("measured table failed\n");
             return 1;
         }

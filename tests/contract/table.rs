@@ -185,15 +185,32 @@ fn a_measured_table_ends_where_the_support_ends() {
             first == lo && last == hi,
             "n {n}: [{first:?}, {last:?}] for [{lo:?}, {hi:?}]"
         );
-        // The Hermite cubic rounds up to an ulp past its last node near
-        // u = 1 (where the table's density is 0); beyond that, nothing.
-        let ulp = T::from_f64(4.0) * T::EPSILON;
-        for u in uniform_grid(2001) {
-            let mu = t.sample_cos(T::from_f64(u));
+        // Every sample inside the support, where the table's own density
+        // is positive, near each node from both sides too (where the
+        // cubic's rounding could pass the node); monotone.
+        let near = (0..=n).flat_map(|k| {
+            let u = T::from_f64(k as f64 / n as f64);
+            let e = u * T::EPSILON;
+            [u - e - e, u - e, u, u + e, u + e + e]
+        });
+        let mut us: Vec<T> = uniform_grid(2001).map(T::from_f64).chain(near).collect();
+        us.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        let mut last_mu = lo;
+        for u in us {
+            let mu = t.sample_cos(u);
             assert!(
-                mu >= lo && mu <= hi + ulp * hi.abs().max_of(T::ONE),
-                "n {n}, u {u}: {mu:?} outside [{lo:?}, {hi:?}]"
+                mu >= lo && mu <= hi && t.pdf(mu) > T::ZERO,
+                "n {n}, u {u:?}: {mu:?} outside [{lo:?}, {hi:?}] or pdf {:?}",
+                t.pdf(mu)
             );
+            // Monotone up to the rounding of Horner's terms (up to ~4 in
+            // size for a steep interval: a few ulp of 1).
+            let slack = T::from_f64(8.0) * T::EPSILON;
+            assert!(
+                mu >= last_mu - slack,
+                "n {n}: not monotone at u {u:?}: {mu:?} after {last_mu:?}"
+            );
+            last_mu = mu;
         }
     }
     let hg = Phase::henyey_greenstein(0.7).unwrap();

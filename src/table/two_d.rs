@@ -207,21 +207,26 @@ impl<'a, T: Real> Table2d<'a, T> {
         }
     }
 
-    /// The blended nodes at `x` in f64, as `(μ_i, d_i)` of node `i`.
+    /// The blended nodes at `x`, as `(μ_i, d_i)` of node `i` in f64: `μ_i`
+    /// blended in `T`, as [`sample_cos`](Self::sample_cos) blends its
+    /// values (so that the sample at `u = 1`, the blend of the two last
+    /// nodes, is the blended last node: blended in f64, an f32 table's
+    /// ends fell up to half an ulp inside its samples, where the density
+    /// is 0), `d_i` in f64.
     fn nodes(&self, x: T) -> Option<impl Fn(usize) -> (f64, f64) + '_> {
         let (j, w) = self.at(x)?;
-        let w = w.to_f64();
         let per = 2 * (self.n + 1);
-        let v = |i: usize| self.data.get(i).map_or(f64::NAN, |v| v.to_f64());
+        let v = |i: usize| self.data.get(i).copied().unwrap_or(T::NAN);
         Some(move |i: usize| {
             let (a, b) = (j * per + 2 * i, (j + 1) * per + 2 * i);
-            if w > 0.0 {
+            if w > T::ZERO {
+                let blend = |a: T, b: T| a.to_f64() + w.to_f64() * (b.to_f64() - a.to_f64());
                 (
-                    v(a) + w * (v(b) - v(a)),
-                    v(a + 1) + w * (v(b + 1) - v(a + 1)),
+                    (v(a) + w * (v(b) - v(a))).to_f64(),
+                    blend(v(a + 1), v(b + 1)),
                 )
             } else {
-                (v(a), v(a + 1))
+                (v(a).to_f64(), v(a + 1).to_f64())
             }
         })
     }

@@ -13,6 +13,7 @@ use common::chi2::{chi2_directions_by_cells, threshold};
 use common::{CHI2_SAMPLES, rng};
 use scatterkit::mie::{self, Complex, Mie};
 use scatterkit::{Error, HenyeyGreenstein, PhaseFunction, Real, Table, Table2d, TableKind, Vec3};
+use std::cmp::Ordering;
 use std::f64::consts::PI;
 
 /// HG with `g = 0.2 + 0.7 x` on `x ∈ [0, 1]`, `k` slices of `n` intervals.
@@ -239,4 +240,50 @@ fn slices_must_stay_monotone_within_their_nodes() {
         let x = x0 + dx * (k - 1) as f64 * j as f64 / 40.0;
         assert!(t.mean_cosine(x).abs() <= 1.0);
     }
+}
+
+/// Slices of measured data whose supports end at different cosines
+/// inside (−1, 1): every sample at every `x` (at the slices and between)
+/// has a positive density of the blend, f32 and f64.
+#[test]
+fn a_blend_of_measured_slices_samples_where_its_density_is_positive() {
+    fn check<T: Real>() -> (usize, usize) {
+        let (n, k) = (16usize, 5usize);
+        let xs = [-1.0, -0.6, -0.2, 0.1, 0.3, 0.55, 0.8, 1.0];
+        let mut buf = vec![T::ZERO; Table2d::<T>::len(n, k).unwrap()];
+        let t = Table2d::build(&mut buf, n, k, T::ZERO, T::ONE, |j, _, slice| {
+            // Slice j: mass between points 1 + j % 3 and 6 - j % 2.
+            let (a, b) = (1 + j % 3, 6 - j % 2);
+            let x: Vec<T> = xs.iter().map(|&c| T::from_f64(c)).collect();
+            let p: Vec<T> = (0..xs.len())
+                .map(|i| {
+                    T::from_f64(if i > a && i < b {
+                        1.0 + 0.3 * i as f64
+                    } else {
+                        0.0
+                    })
+                })
+                .collect();
+            Table::measured(&x, &p, slice, n).map(|_| ())
+        })
+        .unwrap();
+        let (mut bad, mut all) = (0, 0);
+        for ix in 0..=400 {
+            let x = T::from_f64(4.0 * ix as f64 / 400.0);
+            for iu in 0..=2000 {
+                let u = T::from_f64(iu as f64 / 2000.0);
+                let mu = t.sample_cos(x, u);
+                all += 1;
+                // Positive, not NaN.
+                bad += usize::from(t.pdf(x, mu).partial_cmp(&T::ZERO) != Some(Ordering::Greater));
+            }
+        }
+        (bad, all)
+    }
+    let (b32, a32) = check::<f32>();
+    let (b64, a64) = check::<f64>();
+    assert!(
+        b32 == 0 && b64 == 0,
+        "f32 {b32} of {a32}, f64 {b64} of {a64} with pdf 0"
+    );
 }

@@ -28,7 +28,9 @@
 //!   `D_{n−1} = n/(mx) − 1/(D_n + n/(mx))` from
 //!   `max(N, |mx|) + 8 (|mx|/2)^{1/3} + 16` (eight Airy widths past the
 //!   turning point), which is stable for every `m` (the upward recurrence
-//!   is not when `|mx|` is large or `k` is);
+//!   is not when `|mx|` is large or `k` is), carried as the remainder
+//!   `R_n(z) = D_n(z) − (n + 1)/z`, `R_{n−1} = −z/(2n + 1 + z R_n)`
+//!   (the same recurrence with the pole of the small-`z` limit taken out);
 //! * the Riccati–Bessel functions `χ_n` by upward recurrence (the growing
 //!   solution: stable), `ψ_n` upward while `n < x`, where it
 //!   oscillates, and from `n ≥ x` by ratios, `ψ_n = ψ_{n−1} / (D_n(x) +
@@ -39,7 +41,14 @@
 //!   `n = x`, where `ψ_{n−1}` can vanish (its first zero lies beyond
 //!   `n + 1.8 n^{1/3}`) and the ratio cancels;
 //! * `a_n = ((D_n/m + n/x) ψ_n − ψ_{n−1}) / ((D_n/m + n/x) ξ_n − ξ_{n−1})`,
-//!   `b_n` likewise with `m D_n`.
+//!   `b_n` likewise with `m D_n`; `a_n`'s numerator and denominator
+//!   multiplied by `m²`, so that no `1/m²` enters. Where `ψ_n` is the
+//!   ratio (`n ≥ x`), the numerators come from the remainders, `ψ_n ((n +
+//!   1)(1 − m²)/x + m R_n(mx) − m² R_n(x))` and `ψ_n (m R_n(mx) −
+//!   R_n(x))`: from the `D_n`, `b_n`'s difference is of order `x²(m² − 1)`
+//!   of its terms, and `g`, which needs `b_1`, was off by a factor of 10³
+//!   at `x = 10⁻⁹` and 10²⁵ at `x = 10⁻²⁰` (182 spheres from `x = 10⁻²⁰` to
+//!   30 against 80 digits now agree within 1.2·10⁻¹²).
 
 pub mod polydisperse;
 
@@ -96,8 +105,70 @@ impl Complex {
             Complex::new((self.re * r + self.im) / d, (self.im * r - self.re) / d)
         }
     }
-    fn recip(self) -> Self {
-        Complex::new(1.0, 0.0).div(self)
+}
+
+/// One step down of `R_n(z) = D_n(z) − (n + 1)/z`, the logarithmic
+/// derivative less its small-`z` pole: `R_{n−1} = −z/(2n + 1 + z R_n)`,
+/// Bohren & Huffman's `D_{n−1} = n/z − 1/(D_n + n/z)` with the `(n + 1)/z`
+/// and `n/z` taken out (`R_n ≈ −z/(2n + 3)` as `z → 0`, where `D_n`
+/// itself is `(n + 1)/z` to within `z²`, so that differences of two `D_n`
+/// kept only their rounding).
+fn remainder_down(n: usize, z: Complex, r: Complex) -> Complex {
+    let den = Complex::new((2 * n + 1) as f64, 0.0).add(z.mul(r));
+    z.div(den).scale(-1.0)
+}
+
+/// The factors of term `n` (Bohren & Huffman, eq. 4.88, with `D_n(mx) =
+/// (n + 1)/(mx) + R_n(mx)` and `R_n` from [`remainder_down`]): `b_n =
+/// (t_b ψ_n − ψ_{n−1})/(t_b ξ_n − ξ_{n−1})` with `t_b = m D_n(mx) + n/x =
+/// (2n + 1)/x + m R_n`, and `a_n` the same with `t_a = m² (D_n(mx)/m +
+/// n/x) = (n + 1)/x + m R_n + m² n/x` and `m² ψ_{n−1}`, `m² ξ_{n−1}`:
+/// numerator and denominator times `m²`, so that no `1/m²` enters (with
+/// it, a tiny complex `m` gave both a large complex phase that cancelled in
+/// the quotient and left `Re a_n` wrong in the eighth digit: `Q_abs < 0`).
+struct Terms {
+    n: usize,
+    x: f64,
+    m2: Complex,
+    one_m2: Complex,
+    /// `m R_n(mx)`.
+    mr: Complex,
+    a: Complex,
+    b: Complex,
+}
+
+impl Terms {
+    fn new(n: usize, x: f64, (m, m2, one_m2): (Complex, Complex, Complex), r: Complex) -> Self {
+        let (nf, mr) = (n as f64, m.mul(r));
+        let a = Complex::new((nf + 1.0) / x, 0.0)
+            .add(mr)
+            .add(m2.scale(nf / x));
+        let b = Complex::new((2.0 * nf + 1.0) / x, 0.0).add(mr);
+        Terms {
+            n,
+            x,
+            m2,
+            one_m2,
+            mr,
+            a,
+            b,
+        }
+    }
+
+    /// Where `ψ_n` is the ratio `ψ_{n−1}/(D_n(x) + n/x)`: the numerators
+    /// over `ψ_n`, `t_a − m²(D_n(x) + n/x) = (n + 1)(1 − m²)/x + m R_n(mx)
+    /// − m² R_n(x)` and `t_b − (D_n(x) + n/x) = m R_n(mx) − R_n(x)`, with
+    /// `rx = R_n(x)`: the `(n + 1)/x` of the two `D_n` cancel exactly.
+    /// Formed from the `D_n`, `b_n`'s lost two digits per decade of `x`
+    /// below 1 (it is `x²(m² − 1)/(2n + 3)` of the terms), and `g`, which
+    /// needs `b_1`, was off by a factor of 10³ at `x = 10⁻⁹`.
+    fn ratio_numerators(&self, rx: f64) -> (Complex, Complex) {
+        let a = self
+            .one_m2
+            .scale((self.n + 1) as f64 / self.x)
+            .add(self.mr)
+            .sub(self.m2.scale(rx));
+        (a, self.mr.sub(Complex::new(rx, 0.0)))
     }
 }
 
@@ -211,20 +282,19 @@ impl<'a> Mie<'a> {
         let Some((d, ab)) = buf.split_at_mut_checked(nmx + 1) else {
             return Err(Error::Size);
         };
-        // D_n(mx), downward from D_nmx = 0.
+        // R_n(mx) = D_n(mx) − (n + 1)/(mx), downward from R_nmx = 0 (see
+        // `remainder_down`).
         let mx = m.scale(x);
-        let inv_mx = mx.recip();
         if let Some(last) = d.last_mut() {
             *last = Complex::default();
         }
         for n in (1..=nmx).rev() {
-            let nmx_n = inv_mx.scale(n as f64);
-            let dn = d.get(n).copied().unwrap_or_default();
+            let rn = d.get(n).copied().unwrap_or_default();
             if let Some(slot) = d.get_mut(n - 1) {
-                *slot = nmx_n.sub(dn.add(nmx_n).recip());
+                *slot = remainder_down(n, mx, rn);
             }
         }
-        // D_n(x) for real x where ψ_n decays (n ≥ x), downward, parked
+        // R_n(x) for real x where ψ_n decays (n ≥ x), downward, parked
         // in the real parts of the b_n slots until step n overwrites them.
         // Its start: 8 (x/2)^{1/3} + 16 terms past N, where the start error
         // has decayed below 10⁻¹³ by n = x (as for the complex start, eight
@@ -232,45 +302,47 @@ impl<'a> Mie<'a> {
         // cost up to half as many real steps again as there are terms.
         let first_ratio = (libm::ceil(x) as usize).max(1);
         let real_start = (n_terms + (8.0 * libm::cbrt(0.5 * x)) as usize + 16).min(nmx);
-        let mut dx = 0.0;
+        let mut rx = 0.0;
         for n in (first_ratio + 1..=real_start).rev() {
-            let nx = n as f64 / x;
-            dx = nx - 1.0 / (dx + nx); // D_{n−1}
+            rx = -x / ((2 * n + 1) as f64 + x * rx); // R_{n−1}
             if let Some(b) = ab.get_mut(2 * (n - 2) + 1).filter(|_| n - 1 <= n_terms) {
-                b.re = dx;
+                b.re = rx;
             }
         }
         // ψ and χ (ξ = ψ − iχ) upward.
         let (s, c) = (libm::sin(x), libm::cos(x));
         let (mut psi0, mut psi1) = (c, s); // ψ_{-1}, ψ_0
         let (mut chi0, mut chi1) = (-s, c); // χ_{-1}, χ_0
-        let inv_m = m.recip();
+        // m² and 1 − m² = (1 − m)(1 + m) (no cancellation as m → 1).
+        let one = Complex::new(1.0, 0.0);
+        let (m2, one_m2) = (m.mul(m), one.sub(m).mul(one.add(m)));
         let (mut q_ext, mut q_sca, mut g_sum, mut back) = (0.0, 0.0, 0.0, Complex::default());
         let (mut prev_a, mut prev_b) = (Complex::default(), Complex::default());
         for n in 1..=n_terms {
             let nf = n as f64;
             let f = (2.0 * nf - 1.0) / x;
-            let psi = if n >= first_ratio {
-                let dxn = ab.get(2 * (n - 1) + 1).map_or(f64::NAN, |b| b.re);
-                psi1 / (dxn + nf / x)
-            } else {
-                f * psi1 - psi0
-            };
             let chi = f * chi1 - chi0;
-            let xi = Complex::new(psi, -chi);
-            let xi_prev = Complex::new(psi1, -chi1);
-            let dn = d.get(n).copied().unwrap_or_default();
-            let nx = nf / x;
-            let ta = dn.mul(inv_m).add(Complex::new(nx, 0.0));
-            let tb = dn.mul(m).add(Complex::new(nx, 0.0));
-            let an = ta
-                .scale(psi)
-                .sub(Complex::new(psi1, 0.0))
-                .div(ta.mul(xi).sub(xi_prev));
-            let bn = tb
-                .scale(psi)
-                .sub(Complex::new(psi1, 0.0))
-                .div(tb.mul(xi).sub(xi_prev));
+            let rn = d.get(n).copied().unwrap_or_default();
+            let t = Terms::new(n, x, (m, m2, one_m2), rn);
+            let (psi, num_a, num_b) = if n >= first_ratio {
+                let rxn = ab.get(2 * (n - 1) + 1).map_or(f64::NAN, |b| b.re);
+                let psi = psi1 / ((2.0 * nf + 1.0) / x + rxn);
+                let (num_a, num_b) = t.ratio_numerators(rxn);
+                (psi, num_a.scale(psi), num_b.scale(psi))
+            } else {
+                let psi = f * psi1 - psi0;
+                let num = |t: Complex, s: Complex| t.scale(psi).sub(s.scale(psi1));
+                (psi, num(t.a, m2), num(t.b, one))
+            };
+            // t ξ_n − s ξ_{n−1} = num − i (t χ_n − s χ_{n−1}), the product
+            // by i written out (as a product, an infinite t χ_n made ∞·0 =
+            // NaN).
+            let den = |num: Complex, t: Complex, s: Complex| {
+                let c = t.scale(chi).sub(s.scale(chi1));
+                Complex::new(num.re + c.im, num.im - c.re)
+            };
+            let an = num_a.div(den(num_a, t.a, m2));
+            let bn = num_b.div(den(num_b, t.b, one));
             let w = 2.0 * nf + 1.0;
             q_ext += w * (an.re + bn.re);
             q_sca += w * (an.norm_sqr() + bn.norm_sqr());

@@ -160,7 +160,8 @@ fn reflectance(c: f64, n_i: f64, n_t: f64) -> f64 {
     };
     let eta = n_i / n_t;
     let (a, b) = (eta * c + ct, c + eta * ct);
-    let rs = -k / (a * a);
+    // r_s up to its sign, which R squares away.
+    let rs = k / (a * a);
     let rp = k * (c * c - eta * eta * (1.0 - c) * (1.0 + c)) / (b * b);
     // At most 1: at grazing incidence both ratios are −1 up to the
     // rounding of `cₜ = √k`, which made R = 1 + 4·10⁻¹⁶.

@@ -62,6 +62,25 @@ impl<T: Real> Part<'_, T> {
             Part::Table(t) => t.sample_cos(u),
         }
     }
+    /// The component's own sampler at `u`, with `sin θ` as closely as it
+    /// knows it ([`PhaseFunction::sample_cos_sin`]; a table's from `cos θ`).
+    pub fn sample_cos_sin(&self, u: T) -> (T, T) {
+        match self {
+            Part::Phase(p) => p.sample_cos_sin(u),
+            Part::Table(t) => {
+                let mu = t.sample_cos(u);
+                (mu, sin_from_cos(mu))
+            }
+        }
+    }
+    /// The component's density per steradian at the angle `(cos θ, sin θ)`
+    /// ([`PhaseFunction::pdf_cos_sin`]; a table's at `cos θ`).
+    pub fn pdf_cos_sin(&self, cos_theta: T, sin_theta: T) -> T {
+        match self {
+            Part::Phase(p) => p.pdf_cos_sin(cos_theta, sin_theta),
+            Part::Table(t) => t.pdf(cos_theta),
+        }
+    }
     /// The component's mean cosine.
     pub fn mean_cosine(&self) -> T {
         match self {

@@ -80,7 +80,9 @@ impl<'a, T: Real> SpectralPhase<'a, T> {
     /// `cos θ` drawn from channel `hero`'s phase function at `u` (its own
     /// sampler: the exact inverse for models, the lookup for tables), and
     /// every channel's `ratio_c = p_c(μ)/p_hero(μ)` into `ratio_out` (module
-    /// docs; `ratio_hero = 1`). [`Error::Size`] for `hero` out of range or
+    /// docs; `ratio_hero = 1`), each density at the sampled angle
+    /// ([`Part::pdf_cos_sin`]: a Fournier–Forand hero puts up to a seventh
+    /// of its samples where `cos θ` rounds to 1, its pole). [`Error::Size`] for `hero` out of range or
     /// `ratio_out` shorter than [`len`](Self::len); [`Error::Domain`] for a
     /// NaN `u` or a `μ` where the hero's density is 0 (a table's gap). On
     /// error nothing is written.
@@ -97,13 +99,17 @@ impl<'a, T: Real> SpectralPhase<'a, T> {
         if u.is_nan() {
             return Err(Error::Domain);
         }
-        let mu = h.sample_cos(u);
-        let ph = h.pdf(mu);
+        let (mu, sin) = h.sample_cos_sin(u);
+        let ph = h.pdf_cos_sin(mu, sin);
         if !(ph > T::ZERO && ph.is_finite()) {
             return Err(Error::Domain);
         }
         for (i, (out, part)) in ratio_out.iter_mut().zip(self.parts()).enumerate() {
-            *out = if i == hero { T::ONE } else { part.pdf(mu) / ph };
+            *out = if i == hero {
+                T::ONE
+            } else {
+                part.pdf_cos_sin(mu, sin) / ph
+            };
         }
         Ok(mu)
     }

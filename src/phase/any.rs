@@ -279,6 +279,13 @@ impl<T: Real> PhaseFunction<T> for Phase<T> {
     fn sample_cos_sin(&self, u: T) -> (T, T) {
         dispatch!(self, m => m.sample_cos_sin(u))
     }
+    #[inline]
+    fn pdf_cos_sin(&self, cos_theta: T, sin_theta: T) -> T {
+        match super::support(cos_theta) {
+            Some(mu) => dispatch!(self, m => m.pdf_cos_sin(mu, sin_theta)),
+            None => T::ZERO,
+        }
+    }
     // Always inlined: where the caller's model is known (`Phase::rayleigh()`
     // in firmware, say) the match folds to that one model, and a firmware
     // image links only its code, not every model's (tests/bare_metal.rs).

@@ -287,7 +287,11 @@ impl Ff {
     /// `dδ/dμ = −k/2`, `dF/dμ = R/2 − (1 − s) R'(δ) k/2 − c (1 − 3μ²)/8`
     /// (`R' < 0`).
     fn density_mu(&self, mu: f64) -> f64 {
-        let s = 0.5 * (1.0 - mu);
+        self.density_at(0.5 * (1.0 - mu), mu)
+    }
+    /// [`density_mu`](Self::density_mu) at `s = (1 − μ)/2` and `μ` given
+    /// both (a sampled angle knows `s` more closely than `1 − μ` does).
+    fn density_at(&self, s: f64, mu: f64) -> f64 {
         let delta = self.k * s;
         if delta <= 0.0 {
             // The forward pole (ν < 0): infinite density.
@@ -486,6 +490,20 @@ impl<T: Real> PhaseFunction<T> for FournierForand<T> {
     }
     fn sample_cos(&self, u: T) -> T {
         self.sample_cos_sin(u).0
+    }
+    /// The density at `s = (1 − μ)/2` taken from `sin θ` in the forward
+    /// hemisphere, `s = sin²θ/(2(1 + μ))`: the sampler puts up to a
+    /// seventh of its samples (`n = 1.01`, `μ_J = 3.01`) within an ulp of
+    /// `μ = 1`, where `cos θ` rounds to 1 and [`pdf`](Self::pdf) is the
+    /// pole's ∞, while `sin θ` keeps the angle and its finite density.
+    fn pdf_cos_sin(&self, cos_theta: T, sin_theta: T) -> T {
+        let (mu, sin) = (cos_theta.to_f64(), sin_theta.to_f64());
+        if !(mu > 0.0 && mu <= 1.0 && sin > 0.0) {
+            return self.pdf(cos_theta);
+        }
+        let s = sin * sin / (2.0 * (1.0 + mu));
+        let k = Ff::from_bits(self.ff);
+        T::from_f64(k.density_at(s, mu) / core::f64::consts::TAU)
     }
     /// `sin θ` from the solved variable in f64, so f32 directions keep
     /// the forward lobe's angles that `cos θ` in f32 cannot resolve.

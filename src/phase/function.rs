@@ -30,16 +30,28 @@ pub trait PhaseFunction<T: Real> {
         (mu, sin_from_cos(mu))
     }
 
+    /// The density per steradian at the angle `(cos θ, sin θ)` that
+    /// [`sample_cos_sin`](Self::sample_cos_sin) gives: [`pdf`](Self::pdf)`(cos
+    /// θ)` but for a density infinite at a pole (Fournier–Forand's forward
+    /// pole), where a `cos θ` rounded to ±1 would give ∞ and `sin θ` still
+    /// places the angle.
+    #[inline]
+    fn pdf_cos_sin(&self, cos_theta: T, sin_theta: T) -> T {
+        let _ = sin_theta;
+        self.pdf(cos_theta)
+    }
+
     /// A direction scattered from the unit propagation direction `w_in`:
     /// `cos θ = sample_cos(u1)`, azimuth `2π u2` in the basis
     /// [`onb`](crate::math::geometry::onb)`(w_in)`, the polar angle from
     /// [`sample_cos_sin`](Self::sample_cos_sin). Returns the direction and
-    /// its density per steradian.
+    /// its density per steradian ([`pdf_cos_sin`](Self::pdf_cos_sin) at
+    /// that angle).
     #[inline]
     fn sample_dir(&self, w_in: Vec3<T>, u1: T, u2: T) -> (Vec3<T>, T) {
         let (mu, sin_theta) = self.sample_cos_sin(u1);
         let dir = direction_about_turns(w_in, mu, sin_theta, u2.clamp01());
-        (dir, self.pdf(mu))
+        (dir, self.pdf_cos_sin(mu, sin_theta))
     }
 
     /// [`sample_cos`](Self::sample_cos) for a `u` the caller has already

@@ -309,6 +309,7 @@ pub fn chi2_sphere<T: Real>(
 /// come with the density of what was drawn: either `pdf` at the rounded
 /// `cos θ` (within `8ε` relative), or, as HG reports it from the sampler's
 /// own terms, the f64 model's density at its exact angle for the same `u1`
+/// (`pdf_cos_sin` at the angle of `sample_cos_sin`)
 /// (within `rel`).
 pub fn sample_dir_consistent<T: Real>(
     p: &impl PhaseFunction<T>,
@@ -329,7 +330,12 @@ pub fn sample_dir_consistent<T: Real>(
             if (d.dot(w_in) - mu).abs().to_f64() > 2.0 * tol {
                 return Err(format!("cos θ {:?}, sample_cos {mu:?}", d.dot(w_in)));
             }
-            let (own, exact) = (p.pdf(mu).to_f64(), p64.pdf(p64.sample_cos(u1.to_f64())));
+            // The density at the sampled angle: `pdf` at its cosine, but
+            // where a density infinite at a pole has its own reading of
+            // the angle (`pdf_cos_sin`, Fournier–Forand's).
+            let at_angle = |(m, s): (f64, f64)| p64.pdf_cos_sin(m, s);
+            let own = p.pdf(mu).to_f64();
+            let exact = at_angle(p64.sample_cos_sin(u1.to_f64()));
             let got = pdf.to_f64();
             if (got - own).abs() > tol * own && (got - exact).abs() > rel * exact {
                 return Err(format!(

@@ -81,9 +81,10 @@ impl<'a, T: Real> SpectralPhase<'a, T> {
     /// sampler: the exact inverse for models, the lookup for tables), and
     /// every channel's `ratio_c = p_c(μ)/p_hero(μ)` into `ratio_out` (module
     /// docs; `ratio_hero = 1`), each density at the sampled angle
-    /// ([`Part::pdf_cos_sin`]: a Fournier–Forand hero puts up to a seventh
-    /// of its samples where `cos θ` rounds to 1, its pole). [`Error::Size`] for `hero` out of range or
-    /// `ratio_out` shorter than [`len`](Self::len); [`Error::Domain`] for a
+    /// ([`Part::pdf_cos_sin`]: near `ν = 0` a Fournier–Forand hero puts up
+    /// to half its samples where `cos θ` rounds to 1, its pole).
+    /// [`Error::Size`] for `hero` out of range or `ratio_out` shorter than
+    /// [`len`](Self::len); [`Error::Domain`] for a
     /// NaN `u` or a `μ` where the hero's density is 0 (a table's gap). On
     /// error nothing is written.
     pub fn sample_cos(&self, hero: usize, u: T, ratio_out: &mut [T]) -> Result<T, Error> {

@@ -492,10 +492,11 @@ impl<T: Real> PhaseFunction<T> for FournierForand<T> {
         self.sample_cos_sin(u).0
     }
     /// The density at `s = (1 − μ)/2` taken from `sin θ` in the forward
-    /// hemisphere, `s = sin²θ/(2(1 + μ))`: the sampler puts up to a
-    /// seventh of its samples (`n = 1.01`, `μ_J = 3.01`) within an ulp of
-    /// `μ = 1`, where `cos θ` rounds to 1 and [`pdf`](Self::pdf) is the
-    /// pole's ∞, while `sin θ` keeps the angle and its finite density.
+    /// hemisphere, `s = sin²θ/(2(1 + μ))`: near `ν = 0` the sampler puts
+    /// many of its samples within an ulp of `μ = 1` (half of them at `n =
+    /// 1.01`, `μ_J = 3.05`), where `cos θ` rounds to 1 and
+    /// [`pdf`](Self::pdf) is the pole's ∞, while `sin θ` keeps the angle
+    /// and its finite density.
     fn pdf_cos_sin(&self, cos_theta: T, sin_theta: T) -> T {
         let (mu, sin) = (cos_theta.to_f64(), sin_theta.to_f64());
         if !(mu > 0.0 && mu <= 1.0 && sin > 0.0) {

@@ -182,8 +182,9 @@ pub(crate) fn hermite<T: Real>(data: &[T], n: usize, n_t: T, u: T) -> T {
 /// `mu` held in `[y0, y1]`, the ends of its Hermite interval (NaN stays
 /// NaN). The cubic is monotone from `y0` to `y1` on `t ∈ [0, 1]`, but its
 /// rounding passes `y1` by an ulp near `t = 1`: past the last node, where
-/// the table's density is 0, and above the next interval's first value,
-/// so that `u` to `cos θ` was not monotone.
+/// the table's density is 0, and above the next interval's first value, a
+/// step back across the node. (Within an interval Horner's rounding can
+/// still step back by a few ulp where the terms are larger than the sum.)
 #[inline(always)]
 fn hold<T: Real>(mu: T, y0: T, y1: T) -> T {
     let mu = if mu > y1 { y1 } else { mu };

@@ -192,7 +192,9 @@ impl<'a, T: Real> Table<'a, T> {
         self.data
     }
 
-    /// `cos θ` for `u ∈ [0, 1]` (clamped; NaN gives NaN), monotone in `u`.
+    /// `cos θ` for `u ∈ [0, 1]` (clamped; NaN gives NaN), monotone in `u`
+    /// up to the rounding of the interpolation (a Hermite table's cubic can
+    /// step back by a few ulp within an interval; never across a node).
     #[inline(always)]
     pub fn sample_cos(&self, u: T) -> T {
         match self.kind {

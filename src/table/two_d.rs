@@ -185,7 +185,8 @@ impl<'a, T: Real> Table2d<'a, T> {
 
     /// `cos θ` at the variable `x` (clamped to the slices' range; NaN
     /// gives NaN) for `u ∈ [0, 1]` (clamped; NaN gives NaN), monotone in
-    /// `u`, O(1): the blend of the module docs, bit for bit as
+    /// `u` up to rounding (as [`Table::sample_cos`]), O(1): the blend of
+    /// the module docs, bit for bit as
     /// `sk_table2d_lookup` of `include/scatterkit_table.h`.
     #[inline]
     pub fn sample_cos(&self, x: T, u: T) -> T {

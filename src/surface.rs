@@ -77,21 +77,23 @@ fn snell(d: Vec3<f64>, nf: Vec3<f64>, eta: f64) -> Option<Vec3<f64>> {
         return Some(d);
     }
     let cos_i = -d.dot(nf);
-    let cos_t = cos_transmitted(cos_i, eta, 1.0)?;
+    let cos_t = transmitted(cos_i, eta, 1.0)?.cos_t;
     // η d and the normal term nearly cancel for large η: renormalise so the
     // result is unit to rounding.
     let t = d * eta + nf * (eta * cos_i - cos_t);
     Some(t * (1.0 / t.length()))
 }
 
-/// `cos θₜ` of the refracted ray for `|cos θᵢ|`, or `None` on total internal
-/// reflection (or NaN input), in f64 and rounded once ([`transmitted`]).
-#[inline]
-fn cos_transmitted<T: Real>(cos_i: T, n_i: T, n_t: T) -> Option<T> {
-    transmitted(cos_i.to_f64(), n_i.to_f64(), n_t.to_f64()).map(|(ct, _)| T::from_f64(ct))
+/// The refracted side of an interface: `cos θₜ`, `η = nᵢ/nₜ` and `1 − η²`
+/// ([`transmitted`]), what both the direction and the reflectance use.
+#[derive(Clone, Copy)]
+struct Transmitted {
+    cos_t: f64,
+    eta: f64,
+    one_minus_eta2: f64,
 }
 
-/// `(cos θₜ, 1 − η²)` for `|cos θᵢ|` = `c` and `η = nᵢ/nₜ`, or `None` on
+/// [`Transmitted`] for `|cos θᵢ|` = `c` and `η = nᵢ/nₜ`, or `None` on
 /// total internal reflection (or NaN input): `cos²θₜ = 1 − η² sin²θᵢ`
 /// written as `(1 − η²) + η² cos²θᵢ`, with `1 − η² = ((nₜ − nᵢ)/nₜ)(1 +
 /// η)`. No cancellation at grazing incidence or for nearly matched
@@ -99,11 +101,15 @@ fn cos_transmitted<T: Real>(cos_i: T, n_i: T, n_t: T) -> Option<T> {
 /// from a rounded `η` lost the indices' difference (at `nₜ/nᵢ = 1 + 10⁻⁶`
 /// the f32 reflectance was 12 % off).
 #[inline]
-fn transmitted(c: f64, n_i: f64, n_t: f64) -> Option<(f64, f64)> {
+fn transmitted(c: f64, n_i: f64, n_t: f64) -> Option<Transmitted> {
     let eta = n_i / n_t;
     let k = (n_t - n_i) / n_t * (1.0 + eta);
     let ct2 = k + eta * c * (eta * c);
-    (ct2 >= 0.0).then(|| (libm::sqrt(ct2), k))
+    (ct2 >= 0.0).then(|| Transmitted {
+        cos_t: libm::sqrt(ct2),
+        eta,
+        one_minus_eta2: k,
+    })
 }
 
 #[inline(always)]
@@ -144,7 +150,8 @@ pub fn fresnel_dielectric<T: Real>(cos_i: T, n_i: T, n_t: T) -> T {
     if n_i == n_t {
         return T::ZERO;
     }
-    T::from_f64(reflectance(c.to_f64(), n_i.to_f64(), n_t.to_f64()))
+    let c = c.to_f64();
+    T::from_f64(reflectance(c, transmitted(c, n_i.to_f64(), n_t.to_f64())))
 }
 
 /// [`fresnel_dielectric`] for `c = |cos θᵢ|` in f64. The amplitude ratios
@@ -153,12 +160,16 @@ pub fn fresnel_dielectric<T: Real>(cos_i: T, n_i: T, n_t: T) -> T {
 /// nₜ²` and `(nₜc)² − (nᵢcₜ)² = (nₜ² − nᵢ²)(c² − sin²θₜ)`, so that, over
 /// `nₜ²`, `r_s = −(1 − η²)/(ηc + cₜ)²` and `r_p = (1 − η²)(c² − η²(1 −
 /// c²))/(c + ηcₜ)²`: the nearly equal terms of nearly matched indices
-/// never meet.
-fn reflectance(c: f64, n_i: f64, n_t: f64) -> f64 {
-    let Some((ct, k)) = transmitted(c, n_i, n_t) else {
+/// never meet. 1 on total internal reflection (`t` is `None`).
+fn reflectance(c: f64, t: Option<Transmitted>) -> f64 {
+    let Some(Transmitted {
+        cos_t: ct,
+        eta,
+        one_minus_eta2: k,
+    }) = t
+    else {
         return 1.0;
     };
-    let eta = n_i / n_t;
     let (a, b) = (eta * c + ct, c + eta * ct);
     // r_s up to its sign, which R squares away.
     let rs = k / (a * a);
@@ -496,11 +507,16 @@ impl<T: Real> Surface<T> {
         }
         let nf = facing(d, n);
         let cos_i = (-d.dot(nf)).clamp_unit();
-        let cos_t = cos_transmitted(cos_i, n_i, n_t);
-        let reflectance = if cos_t.is_some() {
-            fresnel_dielectric(cos_i, n_i, n_t)
+        // The refracted side once, for the reflectance and `cos θₜ` alike
+        // (the indices are checked above; matched ones reflect nothing, as
+        // `fresnel_dielectric` says).
+        let c = cos_i.abs().to_f64();
+        let t = transmitted(c, n_i.to_f64(), n_t.to_f64());
+        let cos_t = t.map(|t| T::from_f64(t.cos_t));
+        let reflectance = if n_i == n_t {
+            T::ZERO
         } else {
-            T::ONE
+            T::from_f64(reflectance(c, t))
         };
         let reflected = T::uniform(rng) < reflectance;
         // The specular direction and the normal on the side the ray leaves to.
